@@ -1,0 +1,54 @@
+"""Command-line interface. Thin: parse options, call the library, print, exit.
+
+Subcommands live in their own modules and are imported only when invoked (or when ``--help``
+lists them: those modules import nothing heavy at module level).
+"""
+
+from __future__ import annotations
+
+import importlib
+
+import click
+
+from rockcli import __version__
+
+#: command name -> "module:attribute"
+_COMMANDS = {
+    "records": "rockcli.cli.records:records",
+    "simulate": "rockcli.cli.simulate:simulate",
+    "fit-pulse": "rockcli.cli.fit_pulse:fit_pulse",
+    "assess": "rockcli.cli.assess:assess",
+}
+
+
+class LazyGroup(click.Group):
+    """A click group whose subcommands are imported on first use."""
+
+    def __init__(self, *args, lazy_commands=None, **kwargs):
+        super().__init__(*args, **kwargs)
+        self._lazy = dict(lazy_commands or {})
+
+    def list_commands(self, ctx):
+        return sorted(set(super().list_commands(ctx)) | set(self._lazy))
+
+    def get_command(self, ctx, name):
+        if name in self._lazy:
+            modname, attr = self._lazy[name].split(":")
+            try:
+                module = importlib.import_module(modname)
+            except ModuleNotFoundError as exc:  # command not built yet
+                if exc.name == modname:
+                    return None
+                raise
+            return getattr(module, attr)
+        return super().get_command(ctx, name)
+
+
+@click.group(cls=LazyGroup, lazy_commands=_COMMANDS, context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(__version__, prog_name="rockcli")
+def main():
+    """Does a free-standing slender body (column, statue, cabinet) survive an earthquake,
+    and does seismic isolation help it or make it worse?
+
+    Implements Vassiliou & Makris (2012), Earthquake Engng Struct Dyn 41:177-196.
+    """
