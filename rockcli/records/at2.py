@@ -1,0 +1,319 @@
+"""PEER NGA ``.AT2`` accelerograms, readable on their own and as an ObsPy waveform plugin.
+
+Registered in ``pyproject.toml`` under the ``obspy.plugin.waveform`` entry points (format name
+``PEER_AT2``), so that after ``pip install`` a plain ``obspy.read("RSN1119_KOBE_TAZ000.AT2")``
+returns a :class:`~obspy.core.stream.Stream`.
+
+Layout of an AT2 file: four header lines, then the samples, several per line::
+
+    PEER NGA STRONG MOTION DATABASE RECORD
+    Kobe Japan, 1/16/1995, Takarazuka, 0                 <- event, date, station, component
+    ACCELERATION TIME SERIES IN UNITS OF G               <- quantity and units
+    NPTS=   4096  DT=   .0100 SEC,                       <- one of :data:`NPTS_DT_PATTERNS`
+      -.6833536E-03  -.6799507E-03  ...
+
+The fourth line comes in several layouts (NGA-West2 with and without a comma after NPTS, the
+older NGA-West1 ``14488    0.0029    NPTS, DT``, ...); they are matched against a table of
+regular expressions. Line endings may be LF, CRLF or CR.
+
+Data units of the plugin: the Trace data are in **m/s^2** (float64). The file's values were
+multiplied by ``stats.peer_at2.factor`` (9.80665 for a file in g); ``stats.peer_at2.units`` keeps
+the units as stated in the file. ``stats.calib`` is left at 1.
+"""
+
+from __future__ import annotations
+
+import re
+from typing import Any
+
+import numpy as np
+
+from rockcli.errors import RockcliInputError
+
+#: Header line with the number of points and the time step, one regex per layout met in the
+#: PEER databases and in files that imitate them. Groups: ``npts`` and ``dt`` [s].
+_NUM = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[EeDd][-+]?\d+)?"
+NPTS_DT_PATTERNS: tuple[tuple[str, re.Pattern], ...] = (
+    # NGA-West2: "NPTS=   4096  DT=   .0100 SEC," and "NPTS=   4172, DT=   .0100 SEC,"
+    ("nga-west2", re.compile(rf"^\s*NPTS\s*=\s*(?P<npts>\d+)\s*[,;]?\s*DT\s*=\s*(?P<dt>{_NUM})\s*(?:SEC|S)?\b", re.I)),
+    # NGA-West1 (old PEER strong-motion database): "14488    0.0029    NPTS, DT"
+    ("nga-west1", re.compile(rf"^\s*(?P<npts>\d+)\s*[,;]?\s+(?P<dt>{_NUM})\s*(?:SEC)?\s*[,;]?\s*NPTS\s*[,;]?\s*DT\b", re.I)),
+    # DT before NPTS: "DT= .0050 SEC, NPTS= 7818"
+    ("dt-first", re.compile(rf"^\s*DT\s*=\s*(?P<dt>{_NUM})\s*(?:SEC|S)?\s*[,;]?\s*NPTS\s*=\s*(?P<npts>\d+)", re.I)),
+)
+
+#: Units stated in the header lines: "... IN UNITS OF G", "The units are (g)", "UNITS: cm/s^2".
+_UNITS_RE = re.compile(r"\bUNITS\s*(?:OF|ARE|IN|:|=)\s*[:=]?\s*\(?\s*(?P<units>[A-Za-z][A-Za-z0-9/^*.]*)\s*\)?", re.I)
+_QUANTITY_RE = re.compile(r"\b(ACCELERATION|VELOCITY|DISPLACEMENT)\b", re.I)
+_DATE_RE = re.compile(r"^\d{1,2}/\d{1,2}/\d{2,4}$")
+_TIME_RE = re.compile(r"^\d{1,2}:\d{2}(?::\d{2})?$")
+_FLOAT_RE = re.compile(_NUM)
+
+#: Number of header lines before the samples.
+HEADER_LINES = 4
+
+
+def _split_lines(text: str) -> list[str]:
+    """Lines of ``text`` whatever the line endings (LF, CRLF or CR)."""
+    return text.splitlines()
+
+
+def _match_npts_dt(line: str) -> tuple[str, int, float] | None:
+    for layout, pattern in NPTS_DT_PATTERNS:
+        m = pattern.match(line)
+        if m:
+            return layout, int(m.group("npts")), float(m.group("dt").replace("D", "E").replace("d", "e"))
+    return None
+
+
+def _parse_title(line: str) -> dict[str, str]:
+    """Event, date, time, station and component from header line 2 (comma-separated)."""
+    parts = [p.strip() for p in line.split(",")]
+    if len(parts) < 3:
+        return {}
+    out = {"event": parts[0], "component": parts[-1]}
+    station = []
+    for p in parts[1:-1]:
+        if "date" not in out and _DATE_RE.match(p):
+            out["date"] = p
+        elif "time" not in out and _TIME_RE.match(p):
+            out["time"] = p
+        else:
+            station.append(p)
+    out["station"] = ", ".join(station)
+    return out
+
+
+def parse_at2_header(lines: list[str], filename: str = "AT2 file") -> dict[str, Any]:
+    """Parse the four header lines of an AT2 file.
+
+    Parameters
+    ----------
+    lines : list of str
+        At least the first four lines of the file.
+    filename : str
+        Name used in error messages.
+
+    Returns
+    -------
+    dict
+        ``npts``, ``dt`` [s], ``layout`` (key of :data:`NPTS_DT_PATTERNS`), ``units`` (as stated,
+        or None), ``quantity`` (``acceleration``, ``velocity``, ``displacement`` or None), ``title``
+        (line 2), ``description`` (line 3), ``database`` (line 1) and, when line 2 is a
+        comma-separated list, ``event``, ``date``, ``time``, ``station``, ``component``.
+
+    Raises
+    ------
+    RockcliInputError
+        If there are fewer than four lines or line 4 matches none of the layouts.
+    """
+    if len(lines) < HEADER_LINES:
+        raise RockcliInputError(f"{filename}: not an AT2 file: it has {len(lines)} lines, fewer than the 4 header lines")
+    found = _match_npts_dt(lines[3])
+    if found is None:
+        raise RockcliInputError(
+            f"{filename}: AT2 header line 4 {lines[3].strip()!r} states no NPTS and DT in a known layout")
+    layout, npts, dt = found
+    head = {"database": lines[0].strip(), "title": lines[1].strip(), "description": lines[2].strip(),
+            "layout": layout, "npts": npts, "dt": dt, "units": None, "quantity": None}
+    for line in lines[:3]:
+        m = _UNITS_RE.search(line)
+        if m and head["units"] is None:
+            head["units"] = m.group("units")
+    m = _QUANTITY_RE.search(" ".join(lines[:3]))
+    if m:
+        head["quantity"] = m.group(1).lower()
+    head.update(_parse_title(lines[1]))
+    return head
+
+
+def parse_numbers(lines: list[str], first_line: int, filename: str) -> np.ndarray:
+    """All numbers in ``lines`` as float64, in order.
+
+    Values are separated by blanks; fixed-width Fortran fields that run together
+    (``1.1365572E-02-5.7981615E-03``) are split too.
+
+    Parameters
+    ----------
+    lines : list of str
+        Data lines.
+    first_line : int
+        1-based line number of ``lines[0]`` in the file (for error messages).
+    filename : str
+        Name used in error messages.
+
+    Raises
+    ------
+    RockcliInputError
+        On a token that is not a number, or a NaN or infinite value (naming the line).
+    """
+    text = " ".join(lines)
+    try:
+        values = np.array(text.split(), dtype=np.float64)
+    except ValueError:
+        values = None
+    if values is None:
+        out: list[float] = []
+        for k, line in enumerate(lines):
+            for token in line.split():
+                try:
+                    out.append(float(token))
+                    continue
+                except ValueError:
+                    pass
+                pieces = _FLOAT_RE.findall(token)
+                if not pieces or "".join(pieces) != token:
+                    raise RockcliInputError(
+                        f"{filename}, line {first_line + k}: {token!r} is not a number") from None
+                out.extend(float(p.replace("D", "E").replace("d", "e")) for p in pieces)
+        values = np.array(out, dtype=np.float64)
+    bad = ~np.isfinite(values)
+    if bad.any():
+        i = int(np.argmax(bad))
+        line = _line_of_value(lines, i)
+        raise RockcliInputError(
+            f"{filename}, line {first_line + line}: sample {i + 1} is {values[i]!r}, not a finite number")
+    return values
+
+
+def _line_of_value(lines: list[str], index: int) -> int:
+    count = 0
+    for k, line in enumerate(lines):
+        count += len(line.split())
+        if count > index:
+            return k
+    return len(lines) - 1
+
+
+def read_text(filename) -> str:
+    """The whole file as text (latin-1, so that any byte decodes); clear errors when unreadable."""
+    try:
+        with open(filename, "rb") as fh:
+            raw = fh.read()
+    except FileNotFoundError:
+        raise RockcliInputError(f"{filename}: no such file") from None
+    except IsADirectoryError:
+        raise RockcliInputError(f"{filename}: is a folder, not a record file") from None
+    except OSError as exc:
+        raise RockcliInputError(f"{filename}: cannot be read ({exc.strerror})") from None
+    return raw.decode("latin-1")
+
+
+def parse_at2(filename, headonly: bool = False) -> tuple[np.ndarray, dict[str, Any]]:
+    """Read an AT2 file: samples in the units stated in the file, and the header.
+
+    Parameters
+    ----------
+    filename : str or path-like
+        The ``.AT2`` file.
+    headonly : bool
+        Skip the samples (an empty array is returned).
+
+    Returns
+    -------
+    values : ndarray
+        ``npts`` samples [units as stated in ``header["units"]``], float64.
+    header : dict
+        See :func:`parse_at2_header`.
+
+    Raises
+    ------
+    RockcliInputError
+        If the file is missing or empty, the header is not recognised, NPTS or DT is not
+        positive, a value is not a finite number, or the number of values differs from NPTS.
+    """
+    text = read_text(filename)
+    if not text.strip():
+        raise RockcliInputError(f"{filename}: the file is empty")
+    lines = _split_lines(text)
+    header = parse_at2_header(lines, str(filename))
+    if header["npts"] <= 0:
+        raise RockcliInputError(f"{filename}: AT2 header states NPTS={header['npts']}; it must be positive")
+    if not header["dt"] > 0:
+        raise RockcliInputError(f"{filename}: AT2 header states DT={header['dt']:g} s; the time step must be positive")
+    if headonly:
+        return np.empty(0), header
+    values = parse_numbers(lines[HEADER_LINES:], HEADER_LINES + 1, str(filename))
+    if values.size < header["npts"]:
+        raise RockcliInputError(
+            f"{filename}: truncated AT2 file: the header states NPTS={header['npts']} but only "
+            f"{values.size} values follow")
+    if values.size > header["npts"]:
+        raise RockcliInputError(
+            f"{filename}: the AT2 header states NPTS={header['npts']} but {values.size} values follow")
+    return values, header
+
+
+# --------------------------------------------------------------------------------------------
+# ObsPy plugin
+# --------------------------------------------------------------------------------------------
+
+def _is_at2(filename) -> bool:
+    """True when ``filename`` looks like a PEER AT2 file (cheap; never raises).
+
+    Checks that the file is text and its line 4 states NPTS and DT in a known layout.
+    """
+    try:
+        if hasattr(filename, "read"):  # file-like objects: ObsPy passes paths or buffers
+            pos = filename.tell()
+            raw = filename.read(4096)
+            filename.seek(pos)
+        else:
+            with open(filename, "rb") as fh:
+                raw = fh.read(4096)
+        if isinstance(raw, str):
+            raw = raw.encode("latin-1", "replace")
+        if b"\x00" in raw:
+            return False
+        lines = _split_lines(raw.decode("latin-1"))
+        return len(lines) >= HEADER_LINES and _match_npts_dt(lines[3]) is not None
+    except Exception:  # noqa: BLE001 -- a format probe must answer, not raise
+        return False
+
+
+def at2_factor(header: dict[str, Any], filename="AT2 file") -> float:
+    """Factor from the file's stated units to m/s^2 (raises if the units are unknown)."""
+    from rockcli.units import accel_factor
+
+    if header.get("units") is None:
+        raise RockcliInputError(f"{filename}: the AT2 header states no units; give them (--units g, ...)")
+    return accel_factor(header["units"])
+
+
+def _read_at2(filename, headonly: bool = False, **kwargs):
+    """Read a PEER AT2 file into an ObsPy Stream of one Trace (ObsPy plugin entry point).
+
+    Parameters
+    ----------
+    filename : str or path-like
+        The ``.AT2`` file.
+    headonly : bool
+        Read the header only (``stats.npts`` is set, ``data`` is empty).
+    **kwargs
+        Ignored (ObsPy passes its own options through).
+
+    Returns
+    -------
+    obspy.core.stream.Stream
+        One Trace; data in m/s^2 (float64). ``stats.peer_at2`` holds the header: ``units`` (as
+        stated in the file), ``factor`` (multiplier applied to reach m/s^2), ``data_units``
+        (``"m/s^2"``), ``event``, ``date``, ``station``, ``component``, ``title``, ``layout``, ...
+        ``stats.channel`` is the component (at most 3 characters are not enforced). Start time
+        is 1970-01-01 (AT2 files state no clock time).
+    """
+    from obspy import Stream, Trace
+    from obspy.core.util import AttribDict
+
+    values, header = parse_at2(filename, headonly=headonly)
+    factor = at2_factor(header, filename)
+    peer = AttribDict({k: v for k, v in header.items() if v is not None})
+    peer["factor"] = factor
+    peer["data_units"] = "m/s^2"
+    stats = {"delta": header["dt"], "station": header.get("station", "")[:64],
+             "channel": header.get("component", ""), "peer_at2": peer}
+    if headonly:
+        tr = Trace(header=stats)
+        tr.stats.npts = header["npts"]
+    else:
+        tr = Trace(data=values * factor, header=stats)
+    return Stream([tr])

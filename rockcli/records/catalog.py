@@ -1,0 +1,229 @@
+"""The record catalogue: the paper's records (Table II and Figure 3), by id.
+
+The catalogue is ``records/catalog.csv`` at the root of the repository (found relative to this
+package; the install is editable), or the file named by ``ROCKCLI_CATALOG``. The record files
+themselves are never committed: :func:`find_file` looks them up in the folders named by
+``ROCKCLI_RECORDS`` (``os.pathsep``-separated), then in the repository's ``records/``.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import os
+from dataclasses import dataclass, fields
+from pathlib import Path
+
+from rockcli.errors import RockcliInputError
+
+#: Repository folder holding catalog.csv (and where record files may be dropped, uncommitted).
+REPO_RECORDS = Path(__file__).resolve().parents[2] / "records"
+
+
+@dataclass(frozen=True)
+class CatalogEntry:
+    """One row of ``records/catalog.csv``.
+
+    Attributes
+    ----------
+    id : str
+        Catalogue id, e.g. ``kobe-1995-takarazuka-000``.
+    event, year, station, component : str, int, str, str
+        As in the paper.
+    mw : float or None
+        Moment magnitude.
+    distance_km : float or None
+        Distance to the fault [km] (paper's Table II).
+    pga_published_g : float or None
+        Peak ground acceleration published in Table II [g].
+    pgv_published_mps : float or None
+        Peak ground velocity published in Table II [m/s].
+    file : str
+        File name looked up on :func:`search_path` (empty when no public file exists).
+    format : str
+        Format passed to the loader (``PEER_AT2``, ``TEXT``, ...).
+    units, dt, column : str, float, int or None
+        What the loader needs when the file does not state it: units word, time step [s],
+        1-based column.
+    available : bool
+        False when no public file of the record is known.
+    notes : str
+        Provenance and choices (which candidate file and why).
+    pulse_shape, a_p_g, T_p_s, t0_s, pulse_energy : str, float, float, float, float or None
+        Equivalent pulse, filled by the pulse fitter's generator command (empty until then).
+    """
+
+    id: str
+    event: str
+    year: int
+    station: str
+    component: str
+    mw: float | None
+    distance_km: float | None
+    pga_published_g: float | None
+    pgv_published_mps: float | None
+    file: str
+    format: str
+    units: str | None
+    dt: float | None
+    column: int | None
+    available: bool
+    notes: str
+    pulse_shape: str | None = None
+    a_p_g: float | None = None
+    T_p_s: float | None = None
+    t0_s: float | None = None
+    pulse_energy: float | None = None
+
+
+COLUMNS = tuple(f.name for f in fields(CatalogEntry))
+_FLOATS = {"mw", "distance_km", "pga_published_g", "pgv_published_mps", "dt", "a_p_g", "T_p_s", "t0_s", "pulse_energy"}
+_INTS = {"year", "column"}
+_OPTIONAL_STR = {"units", "pulse_shape"}
+
+
+def catalog_path() -> Path:
+    """The catalogue file: ``ROCKCLI_CATALOG`` if set, else the repository's ``records/catalog.csv``."""
+    env = os.environ.get("ROCKCLI_CATALOG")
+    return Path(env).expanduser() if env else REPO_RECORDS / "catalog.csv"
+
+
+def _parse_cell(name: str, text: str, where: str):
+    text = text.strip()
+    if name == "available":
+        if text.lower() not in ("yes", "no"):
+            raise RockcliInputError(f"{where}: column 'available' must be yes or no, not {text!r}")
+        return text.lower() == "yes"
+    if name in _FLOATS or name in _INTS:
+        if not text:
+            return None
+        try:
+            return int(text) if name in _INTS else float(text)
+        except ValueError:
+            raise RockcliInputError(f"{where}: column {name!r} holds {text!r}, not a number") from None
+    if name in _OPTIONAL_STR:
+        return text or None
+    return text
+
+
+def _format_cell(name: str, value) -> str:
+    if value is None:
+        return ""
+    if name == "available":
+        return "yes" if value else "no"
+    if isinstance(value, float):
+        return repr(value)
+    return str(value)
+
+
+def load_catalog(path: str | os.PathLike | None = None) -> list[CatalogEntry]:
+    """Read the catalogue.
+
+    Parameters
+    ----------
+    path : path-like, optional
+        Catalogue CSV; default :func:`catalog_path`.
+
+    Returns
+    -------
+    list of CatalogEntry
+        In file order.
+
+    Raises
+    ------
+    RockcliInputError
+        If the file is missing, a column is missing, a cell is malformed, or an id repeats.
+    """
+    path = Path(path) if path is not None else catalog_path()
+    try:
+        text = path.read_text(encoding="utf-8")
+    except OSError:
+        raise RockcliInputError(f"record catalogue {path} cannot be read") from None
+    reader = csv.DictReader(io.StringIO(text))
+    missing = [c for c in COLUMNS if c not in (reader.fieldnames or [])]
+    if missing:
+        raise RockcliInputError(f"record catalogue {path} lacks the columns {', '.join(missing)}")
+    entries, seen = [], set()
+    for line, row in enumerate(reader, start=2):
+        where = f"{path}, line {line}"
+        entry = CatalogEntry(**{c: _parse_cell(c, row[c] or "", where) for c in COLUMNS})
+        if entry.id in seen:
+            raise RockcliInputError(f"{where}: id {entry.id!r} appears twice")
+        seen.add(entry.id)
+        entries.append(entry)
+    return entries
+
+
+def format_catalog(entries) -> str:
+    """The catalogue as CSV text (the canonical layout of ``catalog.csv``)."""
+    buf = io.StringIO()
+    writer = csv.writer(buf, lineterminator="\n")
+    writer.writerow(COLUMNS)
+    for e in entries:
+        writer.writerow([_format_cell(c, getattr(e, c)) for c in COLUMNS])
+    return buf.getvalue()
+
+
+def write_catalog(entries, path: str | os.PathLike | None = None) -> Path:
+    """Write the catalogue atomically (temporary file in the same folder, then rename).
+
+    ``load_catalog(write_catalog(load_catalog()))`` gives the same entries, and the file is
+    byte-identical when it was written by this function.
+    """
+    path = Path(path) if path is not None else catalog_path()
+    tmp = path.with_name(f".{path.name}.tmp{os.getpid()}")
+    try:
+        tmp.write_text(format_catalog(entries), encoding="utf-8")
+        os.replace(tmp, path)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+    return path
+
+
+def get_entry(record_id: str) -> CatalogEntry:
+    """The catalogue entry with this id.
+
+    Raises
+    ------
+    RockcliInputError
+        If no entry has this id.
+    """
+    entries = load_catalog()
+    for e in entries:
+        if e.id == record_id:
+            return e
+    raise RockcliInputError(f"{record_id!r} is neither a file nor a catalogue id "
+                            f"(see 'rockcli records list')")
+
+
+def is_catalog_id(source) -> bool:
+    """True when ``source`` names an entry of the catalogue."""
+    if not isinstance(source, str) or os.sep in source or "/" in source:
+        return False
+    try:
+        return any(e.id == source for e in load_catalog())
+    except RockcliInputError:
+        return False
+
+
+def search_path() -> list[Path]:
+    """Folders searched for record files: ``ROCKCLI_RECORDS`` entries, then the repository's ``records/``."""
+    folders = [Path(p).expanduser() for p in os.environ.get("ROCKCLI_RECORDS", "").split(os.pathsep) if p.strip()]
+    folders.append(REPO_RECORDS)
+    out = []
+    for f in folders:
+        if f not in out:
+            out.append(f)
+    return out
+
+
+def find_file(entry: CatalogEntry) -> Path | None:
+    """Path of the entry's file in the first folder of :func:`search_path` that holds it (None if none)."""
+    if not entry.file:
+        return None
+    for folder in search_path():
+        candidate = folder / entry.file
+        if candidate.is_file():
+            return candidate
+    return None

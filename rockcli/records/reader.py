@@ -1,0 +1,316 @@
+"""One loader for every record source: :func:`read_record`."""
+
+from __future__ import annotations
+
+import math
+import os
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from rockcli.errors import RockcliInputError
+from rockcli.records.record import Record
+
+#: Format names rockcli parses itself (anything else is handed to ``obspy.read``).
+TEXT_FORMATS = {"TEXT", "TXT", "ASCII"}
+AT2_FORMATS = {"PEER_AT2", "AT2"}
+#: Bytes probed to tell text formats apart.
+_PROBE_BYTES = 8192
+
+
+def _check_units(units):
+    if units is None:
+        return None
+    from rockcli.units import accel_factor
+
+    accel_factor(units)  # raises on an unknown word
+    return str(units)
+
+
+def _check_dt(dt):
+    if dt is None:
+        return None
+    try:
+        value = float(dt)
+    except (TypeError, ValueError):
+        raise RockcliInputError(f"time step dt={dt!r} is not a number") from None
+    if not math.isfinite(value) or value <= 0:
+        raise RockcliInputError(f"time step dt={dt!r} s must be a positive finite number")
+    return value
+
+
+def _check_column(column):
+    if column is None:
+        return None
+    try:
+        value = int(column)
+    except (TypeError, ValueError):
+        raise RockcliInputError(f"column {column!r} is not a whole number (columns count from 1)") from None
+    if value < 1 or value != float(column):
+        raise RockcliInputError(f"column {column!r} must be a whole number >= 1 (columns count from 1)")
+    return value
+
+
+def read_record(source, *, format=None, units=None, dt=None, column=None) -> Record:
+    """Read a ground-acceleration record from a file or the catalogue.
+
+    Parameters
+    ----------
+    source : str or path-like
+        A file path, or a catalogue id (see :func:`rockcli.records.catalog.load_catalog`).
+        Files: PEER NGA ``.AT2`` (all header layouts), plain text, ESM ASCII, ITACA ``.cor.acc``,
+        COSMOS V2, GeoNet V2A, and any format ObsPy reads (SAC, MiniSEED, K-NET/KiK-net, ...).
+        The format is detected unless ``format`` is given.
+    format : str, optional
+        ``PEER_AT2``, ``TEXT``, ``ESM``, ``ITACA``, ``COSMOS``, ``GEONET_V2A`` or an ObsPy
+        format name (``SAC``, ``MSEED``, ``KNET``, ...).
+    units : str, optional
+        Units of the values in the file (``g``, ``m/s^2``, ``cm/s^2``, ``gal``, ``mm/s^2``,
+        ``g/10``). Required when the file does not state them; must agree with the file when it does.
+    dt : float, optional
+        Time step [s]. Required when the file does not state it; must agree with the file when it does.
+    column : int, optional
+        1-based column of a multi-column text file (a time column counts), or component of a
+        multi-component file (GeoNet V2A) or trace of a multi-trace ObsPy stream.
+
+    Returns
+    -------
+    Record
+        Acceleration [m/s^2] (float64), ``dt`` [s], ``t_start`` [s] as stated by the source, and
+        ``meta`` with ``units`` (as stated in the file or given), ``units_source``, ``factor``
+        (applied to reach m/s^2), ``format``, ``path`` and what the file says about the
+        event, station and component. Catalogue records also carry ``catalog_id``.
+
+    Raises
+    ------
+    RockcliInputError
+        Missing, empty or malformed file; units or time step neither stated nor given, or given
+        in contradiction with the file; unknown units word; non-positive dt; NaN/inf samples;
+        uneven sampling; a format that is out of scope.
+
+    Examples
+    --------
+    >>> rec = read_record("RSN1119_KOBE_TAZ000.AT2")                 # doctest: +SKIP
+    >>> rec = read_record("kobe-1995-takarazuka-000")                # doctest: +SKIP
+    >>> rec = read_record("C02-065", units="g", dt=0.01)             # doctest: +SKIP
+    """
+    units = _check_units(units)
+    dt = _check_dt(dt)
+    column = _check_column(column)
+    fmt = str(format).strip().upper() if format else None
+
+    if isinstance(source, Record):
+        return source
+    if isinstance(source, str) and not Path(source).exists():
+        from rockcli.records.catalog import find_file, get_entry, is_catalog_id, search_path
+
+        if is_catalog_id(source):
+            entry = get_entry(source)
+            if not entry.available:
+                raise RockcliInputError(f"catalogue record {entry.id!r} has no public file ({entry.notes})")
+            path = find_file(entry)
+            if path is None:
+                folders = ", ".join(str(f) for f in search_path())
+                raise RockcliInputError(
+                    f"catalogue record {entry.id!r}: file {entry.file!r} not found in {folders} "
+                    f"(set ROCKCLI_RECORDS to the folder holding it)")
+            rec = _read_path(path, fmt or entry.format or None, units or entry.units, dt or entry.dt,
+                             column or entry.column, given_by="caller" if units else "catalogue")
+            meta = {**rec.meta, "catalog_id": entry.id, "event": entry.event, "year": entry.year,
+                    "station": entry.station, "component": entry.component,
+                    "file_meta": {k: rec.meta.get(k) for k in ("event", "station", "component")}}
+            return Record(acc=rec.acc, dt=rec.dt, name=entry.id, t_start=rec.t_start, meta=meta)
+        if os.sep not in source and "/" not in source:
+            raise RockcliInputError(f"{source}: no such file, nor a catalogue id (see 'rockcli records list')")
+    return _read_path(Path(source), fmt, units, dt, column)
+
+
+def _read_path(path: Path, fmt, units, dt, column, given_by: str = "caller") -> Record:
+    name = str(path)
+    if not path.exists():
+        raise RockcliInputError(f"{name}: no such file")
+    if path.is_dir():
+        raise RockcliInputError(f"{name}: is a folder, not a record file")
+    if path.stat().st_size == 0:
+        raise RockcliInputError(f"{name}: the file is empty")
+
+    with open(path, "rb") as fh:
+        head = fh.read(_PROBE_BYTES)
+    is_text = b"\x00" not in head
+    head_lines = head.decode("latin-1").splitlines() if is_text else []
+
+    if fmt is None:
+        fmt = _detect(path, head_lines, is_text)
+    if fmt in AT2_FORMATS:
+        out = _from_at2(path)
+    elif fmt in TEXT_FORMATS:
+        out = _from_text(path, column)
+    else:
+        from rockcli.records import formats
+
+        if fmt in formats.REFUSED:
+            raise formats.refusal(fmt, name)
+        if fmt in formats.READERS:
+            from rockcli.records.at2 import read_text
+
+            lines = read_text(path).splitlines()
+            out = formats.READERS[fmt][1](lines, name, column)
+            out.setdefault("dt_source", "header")
+        else:
+            out = _from_obspy(path, fmt, column)
+    out.setdefault("format", fmt)
+    return _finish(path, out, units, dt, given_by)
+
+
+def _looks_like_text_table(lines: list[str]) -> bool:
+    """True when the first data line (after comments and at most one line of column names) is numeric."""
+    from rockcli.records.text import COMMENT_CHARS, _SEP_RE, _is_number
+
+    seen_names = False
+    for raw in lines[:50]:
+        line = raw.strip()
+        if not line or line[0] in COMMENT_CHARS or line.startswith("//"):
+            continue
+        tokens = [t for t in _SEP_RE.split(line) if t]
+        numeric = [_is_number(t) for t in tokens]
+        if all(numeric):
+            return True
+        if seen_names or any(numeric):
+            return False
+        seen_names = True
+    return False
+
+
+def _detect(path: Path, head_lines: list[str], is_text: bool) -> str:
+    from rockcli.records.at2 import _is_at2
+
+    if is_text:
+        if _is_at2(path):
+            return "PEER_AT2"
+        from rockcli.records import formats
+
+        found = formats.probe(head_lines)
+        if found:
+            return found
+        if _looks_like_text_table(head_lines):
+            return "TEXT"
+    return "OBSPY"  # let ObsPy try its own detection
+
+
+def _from_at2(path: Path) -> dict[str, Any]:
+    from rockcli.records.at2 import parse_at2
+
+    values, header = parse_at2(path)
+    if header["quantity"] not in (None, "acceleration"):
+        raise RockcliInputError(f"{path}: the AT2 file holds {header['quantity']}, not acceleration")
+    meta = {k: header.get(k, "") for k in ("event", "station", "component", "date")}
+    meta["header"] = header
+    return {"values": values, "dt": header["dt"], "dt_source": "header", "units": header["units"],
+            "t_start": 0.0, "meta": meta, "format": "PEER_AT2"}
+
+
+def _from_text(path: Path, column) -> dict[str, Any]:
+    from rockcli.records.at2 import read_text
+    from rockcli.records.text import parse_text
+
+    parsed = parse_text(read_text(path), str(path), column)
+    meta = {"column": parsed["column"], "ncols": parsed["ncols"], "time_column": parsed["time_column"],
+            "comments": parsed["comments"]}
+    if parsed["names"]:
+        meta["column_names"] = parsed["names"]
+    return {"values": parsed["values"], "dt": parsed["dt"], "dt_source": parsed["dt_source"],
+            "units": parsed["units"], "t_start": parsed["t_start"], "meta": meta, "format": "TEXT"}
+
+
+def _from_obspy(path: Path, fmt: str, column) -> dict[str, Any]:
+    import obspy
+
+    try:
+        st = obspy.read(str(path), format=None if fmt == "OBSPY" else fmt)
+    except TypeError as exc:  # ObsPy: "Unknown format for file ..." / "Format ... is not supported"
+        raise RockcliInputError(f"{path}: format not recognised ({_first_line(exc)}); "
+                                f"give it with --format, or convert the record to text") from None
+    except Exception as exc:  # noqa: BLE001 -- ObsPy readers raise many kinds; one sentence for the user
+        raise RockcliInputError(f"{path}: ObsPy could not read the file ({_first_line(exc)})") from None
+    if len(st) == 0:
+        raise RockcliInputError(f"{path}: the file holds no traces")
+    if len(st) > 1 and column is None:
+        ids = ", ".join(tr.id for tr in st)
+        raise RockcliInputError(f"{path}: the file holds {len(st)} traces ({ids}); choose one with --column 1-{len(st)}")
+    index = (column or 1) - 1
+    if index >= len(st):
+        raise RockcliInputError(f"{path}: trace {column} does not exist (the file holds {len(st)})")
+    tr = st[index]
+    stats = tr.stats
+    fmt_name = str(stats.get("_format", fmt))
+    values = np.asarray(tr.data, dtype=np.float64)
+    meta: dict[str, Any] = {"station": ".".join(x for x in (stats.network, stats.station) if x),
+                            "component": stats.channel, "trace_id": tr.id, "starttime": str(stats.starttime)}
+    units = None
+    if fmt_name == "KNET":
+        # ObsPy's calib converts counts to m/s^2 from the stated "Scale Factor ...(gal)/..."; the
+        # NIED peak ("Max. Acc.") is measured after removing the mean, so we remove it too.
+        values = values * float(stats.calib)
+        values = values - values.mean()
+        units = "m/s^2"
+        meta.update(units_note="counts x stated scale factor (gal), converted by ObsPy to m/s^2",
+                    processing="mean removed (as the header's Max. Acc.)", knet=dict(stats.knet))
+    elif fmt_name == "SAC":
+        # SAC's IDEP says what the quantity is, not its units (and writers rarely follow its nm
+        # convention): the units are not stated.
+        meta["sac_idep"] = int(stats.sac.get("idep", -12345))
+    if float(stats.calib) != 1.0 and fmt_name != "KNET":
+        meta["calib"] = float(stats.calib)
+    if values.size and not np.all(np.isfinite(values)):
+        i = int(np.argmax(~np.isfinite(values)))
+        raise RockcliInputError(f"{path}: sample {i + 1} is {values[i]!r}, not a finite number")
+    return {"values": values, "dt": float(stats.delta), "dt_source": "header", "units": units,
+            "t_start": 0.0, "meta": meta, "format": fmt_name}
+
+
+def _first_line(exc: Exception) -> str:
+    text = str(exc).strip().splitlines()
+    return text[0].rstrip(".") if text else type(exc).__name__
+
+
+def _finish(path: Path, out: dict[str, Any], units, dt, given_by: str) -> Record:
+    """Reconcile stated and given units and time step, convert to m/s^2, build the Record."""
+    from rockcli.units import accel_factor
+
+    name = str(path)
+    stated_units = out.get("units")
+    if stated_units is not None:
+        try:
+            factor = accel_factor(stated_units)
+        except RockcliInputError:
+            raise RockcliInputError(f"{name}: the file states units {stated_units!r}, which rockcli does not know") from None
+        if units is not None and not math.isclose(accel_factor(units), factor, rel_tol=1e-9):
+            raise RockcliInputError(f"{name}: the file states units {stated_units!r} but {units!r} was given")
+        used_units, units_source = stated_units, "file"
+    elif units is not None:
+        used_units, units_source = units, given_by
+        factor = accel_factor(units)
+    else:
+        raise RockcliInputError(f"{name}: the file does not state its units; give them with --units "
+                                f"(g, m/s^2, cm/s^2, gal, mm/s^2, g/10)")
+
+    stated_dt = out.get("dt")
+    if stated_dt is not None:
+        if not stated_dt > 0:
+            raise RockcliInputError(f"{name}: the file states a time step of {stated_dt:g} s; it must be positive")
+        if dt is not None and not math.isclose(dt, stated_dt, rel_tol=1e-6):
+            raise RockcliInputError(f"{name}: the file states dt={stated_dt:g} s but dt={dt:g} s was given")
+        used_dt, dt_source = float(stated_dt), out.get("dt_source") or "file"
+    elif dt is not None:
+        used_dt, dt_source = dt, given_by
+    else:
+        raise RockcliInputError(f"{name}: the file does not state its time step; give it with --dt (seconds)")
+
+    values = np.asarray(out["values"], dtype=np.float64)
+    if values.size < 2:
+        raise RockcliInputError(f"{name}: the record has {values.size} sample(s); at least 2 are needed")
+    meta = dict(out.get("meta", {}))
+    meta.update(units=used_units, units_source=units_source, factor=factor, dt_source=dt_source,
+                format=out.get("format"), path=str(path))
+    return Record(acc=values * factor, dt=used_dt, name=path.name, t_start=float(out.get("t_start", 0.0)), meta=meta)
