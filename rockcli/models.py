@@ -1,0 +1,243 @@
+"""Physical models: the rigid block and the foundations it stands on.
+
+Everything here is SI: lengths [m], angles [rad], periods [s]. Each foundation knows how to
+describe itself to the compiled kernel (:meth:`kernel_spec`) and how many states it adds.
+
+Notation follows Vassiliou & Makris (2012): ``R`` semi-diagonal, ``alpha`` slenderness,
+``p = sqrt(3 g / (4 R))`` frequency parameter, ``gamma = m / (m + m_b)`` mass ratio,
+``T_b = 2 pi / omega_b`` isolation period with ``omega_b = sqrt(k_b / (m + m_b))``.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+
+from rockcli.errors import RockcliInputError
+from rockcli.units import G
+
+#: Foundation kinds understood by :mod:`rockcli.kernels`.
+KIND_RIGID = 0
+KIND_LINEAR = 1
+
+#: Default mass ratio gamma = m / (m + m_b) of an isolated base: a heavy base, as in the paper's
+#: parametric figures (Figs 6, 7, 9, 11). For gamma <= 0.1 the response hardly depends on gamma
+#: (the paper's Figure 8: "complete similarity" in gamma).
+DEFAULT_GAMMA = 0.01
+#: Default viscous damping ratio of linear bearings: the paper's Table III (xi_b = 0.1).
+DEFAULT_XI = 0.1
+
+
+def _check(cond: bool, message: str) -> None:
+    if not cond:
+        raise RockcliInputError(message)
+
+
+def _finite(x) -> bool:
+    try:
+        return math.isfinite(float(x))
+    except (TypeError, ValueError):
+        return False
+
+
+@dataclass(frozen=True)
+class Block:
+    """A rigid rectangular block rocking about its base corners.
+
+    Parameters
+    ----------
+    R : float
+        Semi-diagonal, centre of mass to a base corner [m], > 0.
+    alpha : float
+        Slenderness ``atan(b / h)`` [rad], 0 < alpha < pi/2.
+    name : str
+        Label used in reports.
+    """
+
+    R: float
+    alpha: float
+    name: str = "block"
+
+    def __post_init__(self):
+        _check(_finite(self.R) and self.R > 0, f"block size R must be a positive length in m, got {self.R!r}")
+        _check(_finite(self.alpha) and 0 < self.alpha < math.pi / 2,
+               f"block slenderness alpha must lie strictly between 0 and 90 degrees, got {self.alpha!r} rad")
+        object.__setattr__(self, "R", float(self.R))
+        object.__setattr__(self, "alpha", float(self.alpha))
+
+    @classmethod
+    def from_dimensions(cls, height: float, width: float, name: str = "block") -> "Block":
+        """Block of full ``height`` and base ``width`` [m] (for a column: the base drum diameter)."""
+        _check(_finite(height) and height > 0, f"block height must be a positive length in m, got {height!r}")
+        _check(_finite(width) and width > 0, f"block width must be a positive length in m, got {width!r}")
+        h, b = 0.5 * float(height), 0.5 * float(width)
+        return cls(math.hypot(h, b), math.atan2(b, h), name)
+
+    @classmethod
+    def from_degrees(cls, R: float, alpha_deg: float, name: str = "block") -> "Block":
+        """Block from its semi-diagonal [m] and slenderness in degrees."""
+        _check(_finite(alpha_deg) and 0 < float(alpha_deg) < 90,
+               f"block slenderness alpha must lie strictly between 0 and 90 degrees, got {alpha_deg!r}")
+        return cls(R, math.radians(float(alpha_deg)), name)
+
+    @property
+    def b(self) -> float:
+        """Half width [m]."""
+        return self.R * math.sin(self.alpha)
+
+    @property
+    def h(self) -> float:
+        """Half height, height of the centre of mass [m]."""
+        return self.R * math.cos(self.alpha)
+
+    @property
+    def height(self) -> float:
+        return 2.0 * self.h
+
+    @property
+    def width(self) -> float:
+        return 2.0 * self.b
+
+    @property
+    def alpha_deg(self) -> float:
+        return math.degrees(self.alpha)
+
+    @property
+    def p(self) -> float:
+        """Frequency parameter ``sqrt(3 g / (4 R))`` [rad/s] (rectangular block, I_o = 4/3 m R^2)."""
+        return math.sqrt(0.75 * G / self.R)
+
+    @property
+    def uplift_acceleration(self) -> float:
+        """Base acceleration that uplifts the block from rest, ``g tan(alpha)`` [m/s^2]."""
+        return G * math.tan(self.alpha)
+
+    @property
+    def housner_restitution(self) -> float:
+        """Housner's ratio of angular velocities across an impact on a rigid base, ``1 - 1.5 sin^2 alpha``."""
+        return 1.0 - 1.5 * math.sin(self.alpha) ** 2
+
+
+#: The temple columns of the paper (monolithic idealisation): full height and base drum diameter [m].
+COLUMN_PRESETS = {
+    "bassae": (5.95, 1.11, "Temple of Apollo at Bassae"),
+    "nemea": (10.33, 1.52, "Temple of Zeus at Nemea"),
+}
+
+
+def column(name: str) -> Block:
+    """A named column preset (``bassae`` or ``nemea``) as a :class:`Block`."""
+    key = str(name).strip().lower()
+    if key not in COLUMN_PRESETS:
+        raise RockcliInputError(f"unknown column {name!r} (known: {', '.join(sorted(COLUMN_PRESETS))})")
+    height, width, _ = COLUMN_PRESETS[key]
+    return Block.from_dimensions(height, width, key)
+
+
+def impact_coefficient(alpha: float, gamma: float) -> float:
+    """Ratio theta_dot after / before an impact, with momentum conserved (paper Eq 18, corrected).
+
+    With ``gamma = m/(m+m_b)`` and ``k = (4 - 3 gamma) cot^2(alpha)``: ``(k - 2)/(k + 4)``.
+    ``gamma = 0`` (rigid foundation) gives Housner's ``1 - 1.5 sin^2(alpha)``. A block too squat
+    for this ratio to be positive stops rocking at its first impact (ratio 0).
+    """
+    cot2 = (math.cos(alpha) / math.sin(alpha)) ** 2
+    k = (4.0 - 3.0 * gamma) * cot2
+    return max(0.0, (k - 2.0) / (k + 4.0))
+
+
+@dataclass(frozen=True)
+class Rigid:
+    """A rigid foundation: the block's base moves with the ground."""
+
+    kind = KIND_RIGID
+    n_states = 0
+
+    def kernel_params(self):
+        return (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+
+    @property
+    def label(self) -> str:
+        return "none"
+
+    @property
+    def gamma(self) -> float:
+        return 0.0
+
+
+@dataclass(frozen=True)
+class LinearIsolation:
+    """Isolated base on linear viscoelastic bearings (paper Eqs 7-11).
+
+    Parameters
+    ----------
+    T_b : float
+        Isolation period ``2 pi sqrt((m + m_b)/k_b)`` [s], > 0.
+    xi : float
+        Viscous damping ratio of the bearings, ``c_b = 2 xi omega_b (m + m_b)``, >= 0.
+    gamma : float
+        Mass ratio ``m / (m + m_b)``, 0 <= gamma < 1.
+    """
+
+    T_b: float
+    xi: float = DEFAULT_XI
+    gamma: float = DEFAULT_GAMMA
+
+    kind = KIND_LINEAR
+    n_states = 2
+
+    def __post_init__(self):
+        _check(_finite(self.T_b) and self.T_b > 0, f"isolation period Tb must be positive (s), got {self.T_b!r}")
+        _check(_finite(self.xi) and self.xi >= 0, f"isolation damping ratio xi must be >= 0, got {self.xi!r}")
+        _check(_finite(self.gamma) and 0 <= self.gamma < 1,
+               f"mass ratio gamma = m/(m+m_b) must satisfy 0 <= gamma < 1, got {self.gamma!r}")
+        for f in ("T_b", "xi", "gamma"):
+            object.__setattr__(self, f, float(getattr(self, f)))
+
+    @property
+    def omega_b(self) -> float:
+        return 2.0 * math.pi / self.T_b
+
+    def kernel_params(self):
+        return (self.omega_b, self.xi, 0.0, 0.0, 0.0, 0.0)
+
+    @property
+    def label(self) -> str:
+        return f"linear:Tb={self.T_b:g},xi={self.xi:g},gamma={self.gamma:g}"
+
+
+Foundation = Rigid | LinearIsolation
+
+_SPEC_KEYS = {
+    "linear": {"tb": "T_b", "xi": "xi", "gamma": "gamma"},
+}
+
+
+def parse_isolation_spec(text: str):
+    """Parse an isolation spec: ``none`` or ``linear:Tb=2.5,xi=0.1,gamma=0.01``.
+
+    ``xi`` defaults to :data:`DEFAULT_XI`, ``gamma`` to :data:`DEFAULT_GAMMA`; ``Tb`` is required.
+    """
+    raw = str(text).strip()
+    kind, _, rest = raw.partition(":")
+    kind = kind.strip().lower()
+    if kind in ("none", "rigid", "fixed") and not rest.strip():
+        return Rigid()
+    if kind not in _SPEC_KEYS:
+        raise RockcliInputError(
+            f"unknown isolation {kind!r} in {raw!r} (use 'none' or 'linear:Tb=2.5,xi=0.1,gamma=0.01')")
+    keys = _SPEC_KEYS[kind]
+    values = {}
+    for item in filter(None, (s.strip() for s in rest.split(","))):
+        key, eq, val = item.partition("=")
+        k = key.strip().lower()
+        if not eq or k not in keys:
+            raise RockcliInputError(
+                f"isolation {raw!r}: {item!r} is not one of {', '.join(k + '=...' for k in keys)}")
+        if not re.fullmatch(r"\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*", val):
+            raise RockcliInputError(f"isolation {raw!r}: {key.strip()} must be a number, got {val.strip()!r}")
+        values[keys[k]] = float(val)
+    if "T_b" not in values:
+        raise RockcliInputError(f"isolation {raw!r} needs Tb=<period in s>")
+    return LinearIsolation(**values)

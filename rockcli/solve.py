@@ -1,0 +1,280 @@
+"""``simulate(block, foundation, excitation)``: one rocking scene, validated, on the compiled kernel.
+
+Solver contract
+---------------
+* The block starts at rest on its base, base and ground at rest, at the start of the excitation.
+* A record is piecewise linear between its samples, zero after its last sample. A pulse is
+  evaluated analytically and is zero outside its support.
+* Uplift when the absolute base acceleration ``a`` passes ``-g tan(alpha)`` (rocking on the
+  right corner, theta > 0) or ``+g tan(alpha)`` (theta < 0).
+* Impacts at theta = 0 keep the total horizontal momentum and the block's angular momentum about
+  the new pivot: ``theta_dot+ = eta theta_dot-`` with ``eta = (k - 2)/(k + 4)``,
+  ``k = (4 - 3 gamma) cot^2(alpha)`` (Housner's ``1 - 1.5 sin^2 alpha`` when gamma = 0).
+* Rest: after an impact, when the rotation the block could still reach by free rocking,
+  ``theta_dot^2 / (2 p^2 sin alpha)``, is below ``rest_tol * alpha``, the block is set at rest
+  (a plastic impact, momentum kept) and moves with its base until the uplift condition holds again.
+* Overturning: ``|theta|`` reaches ``pi/2`` (the block lies on its side). The first time
+  ``|theta|`` exceeds ``alpha`` is reported separately: passing alpha is not final while the
+  ground still moves.
+* After the excitation, free motion is followed for ``tail`` seconds; a block still rocking then
+  is followed until it rests or overturns, up to ``4 * tail``. A run without history stops as soon
+  as the verdict is settled (overturned; or, on a rigid foundation with the ground still, once the
+  block's energy is below the energy needed to reach ``|theta| = alpha``).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from rockcli.errors import RockcliInputError
+from rockcli.models import Block, LinearIsolation, Rigid, impact_coefficient
+from rockcli.units import G
+
+VERDICT_NO_UPLIFT = "no_uplift"
+VERDICT_ROCKED = "rocked"
+VERDICT_OVERTURNED = "overturned"
+
+DEFAULT_RTOL = 1e-8
+DEFAULT_TAIL = 10.0
+DEFAULT_REST_TOL = 1e-6
+DEFAULT_MAX_STEPS = 5_000_000
+
+_PULSE_CODES = {"ricker-sym": 1, "ricker-anti": 2, "sine": 3, "cosine": 4}
+
+
+@dataclass(frozen=True)
+class History:
+    """Time history of a run: arrays at every step end and event [SI units]."""
+
+    t: np.ndarray
+    ag: np.ndarray
+    theta: np.ndarray
+    theta_dot: np.ndarray
+    u: np.ndarray
+    u_dot: np.ndarray
+
+
+@dataclass(frozen=True)
+class Response:
+    """Outcome of :func:`simulate`.
+
+    Attributes
+    ----------
+    verdict : str
+        ``no_uplift``, ``rocked`` (survives) or ``overturned``.
+    status : int
+        0 finished, 1 overturned (terminal event), -1 failed (step cap reached).
+    message : str
+        What happened, in words.
+    theta_max : float
+        Peak ``|theta|`` [rad] (``pi/2`` when overturned).
+    base_disp_max_m : float
+        Peak ``|u|``, base displacement relative to the ground [m] (0 on a rigid foundation).
+    n_impacts : int
+        Impacts while the ground moves (the same with or without history).
+    n_impacts_total : int
+        Impacts integrated, including free rocking after the excitation (a verdict-only run
+        stops once the outcome is settled, so it may count fewer).
+    """
+
+    verdict: str
+    status: int
+    message: str
+    t_uplift_s: float
+    t_overturn_s: float
+    t_exceed_alpha_s: float
+    theta_max: float
+    theta_max_over_alpha: float
+    t_theta_max_s: float
+    n_impacts: int
+    n_impacts_total: int
+    n_uplifts: int
+    n_rests: int
+    base_disp_max_m: float
+    steps: int
+    rejected_steps: int
+    nfev: int
+    settled: bool
+    t_end_s: float
+    history: History | None = field(default=None, repr=False)
+
+    @property
+    def overturned(self) -> bool:
+        return self.verdict == VERDICT_OVERTURNED
+
+    def summary(self) -> dict[str, Any]:
+        """The scalar results as a plain dict (JSON-ready; NaN becomes None)."""
+
+        def clean(v):
+            if isinstance(v, float) and math.isnan(v):
+                return None
+            return v
+
+        keys = ("verdict", "t_uplift_s", "t_overturn_s", "t_exceed_alpha_s", "theta_max_over_alpha",
+                "theta_max", "t_theta_max_s", "n_impacts", "n_impacts_total", "n_uplifts", "n_rests",
+                "base_disp_max_m", "steps", "rejected_steps", "nfev", "settled", "t_end_s", "status",
+                "message")
+        return {k: clean(getattr(self, k)) for k in keys}
+
+
+def _kernel():
+    from rockcli import kernels
+
+    return kernels
+
+
+def _excitation_arrays(excitation):
+    """(ekind, epar, acc, dt, t_begin, t_exc_end) for the kernel."""
+    k = _kernel()
+    if hasattr(excitation, "acc") and hasattr(excitation, "dt"):
+        acc = np.ascontiguousarray(excitation.acc, dtype=np.float64)
+        dt = float(excitation.dt)
+        if acc.ndim != 1 or acc.size < 2:
+            raise RockcliInputError(f"record {getattr(excitation, 'name', '')!r} needs at least 2 samples")
+        if not np.all(np.isfinite(acc)):
+            raise RockcliInputError(f"record {getattr(excitation, 'name', '')!r} has NaN or infinite samples")
+        if not (math.isfinite(dt) and dt > 0):
+            raise RockcliInputError(f"record {getattr(excitation, 'name', '')!r} has a non-positive time step {dt!r}")
+        return k.EXC_RECORD, np.zeros(8), acc, dt, 0.0, (acc.size - 1) * dt
+    shape = getattr(excitation, "shape", None)
+    if shape in _PULSE_CODES:
+        a_p, T_p, t0 = float(excitation.a_p), float(excitation.T_p), float(excitation.t0)
+        if not (math.isfinite(a_p) and math.isfinite(T_p) and T_p > 0 and math.isfinite(t0)):
+            raise RockcliInputError(f"pulse {shape}: a_p must be finite and T_p positive")
+        ts, te = (float(v) for v in excitation.support())
+        epar = np.zeros(8)
+        epar[k.E_AP], epar[k.E_TP], epar[k.E_T0], epar[k.E_TS], epar[k.E_TE] = a_p, T_p, t0, ts, te
+        if shape == "ricker-anti":
+            r = math.sqrt(3.0 - math.sqrt(6.0))
+            epar[k.E_BETA] = abs((r * r - 3.0) * r * math.exp(-0.5 * r * r))
+        return _PULSE_CODES[shape], epar, np.zeros(2), 1.0, min(0.0, ts), te
+    raise RockcliInputError(f"cannot simulate excitation of type {type(excitation).__name__}")
+
+
+def _parameters(block: Block, foundation, rtol: float, rest_tol: float):
+    k = _kernel()
+    prm = np.zeros(k.N_PRM)
+    p = block.p
+    alpha = block.alpha
+    gamma = foundation.gamma
+    prm[k.P_P2] = p * p
+    prm[k.P_G] = G
+    prm[k.P_ALPHA] = alpha
+    prm[k.P_R] = block.R
+    prm[k.P_GAMMA] = gamma
+    prm[k.P_THR] = G * math.tan(alpha)
+    prm[k.P_SINA] = math.sin(alpha)
+    prm[k.P_COSA] = math.cos(alpha)
+    prm[k.P_H] = block.h
+    prm[k.P_ETA] = impact_coefficient(alpha, gamma)
+    cot2 = (math.cos(alpha) / math.sin(alpha)) ** 2
+    prm[k.P_DU] = 6.0 * gamma * block.h / ((4.0 - 3.0 * gamma) * cot2 + 4.0)
+    prm[k.P_REST] = rest_tol
+    prm[k.P_RTOL] = rtol
+    # error scales: the tolerance on a state is rtol * max(|y|, scale)
+    prm[k.P_SC0 + 0] = alpha
+    prm[k.P_SC0 + 1] = p * alpha
+    if isinstance(foundation, Rigid):
+        fkind = k.FOUNDATION_RIGID
+        prm[k.P_SC0 + 2] = prm[k.P_SC0 + 3] = 1.0
+    elif isinstance(foundation, LinearIsolation):
+        fkind = k.FOUNDATION_LINEAR
+        w = foundation.omega_b
+        prm[k.P_W] = w
+        prm[k.P_XI] = foundation.xi
+        u_sc = prm[k.P_THR] / (w * w)  # displacement at which the bearings' force uplifts the block
+        prm[k.P_SC0 + 2] = u_sc
+        prm[k.P_SC0 + 3] = u_sc * w
+    else:
+        raise RockcliInputError(f"unknown foundation {foundation!r}")
+    return fkind, prm
+
+
+def simulate(block: Block, foundation=None, excitation=None, *, rtol: float = DEFAULT_RTOL,
+             history: bool = False, tail: float = DEFAULT_TAIL, rest_tol: float = DEFAULT_REST_TOL,
+             max_steps: int = DEFAULT_MAX_STEPS) -> Response:
+    """Rocking response of ``block`` on ``foundation`` under ``excitation``.
+
+    Parameters
+    ----------
+    block : Block
+        The rigid block.
+    foundation : Rigid or LinearIsolation, optional
+        Default :class:`Rigid`.
+    excitation : Record or pulse
+        A :class:`rockcli.records.Record` (``acc`` [m/s^2], ``dt`` [s]) or an analytic pulse
+        (``shape``, ``a_p`` [m/s^2], ``T_p`` [s], ``t0`` [s], ``support()``).
+    rtol : float
+        Relative tolerance of the integrator; the error on each state is kept below
+        ``rtol * max(|y|, scale)`` with scales alpha, p alpha, g tan(alpha)/omega_b^2, g tan(alpha)/omega_b.
+    history : bool
+        Return the time history (every step end and event). Without it the run stores nothing
+        and stops as soon as the verdict is settled.
+    tail : float
+        Free-motion time after the excitation [s].
+    rest_tol : float
+        Rest threshold (see the module notes).
+    max_steps : int
+        Safety cap on integrator steps.
+
+    Returns
+    -------
+    Response
+    """
+    if foundation is None:
+        foundation = Rigid()
+    if not isinstance(block, Block):
+        raise RockcliInputError(f"block must be a rockcli.models.Block, got {type(block).__name__}")
+    if excitation is None:
+        raise RockcliInputError("simulate needs an excitation (a record or a pulse)")
+    if not (math.isfinite(rtol) and 1e-14 <= rtol <= 1e-2):
+        raise RockcliInputError(f"rtol must lie between 1e-14 and 1e-2, got {rtol!r}")
+    if not (math.isfinite(tail) and tail >= 0):
+        raise RockcliInputError(f"tail must be a non-negative time in s, got {tail!r}")
+    if not (math.isfinite(rest_tol) and 0 <= rest_tol < 1):
+        raise RockcliInputError(f"rest_tol must satisfy 0 <= rest_tol < 1, got {rest_tol!r}")
+    k = _kernel()
+    ekind, epar, acc, dt, t_begin, t_exc_end = _excitation_arrays(excitation)
+    fkind, prm = _parameters(block, foundation, float(rtol), float(rest_tol))
+    out = np.zeros(k.N_OUT)
+    C, A, B, E, P = k.tableau()
+    H = k.simulate_core(fkind, prm, ekind, epar, acc, dt, t_begin, t_exc_end, float(tail), int(max_steps),
+                        bool(history), C, A, B, E, P, out)
+    return _response(out, H if history else None, block)
+
+
+def _response(out: np.ndarray, H, block: Block) -> Response:
+    k = _kernel()
+    status = int(out[k.O_STATUS])
+    if status == k.STATUS_OVERTURNED:
+        verdict = VERDICT_OVERTURNED
+        message = f"overturned at t = {out[k.O_T_OVERTURN]:.3f} s"
+    elif out[k.O_UPLIFTED]:
+        verdict = VERDICT_ROCKED
+        message = f"rocked and survived (peak |theta|/alpha = {out[k.O_THETA_MAX] / block.alpha:.3f})"
+    else:
+        verdict = VERDICT_NO_UPLIFT
+        message = "never uplifted: the base acceleration stayed below g tan(alpha)"
+    if status == k.STATUS_MAX_STEPS:
+        message = f"stopped after {int(out[k.O_STEPS])} steps at t = {out[k.O_T_END]:.3f} s (step cap reached): " + message
+    elif not out[k.O_SETTLED] and verdict == VERDICT_ROCKED:
+        message += "; still rocking when the run ended (lengthen the tail to follow it)"
+    hist = None
+    if H is not None:
+        hist = History(t=H[:, k.H_T].copy(), ag=H[:, k.H_AG].copy(), theta=H[:, k.H_TH].copy(),
+                       theta_dot=H[:, k.H_THD].copy(), u=H[:, k.H_U].copy(), u_dot=H[:, k.H_UD].copy())
+    return Response(
+        verdict=verdict, status=status, message=message,
+        t_uplift_s=float(out[k.O_T_UPLIFT]), t_overturn_s=float(out[k.O_T_OVERTURN]),
+        t_exceed_alpha_s=float(out[k.O_T_EXCEED]), theta_max=float(out[k.O_THETA_MAX]),
+        theta_max_over_alpha=float(out[k.O_THETA_MAX] / block.alpha), t_theta_max_s=float(out[k.O_T_THETA_MAX]),
+        n_impacts=int(out[k.O_N_IMPACTS]), n_impacts_total=int(out[k.O_N_IMPACTS_ALL]),
+        n_uplifts=int(out[k.O_N_UPLIFTS]), n_rests=int(out[k.O_N_RESTS]),
+        base_disp_max_m=float(out[k.O_U_MAX]), steps=int(out[k.O_STEPS]),
+        rejected_steps=int(out[k.O_REJECTED]), nfev=int(out[k.O_NRHS]), settled=bool(out[k.O_SETTLED]),
+        t_end_s=float(out[k.O_T_END]), history=hist,
+    )
