@@ -251,10 +251,10 @@ def _from_obspy(path: Path, fmt: str, column) -> dict[str, Any]:
     if fmt_name == "KNET":
         # ObsPy's calib converts counts to m/s^2 from the stated "Scale Factor ...(gal)/..."; the
         # NIED peak ("Max. Acc.") is measured after removing the mean, so we remove it too.
-        values = values * float(stats.calib)
+        values = values * float(stats.calib) * 100.0  # ObsPy's calib gives m/s^2; the file states gal
         values = values - values.mean()
-        units = "m/s^2"
-        meta.update(units_note="counts x stated scale factor (gal), converted by ObsPy to m/s^2",
+        units = "gal"
+        meta.update(units_note="counts x the stated scale factor (gal)",
                     processing="mean removed (as the header's Max. Acc.)", knet=dict(stats.knet))
     elif fmt_name == "SAC":
         # SAC's IDEP says what the quantity is, not its units (and writers rarely follow its nm

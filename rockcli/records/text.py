@@ -144,12 +144,15 @@ def check_time_column(t: np.ndarray, row_lines: list[int], filename: str) -> tup
             f"{filename}, line {row_lines[i + 1]}: the time column is not increasing "
             f"({t[i]:g} s then {t[i + 1]:g} s)")
     dt = (t[-1] - t[0]) / (t.size - 1)
+    ref = float(np.median(steps))
+    tol = TIME_UNIFORMITY_RTOL * ref
+    off = np.abs(steps - ref) > tol
     dev = np.abs(t - (t[0] + dt * np.arange(t.size)))
-    if dev.max() > TIME_UNIFORMITY_RTOL * dt:
-        i = int(np.argmax(np.abs(steps - dt) > TIME_UNIFORMITY_RTOL * dt))
+    if off.any() or dev.max() > tol:
+        i = int(np.argmax(off)) if off.any() else max(int(np.argmax(dev)) - 1, 0)
         raise RockcliInputError(
             f"{filename}, line {row_lines[i + 1]}: the time column is not uniformly sampled (step "
-            f"{steps[i]:g} s where the mean step is {dt:g} s); resample the record to a constant time step first")
+            f"{steps[i]:g} s where the usual step is {ref:g} s); resample the record to a constant time step first")
     return float(f"{dt:.10g}"), float(t[0])
 
 
