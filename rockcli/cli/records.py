@@ -1,0 +1,109 @@
+"""``rockcli records``: the record catalogue and a look at any record file."""
+
+from __future__ import annotations
+
+import click
+
+from rockcli.cli.errors import user_errors
+from rockcli.cli.options import record_kwargs, record_options
+
+
+@click.group(name="records")
+def records():
+    """Ground-motion records: the paper's catalogue and any accelerogram file."""
+
+
+def _status_rows() -> list[dict]:
+    from rockcli.records.catalog import find_file, load_catalog
+
+    rows = []
+    for e in load_catalog():
+        path = find_file(e) if e.available else None
+        status = "not available" if not e.available else ("found" if path else "missing")
+        rows.append({"id": e.id, "event": e.event, "year": e.year, "station": e.station,
+                     "component": e.component, "mw": e.mw, "distance_km": e.distance_km,
+                     "pga_published_g": e.pga_published_g, "pgv_published_mps": e.pgv_published_mps,
+                     "file": e.file, "status": status, "path": str(path) if path else ""})
+    return rows
+
+
+def _fmt(value, spec: str) -> str:
+    return "-" if value is None else format(value, spec)
+
+
+@records.command(name="list")
+@click.option("--csv", "csv_path", type=click.Path(dir_okay=False), default=None,
+              help="Also write the table to this CSV file.")
+@user_errors
+def list_records(csv_path):
+    """List the catalogue and, for each id, whether and where its file was found.
+
+    Files are looked up in the folders of ROCKCLI_RECORDS (path list), then in the repository's
+    records/ folder.
+    """
+    from rockcli.records.catalog import search_path
+
+    rows = _status_rows()
+    table = [("id", "event", "PGA [g]", "PGV [m/s]", "status", "path")]
+    for r in rows:
+        table.append((r["id"], f"{r['event']} {r['year']}", _fmt(r["pga_published_g"], ".2f"),
+                      _fmt(r["pgv_published_mps"], ".2f"), r["status"], r["path"] or r["file"] or "-"))
+    widths = [max(len(row[i]) for row in table) for i in range(len(table[0]) - 1)]
+    for row in table:
+        click.echo("  ".join(cell.ljust(w) for cell, w in zip(row, widths)) + "  " + row[-1])
+    found = sum(r["status"] == "found" for r in rows)
+    click.echo(f"\n{found} of {len(rows)} files found; PGA/PGV are the published values (Table II). "
+               f"Searched: {', '.join(str(p) for p in search_path())}")
+    if csv_path:
+        from rockcli.report.records import write_list_csv
+
+        write_list_csv(rows, csv_path)
+        click.echo(f"wrote {csv_path}")
+
+
+@records.command(name="show")
+@click.argument("source")
+@record_options
+@click.option("--plot", "plot_path", type=click.Path(dir_okay=False), default=None,
+              help="Plot acceleration, velocity and displacement to this image (e.g. FILE.png).")
+@user_errors
+def show(source, units, dt, fmt, column, plot_path):
+    """Print npts, dt, duration, PGA and PGV of SOURCE (a file or a catalogue id).
+
+    PGV is computed by trapezoidal integration of the record as given (from rest), and again
+    after removing a straight line fitted to the velocity (linear baseline); both are printed.
+    """
+    from rockcli.records import read_record
+    from rockcli.records.motion import calc_peaks
+
+    rec = read_record(source, **record_kwargs(units, dt, fmt, column))
+    peaks = calc_peaks(rec)
+    meta = rec.meta
+    lines = [("record", rec.name)]
+    if meta.get("path"):
+        lines.append(("file", meta["path"]))
+    lines.append(("format", str(meta.get("format", ""))))
+    for key in ("event", "station", "component"):
+        if meta.get(key):
+            lines.append((key, str(meta[key])))
+    lines += [
+        ("units in file", f"{meta.get('units')} (from the {meta.get('units_source')}; x{meta.get('factor'):.6g} to m/s^2)"),
+        ("npts", str(rec.npts)),
+        ("dt", f"{rec.dt:.6g} s (from the {meta.get('dt_source')})"),
+        ("duration", f"{rec.duration:.3f} s"),
+        ("start time", f"{rec.t_start:.6g} s"),
+        ("PGA", f"{peaks.pga_g:.4f} g ({rec.pga:.4f} m/s^2)"),
+        ("PGV", f"{peaks.pgv_mps:.4f} m/s (trapezoidal integration of the record as given, from rest)"),
+        ("PGV, linear baseline", f"{peaks.pgv_linear_mps:.4f} m/s (linear fit removed from the velocity)"),
+        ("PGD, linear baseline", f"{peaks.pgd_m:.4f} m"),
+    ]
+    if meta.get("processing"):
+        lines.append(("processing", str(meta["processing"])))
+    width = max(len(k) for k, _ in lines)
+    for key, value in lines:
+        click.echo(f"{key.ljust(width)}  {value}")
+    if plot_path:
+        from rockcli.report.records import plot_record
+
+        plot_record(rec, plot_path, baseline="linear")
+        click.echo(f"wrote {plot_path} (velocity and displacement with the linear baseline)")

@@ -1,0 +1,88 @@
+"""Record reports: the catalogue status table (CSV) and the acceleration/velocity/displacement figure.
+
+matplotlib is imported inside the functions (Agg backend); nothing is written half-way: outputs go
+to a temporary file in the target folder and are renamed into place.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import csv
+import os
+from pathlib import Path
+
+from rockcli.errors import RockcliInputError
+
+#: Columns of the ``rockcli records list --csv`` table.
+LIST_COLUMNS = ("id", "event", "year", "station", "component", "mw", "distance_km", "pga_published_g",
+                "pgv_published_mps", "file", "status", "path")
+
+
+@contextlib.contextmanager
+def atomic_path(path: str | os.PathLike):
+    """Yield a temporary path next to ``path``; rename it onto ``path`` when the block succeeds."""
+    path = Path(path)
+    if not path.parent.is_dir():
+        raise RockcliInputError(f"{path}: folder {path.parent} does not exist")
+    tmp = path.with_name(f".{path.stem}.tmp{os.getpid()}{path.suffix}")
+    try:
+        yield tmp
+        os.replace(tmp, path)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+
+
+def write_list_csv(rows: list[dict], path: str | os.PathLike) -> Path:
+    """Write the catalogue status rows (dicts keyed by :data:`LIST_COLUMNS`) as CSV, atomically."""
+    with atomic_path(path) as tmp:
+        with open(tmp, "w", newline="", encoding="utf-8") as fh:
+            writer = csv.DictWriter(fh, fieldnames=LIST_COLUMNS, lineterminator="\n")
+            writer.writeheader()
+            for row in rows:
+                writer.writerow({k: ("" if row.get(k) is None else row.get(k)) for k in LIST_COLUMNS})
+    return Path(path)
+
+
+def plot_record(record, path: str | os.PathLike, baseline: str = "linear") -> Path:
+    """Plot acceleration [g], velocity [m/s] and displacement [m] of a record to a PNG file.
+
+    Parameters
+    ----------
+    record : Record
+        The record.
+    path : path-like
+        Output image (format from the suffix, e.g. ``.png``).
+    baseline : {"none", "linear"}
+        Baseline treatment of the integration (see :func:`rockcli.records.motion.integrate`).
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from rockcli.records.motion import integrate
+    from rockcli.units import G
+
+    vel, disp = integrate(record, baseline)
+    t = record.times
+    fig, axes = plt.subplots(3, 1, sharex=True, figsize=(8, 7), constrained_layout=True)
+    for ax, y, label in zip(axes, (record.acc / G, vel, disp),
+                            ("acceleration [g]", "velocity [m/s]", "displacement [m]")):
+        ax.plot(t, y, lw=0.7, color="k")
+        ax.axhline(0.0, lw=0.4, color="0.6")
+        ax.set_ylabel(label)
+        ax.grid(True, lw=0.3, alpha=0.5)
+    axes[-1].set_xlabel("time [s]")
+    treatment = ("trapezoidal integration, linear baseline removed from velocity" if baseline == "linear"
+                 else "trapezoidal integration of the record as given")
+    axes[0].set_title(f"{record.name}  (PGA {record.pga_g:.3f} g; {treatment})", fontsize=9)
+    suffix = Path(path).suffix.lstrip(".") or "png"
+    try:
+        with atomic_path(path) as tmp:
+            fig.savefig(tmp, dpi=120, format=suffix)
+    except ValueError as exc:
+        raise RockcliInputError(f"{path}: cannot write a figure in this format ({exc})") from None
+    finally:
+        plt.close(fig)
+    return Path(path)
