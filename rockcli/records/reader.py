@@ -229,6 +229,10 @@ def _from_obspy(path: Path, fmt: str, column) -> dict[str, Any]:
     try:
         st = obspy.read(str(path), format=None if fmt == "OBSPY" else fmt)
     except TypeError as exc:  # ObsPy: "Unknown format for file ..." / "Format ... is not supported"
+        if fmt != "OBSPY" and "not supported" in str(exc):
+            raise RockcliInputError(
+                f"{path}: unknown format {fmt!r} (rockcli reads PEER_AT2, TEXT, ESM, ITACA, COSMOS, GEONET_V2A "
+                f"and ObsPy's formats such as SAC, MSEED, KNET)") from None
         raise RockcliInputError(f"{path}: format not recognised ({_first_line(exc)}); "
                                 f"give it with --format, or convert the record to text") from None
     except Exception as exc:  # noqa: BLE001 -- ObsPy readers raise many kinds; one sentence for the user
