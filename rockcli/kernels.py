@@ -74,32 +74,35 @@ SEG_LINEAR = 0  # ag = a0 + slope (t - ts); zero tails are linear with a0 = slop
 PHASE_STUCK = 0
 PHASE_ROCKING = 1
 
-# Dormand-Prince 5(4) tableau and dense output (Dormand & Prince 1980; Shampine 1986)
-_C = np.array([0.0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1.0])
-_A = np.array([
-    [0.0, 0.0, 0.0, 0.0, 0.0],
-    [1 / 5, 0.0, 0.0, 0.0, 0.0],
-    [3 / 40, 9 / 40, 0.0, 0.0, 0.0],
-    [44 / 45, -56 / 15, 32 / 9, 0.0, 0.0],
-    [19372 / 6561, -25360 / 2187, 64448 / 6561, -212 / 729, 0.0],
-    [9017 / 3168, -355 / 33, 46732 / 5247, 49 / 176, -5103 / 18656],
-])
-_B = np.array([35 / 384, 0.0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84])
-_E = np.array([-71 / 57600, 0.0, 71 / 16695, -71 / 1920, 17253 / 339200, -22 / 525, 1 / 40])
-_P = np.array([
-    [1.0, -8048581381 / 2820520608, 8663915743 / 2820520608, -12715105075 / 11282082432],
-    [0.0, 0.0, 0.0, 0.0],
-    [0.0, 131558114200 / 32700410799, -68118460800 / 10900136933, 87487479700 / 32700410799],
-    [0.0, -1754552775 / 470086768, 14199869525 / 1410260304, -10690763975 / 1880347072],
-    [0.0, 127303824393 / 49829197408, -318862633887 / 49829197408, 701980252875 / 199316789632],
-    [0.0, -282668133 / 205662961, 2019193451 / 616988883, -1453857185 / 822651844],
-    [0.0, 40617522 / 29380423, -110615467 / 29380423, 69997945 / 29380423],
-])
+# Dormand-Prince 5(4) tableau and its quartic dense output (Dormand & Prince 1980; Shampine 1986,
+# the coefficients SciPy's RK45 uses). Module-level tuples: mathematical constants of the method,
+# which numba compiles in as literals (they never change, so freezing them in the cache is safe).
+_C = (0.0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1.0)
+_A = (
+    (0.0, 0.0, 0.0, 0.0, 0.0),
+    (1 / 5, 0.0, 0.0, 0.0, 0.0),
+    (3 / 40, 9 / 40, 0.0, 0.0, 0.0),
+    (44 / 45, -56 / 15, 32 / 9, 0.0, 0.0),
+    (19372 / 6561, -25360 / 2187, 64448 / 6561, -212 / 729, 0.0),
+    (9017 / 3168, -355 / 33, 46732 / 5247, 49 / 176, -5103 / 18656),
+)
+_B = (35 / 384, 0.0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84)
+_E = (-71 / 57600, 0.0, 71 / 16695, -71 / 1920, 17253 / 339200, -22 / 525, 1 / 40)
+_P = (
+    (1.0, -8048581381 / 2820520608, 8663915743 / 2820520608, -12715105075 / 11282082432),
+    (0.0, 0.0, 0.0, 0.0),
+    (0.0, 131558114200 / 32700410799, -68118460800 / 10900136933, 87487479700 / 32700410799),
+    (0.0, -1754552775 / 470086768, 14199869525 / 1410260304, -10690763975 / 1880347072),
+    (0.0, 127303824393 / 49829197408, -318862633887 / 49829197408, 701980252875 / 199316789632),
+    (0.0, -282668133 / 205662961, 2019193451 / 616988883, -1453857185 / 822651844),
+    (0.0, 40617522 / 29380423, -110615467 / 29380423, 69997945 / 29380423),
+)
 
-
-def tableau():
-    """The Dormand-Prince arrays ``(C, A, B, E, P)``, passed to the kernel as arguments."""
-    return _C, _A, _B, _E, _P
+# rows of the work array W used by a step
+W_Y = 7  # state at the start of the step
+W_YNEW = 8  # state at the end of the step
+W_TMP = 9  # stage state
+N_W = 10
 
 
 # ---------------------------------------------------------------------------------------------
@@ -128,7 +131,7 @@ def pulse_acc(mode, epar, t):
 
 @njit(cache=True, inline='always')
 def _ground(t, seg, epar):
-    """Ground acceleration inside the current segment. ``seg = [mode, a0, slope, ts]``."""
+    """Ground acceleration inside the current segment, ``seg = (mode, a0, slope, ts)``."""
     mode = int(seg[0])
     if mode == SEG_LINEAR:
         return seg[1] + seg[2] * (t - seg[3])
@@ -136,104 +139,103 @@ def _ground(t, seg, epar):
 
 
 # ---------------------------------------------------------------------------------------------
-# Right-hand sides
+# Right-hand sides (scalars in, scalars out: no array references in the hot path)
 # ---------------------------------------------------------------------------------------------
 @njit(cache=True, inline='always')
-def _base_force(fkind, prm, y):
+def _base_force(fkind, prm, u, ud):
     """Bearing force per unit total mass, ``-(k_b u + c_b u_dot)/(m + m_b)`` [m/s^2]."""
     w = prm[P_W]
-    return -w * w * y[2] - 2.0 * prm[P_XI] * w * y[3]
+    return -w * w * u - 2.0 * prm[P_XI] * w * ud
 
 
 @njit(cache=True, inline='always')
-def _abs_base_acc(fkind, phase, s, prm, y):
-    """Absolute acceleration of the base ``a = ug_ddot + u_ddot`` for an isolated base [m/s^2].
+def _rhs(fkind, phase, s, prm, seg, epar, t, th, thd, u, ud):
+    """Derivatives ``(theta_dot, theta_ddot, u_dot, u_ddot)`` of the scene's states at ``t``.
 
-    Stuck: block and base move together, ``a = F``. Rocking: Eq (10) with the corrected
-    denominator, ``a = (F - gamma R thd^2 sin A + gamma R p^2 sin A cos A)/(1 - gamma R p^2 cos^2 A / g)``.
+    Rigid foundation, Eq (3): ``theta_ddot = -p^2 (sin A + ag/g cos A)``, ``A = s alpha - theta``.
+    Isolated base, stuck: block and base move together, ``u_ddot = F - ag``. Isolated base,
+    rocking: Eqs (10)-(11) with the corrected denominator (reading notes 1-2), written through the
+    absolute base acceleration
+    ``a = (F - gamma R thd^2 sin A + gamma R p^2 sin A cos A)/(1 - gamma R p^2 cos^2 A / g)``,
+    ``theta_ddot = -p^2 (sin A + a/g cos A)``, ``u_ddot = a - ag``.
     """
-    F = _base_force(fkind, prm, y)
-    if phase == PHASE_STUCK:
-        return F
-    A = s * prm[P_ALPHA] - y[0]
-    sA = math.sin(A)
-    cA = math.cos(A)
-    gR = prm[P_GAMMA] * prm[P_R]
-    return (F - gR * y[1] * y[1] * sA + gR * prm[P_P2] * sA * cA) / (1.0 - gR * prm[P_P2] * cA * cA / prm[P_G])
-
-
-@njit(cache=True, inline='always')
-def _rhs(fkind, phase, s, prm, seg, epar, t, y, dy, row):
-    """Time derivatives of the active states. Returns the ground acceleration at ``t``."""
     ag = _ground(t, seg, epar)
     if fkind == FOUNDATION_RIGID:
-        # Eq (3): theta_dd = -p^2 (sin A + ag/g cos A), A = s alpha - theta
-        A = s * prm[P_ALPHA] - y[0]
-        dy[row, 0] = y[1]
-        dy[row, 1] = -prm[P_P2] * (math.sin(A) + ag / prm[P_G] * math.cos(A))
-        return ag
+        A = s * prm[P_ALPHA] - th
+        return thd, -prm[P_P2] * (math.sin(A) + ag / prm[P_G] * math.cos(A)), 0.0, 0.0
+    F = _base_force(fkind, prm, u, ud)
     if phase == PHASE_STUCK:
-        dy[row, 2] = y[3]
-        dy[row, 3] = _base_force(fkind, prm, y) - ag
-        return ag
-    # rocking on an isolated base: Eqs (10)-(11) with notes 1-2 of the reading notes
-    A = s * prm[P_ALPHA] - y[0]
+        return 0.0, 0.0, ud, F - ag
+    A = s * prm[P_ALPHA] - th
     sA = math.sin(A)
     cA = math.cos(A)
     gR = prm[P_GAMMA] * prm[P_R]
-    F = _base_force(fkind, prm, y)
-    a = (F - gR * y[1] * y[1] * sA + gR * prm[P_P2] * sA * cA) / (1.0 - gR * prm[P_P2] * cA * cA / prm[P_G])
-    dy[row, 0] = y[1]
-    dy[row, 1] = -prm[P_P2] * (sA + a / prm[P_G] * cA)
-    dy[row, 2] = y[3]
-    dy[row, 3] = a - ag
-    return ag
+    a = (F - gR * thd * thd * sA + gR * prm[P_P2] * sA * cA) / (1.0 - gR * prm[P_P2] * cA * cA / prm[P_G])
+    return thd, -prm[P_P2] * (sA + a / prm[P_G] * cA), ud, a - ag
+
+
+@njit(cache=True, inline='always')
+def _rhs_into(fkind, phase, s, prm, seg, epar, t, W, src, dst):
+    d0, d1, d2, d3 = _rhs(fkind, phase, s, prm, seg, epar, t, W[src, 0], W[src, 1], W[src, 2], W[src, 3])
+    W[dst, 0] = d0
+    W[dst, 1] = d1
+    W[dst, 2] = d2
+    W[dst, 3] = d3
 
 
 # ---------------------------------------------------------------------------------------------
 # Dormand-Prince step and dense output
 # ---------------------------------------------------------------------------------------------
 @njit(cache=True)
-def _dp5_step(fkind, phase, s, prm, seg, epar, t, h, y, K, i0, i1, ynew, ytmp, C, A, B, E):
-    """One Dormand-Prince step from ``(t, y)`` with ``K[0] = f(t, y)`` already set.
+def _dp5_step(fkind, phase, s, prm, seg, epar, t, h, W, i0, i1):
+    """One Dormand-Prince step of the active states ``i0:i1`` from ``(t, W[W_Y])``.
 
-    Fills ``K[1:7]`` (``K[6] = f(t + h, ynew)``, first-same-as-last) and ``ynew``; returns the
-    scaled RMS error norm over the active states ``i0:i1`` (accept when <= 1).
+    Expects ``W[0] = f(t, y)``; fills the stage derivatives ``W[1:7]`` (``W[6] = f(t + h, ynew)``,
+    first-same-as-last) and ``W[W_YNEW]``. Returns the RMS of the local error over the active
+    states, each scaled by ``rtol * max(|y|, |ynew|, scale)`` (accept the step when <= 1).
     """
+    for i in range(4):
+        W[W_TMP, i] = W[W_Y, i]
     for st in range(1, 6):
         for i in range(i0, i1):
             acc = 0.0
             for j in range(st):
-                acc += A[st, j] * K[j, i]
-            ytmp[i] = y[i] + h * acc
-        _rhs(fkind, phase, s, prm, seg, epar, t + C[st] * h, ytmp, K, st)
+                acc += _A[st][j] * W[j, i]
+            W[W_TMP, i] = W[W_Y, i] + h * acc
+        _rhs_into(fkind, phase, s, prm, seg, epar, t + _C[st] * h, W, W_TMP, st)
+    for i in range(4):
+        W[W_YNEW, i] = W[W_Y, i]
     for i in range(i0, i1):
         acc = 0.0
         for j in range(6):
-            acc += B[j] * K[j, i]
-        ynew[i] = y[i] + h * acc
-    _rhs(fkind, phase, s, prm, seg, epar, t + h, ynew, K, 6)
+            acc += _B[j] * W[j, i]
+        W[W_YNEW, i] = W[W_Y, i] + h * acc
+    _rhs_into(fkind, phase, s, prm, seg, epar, t + h, W, W_YNEW, 6)
     rtol = prm[P_RTOL]
     tot = 0.0
     for i in range(i0, i1):
         err = 0.0
         for j in range(7):
-            err += E[j] * K[j, i]
-        err *= h
-        sc = max(abs(y[i]), abs(ynew[i]), prm[P_SC0 + i]) * rtol
-        tot += (err / sc) ** 2
+            err += _E[j] * W[j, i]
+        sc = max(abs(W[W_Y, i]), abs(W[W_YNEW, i]), prm[P_SC0 + i]) * rtol
+        tot += (h * err / sc) ** 2
     return math.sqrt(tot / (i1 - i0))
 
 
 @njit(cache=True)
-def _dense_coeffs(y, K, h, i, P, c):
-    """Coefficients ``c[0..4]`` of state ``i`` over the step as a polynomial in sigma = (t - t0)/h."""
-    c[0] = y[i]
-    for k in range(4):
-        acc = 0.0
-        for j in range(7):
-            acc += K[j, i] * P[j, k]
-        c[k + 1] = h * acc
+def _dense(W, h, i, sign):
+    """``sign *`` state ``i`` over the last step as a quartic in sigma = (t - t_step)/h: 5 coefficients."""
+    c1 = 0.0
+    c2 = 0.0
+    c3 = 0.0
+    c4 = 0.0
+    for j in range(7):
+        k = W[j, i]
+        c1 += k * _P[j][0]
+        c2 += k * _P[j][1]
+        c3 += k * _P[j][2]
+        c4 += k * _P[j][3]
+    return (sign * W[W_Y, i], sign * h * c1, sign * h * c2, sign * h * c3, sign * h * c4)
 
 
 @njit(cache=True, inline='always')
@@ -274,16 +276,15 @@ def _refine_root(c, level, lo, hi, flo):
 def _first_down(c, level, lo, hi):
     """First sigma in (lo, hi] where ``poly(c) - level`` falls from > 0 to <= 0, else -1.
 
-    The polynomial is sampled on 16 sub-intervals to bracket the first crossing (so a start
-    exactly on the level, e.g. theta = 0 right after an impact, is not taken for a crossing),
-    then refined by regula falsi. Returns -1 if the function is never positive before it is <= 0.
+    The quartic is sampled on 16 sub-intervals to bracket the first crossing, then refined by
+    regula falsi. A start exactly on the level (theta = 0 right after an impact or an uplift) is
+    not a crossing: the function must have been positive first. Returns -1 if it never was.
     """
-    n = 16
     seen_pos = (_poly(c, lo) - level) > 0.0
     xprev = lo
     fprev = _poly(c, lo) - level
-    for k in range(1, n + 1):
-        x = lo + (hi - lo) * k / n
+    for k in range(1, 17):
+        x = lo + (hi - lo) * k / 16.0
         fx = _poly(c, x) - level
         if fx <= 0.0:
             if seen_pos and fprev > 0.0:
@@ -295,61 +296,24 @@ def _first_down(c, level, lo, hi):
     return -1.0
 
 
+@njit(cache=True)
+def _state_at(W, h, sig, nst):
+    """Dense-output state at fraction ``sig`` of the last step, written into ``W[W_TMP]``."""
+    for i in range(nst):
+        W[W_TMP, i] = _poly(_dense(W, h, i, 1.0), sig)
+
+
 # ---------------------------------------------------------------------------------------------
-# Small helpers
+# Excitation segments and the rigid-foundation uplift scan
 # ---------------------------------------------------------------------------------------------
 @njit(cache=True)
-def _hist_push(H, n, t, ag, y):
-    if n >= H.shape[0]:
-        H2 = np.empty((2 * H.shape[0], N_HIST))
-        H2[:n] = H[:n]
-        H = H2
-    H[n, H_T] = t
-    H[n, H_AG] = ag
-    H[n, H_TH] = y[0]
-    H[n, H_THD] = y[1]
-    H[n, H_U] = y[2]
-    H[n, H_UD] = y[3]
-    return H, n + 1
-
-
-@njit(cache=True)
-def _set_segment(j, ekind, epar, acc, dt, t_begin, seg):
-    """Set ``seg`` for segment ``j`` and return its end time.
-
-    Records: segment j < n-1 is the sample interval [j dt, (j+1) dt]; segment n-1 is the zero
-    tail. Pulses: segment 0 is [t_begin, ts] (zero), 1 the support [ts, te], 2 the zero tail.
-    """
-    if ekind == EXC_RECORD:
-        n = acc.shape[0]
-        if j < n - 1:
-            seg[0] = SEG_LINEAR
-            seg[1] = acc[j]
-            seg[2] = (acc[j + 1] - acc[j]) / dt
-            seg[3] = j * dt
-            return (j + 1) * dt
-        seg[0] = SEG_LINEAR
-        seg[1] = 0.0
-        seg[2] = 0.0
-        seg[3] = (n - 1) * dt
-        return np.inf
+def _pulse_segment(j, ekind, epar, t_begin):
+    """Segment ``j`` of a pulse: 0 = [t_begin, ts] zero, 1 = the support [ts, te], 2 = zero tail."""
     if j == 0:
-        seg[0] = SEG_LINEAR
-        seg[1] = 0.0
-        seg[2] = 0.0
-        seg[3] = t_begin
-        return epar[E_TS]
+        return (float(SEG_LINEAR), 0.0, 0.0, t_begin), epar[E_TS]
     if j == 1:
-        seg[0] = ekind
-        seg[1] = 0.0
-        seg[2] = 0.0
-        seg[3] = epar[E_TS]
-        return epar[E_TE]
-    seg[0] = SEG_LINEAR
-    seg[1] = 0.0
-    seg[2] = 0.0
-    seg[3] = epar[E_TE]
-    return np.inf
+        return (float(ekind), 0.0, 0.0, epar[E_TS]), epar[E_TE]
+    return (float(SEG_LINEAR), 0.0, 0.0, epar[E_TE]), np.inf
 
 
 @njit(cache=True)
@@ -358,8 +322,8 @@ def _rigid_uplift(seg, epar, thr, t, t_end):
 
     Returns ``(t_uplift, s)`` with ``s = -sign(ag)`` (the corner the block pivots on), or
     ``(-1, 0)`` when the block stays stuck through ``t_end``. Linear segments are exact; pulse
-    segments are scanned on a grid of T_p/512 with every sampled local maximum of |ag| refined by
-    golden-section search, then the crossing refined by bisection.
+    segments are scanned on a grid of T_p/512 with every sampled local maximum of |ag| near the
+    threshold refined by golden-section search, then the crossing refined by bisection.
     """
     a0 = _ground(t, seg, epar)
     if abs(a0) > thr:
@@ -419,51 +383,50 @@ def _rigid_uplift(seg, epar, thr, t, t_end):
 
 
 # ---------------------------------------------------------------------------------------------
+# Small helpers
+# ---------------------------------------------------------------------------------------------
+@njit(cache=True)
+def _hist_push(H, n, t, ag, W, row):
+    if n >= H.shape[0]:
+        H2 = np.empty((2 * H.shape[0], N_HIST))
+        H2[:n] = H[:n]
+        H = H2
+    H[n, H_T] = t
+    H[n, H_AG] = ag
+    H[n, H_TH] = W[row, 0]
+    H[n, H_THD] = W[row, 1]
+    H[n, H_U] = W[row, 2]
+    H[n, H_UD] = W[row, 3]
+    return H, n + 1
+
+
+@njit(cache=True)
+def _u_extremum(W, hs, sig_end):
+    """|u| at an extremum of u inside [0, sig_end] of the last step (u_dot changes sign), else -1."""
+    c = _dense(W, hs, 3, 1.0 if W[W_Y, 3] > 0.0 else -1.0)
+    sx = _first_down(c, 0.0, 0.0, sig_end)
+    if sx < 0.0:
+        return -1.0
+    return abs(_poly(_dense(W, hs, 2, 1.0), sx))
+
+
+# ---------------------------------------------------------------------------------------------
 # The simulation kernel
 # ---------------------------------------------------------------------------------------------
 @njit(cache=True)
-def _signed_coeffs(y, K, h, i, P, sign, c):
-    _dense_coeffs(y, K, h, i, P, c)
-    for k in range(5):
-        c[k] *= sign
-
-
-@njit(cache=True)
-def _track_u_peak(y, ynew, K, hs, P, sig_end, valid_end, out, c):
-    """Update the peak |u| over [0, sig_end] of the step (extremum where u_dot changes sign)."""
-    if (y[3] > 0.0) != (ynew[3] > 0.0):
-        _signed_coeffs(y, K, hs, 3, P, 1.0 if y[3] > 0.0 else -1.0, c)
-        sx = _first_down(c, 0.0, 0.0, sig_end)
-        if sx >= 0.0:
-            _dense_coeffs(y, K, hs, 2, P, c)
-            um = abs(_poly(c, sx))
-            if um > out[O_U_MAX]:
-                out[O_U_MAX] = um
-    if valid_end and abs(ynew[2]) > out[O_U_MAX]:
-        out[O_U_MAX] = abs(ynew[2])
-
-
-@njit(cache=True)
-def _start_rocking(t, out):
-    out[O_N_UPLIFTS] += 1
-    if out[O_UPLIFTED] == 0.0:
-        out[O_UPLIFTED] = 1.0
-        out[O_T_UPLIFT] = t
-
-
-@njit(cache=True)
 def simulate_core(fkind, prm, ekind, epar, acc, dt, t_begin, t_exc_end, tail, max_steps,
-                  want_history, C, A, B, E, P, out):
+                  want_history, out):
     """Integrate one scene. Fills ``out`` (see the ``O_*`` layout) and returns the history.
 
     Parameters
     ----------
     fkind : int
         Foundation kind (``FOUNDATION_*``).
-    prm : float64[N_PRM]
+    prm : tuple of N_PRM floats
         Block, foundation and tolerance constants (``P_*`` layout).
     ekind : int
-        Excitation kind (``EXC_*``); ``acc``/``dt`` for records, ``epar`` for pulses.
+        Excitation kind (``EXC_*``): ``acc`` [m/s^2] and ``dt`` [s] for a record, ``epar``
+        (tuple of 8 floats, ``E_*`` layout) for a pulse.
     t_begin, t_exc_end : float
         Start of the integration and end of the excitation [s].
     tail : float
@@ -474,6 +437,8 @@ def simulate_core(fkind, prm, ekind, epar, acc, dt, t_begin, t_exc_end, tail, ma
     want_history : bool
         Store the state at every step end and event. Without it, stop as soon as the verdict is
         settled (overturned, or no longer able to overturn once the ground is still).
+    out : float64[N_OUT]
+        Filled with the results.
 
     Returns
     -------
@@ -487,15 +452,10 @@ def simulate_core(fkind, prm, ekind, epar, acc, dt, t_begin, t_exc_end, tail, ma
     halfpi = 0.5 * math.pi
     p2 = prm[P_P2]
     w = prm[P_W]
+    xi = prm[P_XI]
+    bound_fac = w * (1.0 + 2.0 * xi)  # free base: |F| <= omega (1 + 2 xi) sqrt(u_dot^2 + omega^2 u^2)
 
-    y = np.zeros(4)
-    ynew = np.zeros(4)
-    ytmp = np.zeros(4)
-    K = np.zeros((7, 4))
-    c0 = np.zeros(5)
-    c1 = np.zeros(5)
-    seg = np.zeros(4)
-
+    W = np.zeros((N_W, 4))
     for k in range(N_OUT):
         out[k] = 0.0
     out[O_T_UPLIFT] = np.nan
@@ -503,11 +463,9 @@ def simulate_core(fkind, prm, ekind, epar, acc, dt, t_begin, t_exc_end, tail, ma
     out[O_T_EXCEED] = np.nan
     out[O_T_THETA_MAX] = np.nan
 
+    nrec = acc.shape[0]
     if want_history:
-        cap = 1024
-        if ekind == EXC_RECORD:
-            cap = 2 * acc.shape[0] + 1024
-        H = np.empty((cap, N_HIST))
+        H = np.empty((2 * nrec + 1024 if ekind == EXC_RECORD else 4096, N_HIST))
     else:
         H = np.empty((0, N_HIST))
     nh = 0
@@ -523,21 +481,34 @@ def simulate_core(fkind, prm, ekind, epar, acc, dt, t_begin, t_exc_end, tail, ma
     nrhs = 0
     status = STATUS_DONE
     settled = False
-    fresh = True  # K[0] = f(t, y) must be (re)computed
+    fresh = True  # W[0] = f(t, y) must be (re)computed
+    u_max = 0.0
+    th_max = 0.0
 
     j = 0
-    seg_end = _set_segment(j, ekind, epar, acc, dt, t_begin, seg)
+    if ekind == EXC_RECORD:
+        seg = (float(SEG_LINEAR), acc[0], (acc[1] - acc[0]) / dt, 0.0)
+        seg_end = dt
+    else:
+        seg, seg_end = _pulse_segment(0, ekind, epar, t_begin)
     if want_history:
-        H, nh = _hist_push(H, nh, t, _ground(t, seg, epar), y)
+        H, nh = _hist_push(H, nh, t, _ground(t, seg, epar), W, W_Y)
 
     while True:
         # ----- move to the segment that contains t
         while t >= seg_end:
             j += 1
-            seg_end = _set_segment(j, ekind, epar, acc, dt, t_begin, seg)
-            # a record is continuous across samples (the FSAL derivative stays valid); pulse
-            # edges and the start of the tail may jump
-            if ekind != EXC_RECORD or j >= acc.shape[0] - 1:
+            if ekind == EXC_RECORD:
+                if j < nrec - 1:
+                    seg = (float(SEG_LINEAR), acc[j], (acc[j + 1] - acc[j]) / dt, j * dt)
+                    seg_end = (j + 1) * dt
+                    # a record is continuous across samples: the FSAL derivative stays valid
+                else:
+                    seg = (float(SEG_LINEAR), 0.0, 0.0, (nrec - 1) * dt)
+                    seg_end = np.inf
+                    fresh = True
+            else:
+                seg, seg_end = _pulse_segment(j, ekind, epar, t_begin)
                 fresh = True
         t_stop = min(seg_end, t_max_end)
 
@@ -547,9 +518,7 @@ def simulate_core(fkind, prm, ekind, epar, acc, dt, t_begin, t_exc_end, tail, ma
                 if not isolated:
                     settled = True
                     break
-                # the base oscillates freely: |F| <= omega (1 + 2 xi) sqrt(u_dot^2 + omega^2 u^2)
-                bound = w * (1.0 + 2.0 * prm[P_XI]) * math.sqrt(y[3] * y[3] + w * w * y[2] * y[2])
-                if bound < thr:
+                if bound_fac * math.sqrt(W[W_Y, 3] ** 2 + w * w * W[W_Y, 2] ** 2) < thr:
                     settled = True
                     if not want_history or t >= t_min_end:
                         break
@@ -558,14 +527,16 @@ def simulate_core(fkind, prm, ekind, epar, acc, dt, t_begin, t_exc_end, tail, ma
             elif not isolated and not want_history:
                 # free rocking on a rigid base keeps E = thd^2/2 + p^2 cos(alpha - |theta|) between
                 # impacts and loses energy at impacts: below p^2 it can never overturn.
-                En = 0.5 * y[1] * y[1] + p2 * math.cos(alpha - abs(y[0]))
-                if y[0] * y[1] < 0.0:  # heading for an impact first
+                th = W[W_Y, 0]
+                thd = W[W_Y, 1]
+                En = 0.5 * thd * thd + p2 * math.cos(alpha - abs(th))
+                if th * thd < 0.0:  # heading for an impact first
                     c_a = p2 * math.cos(alpha)
                     En = c_a + prm[P_ETA] ** 2 * (En - c_a)
                 if En < p2:
                     pk = alpha - math.acos(En / p2)
-                    if pk > out[O_THETA_MAX]:
-                        out[O_THETA_MAX] = pk
+                    if pk > th_max:
+                        th_max = pk
                         out[O_T_THETA_MAX] = np.nan
                     settled = True
                     break
@@ -584,29 +555,33 @@ def simulate_core(fkind, prm, ekind, epar, acc, dt, t_begin, t_exc_end, tail, ma
                 t = tu
                 s = su
                 phase = PHASE_ROCKING
-                _start_rocking(t, out)
+                out[O_N_UPLIFTS] += 1
+                if out[O_UPLIFTED] == 0.0:
+                    out[O_UPLIFTED] = 1.0
+                    out[O_T_UPLIFT] = t
                 fresh = True
             if want_history:
-                H, nh = _hist_push(H, nh, t, _ground(t, seg, epar), y)
+                H, nh = _hist_push(H, nh, t, _ground(t, seg, epar), W, W_Y)
             continue
 
         # ----- stuck on an isolated base: already beyond the uplift threshold?
+        i0 = 0
         if phase == PHASE_STUCK:
-            a_now = _base_force(fkind, prm, y)
+            a_now = _base_force(fkind, prm, W[W_Y, 2], W[W_Y, 3])
             if abs(a_now) > thr:
                 s = -1.0 if a_now > 0.0 else 1.0
                 phase = PHASE_ROCKING
-                _start_rocking(t, out)
+                out[O_N_UPLIFTS] += 1
+                if out[O_UPLIFTED] == 0.0:
+                    out[O_UPLIFTED] = 1.0
+                    out[O_T_UPLIFT] = t
                 fresh = True
                 continue
             i0 = 2
-        else:
-            i0 = 0
-        i1 = nst
 
         # ----- one Dormand-Prince step inside [t, t_stop]
         if fresh:
-            _rhs(fkind, phase, s, prm, seg, epar, t, y, K, 0)
+            _rhs_into(fkind, phase, s, prm, seg, epar, t, W, W_Y, 0)
             nrhs += 1
             fresh = False
         if h <= 0.0:
@@ -614,13 +589,14 @@ def simulate_core(fkind, prm, ekind, epar, acc, dt, t_begin, t_exc_end, tail, ma
             if ekind != EXC_RECORD:
                 h = min(h, epar[E_TP] / 50.0)
         last = False
-        while True:
+        hs = h
+        err = 2.0
+        while steps + rejected < max_steps:
             hs = h
-            last = False
-            if hs >= t_stop - t:
+            last = hs >= t_stop - t
+            if last:
                 hs = t_stop - t
-                last = True
-            err = _dp5_step(fkind, phase, s, prm, seg, epar, t, hs, y, K, i0, i1, ynew, ytmp, C, A, B, E)
+            err = _dp5_step(fkind, phase, s, prm, seg, epar, t, hs, W, i0, nst)
             nrhs += 6
             if err <= 1.0:
                 fac = 5.0 if err == 0.0 else min(5.0, 0.9 * err ** -0.2)
@@ -629,8 +605,6 @@ def simulate_core(fkind, prm, ekind, epar, acc, dt, t_begin, t_exc_end, tail, ma
                 break
             rejected += 1
             h = hs * max(0.2, 0.9 * err ** -0.2)
-            if steps + rejected >= max_steps:
-                break
         if err > 1.0:
             status = STATUS_MAX_STEPS
             break
@@ -639,55 +613,59 @@ def simulate_core(fkind, prm, ekind, epar, acc, dt, t_begin, t_exc_end, tail, ma
 
         # ----- stuck on an isolated base: uplift when |a| crosses g tan(alpha)
         if phase == PHASE_STUCK:
-            a_new = _base_force(fkind, prm, ynew)
             sig = -1.0
             su = 0.0
-            if abs(a_new) > 0.9 * thr or abs(_base_force(fkind, prm, y)) > 0.9 * thr:
-                # a(sigma) is linear in the states: a polynomial in sigma like them
-                _dense_coeffs(y, K, hs, 2, P, c0)
-                _dense_coeffs(y, K, hs, 3, P, c1)
-                for k in range(5):
-                    c0[k] = -w * w * c0[k] - 2.0 * prm[P_XI] * w * c1[k]
-                    c1[k] = -c0[k]
-                sig_up = _first_down(c1, -thr, 0.0, 1.0)  # a rises above +thr
-                sig_dn = _first_down(c0, -thr, 0.0, 1.0)  # a falls below -thr
+            a_new = _base_force(fkind, prm, W[W_YNEW, 2], W[W_YNEW, 3])
+            a_old = _base_force(fkind, prm, W[W_Y, 2], W[W_Y, 3])
+            if max(abs(a_new), abs(a_old)) > 0.9 * thr:
+                # a(sigma) is linear in the states, so a quartic in sigma like them
+                cu = _dense(W, hs, 2, 1.0)
+                cv = _dense(W, hs, 3, 1.0)
+                ca = (-w * w * cu[0] - 2.0 * xi * w * cv[0], -w * w * cu[1] - 2.0 * xi * w * cv[1],
+                      -w * w * cu[2] - 2.0 * xi * w * cv[2], -w * w * cu[3] - 2.0 * xi * w * cv[3],
+                      -w * w * cu[4] - 2.0 * xi * w * cv[4])
+                cn = (-ca[0], -ca[1], -ca[2], -ca[3], -ca[4])
+                sig_up = _first_down(cn, -thr, 0.0, 1.0)  # a rises above +thr
+                sig_dn = _first_down(ca, -thr, 0.0, 1.0)  # a falls below -thr
                 if sig_up >= 0.0 and (sig_dn < 0.0 or sig_up <= sig_dn):
                     sig = sig_up
                     su = -1.0
                 elif sig_dn >= 0.0:
                     sig = sig_dn
                     su = 1.0
-            _track_u_peak(y, ynew, K, hs, P, 1.0 if sig < 0.0 else sig, sig < 0.0, out, c1)
+            if (W[W_Y, 3] > 0.0) != (W[W_YNEW, 3] > 0.0):
+                u_max = max(u_max, _u_extremum(W, hs, 1.0 if sig < 0.0 else sig))
             if sig >= 0.0:
-                for i in range(2, 4):
-                    _dense_coeffs(y, K, hs, i, P, c1)
-                    ytmp[i] = _poly(c1, sig)
-                y[2] = ytmp[2]
-                y[3] = ytmp[3]
+                _state_at(W, hs, sig, 4)
+                W[W_Y, 2] = W[W_TMP, 2]
+                W[W_Y, 3] = W[W_TMP, 3]
                 t = t + sig * hs
                 s = su
                 phase = PHASE_ROCKING
-                _start_rocking(t, out)
+                out[O_N_UPLIFTS] += 1
+                if out[O_UPLIFTED] == 0.0:
+                    out[O_UPLIFTED] = 1.0
+                    out[O_T_UPLIFT] = t
                 fresh = True
             else:
                 t = t_new
                 for i in range(2, 4):
-                    y[i] = ynew[i]
-                    K[0, i] = K[6, i]
+                    W[W_Y, i] = W[W_YNEW, i]
+                    W[0, i] = W[6, i]
+            u_max = max(u_max, abs(W[W_Y, 2]))
             if want_history:
-                H, nh = _hist_push(H, nh, t, _ground(t, seg, epar), y)
+                H, nh = _hist_push(H, nh, t, _ground(t, seg, epar), W, W_Y)
             continue
 
         # ----- rocking: impact (s theta falls to 0), peak, alpha, overturning (s theta = pi/2)
-        sth1 = s * ynew[0]
-        sd0 = s * y[1]
-        sd1 = s * ynew[1]
+        sth1 = s * W[W_YNEW, 0]
+        sd0 = s * W[W_Y, 1]
+        sd1 = s * W[W_YNEW, 1]
         sig_end = 1.0
         impact = False
         failed = False
         if sth1 <= 0.0 or (sd0 < 0.0 and sd1 > 0.0):
-            _signed_coeffs(y, K, hs, 0, P, s, c0)
-            sig = _first_down(c0, 0.0, 0.0, 1.0)
+            sig = _first_down(_dense(W, hs, 0, s), 0.0, 0.0, 1.0)
             if sig >= 0.0:
                 impact = True
                 sig_end = sig
@@ -695,70 +673,63 @@ def simulate_core(fkind, prm, ekind, epar, acc, dt, t_begin, t_exc_end, tail, ma
                 failed = True  # never rose above theta = 0: the uplift did not take
         if not failed:
             if sd0 > 0.0 and (sd1 <= 0.0 or impact):
-                _signed_coeffs(y, K, hs, 1, P, s, c1)
-                sp = _first_down(c1, 0.0, 0.0, sig_end)
+                sp = _first_down(_dense(W, hs, 1, s), 0.0, 0.0, sig_end)
                 if sp >= 0.0:
-                    _signed_coeffs(y, K, hs, 0, P, s, c0)
-                    thp = _poly(c0, sp)
-                    if thp > out[O_THETA_MAX]:
-                        out[O_THETA_MAX] = thp
+                    thp = _poly(_dense(W, hs, 0, s), sp)
+                    if thp > th_max:
+                        th_max = thp
                         out[O_T_THETA_MAX] = t + sp * hs
-            if not impact and sth1 > out[O_THETA_MAX]:
-                out[O_THETA_MAX] = sth1
+            if not impact and sth1 > th_max:
+                th_max = sth1
                 out[O_T_THETA_MAX] = t_new
-            reach = sth1 if not impact else out[O_THETA_MAX]
-            if math.isnan(out[O_T_EXCEED]) and reach >= alpha:
-                _signed_coeffs(y, K, hs, 0, P, -s, c1)  # -s theta
-                sa = _first_down(c1, -alpha, 0.0, sig_end)
+            if math.isnan(out[O_T_EXCEED]) and th_max >= alpha:
+                sa = _first_down(_dense(W, hs, 0, -s), -alpha, 0.0, sig_end)
                 out[O_T_EXCEED] = t + (sa if sa >= 0.0 else sig_end) * hs
             if not impact and sth1 >= halfpi:
-                _signed_coeffs(y, K, hs, 0, P, -s, c1)
-                so = _first_down(c1, -halfpi, 0.0, 1.0)
+                so = _first_down(_dense(W, hs, 0, -s), -halfpi, 0.0, 1.0)
                 if so < 0.0:
                     so = 1.0
-                if isolated:
-                    _track_u_peak(y, ynew, K, hs, P, so, False, out, c0)
+                if isolated and (W[W_Y, 3] > 0.0) != (W[W_YNEW, 3] > 0.0):
+                    u_max = max(u_max, _u_extremum(W, hs, so))
+                _state_at(W, hs, so, nst)
                 for i in range(nst):
-                    _dense_coeffs(y, K, hs, i, P, c1)
-                    ytmp[i] = _poly(c1, so)
-                for i in range(nst):
-                    y[i] = ytmp[i]
+                    W[W_Y, i] = W[W_TMP, i]
+                u_max = max(u_max, abs(W[W_Y, 2]))
                 t = t + so * hs
-                out[O_THETA_MAX] = halfpi
+                th_max = halfpi
                 out[O_T_THETA_MAX] = t
                 out[O_T_OVERTURN] = t
                 status = STATUS_OVERTURNED
                 if want_history:
-                    H, nh = _hist_push(H, nh, t, _ground(t, seg, epar), y)
+                    H, nh = _hist_push(H, nh, t, _ground(t, seg, epar), W, W_Y)
                 break
-        if isolated:
-            _track_u_peak(y, ynew, K, hs, P, sig_end, not impact, out, c1)
+        if isolated and (W[W_Y, 3] > 0.0) != (W[W_YNEW, 3] > 0.0):
+            u_max = max(u_max, _u_extremum(W, hs, sig_end))
 
         if failed:
             # the block never left theta = 0: back to the stuck phase at the end of the step,
             # keeping the total horizontal momentum (u_dot + gamma h theta_dot per unit mass)
             t = t_new
             if isolated:
-                y[2] = ynew[2]
-                y[3] = ynew[3] + prm[P_GAMMA] * prm[P_H] * ynew[1]
-            y[0] = 0.0
-            y[1] = 0.0
+                W[W_Y, 2] = W[W_YNEW, 2]
+                W[W_Y, 3] = W[W_YNEW, 3] + prm[P_GAMMA] * prm[P_H] * W[W_YNEW, 1]
+            W[W_Y, 0] = 0.0
+            W[W_Y, 1] = 0.0
             phase = PHASE_STUCK
             s = 0.0
             fresh = True
+            u_max = max(u_max, abs(W[W_Y, 2]))
             if want_history:
-                H, nh = _hist_push(H, nh, t, _ground(t, seg, epar), y)
+                H, nh = _hist_push(H, nh, t, _ground(t, seg, epar), W, W_Y)
             continue
 
         if impact:
+            _state_at(W, hs, sig_end, nst)
             for i in range(nst):
-                _dense_coeffs(y, K, hs, i, P, c1)
-                ytmp[i] = _poly(c1, sig_end)
-            for i in range(nst):
-                y[i] = ytmp[i]
+                W[W_Y, i] = W[W_TMP, i]
             t = t + sig_end * hs
-            y[0] = 0.0
-            thd1 = y[1]
+            W[W_Y, 0] = 0.0
+            thd1 = W[W_Y, 1]
             out[O_N_IMPACTS_ALL] += 1
             if t <= t_exc_end:
                 out[O_N_IMPACTS] += 1
@@ -766,40 +737,45 @@ def simulate_core(fkind, prm, ekind, epar, acc, dt, t_begin, t_exc_end, tail, ma
             # block + base and the block's angular momentum about the new pivot
             thd2 = prm[P_ETA] * thd1
             if isolated:
-                y[3] = y[3] + prm[P_DU] * thd1
+                W[W_Y, 3] += prm[P_DU] * thd1
             s = -s
             # rest: the rotation still reachable by free rocking, thd^2/(2 p^2 sin alpha), is
             # below rest_tol * alpha (a plastic impact ends the motion, momentum kept)
             if thd2 * thd2 / (2.0 * p2 * prm[P_SINA]) < prm[P_REST] * alpha:
                 if isolated:
-                    y[3] = y[3] + prm[P_GAMMA] * prm[P_H] * thd2
-                y[1] = 0.0
+                    W[W_Y, 3] += prm[P_GAMMA] * prm[P_H] * thd2
+                W[W_Y, 1] = 0.0
                 phase = PHASE_STUCK
                 s = 0.0
                 out[O_N_RESTS] += 1
             else:
-                y[1] = thd2
+                W[W_Y, 1] = thd2
+            u_max = max(u_max, abs(W[W_Y, 2]))
             if want_history:
-                H, nh = _hist_push(H, nh, t, _ground(t, seg, epar), y)
+                H, nh = _hist_push(H, nh, t, _ground(t, seg, epar), W, W_Y)
             fresh = True
             continue
 
         # accepted step without events
         t = t_new
         for i in range(nst):
-            y[i] = ynew[i]
-            K[0, i] = K[6, i]
+            W[W_Y, i] = W[W_YNEW, i]
+            W[0, i] = W[6, i]
+        if isolated:
+            u_max = max(u_max, abs(W[W_Y, 2]))
         if want_history:
-            H, nh = _hist_push(H, nh, t, _ground(t, seg, epar), y)
+            H, nh = _hist_push(H, nh, t, _ground(t, seg, epar), W, W_Y)
 
     if phase == PHASE_STUCK and isolated and not settled:
-        settled = w * (1.0 + 2.0 * prm[P_XI]) * math.sqrt(y[3] * y[3] + w * w * y[2] * y[2]) < thr
+        settled = bound_fac * math.sqrt(W[W_Y, 3] ** 2 + w * w * W[W_Y, 2] ** 2) < thr
     out[O_STATUS] = status
+    out[O_THETA_MAX] = th_max
+    out[O_U_MAX] = u_max
     out[O_STEPS] = steps
     out[O_REJECTED] = rejected
     out[O_NRHS] = nrhs
     out[O_T_END] = t
     out[O_SETTLED] = 1.0 if (settled or status == STATUS_OVERTURNED) else 0.0
-    out[O_THETA_END] = y[0]
-    out[O_U_END] = y[2]
+    out[O_THETA_END] = W[W_Y, 0]
+    out[O_U_END] = W[W_Y, 2]
     return H[:nh]

@@ -241,9 +241,8 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float = DE
     ekind, epar, acc, dt, t_begin, t_exc_end = _excitation_arrays(excitation)
     fkind, prm = _parameters(block, foundation, float(rtol), float(rest_tol))
     out = np.zeros(k.N_OUT)
-    C, A, B, E, P = k.tableau()
-    H = k.simulate_core(fkind, prm, ekind, epar, acc, dt, t_begin, t_exc_end, float(tail), int(max_steps),
-                        bool(history), C, A, B, E, P, out)
+    H = k.simulate_core(fkind, tuple(float(v) for v in prm), ekind, tuple(float(v) for v in epar), acc, dt,
+                        t_begin, t_exc_end, float(tail), int(max_steps), bool(history), out)
     return _response(out, H if history else None, block)
 
 
