@@ -1,0 +1,162 @@
+"""``rockcli fit-pulse``: the dominant acceleration pulse (a_p, T_p) of records, by wavelet fit."""
+
+from __future__ import annotations
+
+import click
+
+from rockcli.cli.errors import InputError, user_errors
+from rockcli.cli.options import record_kwargs, record_options
+
+#: Pulse columns of records/catalog.csv that ``--update-catalog`` fills, and their rounding.
+_CATALOG_DIGITS = {"a_p_g": 4, "T_p_s": 4, "t0_s": 3, "pulse_energy": 4}
+
+
+def _catalog_sources(warn):
+    """(id, None) for every available catalogue entry whose file is found; warn about the others."""
+    from rockcli.records.catalog import find_file, load_catalog, search_path
+
+    out, missing = [], []
+    for e in load_catalog():
+        if not e.available:
+            continue
+        if find_file(e) is None:
+            missing.append(e.id)
+        else:
+            out.append(e.id)
+    if missing:
+        warn(f"skipped {len(missing)} catalogue record(s) whose file is not on the search path "
+             f"({', '.join(str(p) for p in search_path())}): {', '.join(missing)}")
+    if not out:
+        raise InputError("no catalogue record file was found; set ROCKCLI_RECORDS to the folder holding them")
+    return out
+
+
+def _table(fits) -> str:
+    head = ("record", "wavelet", "a_p_g", "T_p_s", "t0_s", "energy_fraction")
+    rows = [head]
+    for f in fits:
+        flag = "*" if f.at_period_bound else ""
+        rows.append((f.record_name, f.wavelet, f"{f.a_p_g:+.4f}", f"{f.T_p_s:.4f}{flag}", f"{f.t0_s:.3f}",
+                     f"{f.energy_fraction:.3f}"))
+    widths = [max(len(r[i]) for r in rows) for i in range(len(head))]
+    right = {2, 3, 4, 5}
+    lines = ["  ".join(c.rjust(w) if i in right else c.ljust(w) for i, (c, w) in enumerate(zip(r, widths))).rstrip()
+             for r in rows]
+    return "\n".join(lines)
+
+
+def _update_catalog(fits):
+    """Fill the pulse columns of the fitted catalogue entries; every other cell and the row order stay."""
+    from dataclasses import replace
+
+    from rockcli.records.catalog import catalog_path, load_catalog, write_catalog
+
+    by_id = {f.record_name: f for f in fits}
+    entries = []
+    for e in load_catalog():
+        f = by_id.get(e.id)
+        if f is not None:
+            e = replace(e, pulse_shape=f.pulse.shape, a_p_g=round(f.a_p_g, _CATALOG_DIGITS["a_p_g"]),
+                        T_p_s=round(f.T_p_s, _CATALOG_DIGITS["T_p_s"]), t0_s=round(f.t0_s, _CATALOG_DIGITS["t0_s"]),
+                        pulse_energy=round(f.energy_fraction, _CATALOG_DIGITS["pulse_energy"]))
+        entries.append(e)
+    return write_catalog(entries, catalog_path())
+
+
+@click.command(name="fit-pulse")
+@click.argument("sources", nargs=-1, metavar="SOURCE...")
+@record_options
+@click.option("--catalog", "use_catalog", is_flag=True,
+              help="Fit every available catalogue record (files found on ROCKCLI_RECORDS).")
+@click.option("--wavelet", type=click.Choice(["best", "symmetric", "antisymmetric"], case_sensitive=False),
+              default="best", show_default=True,
+              help="Symmetric Ricker (Eq 5, pywt 'mexh'), antisymmetric Ricker (Eq 6, 'gaus3'), or the one "
+                   "that explains more of the record's energy.")
+@click.option("--periods", default="0.1:6", show_default=True, metavar="MIN:MAX",
+              help="Range of pulse periods T_p searched [s].")
+@click.option("--csv", "csv_path", type=click.Path(dir_okay=False), default=None,
+              help="Also write the fits to this CSV file.")
+@click.option("--json", "as_json", is_flag=True, help="Print the fits as JSON instead of a table.")
+@click.option("--plot", "plot_path", type=click.Path(dir_okay=False), default=None,
+              help="Overlay each fitted pulse on its record (one panel per record) in this image, e.g. FILE.png.")
+@click.option("--update-catalog", is_flag=True,
+              help="With --catalog: store the fitted pulse (pulse_shape, a_p_g, T_p_s, t0_s, pulse_energy) "
+                   "in records/catalog.csv (or ROCKCLI_CATALOG).")
+@user_errors
+def fit_pulse(sources, units, dt, fmt, column, use_catalog, wavelet, periods, csv_path, as_json, plot_path,
+              update_catalog):
+    """Fit the dominant acceleration pulse of each SOURCE (a record file or a catalogue id).
+
+    The pulse is the symmetric or antisymmetric Ricker wavelet (Vassiliou & Makris 2011) that is
+    closest to the record in the least-squares sense: largest continuous-wavelet-transform
+    coefficient, refined off the scale grid. Prints one row per record: amplitude a_p [g] (signed),
+    period T_p [s], centre t0 [s, record time] and the fraction of the record's energy (integral of
+    a^2 dt) the pulse explains. A * after T_p marks a period at an end of --periods.
+
+    \b
+    Examples:
+      rockcli fit-pulse RSN1119_KOBE_TAZ000.AT2
+      rockcli fit-pulse C02-065 --units g --dt 0.01 --wavelet antisymmetric
+      ROCKCLI_RECORDS=../shared/records rockcli fit-pulse --catalog --plot fits.png
+      ROCKCLI_RECORDS=../shared/records rockcli fit-pulse --catalog --update-catalog
+    """
+    from rockcli.pulses_fit import parse_periods
+
+    period_range = parse_periods(periods)
+    options_given = any(v is not None for v in (units, dt, fmt, column))
+    if update_catalog and not use_catalog:
+        raise InputError("--update-catalog needs --catalog (it stores the fits of all catalogue records)")
+    if use_catalog and options_given:
+        raise InputError("--units, --dt, --format and --column apply to files, not to --catalog records "
+                         "(the catalogue states them)")
+    if not sources and not use_catalog:
+        raise InputError("give at least one SOURCE (a record file or catalogue id), or --catalog")
+
+    warnings = []
+    jobs = [(s, record_kwargs(units, dt, fmt, column)) for s in sources]
+    if use_catalog:
+        jobs += [(i, {}) for i in _catalog_sources(warnings.append)]
+
+    from rockcli.pulses_fit import fit_pulse as fit
+    from rockcli.records import read_record
+
+    records, fits = [], []
+    for source, kwargs in jobs:
+        rec = read_record(source, **kwargs)
+        records.append(rec)
+        fits.append(fit(rec, wavelet.lower(), periods=period_range))
+
+    if as_json:
+        import json
+
+        out = []
+        for f in fits:
+            row = f.as_row()
+            row["periods_s"] = list(f.periods)
+            if f.alternative is not None:
+                a = f.alternative
+                row["alternative"] = {"wavelet": a.wavelet, "a_p_g": a.a_p_g, "T_p_s": a.T_p_s, "t0_s": a.t0_s,
+                                      "energy_fraction": a.energy_fraction}
+            out.append(row)
+        click.echo(json.dumps(out, indent=2))
+    else:
+        click.echo(_table(fits))
+        if any(f.at_period_bound for f in fits):
+            click.echo(f"* T_p at an end of the searched range {period_range[0]:g}:{period_range[1]:g} s; "
+                       f"widen --periods to check.")
+    for w in warnings:
+        click.echo(f"Warning: {w}", err=True)
+
+    if csv_path:
+        from rockcli.report.pulses import write_fit_csv
+
+        write_fit_csv(fits, csv_path)
+        click.echo(f"wrote {csv_path}", err=as_json)
+    if plot_path:
+        from rockcli.report.pulses import plot_pulse_fits
+
+        plot_pulse_fits(records, fits, plot_path)
+        click.echo(f"wrote {plot_path}", err=as_json)
+    if update_catalog:
+        path = _update_catalog(fits)
+        click.echo(f"updated the pulse columns of {len(fits)} record(s) in {path}", err=as_json)

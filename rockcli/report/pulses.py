@@ -1,0 +1,106 @@
+"""Pulse-fit reports: the table of fitted pulses (CSV) and the Figure-3-like overlay plot.
+
+matplotlib is imported inside the functions (Agg backend). Nothing is written half-way: outputs go
+to a temporary file in the target folder and are renamed into place.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import csv
+import os
+from pathlib import Path
+
+from rockcli.errors import RockcliInputError
+from rockcli.units import G
+
+#: Columns of ``rockcli fit-pulse --csv``.
+FIT_COLUMNS = ("record", "wavelet", "pulse_shape", "a_p_g", "T_p_s", "t0_s", "energy_fraction",
+               "at_period_bound", "period_min_s", "period_max_s")
+
+
+@contextlib.contextmanager
+def _atomic_path(path):
+    """Yield a temporary path next to ``path``; rename it onto ``path`` when the block succeeds."""
+    path = Path(path)
+    if not path.parent.is_dir():
+        raise RockcliInputError(f"{path}: folder {path.parent} does not exist")
+    tmp = path.with_name(f".{path.stem}.tmp{os.getpid()}{path.suffix}")
+    try:
+        yield tmp
+        os.replace(tmp, path)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+
+
+def fit_rows(fits) -> list[dict]:
+    """One dict per fit, keyed by :data:`FIT_COLUMNS` (SI/g values as floats)."""
+    rows = []
+    for f in fits:
+        row = f.as_row()
+        row["period_min_s"], row["period_max_s"] = f.periods
+        rows.append({c: row[c] for c in FIT_COLUMNS})
+    return rows
+
+
+def write_fit_csv(fits, path) -> Path:
+    """Write the fitted pulses as CSV (columns :data:`FIT_COLUMNS`), atomically."""
+    with _atomic_path(path) as tmp:
+        with open(tmp, "w", newline="", encoding="utf-8") as fh:
+            writer = csv.DictWriter(fh, fieldnames=FIT_COLUMNS, lineterminator="\n")
+            writer.writeheader()
+            for row in fit_rows(fits):
+                writer.writerow({k: (repr(v) if isinstance(v, float) else v) for k, v in row.items()})
+    return Path(path)
+
+
+def plot_pulse_fits(records, fits, path, *, dpi: int = 120) -> Path:
+    """Overlay each fitted pulse on its record, one panel per record (like Figure 3 of the paper).
+
+    Parameters
+    ----------
+    records : sequence of Record
+        The records [m/s^2].
+    fits : sequence of PulseFit
+        Their fits, in the same order.
+    path : path-like
+        Image file; the format follows the suffix (``.png``, ``.pdf``, ``.svg``).
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    path = Path(path)
+    if not path.suffix:
+        raise RockcliInputError(f"{path}: give the plot file a suffix such as .png or .pdf")
+    n = len(fits)
+    fig, axes = plt.subplots(n, 1, figsize=(8.0, 2.3 * n + 0.4), squeeze=False)
+    try:
+        for ax, rec, fit in zip(axes[:, 0], records, fits):
+            t = rec.times
+            ax.plot(t, rec.acc / G, color="0.55", lw=0.6, label="record")
+            s0, s1 = fit.pulse.support()
+            tp = np.linspace(max(s0, t[0]), min(s1, t[-1]), 1500)
+            ax.plot(tp, fit.pulse.acceleration(tp) / G, color="k", lw=2.2,
+                    label=f"{'symmetric' if fit.wavelet == 'symmetric' else 'antisymmetric'} Ricker")
+            ax.axhline(0.0, color="0.8", lw=0.5)
+            ax.set_ylabel("acceleration [g]")
+            ax.set_title(f"{fit.record_name}: $a_p$ = {fit.a_p_g:+.3f} g, $T_p$ = {fit.T_p_s:.3f} s, "
+                         f"$t_0$ = {fit.t0_s:.2f} s, energy fraction {fit.energy_fraction:.2f}",
+                         fontsize=9, loc="left")
+            ax.legend(loc="upper right", fontsize=8, frameon=False)
+            ax.set_xlim(t[0], t[-1])
+        axes[-1, 0].set_xlabel("time [s]")
+        fig.tight_layout()
+        fmt = path.suffix.lstrip(".").lower()
+        with _atomic_path(path) as tmp:
+            try:
+                fig.savefig(tmp, dpi=dpi, format=fmt)
+            except ValueError as exc:
+                raise RockcliInputError(f"{path}: cannot write a {fmt!r} image ({exc})") from None
+    finally:
+        plt.close(fig)
+    return path
