@@ -28,7 +28,7 @@ SHAPES = {"symmetric": RickerSymmetric, "antisymmetric": RickerAntisymmetric}
 
 # --- a real record's acceleration, read without the records package (which is built separately) ---
 
-_PREFERRED = ["RSN1244_CHICHI_CHY101-E.AT2", "RSN292_ITALY_A-STU270.AT2", "RSN1119_KOBE_TAZ000.AT2"]
+_PREFERRED = ["RSN1119_KOBE_TAZ000.AT2", "RSN1244_CHICHI_CHY101-E.AT2", "RSN292_ITALY_A-STU270.AT2"]
 
 
 def _at2_files():
