@@ -580,14 +580,21 @@ def simulate_core(fkind, prm, ekind, epar, acc, dt, t_begin, t_exc_end, tail, ma
             i0 = 2
 
         # ----- one Dormand-Prince step inside [t, t_stop]
-        if fresh:
-            _rhs_into(fkind, phase, s, prm, seg, epar, t, W, W_Y, 0)
-            nrhs += 1
-            fresh = False
         if h <= 0.0:
             h = 0.02 / math.sqrt(p2)
             if ekind != EXC_RECORD:
                 h = min(h, epar[E_TP] / 50.0)
+        if fresh:
+            _rhs_into(fkind, phase, s, prm, seg, epar, t, W, W_Y, 0)
+            nrhs += 1
+            fresh = False
+            if phase == PHASE_ROCKING and W[W_Y, 0] == 0.0:
+                # just after an impact: the first step must not swallow a short flight that the
+                # angular acceleration turns back (flight ~ 2 thd / |thdd|)
+                vel = s * W[W_Y, 1]
+                back = -s * W[0, 1]
+                if vel > 0.0 and back > 0.0:
+                    h = min(h, 0.5 * vel / back)
         last = False
         hs = h
         err = 2.0
@@ -730,6 +737,8 @@ def simulate_core(fkind, prm, ekind, epar, acc, dt, t_begin, t_exc_end, tail, ma
             t = t + sig_end * hs
             W[W_Y, 0] = 0.0
             thd1 = W[W_Y, 1]
+            if want_history:  # the state just before the impact, then (below) just after
+                H, nh = _hist_push(H, nh, t, _ground(t, seg, epar), W, W_Y)
             out[O_N_IMPACTS_ALL] += 1
             if t <= t_exc_end:
                 out[O_N_IMPACTS] += 1

@@ -149,8 +149,9 @@ def _excitation_arrays(excitation):
         epar = np.zeros(8)
         epar[k.E_AP], epar[k.E_TP], epar[k.E_T0], epar[k.E_TS], epar[k.E_TE] = a_p, T_p, t0, ts, te
         if shape == "ricker-anti":
-            r = math.sqrt(3.0 - math.sqrt(6.0))
-            epar[k.E_BETA] = abs((r * r - 3.0) * r * math.exp(-0.5 * r * r))
+            from rockcli.pulses import RICKER_ANTI_BETA
+
+            epar[k.E_BETA] = RICKER_ANTI_BETA
         return _PULSE_CODES[shape], epar, np.zeros(2), 1.0, min(0.0, ts), te
     raise RockcliInputError(f"cannot simulate excitation of type {type(excitation).__name__}")
 
@@ -186,9 +187,10 @@ def _parameters(block: Block, foundation, rtol: float, rest_tol: float):
         w = foundation.omega_b
         prm[k.P_W] = w
         prm[k.P_XI] = foundation.xi
-        u_sc = prm[k.P_THR] / (w * w)  # displacement at which the bearings' force uplifts the block
-        prm[k.P_SC0 + 2] = u_sc
-        prm[k.P_SC0 + 3] = u_sc * w
+        # the smaller of the displacement at which the bearings' force uplifts the block and the
+        # block's own length scale g tan(alpha)/p^2 = (4/3) R tan(alpha)
+        prm[k.P_SC0 + 2] = prm[k.P_THR] / max(w, p) ** 2
+        prm[k.P_SC0 + 3] = prm[k.P_THR] / max(w, p)
     else:
         raise RockcliInputError(f"unknown foundation {foundation!r}")
     return fkind, prm
