@@ -31,7 +31,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+from numba import njit, prange
 
 # ---------------------------------------------------------------------------------------------
 # Codes shared with rockcli.solve
@@ -425,8 +425,8 @@ def simulate_core(fkind, prm, ekind, epar, acc, dt, t_begin, t_exc_end, tail, ma
     prm : tuple of N_PRM floats
         Block, foundation and tolerance constants (``P_*`` layout).
     ekind : int
-        Excitation kind (``EXC_*``): ``acc`` [m/s^2] and ``dt`` [s] for a record, ``epar``
-        (tuple of 8 floats, ``E_*`` layout) for a pulse.
+        Excitation kind (``EXC_*``): ``acc`` [m/s^2] and ``dt`` [s] for a record (scaled by
+        ``epar[E_AP]``), ``epar`` (tuple of 8 floats, ``E_*`` layout) for a pulse.
     t_begin, t_exc_end : float
         Start of the integration and end of the excitation [s].
     tail : float
@@ -486,8 +486,9 @@ def simulate_core(fkind, prm, ekind, epar, acc, dt, t_begin, t_exc_end, tail, ma
     th_max = 0.0
 
     j = 0
+    rscale = epar[E_AP]  # records: the factor the record is scaled by
     if ekind == EXC_RECORD:
-        seg = (float(SEG_LINEAR), acc[0], (acc[1] - acc[0]) / dt, 0.0)
+        seg = (float(SEG_LINEAR), rscale * acc[0], rscale * (acc[1] - acc[0]) / dt, 0.0)
         seg_end = dt
     else:
         seg, seg_end = _pulse_segment(0, ekind, epar, t_begin)
@@ -500,7 +501,7 @@ def simulate_core(fkind, prm, ekind, epar, acc, dt, t_begin, t_exc_end, tail, ma
             j += 1
             if ekind == EXC_RECORD:
                 if j < nrec - 1:
-                    seg = (float(SEG_LINEAR), acc[j], (acc[j + 1] - acc[j]) / dt, j * dt)
+                    seg = (float(SEG_LINEAR), rscale * acc[j], rscale * (acc[j + 1] - acc[j]) / dt, j * dt)
                     seg_end = (j + 1) * dt
                     # a record is continuous across samples: the FSAL derivative stays valid
                 else:
@@ -788,3 +789,23 @@ def simulate_core(fkind, prm, ekind, epar, acc, dt, t_begin, t_exc_end, tail, ma
     out[O_THETA_END] = W[W_Y, 0]
     out[O_U_END] = W[W_Y, 2]
     return H[:nh]
+
+
+@njit(cache=True, parallel=True)
+def simulate_batch(fkinds, prms, ekinds, epars, acc_all, acc_off, acc_len, dts, t_begins, t_exc_ends, tails,
+                   max_steps, outs):
+    """Verdict-only runs of many scenes in parallel (one scene per ``prange`` iteration).
+
+    Row ``i`` of each argument describes scene ``i``; records are slices
+    ``acc_all[acc_off[i]:acc_off[i] + acc_len[i]]`` (scenes may share one). Results go to
+    ``outs[i]`` (``O_*`` layout); nothing else is stored.
+    """
+    for i in prange(fkinds.shape[0]):
+        q = prms[i]
+        prm = (q[0], q[1], q[2], q[3], q[4], q[5], q[6], q[7], q[8], q[9], q[10], q[11], q[12], q[13],
+               q[14], q[15], q[16], q[17], q[18])
+        e = epars[i]
+        epar = (e[0], e[1], e[2], e[3], e[4], e[5], e[6], e[7])
+        acc = acc_all[acc_off[i]:acc_off[i] + acc_len[i]]
+        simulate_core(fkinds[i], prm, ekinds[i], epar, acc, dts[i], t_begins[i], t_exc_ends[i], tails[i],
+                      max_steps, False, outs[i])

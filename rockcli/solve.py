@@ -139,7 +139,9 @@ def _excitation_arrays(excitation):
             raise RockcliInputError(f"record {getattr(excitation, 'name', '')!r} has NaN or infinite samples")
         if not (math.isfinite(dt) and dt > 0):
             raise RockcliInputError(f"record {getattr(excitation, 'name', '')!r} has a non-positive time step {dt!r}")
-        return k.EXC_RECORD, np.zeros(8), acc, dt, 0.0, (acc.size - 1) * dt
+        epar = np.zeros(8)
+        epar[k.E_AP] = 1.0  # scale factor of the record
+        return k.EXC_RECORD, epar, acc, dt, 0.0, (acc.size - 1) * dt
     shape = getattr(excitation, "shape", None)
     if shape in _PULSE_CODES:
         a_p, T_p, t0 = float(excitation.a_p), float(excitation.T_p), float(excitation.t0)
@@ -196,6 +198,15 @@ def _parameters(block: Block, foundation, rtol: float, rest_tol: float):
     return fkind, prm
 
 
+def _validate_options(rtol, tail, rest_tol):
+    if not (math.isfinite(rtol) and 1e-14 <= rtol <= 1e-2):
+        raise RockcliInputError(f"rtol must lie between 1e-14 and 1e-2, got {rtol!r}")
+    if not (math.isfinite(tail) and tail >= 0):
+        raise RockcliInputError(f"tail must be a non-negative time in s, got {tail!r}")
+    if not (math.isfinite(rest_tol) and 0 <= rest_tol < 1):
+        raise RockcliInputError(f"rest_tol must satisfy 0 <= rest_tol < 1, got {rest_tol!r}")
+
+
 def simulate(block: Block, foundation=None, excitation=None, *, rtol: float = DEFAULT_RTOL,
              history: bool = False, tail: float = DEFAULT_TAIL, rest_tol: float = DEFAULT_REST_TOL,
              max_steps: int = DEFAULT_MAX_STEPS) -> Response:
@@ -233,12 +244,7 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float = DE
         raise RockcliInputError(f"block must be a rockcli.models.Block, got {type(block).__name__}")
     if excitation is None:
         raise RockcliInputError("simulate needs an excitation (a record or a pulse)")
-    if not (math.isfinite(rtol) and 1e-14 <= rtol <= 1e-2):
-        raise RockcliInputError(f"rtol must lie between 1e-14 and 1e-2, got {rtol!r}")
-    if not (math.isfinite(tail) and tail >= 0):
-        raise RockcliInputError(f"tail must be a non-negative time in s, got {tail!r}")
-    if not (math.isfinite(rest_tol) and 0 <= rest_tol < 1):
-        raise RockcliInputError(f"rest_tol must satisfy 0 <= rest_tol < 1, got {rest_tol!r}")
+    _validate_options(rtol, tail, rest_tol)
     k = _kernel()
     ekind, epar, acc, dt, t_begin, t_exc_end = _excitation_arrays(excitation)
     fkind, prm = _parameters(block, foundation, float(rtol), float(rest_tol))
@@ -279,3 +285,76 @@ def _response(out: np.ndarray, H, block: Block) -> Response:
         rejected_steps=int(out[k.O_REJECTED]), nfev=int(out[k.O_NRHS]), settled=bool(out[k.O_SETTLED]),
         t_end_s=float(out[k.O_T_END]), history=hist,
     )
+
+
+def simulate_many(jobs, *, rtol: float = DEFAULT_RTOL, tail: float = DEFAULT_TAIL,
+                  rest_tol: float = DEFAULT_REST_TOL, max_steps: int = DEFAULT_MAX_STEPS,
+                  progress=None, chunk: int | None = None) -> list[Response]:
+    """Verdict-only :func:`simulate` of many scenes, run in parallel on all cores.
+
+    Parameters
+    ----------
+    jobs : sequence of (block, foundation, excitation) or (block, foundation, excitation, scale)
+        ``scale`` multiplies a record's acceleration (default 1; records only, pulses carry their
+        own a_p). Scenes that share a record object share its samples.
+    progress : callable, optional
+        Called as ``progress(n_done)`` after each chunk of scenes.
+    chunk : int, optional
+        Scenes per parallel batch (default: all at once without ``progress``, else ~1/50 of them).
+
+    Returns
+    -------
+    list of Response
+        In the order of ``jobs``, identical to what :func:`simulate` returns without history.
+    """
+    _validate_options(rtol, tail, rest_tol)
+    k = _kernel()
+    jobs = list(jobs)
+    n = len(jobs)
+    if n == 0:
+        return []
+    fkinds = np.zeros(n, np.int64)
+    ekinds = np.zeros(n, np.int64)
+    prms = np.zeros((n, k.N_PRM))
+    epars = np.zeros((n, 8))
+    dts = np.ones(n)
+    t_begins = np.zeros(n)
+    t_exc_ends = np.zeros(n)
+    acc_off = np.zeros(n, np.int64)
+    acc_len = np.zeros(n, np.int64)
+    pieces, where, total = [], {}, 0
+    blocks = []
+    for i, job in enumerate(jobs):
+        block, foundation, excitation = job[:3]
+        scale = float(job[3]) if len(job) > 3 else 1.0
+        if not isinstance(block, Block):
+            raise RockcliInputError(f"job {i}: block must be a rockcli.models.Block")
+        ekind, epar, acc, dt, t_begin, t_exc_end = _excitation_arrays(excitation)
+        fkind, prm = _parameters(block, foundation if foundation is not None else Rigid(), float(rtol),
+                                 float(rest_tol))
+        if ekind == k.EXC_RECORD:
+            epar[k.E_AP] = scale
+            key = id(excitation)
+            if key not in where:
+                where[key] = total
+                pieces.append(acc)
+                total += acc.size
+            acc_off[i], acc_len[i] = where[key], acc.size
+        elif scale != 1.0:
+            raise RockcliInputError(f"job {i}: a scale factor applies to records only (scale the pulse's a_p)")
+        fkinds[i], ekinds[i], prms[i], epars[i] = fkind, ekind, prm, epar
+        dts[i], t_begins[i], t_exc_ends[i] = dt, t_begin, t_exc_end
+        blocks.append(block)
+    acc_all = np.concatenate(pieces) if pieces else np.zeros(2)
+    tails = np.full(n, float(tail))
+    outs = np.zeros((n, k.N_OUT))
+    if chunk is None:
+        chunk = n if progress is None else max(1, n // 50)
+    for lo in range(0, n, chunk):
+        hi = min(n, lo + chunk)
+        k.simulate_batch(fkinds[lo:hi], prms[lo:hi], ekinds[lo:hi], epars[lo:hi], acc_all, acc_off[lo:hi],
+                         acc_len[lo:hi], dts[lo:hi], t_begins[lo:hi], t_exc_ends[lo:hi], tails[lo:hi],
+                         int(max_steps), outs[lo:hi])
+        if progress is not None:
+            progress(hi)
+    return [_response(outs[i], None, blocks[i]) for i in range(n)]
