@@ -5,29 +5,78 @@ from __future__ import annotations
 import click
 
 
-def record_options(func):
+def record_options(func=None, *, column_flag: str = "--column"):
     """Add ``--units``, ``--dt``, ``--format`` and ``--column``: what ``read_record`` takes.
 
     The command receives them as the keyword arguments ``units``, ``dt``, ``fmt`` and ``column``.
+    Commands where ``--column`` means something else (``simulate --column nemea``) rename the
+    flag: ``@record_options(column_flag="--record-column")``.
+    """
+
+    def decorate(f):
+        options = [
+            click.option("--units", default=None, metavar="UNITS",
+                         help="Units of the values in the file (g, m/s^2, cm/s^2, gal, mm/s^2, g/10); "
+                              "needed when the file does not state them."),
+            click.option("--dt", type=float, default=None, metavar="SECONDS",
+                         help="Time step [s]; needed when the file states none (single-column text)."),
+            click.option("--format", "fmt", default=None, metavar="NAME",
+                         help="File format (PEER_AT2, TEXT, ESM, ITACA, COSMOS, GEONET_V2A, or an ObsPy "
+                              "format such as SAC, MSEED, KNET); detected when omitted."),
+            click.option(column_flag, "column", type=int, default=None, metavar="N",
+                         help="1-based column of a multi-column text file (a time column counts), or "
+                              "component/trace of a multi-component file."),
+        ]
+        for option in reversed(options):
+            f = option(f)
+        return f
+
+    return decorate(func) if func is not None else decorate
+
+
+def record_kwargs(units, dt, fmt, column) -> dict:
+    """The keyword arguments of ``read_record`` from the values of :func:`record_options`."""
+    return {"units": units, "dt": dt, "format": fmt, "column": column}
+
+
+def block_options(func):
+    """Add the block choice: ``--column NAME``, or ``--R`` with ``--alpha``, or ``--height`` with ``--width``.
+
+    The command receives ``column``, ``R``, ``alpha``, ``height``, ``width`` and ``name``; turn them
+    into a :class:`rockcli.models.Block` with :func:`block_from_options`.
     """
     options = [
-        click.option("--units", default=None, metavar="UNITS",
-                     help="Units of the values in the file (g, m/s^2, cm/s^2, gal, mm/s^2, g/10); "
-                          "needed when the file does not state them."),
-        click.option("--dt", type=float, default=None, metavar="SECONDS",
-                     help="Time step [s]; needed when the file states none (single-column text)."),
-        click.option("--format", "fmt", default=None, metavar="NAME",
-                     help="File format (PEER_AT2, TEXT, ESM, ITACA, COSMOS, GEONET_V2A, or an ObsPy "
-                          "format such as SAC, MSEED, KNET); detected when omitted."),
-        click.option("--column", type=int, default=None, metavar="N",
-                     help="1-based column of a multi-column text file (a time column counts), or "
-                          "component/trace of a multi-component file."),
+        click.option("--column", "column_name", default=None, metavar="NAME",
+                     help="A temple column preset: bassae (5.95 m x 1.11 m) or nemea (10.33 m x 1.52 m)."),
+        click.option("--R", "R", type=float, default=None, metavar="METRES",
+                     help="Semi-diagonal of the block (centre of mass to a base corner) [m]."),
+        click.option("--alpha", type=float, default=None, metavar="DEGREES",
+                     help="Slenderness atan(b/h) [degrees], with --R."),
+        click.option("--height", type=float, default=None, metavar="METRES", help="Full height [m], with --width."),
+        click.option("--width", type=float, default=None, metavar="METRES",
+                     help="Base width (a column's base drum diameter) [m], with --height."),
+        click.option("--name", default=None, help="Label of a custom block in reports."),
     ]
     for option in reversed(options):
         func = option(func)
     return func
 
 
-def record_kwargs(units, dt, fmt, column) -> dict:
-    """The keyword arguments of ``read_record`` from the values of :func:`record_options`."""
-    return {"units": units, "dt": dt, "format": fmt, "column": column}
+def block_from_options(column_name=None, R=None, alpha=None, height=None, width=None, name=None):
+    """The :class:`Block` named by exactly one of the three forms of :func:`block_options`."""
+    from rockcli.errors import RockcliInputError
+    from rockcli.models import Block, column
+
+    forms = [column_name is not None, R is not None or alpha is not None, height is not None or width is not None]
+    if sum(forms) != 1:
+        raise RockcliInputError("give the block as exactly one of --column NAME, --R with --alpha, "
+                                "or --height with --width")
+    if column_name is not None:
+        return column(column_name)
+    if forms[1]:
+        if R is None or alpha is None:
+            raise RockcliInputError("--R and --alpha go together (semi-diagonal in m, slenderness in degrees)")
+        return Block.from_degrees(R, alpha, name or f"R{R:g}m-alpha{alpha:g}deg")
+    if height is None or width is None:
+        raise RockcliInputError("--height and --width go together (full height and base width in m)")
+    return Block.from_dimensions(height, width, name or f"{height:g}x{width:g}m")

@@ -6,32 +6,16 @@ to a temporary file in the target folder and are renamed into place.
 
 from __future__ import annotations
 
-import contextlib
 import csv
-import os
 from pathlib import Path
 
 from rockcli.errors import RockcliInputError
+from rockcli.report.files import atomic_path
 from rockcli.units import G
 
 #: Columns of ``rockcli fit-pulse --csv``.
 FIT_COLUMNS = ("record", "wavelet", "pulse_shape", "a_p_g", "T_p_s", "t0_s", "energy_fraction",
                "at_period_bound", "period_min_s", "period_max_s")
-
-
-@contextlib.contextmanager
-def _atomic_path(path):
-    """Yield a temporary path next to ``path``; rename it onto ``path`` when the block succeeds."""
-    path = Path(path)
-    if not path.parent.is_dir():
-        raise RockcliInputError(f"{path}: folder {path.parent} does not exist")
-    tmp = path.with_name(f".{path.stem}.tmp{os.getpid()}{path.suffix}")
-    try:
-        yield tmp
-        os.replace(tmp, path)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
 
 
 def fit_rows(fits) -> list[dict]:
@@ -46,7 +30,7 @@ def fit_rows(fits) -> list[dict]:
 
 def write_fit_csv(fits, path) -> Path:
     """Write the fitted pulses as CSV (columns :data:`FIT_COLUMNS`), atomically."""
-    with _atomic_path(path) as tmp:
+    with atomic_path(path) as tmp:
         with open(tmp, "w", newline="", encoding="utf-8") as fh:
             writer = csv.DictWriter(fh, fieldnames=FIT_COLUMNS, lineterminator="\n")
             writer.writeheader()
@@ -96,7 +80,7 @@ def plot_pulse_fits(records, fits, path, *, dpi: int = 120) -> Path:
         axes[-1, 0].set_xlabel("time [s]")
         fig.tight_layout()
         fmt = path.suffix.lstrip(".").lower()
-        with _atomic_path(path) as tmp:
+        with atomic_path(path) as tmp:
             try:
                 fig.savefig(tmp, dpi=dpi, format=fmt)
             except ValueError as exc:

@@ -6,31 +6,16 @@ to a temporary file in the target folder and are renamed into place.
 
 from __future__ import annotations
 
-import contextlib
 import csv
 import os
 from pathlib import Path
 
 from rockcli.errors import RockcliInputError
+from rockcli.report.files import atomic_path
 
 #: Columns of the ``rockcli records list --csv`` table.
 LIST_COLUMNS = ("id", "event", "year", "station", "component", "mw", "distance_km", "pga_published_g",
                 "pgv_published_mps", "file", "status", "path")
-
-
-@contextlib.contextmanager
-def atomic_path(path: str | os.PathLike):
-    """Yield a temporary path next to ``path``; rename it onto ``path`` when the block succeeds."""
-    path = Path(path)
-    if not path.parent.is_dir():
-        raise RockcliInputError(f"{path}: folder {path.parent} does not exist")
-    tmp = path.with_name(f".{path.stem}.tmp{os.getpid()}{path.suffix}")
-    try:
-        yield tmp
-        os.replace(tmp, path)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
 
 
 def write_list_csv(rows: list[dict], path: str | os.PathLike) -> Path:

@@ -1,0 +1,119 @@
+"""``rockcli simulate``: one block, one foundation, one excitation."""
+
+from __future__ import annotations
+
+import click
+
+from rockcli.cli.errors import user_errors
+from rockcli.cli.options import block_from_options, block_options, record_kwargs, record_options
+
+
+@click.command(context_settings={"show_default": True})
+@block_options
+@click.option("--isolation", default="none", metavar="SPEC",
+              help="Foundation: 'none' (rigid) or 'linear:Tb=2.5,xi=0.1,gamma=0.01' (gamma = m/(m+m_b)).")
+@click.option("--record", "record_source", default=None, metavar="SOURCE",
+              help="Ground motion: a record file or a catalogue id (see 'rockcli records list').")
+@record_options(column_flag="--record-column")
+@click.option("--pulse", default=None, metavar="SPEC",
+              help="Ground motion: an analytic pulse, e.g. 'ricker-sym:ap=0.3,Tp=0.6' (ap in g, Tp in s); "
+                   "shapes ricker-sym, ricker-anti, sine, cosine.")
+@click.option("--scale", type=float, default=1.0, help="Multiply the record's acceleration by this factor.")
+@click.option("--flip", is_flag=True, help="Reverse the sign of the ground motion.")
+@click.option("--rtol", type=float, default=1e-8, help="Relative tolerance of the integrator.")
+@click.option("--tail", type=float, default=10.0, help="Free motion followed after the excitation [s].")
+@click.option("--json", "as_json", is_flag=True, help="Print the results as one JSON object.")
+@click.option("--history", "history_path", type=click.Path(dir_okay=False), default=None,
+              help="Write the time history (t, ground acceleration, theta, theta_dot, u, u_dot) as CSV.")
+@click.option("--plot", "plot_path", type=click.Path(dir_okay=False), default=None,
+              help="Draw ground acceleration, theta/alpha, theta_dot/p (and base displacement) to an image.")
+@user_errors
+def simulate(column_name, R, alpha, height, width, name, isolation, record_source, units, dt, fmt, column,
+             pulse, scale, flip, rtol, tail, as_json, history_path, plot_path):
+    """Rocking response of one block to one ground motion, on a rigid or an isolated base.
+
+    \b
+    Examples:
+      rockcli simulate --height 2 --width 0.5 --pulse sine:ap=0.29,Tp=2
+      rockcli simulate --column nemea --record northridge-1994-jensen-022 --isolation linear:Tb=3
+    """
+    import json
+    import math
+
+    from rockcli.errors import RockcliInputError
+    from rockcli.models import parse_isolation_spec
+    from rockcli.units import G
+
+    block = block_from_options(column_name, R, alpha, height, width, name)
+    foundation = parse_isolation_spec(isolation)
+    if (record_source is None) == (pulse is None):
+        raise RockcliInputError("give the ground motion as exactly one of --record SOURCE or --pulse SPEC")
+    if not math.isfinite(scale) or scale == 0:
+        raise RockcliInputError(f"--scale must be a finite non-zero number, got {scale!r}")
+    factor = -scale if flip else scale
+    if pulse is not None:
+        from rockcli.pulses import parse_pulse_spec
+
+        if any(v is not None for v in (units, dt, fmt, column)):
+            raise RockcliInputError("--units, --dt, --format and --record-column apply to --record, not to --pulse")
+        excitation = parse_pulse_spec(pulse)
+        if factor != 1.0:
+            excitation = excitation.scaled(factor)
+        label = f"{excitation.shape} pulse"
+    else:
+        from rockcli.records import read_record
+
+        excitation = read_record(record_source, **record_kwargs(units, dt, fmt, column))
+        if factor != 1.0:
+            excitation = excitation.scaled(factor)
+        label = f"record {excitation.name}" + (f" x {factor:g}" if factor != 1.0 else "")
+
+    from rockcli.solve import simulate as run
+
+    res = run(block, foundation, excitation, rtol=rtol, tail=tail, history=bool(history_path or plot_path))
+    if history_path:
+        from rockcli.report.response import write_history_csv
+
+        write_history_csv(res, block, history_path)
+    if plot_path:
+        from rockcli.report.response import plot_response
+
+        plot_response(res, block, foundation, f"{block.name} on {foundation.label}, {label}", plot_path)
+
+    if as_json:
+        out = {"block": block.name, "R_m": block.R, "alpha_deg": block.alpha_deg, "p_radps": block.p,
+               "isolation": foundation.label, "excitation": label, **res.summary()}
+        click.echo(json.dumps(out, allow_nan=False))
+        return
+
+    def fmt_t(x):
+        return "-" if x != x else f"{x:.3f} s"
+
+    rows = [
+        ("block", f"{block.name}: R = {block.R:.3f} m, alpha = {block.alpha_deg:.2f} deg "
+                  f"(h/b = {block.h / block.b:.2f}), p = {block.p:.3f} rad/s"),
+        ("foundation", foundation.label),
+        ("excitation", label + _pga(excitation, G)),
+        ("verdict", {"overturned": "OVERTURNS", "rocked": "survives (rocks)",
+                     "no_uplift": "survives (no uplift)"}[res.verdict]),
+        ("uplift at", fmt_t(res.t_uplift_s)),
+        ("|theta| > alpha at", fmt_t(res.t_exceed_alpha_s)),
+        ("overturn at", fmt_t(res.t_overturn_s)),
+        ("peak |theta|/alpha", f"{res.theta_max_over_alpha:.4f}" if not res.overturned else "overturned"),
+        ("impacts", f"{res.n_impacts} during shaking, {res.n_impacts_total} in all"),
+        ("peak base disp.", f"{res.base_disp_max_m:.4f} m"),
+        ("integration", f"{res.steps} steps, {res.nfev} right-hand sides, ended at {res.t_end_s:.2f} s"),
+    ]
+    width_ = max(len(k) for k, _ in rows)
+    for k, v in rows:
+        click.echo(f"{k:<{width_}}  {v}")
+    if not res.settled and res.verdict == "rocked":
+        click.echo("note: the block was still rocking when the run ended; lengthen --tail to follow it")
+    if res.status < 0:
+        raise click.ClickException(res.message)
+
+
+def _pga(excitation, G) -> str:
+    if hasattr(excitation, "pga_g"):
+        return f", PGA {excitation.pga_g:.3f} g, {excitation.duration:.2f} s at dt = {excitation.dt:g} s"
+    return f", a_p = {abs(excitation.a_p) / G:.3f} g, T_p = {excitation.T_p:g} s"
