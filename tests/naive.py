@@ -16,7 +16,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
-from rockcli.models import Block, LinearIsolation, Rigid
+from rockcli.models import Block, LinearIsolation
 from rockcli.units import G
 
 
@@ -31,7 +31,11 @@ class RefResult:
 
 
 def ground_function(excitation):
-    """ag(t) [m/s^2] and the end of the excitation."""
+    """``(ag(t) [m/s^2], end of the excitation [s], scan grid step [s], max_step for solve_ivp [s])``.
+
+    Records: solve_ivp steps at most one sample interval (piecewise-linear input); pulses are smooth
+    and leave the step size to the error control.
+    """
     if hasattr(excitation, "acc"):
         acc = np.asarray(excitation.acc, float)
         tt = excitation.dt * np.arange(acc.size)
@@ -41,13 +45,13 @@ def ground_function(excitation):
                 return 0.0
             return float(np.interp(t, tt, acc))
 
-        return ag, float(tt[-1]), float(excitation.dt)
+        return ag, float(tt[-1]), float(excitation.dt), float(excitation.dt)
 
     def ag(t):
         return float(excitation.acceleration(t))
 
     ts, te = excitation.support()
-    return ag, float(te), excitation.T_p / 200.0
+    return ag, float(te), excitation.T_p / 200.0, np.inf
 
 
 def impact_map_linear_system(block: Block, gamma: float, thd1: float, ud1: float):
@@ -69,7 +73,7 @@ def impact_map_linear_system(block: Block, gamma: float, thd1: float, ud1: float
 def reference_simulate(block: Block, foundation, excitation, *, rtol=1e-10, atol=1e-13, tail=10.0,
                        rest_tol=1e-6, max_phases=20000) -> RefResult:
     """Chain stuck and rocking phases with ``solve_ivp`` (DOP853) and terminal events."""
-    ag, t_exc_end, max_step = ground_function(excitation)
+    ag, t_exc_end, scan_step, max_step = ground_function(excitation)
     g = G
     p2 = block.p ** 2
     alpha = block.alpha
@@ -115,7 +119,7 @@ def reference_simulate(block: Block, foundation, excitation, *, rtol=1e-10, atol
             if not isolated:
                 # scan the ground motion on a fine grid, bracket and solve |ag| = thr
                 t_end = t_exc_end
-                grid = np.arange(t, t_end + max_step, max_step / 4)
+                grid = np.arange(t, t_end + scan_step, scan_step / 4)
                 grid = grid[grid <= t_end]
                 if grid.size == 0 or grid[-1] < t_end:
                     grid = np.append(grid, t_end)
