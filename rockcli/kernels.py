@@ -410,6 +410,14 @@ def _u_extremum(W, hs, sig_end):
     return abs(_poly(_dense(W, hs, 2, 1.0), sx))
 
 
+@njit(cache=True)
+def _count_uplift(out, t):
+    out[O_N_UPLIFTS] += 1
+    if out[O_UPLIFTED] == 0.0:
+        out[O_UPLIFTED] = 1.0
+        out[O_T_UPLIFT] = t
+
+
 # ---------------------------------------------------------------------------------------------
 # The simulation kernel
 # ---------------------------------------------------------------------------------------------
@@ -556,10 +564,7 @@ def simulate_core(fkind, prm, ekind, epar, acc, dt, t_begin, t_exc_end, tail, ma
                 t = tu
                 s = su
                 phase = PHASE_ROCKING
-                out[O_N_UPLIFTS] += 1
-                if out[O_UPLIFTED] == 0.0:
-                    out[O_UPLIFTED] = 1.0
-                    out[O_T_UPLIFT] = t
+                _count_uplift(out, t)
                 fresh = True
             if want_history:
                 H, nh = _hist_push(H, nh, t, _ground(t, seg, epar), W, W_Y)
@@ -572,10 +577,7 @@ def simulate_core(fkind, prm, ekind, epar, acc, dt, t_begin, t_exc_end, tail, ma
             if abs(a_now) > thr:
                 s = -1.0 if a_now > 0.0 else 1.0
                 phase = PHASE_ROCKING
-                out[O_N_UPLIFTS] += 1
-                if out[O_UPLIFTED] == 0.0:
-                    out[O_UPLIFTED] = 1.0
-                    out[O_T_UPLIFT] = t
+                _count_uplift(out, t)
                 fresh = True
                 continue
             i0 = 2
@@ -650,10 +652,7 @@ def simulate_core(fkind, prm, ekind, epar, acc, dt, t_begin, t_exc_end, tail, ma
                 t = t + sig * hs
                 s = su
                 phase = PHASE_ROCKING
-                out[O_N_UPLIFTS] += 1
-                if out[O_UPLIFTED] == 0.0:
-                    out[O_UPLIFTED] = 1.0
-                    out[O_T_UPLIFT] = t
+                _count_uplift(out, t)
                 fresh = True
             else:
                 t = t_new
