@@ -1,4 +1,6 @@
-"""Assessment reports: the Table-III-like matrix (text), the CSV report, per-run histories and figures.
+"""Assessment reports: the Table-III-like matrix (text) and the CSV report.
+
+Per-run histories and figures come from :mod:`rockcli.report.response`.
 
 pandas and matplotlib are imported inside the functions; files are written atomically (temporary
 file in the target folder, then renamed), so nothing is left half-written.
@@ -10,12 +12,8 @@ import math
 import os
 from pathlib import Path
 
-from rockcli.errors import RockcliInputError
 
-try:  # shared helper (report/files.py); older trees keep it in report/records.py
-    from rockcli.report.files import atomic_path
-except ImportError:  # pragma: no cover
-    from rockcli.report.records import atomic_path
+from rockcli.report.files import atomic_path
 
 #: Columns of the CSV report, in order (units in the names; see rockcli.assess.AssessmentRow).
 CSV_COLUMNS = ("column", "R_m", "alpha_deg", "height_m", "width_m", "record", "excitation", "source", "pga_g",
@@ -130,77 +128,8 @@ def read_assessment_csv(path: str | os.PathLike):
     """Read a CSV report back into a DataFrame (``overturned`` boolean, empty cells NaN)."""
     import pandas as pd
 
-    df = pd.read_csv(path, keep_default_na=True)
-    for c in ("margin_note", "error", "verdict", "source"):
+    text = ("margin_note", "error", "verdict", "source")
+    df = pd.read_csv(path, dtype={c: object for c in text})
+    for c in text:
         df[c] = df[c].fillna("")
     return df
-
-
-# --------------------------------------------------------------------------------------------------
-# histories and figures (rockcli.report.response when present, else the minimal versions below)
-# --------------------------------------------------------------------------------------------------
-
-def history_frame(response):
-    """Time history of a response as a DataFrame: t_s, ag_mps2, theta_rad, theta_over_alpha, ..."""
-    import pandas as pd
-
-    h = response.history
-    if h is None:
-        raise RockcliInputError("this run has no time history (simulate it with history=True)")
-    return pd.DataFrame({"t_s": h.t, "ag_mps2": h.ag, "theta_rad": h.theta, "theta_dot_radps": h.theta_dot,
-                         "u_m": h.u, "u_dot_mps": h.u_dot})
-
-
-def _write_history_csv(response, path) -> Path:
-    df = history_frame(response)
-    with atomic_path(path) as tmp:
-        df.to_csv(tmp, index=False, float_format="%.9g", lineterminator="\n")
-    return Path(path)
-
-
-def _plot_response(response, block, foundation, excitation_label, path) -> Path:
-    """Figure 12 style: ground acceleration, theta/alpha and base displacement against time."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from rockcli.units import G
-
-    h = response.history
-    isolated = getattr(foundation, "label", "none") != "none"
-    n = 3 if isolated else 2
-    fig, axes = plt.subplots(n, 1, sharex=True, figsize=(7, 2.2 * n + 0.6), constrained_layout=True)
-    axes[0].plot(h.t, h.ag / G, lw=0.7, color="k")
-    axes[0].set_ylabel("ground acc. [g]")
-    axes[1].plot(h.t, h.theta / block.alpha, lw=0.9, color="C3")
-    axes[1].set_ylabel(r"$\theta/\alpha$")
-    for y in (-1, 1):
-        axes[1].axhline(y, lw=0.5, ls="--", color="0.5")
-    if isolated:
-        axes[2].plot(h.t, h.u, lw=0.9, color="C0")
-        axes[2].set_ylabel("base disp. u [m]")
-    for ax in axes:
-        ax.axhline(0.0, lw=0.4, color="0.6")
-        ax.grid(True, lw=0.3, alpha=0.5)
-    axes[-1].set_xlabel("time [s]")
-    axes[0].set_title(f"{block.name} on {getattr(foundation, 'label', 'none')}, {excitation_label}: "
-                      f"{response.message}", fontsize=8)
-    suffix = Path(path).suffix.lstrip(".") or "png"
-    try:
-        with atomic_path(path) as tmp:
-            fig.savefig(tmp, dpi=110, format=suffix)
-    except ValueError as exc:
-        raise RockcliInputError(f"{path}: cannot write a figure in this format ({exc})") from None
-    finally:
-        plt.close(fig)
-    return Path(path)
-
-
-def response_writers():
-    """(write_history_csv, plot_response): the solver's report.response versions when present."""
-    try:
-        from rockcli.report import response as mod
-    except ImportError:
-        return _write_history_csv, _plot_response
-    return (getattr(mod, "write_history_csv", _write_history_csv), getattr(mod, "plot_response", _plot_response))
