@@ -10,7 +10,7 @@ import pytest
 
 from rockcli.errors import RockcliInputError
 from rockcli.records import read_record
-from rockcli.records.catalog import (COLUMNS, CatalogEntry, catalog_path, find_file, format_catalog, get_entry,
+from rockcli.records.catalog import (COLUMNS, catalog_path, find_file, format_catalog, get_entry,
                                      load_catalog, search_path, write_catalog)
 
 IDS = ["parkfield-1966-c02-065", "vrancea-1977-bucharest", "imperialvalley-1979-elcentro6-230",
