@@ -373,6 +373,7 @@ class AssessmentRow:
     overturn_scale: float = math.nan
     overturn_scale_survives: float = math.nan
     margin_note: str = ""
+    overturn_share_pm10: float = math.nan
     error: str = ""
 
 
@@ -391,6 +392,7 @@ class Assessment:
     unavailable: list = field(default_factory=list)
     margin: bool = True
     timings: dict = field(default_factory=dict)
+    neighbourhood: bool = False
 
     def row(self, column: str, record: str, configuration: str) -> AssessmentRow:
         """The row of one scene (by column name, record label, configuration header)."""
@@ -575,6 +577,29 @@ def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL,
     return out
 
 
+#: Scale factors of the neighbourhood check: 0.90, 0.91, ..., 1.10.
+NEIGHBOURHOOD = np.round(np.linspace(0.9, 1.1, 21), 10)
+
+
+def overturn_shares(scenes, *, factors=NEIGHBOURHOOD, progress=None, **solver) -> list[float]:
+    """Share of the scale factors ``factors`` (default 0.90..1.10 in steps of 0.01) that overturn each scene.
+
+    Near the overturning boundary the verdict can flip back and forth within a per cent of the
+    amplitude (the boundary is ragged, not a single threshold); this share says how robust the
+    verdict at scale 1 is: 0 or 1 robust, around 0.5 a coin toss within the uncertainty of any record.
+    """
+    from rockcli.solve import simulate_many
+
+    pairs = [(i, float(s)) for i in range(len(scenes)) for s in factors]
+    pairs = _balanced(pairs, [_cost(scenes[i][2]) for i, _ in pairs])
+    res = simulate_many([_scaled_job(*scenes[i], s) for i, s in pairs], progress=progress,
+                        chunk=max(1, len(pairs) // 50) if progress else None, **solver)
+    count = np.zeros(len(scenes))
+    for (i, _), r in zip(pairs, res):
+        count[i] += r.overturned
+    return list(count / len(factors))
+
+
 def _cost(motion) -> float:
     """Rough cost of a run: the samples of a record (the solver steps at least once per sample)."""
     return float(motion.acc.size) if hasattr(motion, "acc") else 100.0
@@ -593,7 +618,7 @@ def _peak(motion) -> float:
 
 
 def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
-                   configurations: Sequence[Configuration], *, margin: bool = True,
+                   configurations: Sequence[Configuration], *, margin: bool = True, neighbourhood: bool = False,
                    unavailable: Sequence[Unavailable] = (), progress=None, **solver) -> Assessment:
     """Run every scene column x excitation x configuration (verdict only, all cores).
 
@@ -603,6 +628,9 @@ def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
         From :func:`parse_column_spec`, :func:`resolve_excitations`, :func:`parse_configurations`.
     margin : bool
         Also find ``overturn_scale`` for every scene (see the module notes).
+    neighbourhood : bool
+        Also run 0.90x..1.10x of every record and store the share that overturns
+        (``overturn_share_pm10``, see :func:`overturn_shares`).
     progress : callable, optional
         ``progress(n)`` after each chunk of ``n`` runs; :func:`count_runs` gives the total.
     **solver
@@ -655,8 +683,15 @@ def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
         for i, (hi, lo, note) in zip(ok, found):
             run_rows[i].overturn_scale, run_rows[i].overturn_scale_survives, run_rows[i].margin_note = hi, lo, note
         timings["margin_s"] = time.perf_counter() - t0
+    if neighbourhood:
+        t0 = time.perf_counter()
+        ok = [i for i, r in enumerate(responses) if r is not None]
+        shares = overturn_shares([scenes[i] for i in ok], progress=_Advance(progress) if progress else None, **solver)
+        for i, share in zip(ok, shares):
+            run_rows[i].overturn_share_pm10 = share
+        timings["neighbourhood_s"] = time.perf_counter() - t0
     return Assessment(list(columns), list(excitations), list(configurations), rows, list(unavailable), margin,
-                      timings)
+                      timings, neighbourhood)
 
 
 class _Advance:
@@ -670,10 +705,10 @@ class _Advance:
         self.done = n_done
 
 
-def count_runs(columns, excitations, configurations, margin: bool) -> int:
-    """Runs for the progress bar: the scenes, plus the margin grid (an upper bound) when asked."""
+def count_runs(columns, excitations, configurations, margin: bool, neighbourhood: bool = False) -> int:
+    """Runs for the progress bar: the scenes, plus the margin grid (an upper bound) and the neighbourhood."""
     n = len(columns) * sum(x.motion is not None for x in excitations) * len(configurations)
-    return n * (1 + (MARGIN_GRID.size - 1 if margin else 0))
+    return n * (1 + (MARGIN_GRID.size - 1 if margin else 0) + (NEIGHBOURHOOD.size if neighbourhood else 0))
 
 
 def history_runs(assessment: Assessment, **solver):
@@ -699,5 +734,5 @@ def safe_name(*parts: str) -> str:
 
 __all__ = ["DEFAULT_ISOLATION", "MARGIN_GRID", "MARGIN_RTOL", "Assessment", "AssessmentRow", "Configuration",
            "Excitation", "Unavailable", "ROW_FIELDS", "column_title", "count_runs", "custom_column",
-           "find_overturn_scales", "history_runs", "parse_column_spec", "parse_configurations",
+           "find_overturn_scales", "history_runs", "overturn_shares", "parse_column_spec", "parse_configurations",
            "resolve_excitations", "run_assessment", "safe_name", "table_ii_entries"]

@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from rockcli.assess import (DEFAULT_ISOLATION, MARGIN_GRID, custom_column, find_overturn_scales,
+from rockcli.assess import (DEFAULT_ISOLATION, MARGIN_GRID, NEIGHBOURHOOD, custom_column, find_overturn_scales,
                             parse_column_spec, parse_configurations, resolve_excitations, run_assessment)
 from rockcli.errors import RockcliInputError
 from rockcli.models import DEFAULT_GAMMA, LinearIsolation, Rigid, column
@@ -219,6 +219,18 @@ def test_margin_rows_and_survivor_below_overturn(synthetic):
     assert not simulate(b, Rigid(), rec.scaled(row.overturn_scale_survives)).overturned
     if row.overturned:  # 1 is a grid factor: an overturning record has its smallest factor at or below 1
         assert row.overturn_scale <= 1.0
+
+
+def test_neighbourhood_share_counts_direct_runs(synthetic):
+    xs, _ = resolve_excitations([str(synthetic / "sym.txt")])
+    b = parse_column_spec("c:R=0.8,alpha=12")
+    confs = parse_configurations(["none", "linear:Tb=2"])
+    a = run_assessment([b], xs, confs, margin=False, neighbourhood=True)
+    assert NEIGHBOURHOOD.size == 21 and NEIGHBOURHOOD[0] == 0.9 and NEIGHBOURHOOD[-1] == 1.1
+    for row, c in zip(a.rows, confs):
+        want = np.mean([simulate(b, c.foundation, xs[0].motion.scaled(s)).overturned for s in NEIGHBOURHOOD])
+        assert row.overturn_share_pm10 == pytest.approx(want, abs=1e-12)
+        assert math.isnan(row.overturn_scale)  # margin not asked
 
 
 # --------------------------------------------------------------------------------------------------

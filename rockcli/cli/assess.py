@@ -34,6 +34,8 @@ def assess():
                    "Table III set: none and linear Tb = 2, 2.5, 3 s with xi = 0.1 (gamma = 0.01).")
 @click.option("--margin/--no-margin", default=True, show_default=True,
               help="Find the smallest scale factor of each record that overturns (0.1x..4x scan, then bisection).")
+@click.option("--neighbourhood", is_flag=True,
+              help="Also run 0.90x..1.10x of each record (21 factors) and report the share that overturns.")
 @click.option("--csv", "csv_path", type=click.Path(dir_okay=False), default=None,
               help="Write the report: one row per column x record x configuration.")
 @click.option("--histories", "hist_dir", type=click.Path(file_okay=False), default=None,
@@ -41,8 +43,8 @@ def assess():
 @click.option("--plot", "plot_dir", type=click.Path(file_okay=False), default=None,
               help="Write one figure per run (like the paper's Figure 12) into this folder.")
 @user_errors
-def column(names, R, alpha, height, width, name, records, excitation, isolation, margin, csv_path, hist_dir,
-           plot_dir):
+def column(names, R, alpha, height, width, name, records, excitation, isolation, margin, neighbourhood, csv_path,
+           hist_dir, plot_dir):
     """Do the columns NAME... survive the records, on a rigid base and on isolators?
 
     NAME is a preset (bassae, nemea) or a custom block NAME:R=<m>,alpha=<deg> or
@@ -82,14 +84,15 @@ def column(names, R, alpha, height, width, name, records, excitation, isolation,
     if not excitations:
         raise InputError("no record to run: " + "; ".join(f"{u.label}: {u.reason}" for u in unavailable))
 
-    total = count_runs(columns, excitations, configurations, margin)
+    total = count_runs(columns, excitations, configurations, margin, neighbourhood)
     if sys.stderr.isatty():
         with click.progressbar(length=total, label="runs", file=sys.stderr) as bar:
-            result = run_assessment(columns, excitations, configurations, margin=margin, unavailable=unavailable,
-                                    progress=bar.update)
+            result = run_assessment(columns, excitations, configurations, margin=margin, neighbourhood=neighbourhood,
+                                    unavailable=unavailable, progress=bar.update)
             bar.update(total)
     else:
-        result = run_assessment(columns, excitations, configurations, margin=margin, unavailable=unavailable)
+        result = run_assessment(columns, excitations, configurations, margin=margin, neighbourhood=neighbourhood,
+                                unavailable=unavailable)
 
     from rockcli.report.tables import format_matrix, format_notes
 

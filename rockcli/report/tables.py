@@ -19,15 +19,15 @@ from rockcli.report.files import atomic_path
 CSV_COLUMNS = ("column", "R_m", "alpha_deg", "height_m", "width_m", "record", "excitation", "source", "pga_g",
                "a_p_g", "T_p_s", "isolation", "configuration", "Tb_s", "xi", "mu", "gamma", "verdict",
                "overturned", "theta_max_over_alpha", "t_overturn_s", "t_uplift_s", "n_impacts",
-               "base_disp_max_m", "overturn_scale", "overturn_scale_survives", "margin_note", "error")
+               "base_disp_max_m", "overturn_scale", "overturn_scale_survives", "margin_note", "overturn_share_pm10", "error")
 
 
 # --------------------------------------------------------------------------------------------------
 # text matrix
 # --------------------------------------------------------------------------------------------------
 
-def format_cell(row, margin: bool) -> str:
-    """``survives 0.42 x1.85`` / ``no uplift x2.10`` / ``OVERTURNS x0.62`` / ``ERROR``."""
+def format_cell(row, margin: bool, neighbourhood: bool = False) -> str:
+    """``survives 0.42 x1.85`` / ``no uplift x2.10`` / ``OVERTURNS x0.62 [43%]`` / ``ERROR``."""
     if row.error:
         return "ERROR"
     if row.overturned:
@@ -41,6 +41,8 @@ def format_cell(row, margin: bool) -> str:
             text += f" x{row.overturn_scale:.2f}"
         elif row.margin_note.startswith("no overturning"):
             text += " x>4"
+    if neighbourhood and not math.isnan(row.overturn_share_pm10):
+        text += f" [{100 * row.overturn_share_pm10:.0f}%]"
     return text
 
 
@@ -57,7 +59,7 @@ def format_matrix(assessment) -> str:
         table = [head]
         for x in xs:
             label = x.label + (" (pulse)" if x.kind == "pulse" else "")
-            table.append([label] + [format_cell(assessment.row(b.name, x.label, c.header), margin) for c in confs])
+            table.append([label] + [format_cell(assessment.row(b.name, x.label, c.header), margin, assessment.neighbourhood) for c in confs])
         counts = ["survives"]
         for c in confs:
             rows = [assessment.row(b.name, x.label, c.header) for x in xs]
@@ -82,15 +84,21 @@ def format_notes(assessment) -> str:
              "base; OVERTURNS: |theta| reaches 90 deg."]
     if assessment.margin:
         lines.append("xS: smallest scale factor of the record that overturns the column in that configuration "
-                     "(S < 1: it overturns as recorded, at S times the record; S > 1: survival margin; "
-                     "x>4: nothing up to 4x overturns).")
+                     "(S > 1: survival margin; S < 1 on an overturn: it overturns already at S times the record; "
+                     "S < 1 on a survivor: a weaker record overturns it, 1x sits on a safe island; x>4: nothing "
+                     "up to 4x overturns). Found on a 0.1x..4x grid (10 % steps) refined to 1 %; where the "
+                     "boundary is ragged the value is indicative.")
+    if assessment.neighbourhood:
+        lines.append("[P%]: share of the scale factors 0.90x, 0.91x, ..., 1.10x of the record that overturn "
+                     "(0% or 100%: a robust verdict; in between: the verdict flips within +-10% of the record).")
     iso = [c for c in confs if c.label != "none"]
     if iso:
         lines.append("Configurations: " + "; ".join(f"{c.header} = {c.label}" for c in iso)
                      + " (gamma = m/(m+m_b), the mass ratio of column to column + isolated base).")
     if assessment.idealised:
         lines.append("Idealised (record file not found; its catalogued Ricker pulse was run instead): "
-                     + ", ".join(assessment.idealised) + ".")
+                     + ", ".join(assessment.idealised) + ". A single pulse lacks the record's other cycles: "
+                     "with the paper's records it misses many overturns, above all on isolators (see README).")
     for u in assessment.unavailable:
         lines.append(f"Not available: {u.label} ({u.reason}).")
     for x in assessment.failed:
