@@ -1,7 +1,8 @@
 """Physical models: the rigid block and the foundations it stands on.
 
-Everything here is SI: lengths [m], angles [rad], periods [s]. Each foundation knows how to
-describe itself to the compiled kernel (:meth:`kernel_spec`) and how many states it adds.
+Everything here is SI: lengths [m], angles [rad], periods [s]. Each foundation carries its
+kind code for :mod:`rockcli.kernels` and the number of states it adds; :mod:`rockcli.solve` turns
+it into the kernel's parameter vector.
 
 Notation follows Vassiliou & Makris (2012): ``R`` semi-diagonal, ``alpha`` slenderness,
 ``p = sqrt(3 g / (4 R))`` frequency parameter, ``gamma = m / (m + m_b)`` mass ratio,
@@ -154,9 +155,6 @@ class Rigid:
     kind = KIND_RIGID
     n_states = 0
 
-    def kernel_params(self):
-        return (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
-
     @property
     def label(self) -> str:
         return "none"
@@ -198,9 +196,6 @@ class LinearIsolation:
     @property
     def omega_b(self) -> float:
         return 2.0 * math.pi / self.T_b
-
-    def kernel_params(self):
-        return (self.omega_b, self.xi, 0.0, 0.0, 0.0, 0.0)
 
     @property
     def label(self) -> str:
