@@ -324,17 +324,21 @@ def simulate_many(jobs, *, rtol: float = DEFAULT_RTOL, tail: float = DEFAULT_TAI
     acc_len = np.zeros(n, np.int64)
     pieces, where, total = [], {}, 0
     blocks = []
+    prepared = {}  # id(excitation) -> validated kernel arrays: a shared record is checked once
     for i, job in enumerate(jobs):
         block, foundation, excitation = job[:3]
         scale = float(job[3]) if len(job) > 3 else 1.0
         if not isinstance(block, Block):
             raise RockcliInputError(f"job {i}: block must be a rockcli.models.Block")
-        ekind, epar, acc, dt, t_begin, t_exc_end = _excitation_arrays(excitation)
+        key = id(excitation)
+        if key not in prepared:
+            prepared[key] = _excitation_arrays(excitation)
+        ekind, epar, acc, dt, t_begin, t_exc_end = prepared[key]
+        epar = epar.copy()
         fkind, prm = _parameters(block, foundation if foundation is not None else Rigid(), float(rtol),
                                  float(rest_tol))
         if ekind == k.EXC_RECORD:
             epar[k.E_AP] = scale
-            key = id(excitation)
             if key not in where:
                 where[key] = total
                 pieces.append(acc)
