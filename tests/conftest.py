@@ -9,7 +9,11 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
+import numpy as np
 import pytest
+
+from rockcli.pulses import make_pulse
+from rockcli.units import G
 
 
 def _record_folders() -> list[Path]:
@@ -42,3 +46,24 @@ def find_record(records_dirs):
         pytest.skip(f"{name} not found in ROCKCLI_RECORDS")
 
     return find
+
+
+def write_pulse_record(path: Path, a_p_g=0.5, T_p=0.6, shape="ricker-sym", dt=0.01, pad=4.0) -> Path:
+    """A sampled pulse followed by quiet, as a one-column text file that states dt and units."""
+    p = make_pulse(shape, a_p_g * G, T_p)
+    t = np.arange(0.0, p.support()[1] + pad, dt)
+    acc_g = p.acceleration(t) / G
+    lines = [f"# synthetic {shape} ap={a_p_g} g Tp={T_p} s", f"# dt={dt} sec", "# units: g"]
+    lines += [f"{v:.10e}" for v in acc_g]
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+@pytest.fixture()
+def pulse_records(tmp_path):
+    """A folder with two synthetic pulse records (sym.txt, anti.txt) as self-describing text files."""
+    folder = tmp_path / "recs"
+    folder.mkdir()
+    write_pulse_record(folder / "sym.txt", 0.45, 0.7, "ricker-sym")
+    write_pulse_record(folder / "anti.txt", -0.5, 0.5, "ricker-anti")
+    return folder

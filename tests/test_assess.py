@@ -7,7 +7,6 @@ ROCKCLI_RECORDS; the tests on the paper's records skip cleanly without it.
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -21,26 +20,6 @@ from rockcli.records import read_record
 from rockcli.records import catalog as catalog_mod
 from rockcli.solve import simulate, simulate_many
 from rockcli.units import G
-
-
-def write_pulse_record(path: Path, a_p_g=0.5, T_p=0.6, shape="ricker-sym", dt=0.01, pad=4.0) -> Path:
-    """A sampled pulse followed by quiet, as a one-column text file that states dt and units."""
-    p = make_pulse(shape, a_p_g * G, T_p)
-    t = np.arange(0.0, p.support()[1] + pad, dt)
-    acc_g = p.acceleration(t) / G
-    lines = [f"# synthetic {shape} ap={a_p_g} g Tp={T_p} s", f"# dt={dt} sec", "# units: g"]
-    lines += [f"{v:.10e}" for v in acc_g]
-    path.write_text("\n".join(lines) + "\n")
-    return path
-
-
-@pytest.fixture()
-def synthetic(tmp_path):
-    folder = tmp_path / "recs"
-    folder.mkdir()
-    write_pulse_record(folder / "sym.txt", 0.45, 0.7, "ricker-sym")
-    write_pulse_record(folder / "anti.txt", -0.5, 0.5, "ricker-anti")
-    return folder
 
 
 # --------------------------------------------------------------------------------------------------
@@ -85,9 +64,9 @@ def test_configuration_headers_stay_unambiguous():
         parse_configurations(["linear:xi=0.1"])
 
 
-def test_sources_files_folders_and_errors(synthetic, tmp_path):
-    (synthetic / "junk.dat").write_text("this is not a record\n")
-    xs, unavailable = resolve_excitations([str(synthetic)])
+def test_sources_files_folders_and_errors(pulse_records, tmp_path):
+    (pulse_records / "junk.dat").write_text("this is not a record\n")
+    xs, unavailable = resolve_excitations([str(pulse_records)])
     assert [x.label for x in xs] == ["anti.txt", "junk.dat", "sym.txt"] and not unavailable
     assert xs[1].motion is None and "junk.dat" in xs[1].error
     assert xs[2].pga_g == pytest.approx(0.45, rel=1e-3) and xs[2].kind == "record"
@@ -118,11 +97,11 @@ def _check_row_matches(row, block, foundation, motion):
     assert (math.isnan(row.t_uplift_s) and math.isnan(r.t_uplift_s)) or row.t_uplift_s == r.t_uplift_s
 
 
-def test_rows_equal_simulate_and_junk_keeps_the_others(synthetic):
-    (synthetic / "junk.dat").write_text("1 2 3\nfoo bar\n")
+def test_rows_equal_simulate_and_junk_keeps_the_others(pulse_records):
+    (pulse_records / "junk.dat").write_text("1 2 3\nfoo bar\n")
     blocks = [parse_column_spec("small:R=0.6,alpha=12"), parse_column_spec("tall:R=1.5,alpha=8")]
     confs = parse_configurations(["none", "linear:Tb=2,xi=0.1", "linear:Tb=1,xi=0.2,gamma=0.3"])
-    xs, _ = resolve_excitations([str(synthetic)])
+    xs, _ = resolve_excitations([str(pulse_records)])
     a = run_assessment(blocks, xs, confs, margin=False)
     assert len(a.rows) == 2 * 3 * 3
     assert [(r.column, r.record, r.configuration) for r in a.rows[:4]] == [
@@ -184,8 +163,8 @@ def _naive_first_overturn(scenes):
     return [int(np.flatnonzero(o)[0]) if o.any() else None for o in over]
 
 
-def test_margin_agrees_with_the_full_scan_and_brackets_the_boundary(synthetic):
-    xs, _ = resolve_excitations([str(synthetic / "sym.txt")])
+def test_margin_agrees_with_the_full_scan_and_brackets_the_boundary(pulse_records):
+    xs, _ = resolve_excitations([str(pulse_records / "sym.txt")])
     rec = xs[0].motion
     pulse = make_pulse("ricker-anti", 0.3 * G, 0.8)
     blocks = [parse_column_spec("a:R=0.8,alpha=12"), parse_column_spec("b:R=2.5,alpha=9")]
@@ -208,8 +187,8 @@ def test_margin_agrees_with_the_full_scan_and_brackets_the_boundary(synthetic):
     assert finite >= 4
 
 
-def test_margin_rows_and_survivor_below_overturn(synthetic):
-    xs, _ = resolve_excitations([str(synthetic / "anti.txt")])
+def test_margin_rows_and_survivor_below_overturn(pulse_records):
+    xs, _ = resolve_excitations([str(pulse_records / "anti.txt")])
     b = parse_column_spec("c:R=1.0,alpha=10")
     a = run_assessment([b], xs, parse_configurations(["none"]), margin=True)
     row = a.rows[0]
@@ -221,8 +200,8 @@ def test_margin_rows_and_survivor_below_overturn(synthetic):
         assert row.overturn_scale <= 1.0
 
 
-def test_neighbourhood_share_counts_direct_runs(synthetic):
-    xs, _ = resolve_excitations([str(synthetic / "sym.txt")])
+def test_neighbourhood_share_counts_direct_runs(pulse_records):
+    xs, _ = resolve_excitations([str(pulse_records / "sym.txt")])
     b = parse_column_spec("c:R=0.8,alpha=12")
     confs = parse_configurations(["none", "linear:Tb=2"])
     a = run_assessment([b], xs, confs, margin=False, neighbourhood=True)

@@ -18,7 +18,6 @@ from rockcli.records import read_record
 from rockcli.report.tables import CSV_COLUMNS, read_assessment_csv
 from rockcli.solve import simulate
 
-from test_assess import write_pulse_record
 
 #: The columns the issue asks for (more are welcome).
 REQUIRED = ("column", "R_m", "alpha_deg", "record", "excitation", "isolation", "Tb_s", "xi", "mu", "gamma",
@@ -29,18 +28,9 @@ def invoke(*args):
     return CliRunner().invoke(main, ["assess", "column", *map(str, args)])
 
 
-@pytest.fixture()
-def recs(tmp_path):
-    folder = tmp_path / "recs"
-    folder.mkdir()
-    write_pulse_record(folder / "sym.txt", 0.45, 0.7, "ricker-sym")
-    write_pulse_record(folder / "anti.txt", -0.5, 0.5, "ricker-anti")
-    return folder
-
-
-def test_csv_schema_and_values_equal_simulate(recs, tmp_path):
+def test_csv_schema_and_values_equal_simulate(pulse_records, tmp_path):
     out = tmp_path / "t.csv"
-    res = invoke("small:R=0.6,alpha=12", "--R", 1.5, "--alpha", 8, "--name", "tall", "--records", recs,
+    res = invoke("small:R=0.6,alpha=12", "--R", 1.5, "--alpha", 8, "--name", "tall", "--records", pulse_records,
                  "--isolation", "none", "--isolation", "linear:Tb=2,xi=0.1", "--isolation", "linear:Tb=1,gamma=0.3",
                  "--csv", out)
     assert res.exit_code == 0, res.output
@@ -53,7 +43,7 @@ def test_csv_schema_and_values_equal_simulate(recs, tmp_path):
         b = {"small": column("bassae").__class__.from_degrees(0.6, 12, "small"),
              "tall": column("bassae").__class__.from_degrees(1.5, 8, "tall")}[row.column]
         f = parse_isolation_spec(row.isolation)
-        r = simulate(b, f, read_record(recs / row.record))
+        r = simulate(b, f, read_record(pulse_records / row.record))
         assert row.excitation == "record" and row.error == ""
         assert bool(row.overturned) is r.overturned and row.verdict == r.verdict
         assert row.n_impacts == r.n_impacts
@@ -76,8 +66,8 @@ def test_csv_schema_and_values_equal_simulate(recs, tmp_path):
     assert "wrote" in text and "(12 rows)" in text
 
 
-def test_no_progress_bar_when_piped_and_no_margin(recs):
-    res = invoke("s:R=1,alpha=10", "--records", recs / "sym.txt", "--isolation", "none", "--no-margin")
+def test_no_progress_bar_when_piped_and_no_margin(pulse_records):
+    res = invoke("s:R=1,alpha=10", "--records", pulse_records / "sym.txt", "--isolation", "none", "--no-margin")
     assert res.exit_code == 0, res.output
     row = res.output.splitlines()[3]
     assert row.startswith("sym.txt") and " x" not in row
@@ -85,10 +75,10 @@ def test_no_progress_bar_when_piped_and_no_margin(recs):
     assert "xS:" not in res.output
 
 
-def test_junk_file_in_folder_is_reported_in_its_rows(recs, tmp_path):
-    (recs / "notes.md").write_text("# a note, not a record\nhello\n")
+def test_junk_file_in_folder_is_reported_in_its_rows(pulse_records, tmp_path):
+    (pulse_records / "notes.md").write_text("# a note, not a record\nhello\n")
     out = tmp_path / "t.csv"
-    res = invoke("s:R=1,alpha=10", "--records", recs, "--isolation", "none", "--no-margin", "--csv", out)
+    res = invoke("s:R=1,alpha=10", "--records", pulse_records, "--isolation", "none", "--no-margin", "--csv", out)
     assert res.exit_code == 0, res.output
     df = read_assessment_csv(out)
     bad = df[df.record == "notes.md"]
@@ -118,15 +108,15 @@ def test_bad_input_exit_2_one_sentence(args, words, tmp_path):
     assert res.output.startswith("Error:") and len(res.output.strip().splitlines()) == 1
 
 
-def test_nothing_written_on_bad_input(recs, tmp_path):
+def test_nothing_written_on_bad_input(pulse_records, tmp_path):
     out = tmp_path / "t.csv"
-    res = invoke("bassae", "--records", recs, "--records", tmp_path / "missing.txt", "--csv", out)
+    res = invoke("bassae", "--records", pulse_records, "--records", tmp_path / "missing.txt", "--csv", out)
     assert res.exit_code == 2 and not out.exists() and list(tmp_path.glob(".t*")) == []
 
 
-def test_histories_and_plots(recs, tmp_path):
+def test_histories_and_plots(pulse_records, tmp_path):
     hist, figs = tmp_path / "h", tmp_path / "f"
-    res = invoke("s:R=0.8,alpha=12", "--records", recs / "anti.txt", "--isolation", "none",
+    res = invoke("s:R=0.8,alpha=12", "--records", pulse_records / "anti.txt", "--isolation", "none",
                  "--isolation", "linear:Tb=2", "--no-margin", "--histories", hist, "--plot", figs)
     assert res.exit_code == 0, res.output
     csvs = sorted(p.name for p in hist.glob("*.csv"))
@@ -134,7 +124,7 @@ def test_histories_and_plots(recs, tmp_path):
     assert sorted(p.name for p in figs.glob("*.png")) == [c.replace(".csv", ".png") for c in csvs]
     assert all(p.stat().st_size > 5000 for p in figs.glob("*.png"))
     b = column("bassae").__class__.from_degrees(0.8, 12, "s")
-    r = simulate(b, parse_isolation_spec("linear:Tb=2"), read_record(recs / "anti.txt"), history=True)
+    r = simulate(b, parse_isolation_spec("linear:Tb=2"), read_record(pulse_records / "anti.txt"), history=True)
     h = pd.read_csv(hist / "s_anti.txt_Tb=2s.csv")
     assert len(h) == r.history.t.size
     np.testing.assert_allclose(h["theta_rad"].to_numpy(), r.history.theta, rtol=1e-8, atol=1e-14)
