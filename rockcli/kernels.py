@@ -58,7 +58,8 @@ E_AP, E_TP, E_T0, E_TS, E_TE, E_BETA = 0, 1, 2, 3, 4, 5
 O_STATUS, O_UPLIFTED, O_T_UPLIFT, O_T_OVERTURN, O_THETA_MAX, O_T_THETA_MAX = 0, 1, 2, 3, 4, 5
 O_T_EXCEED, O_N_IMPACTS, O_U_MAX, O_STEPS, O_REJECTED, O_NRHS, O_T_END = 6, 7, 8, 9, 10, 11, 12
 O_N_RESTS, O_N_UPLIFTS, O_N_IMPACTS_ALL, O_SETTLED, O_THETA_END, O_U_END = 13, 14, 15, 16, 17, 18
-N_OUT = 19
+O_PEAK_FINAL, O_T_SETTLED = 19, 20
+N_OUT = 21
 
 STATUS_DONE = 0
 STATUS_OVERTURNED = 1
@@ -297,6 +298,62 @@ def _first_down(c, level, lo, hi):
 
 
 @njit(cache=True)
+def _golden_max(c, sgn, lo, hi):
+    """Location of the largest ``sgn * poly(c)`` on [lo, hi] (golden section; unimodal there)."""
+    for _ in range(60):
+        x1 = hi - 0.6180339887498949 * (hi - lo)
+        x2 = lo + 0.6180339887498949 * (hi - lo)
+        if sgn * _poly(c, x1) > sgn * _poly(c, x2):
+            hi = x2
+        else:
+            lo = x1
+    return 0.5 * (lo + hi)
+
+
+@njit(cache=True)
+def _first_exceed(c, thr):
+    """First sigma in [0, 1] where ``|poly(c)|`` exceeds ``thr``: ``(sigma, sign of poly)``, else ``(-1, 0)``.
+
+    The quartic is sampled at 17 points. A maximum of ``|poly|`` lies within 1/16 of a sample, so
+    it exceeds that sample by at most ``max|poly''| / 512`` with ``max|poly''| <= 2|c2| + 6|c3| +
+    12|c4|`` on [0, 1]: every sampled local maximum of ``|poly|`` (ends included) within that margin
+    of ``thr`` is refined by golden section before it is dismissed, so no excursion above ``thr``
+    between samples is missed. The crossing itself is refined by regula falsi.
+    """
+    margin = (2.0 * abs(c[2]) + 6.0 * abs(c[3]) + 12.0 * abs(c[4])) / 512.0
+    f_prev = abs(_poly(c, 0.0))
+    if f_prev > thr:
+        return 0.0, (1.0 if _poly(c, 0.0) > 0.0 else -1.0)
+    f_cur = abs(_poly(c, 1.0 / 16.0))
+    for k in range(1, 17):
+        x = k / 16.0
+        if f_cur > thr:
+            sg = 1.0 if _poly(c, x) > 0.0 else -1.0
+            lo = (k - 1) / 16.0
+            cs = (sg * c[0], sg * c[1], sg * c[2], sg * c[3], sg * c[4])
+            return _refine_root(cs, thr, lo, x, sg * _poly(c, lo) - thr), sg
+        f_next = abs(_poly(c, (k + 1) / 16.0)) if k < 16 else -1.0
+        lo = (k - 1) / 16.0
+        hi = min(1.0, (k + 1) / 16.0)
+        # a sampled local maximum (an end counts: its outer neighbour is treated as lower)
+        cand = f_cur >= f_prev and f_cur >= f_next and f_cur > thr - margin
+        if k == 1 and f_prev >= f_cur and f_prev > thr - margin:
+            cand = True
+            hi = x
+        if cand:
+            sg = 1.0 if _poly(c, x) > 0.0 else -1.0
+            if k == 1 and f_prev >= f_cur:
+                sg = 1.0 if _poly(c, 0.0) > 0.0 else -1.0
+            xm = _golden_max(c, sg, lo, hi)
+            if sg * _poly(c, xm) > thr:
+                cs = (sg * c[0], sg * c[1], sg * c[2], sg * c[3], sg * c[4])
+                return _refine_root(cs, thr, lo, xm, sg * _poly(c, lo) - thr), sg
+        f_prev = f_cur
+        f_cur = f_next
+    return -1.0, 0.0
+
+
+@njit(cache=True)
 def _state_at(W, h, sig, nst):
     """Dense-output state at fraction ``sig`` of the last step, written into ``W[W_TMP]``."""
     for i in range(nst):
@@ -340,6 +397,12 @@ def _rigid_uplift(seg, epar, thr, t, t_end):
     hg = epar[E_TP] / 512.0
     npts = max(1, int(math.ceil((t_end - t) / hg)))
     hg = (t_end - t) / npts
+    # A maximum of |ag| lies within hg of a sample, so it exceeds that sample by at most
+    # max|ag''| hg^2 / 2, and max|ag''| <= 1.5 |a_p| omega_p^2 for every pulse shape (sine and cosine:
+    # 1; symmetric Ricker: 6/4; antisymmetric Ricker: 5.8/(3 beta) = 1.4). Every sampled local
+    # maximum within that margin (or within 5% of the threshold) is refined.
+    wp = 2.0 * math.pi / epar[E_TP]
+    margin = max(0.05 * thr, 1.5 * abs(epar[E_AP]) * wp * wp * hg * hg)
     fm2 = abs(a0) - thr
     fm1 = fm2
     for k in range(1, npts + 1):
@@ -350,7 +413,7 @@ def _rigid_uplift(seg, epar, thr, t, t_end):
         hi = tk
         if fk > 0.0:
             found = True
-        elif k >= 2 and fm1 >= fm2 and fm1 >= fk and fm1 > -0.05 * thr:
+        elif k >= 2 and fm1 >= fm2 and fm1 >= fk and fm1 > -margin:
             # a sampled local maximum of |ag| close to the threshold: look between the samples
             xa = tk - 2.0 * hg
             xb = tk
@@ -418,13 +481,81 @@ def _count_uplift(out, t):
         out[O_T_UPLIFT] = t
 
 
+@njit(cache=True)
+def _impulse_left(ekind, jtab, epar, dt, t):
+    """An upper bound of ``int_t^{t_exc_end} |ag| dtau`` [m/s], the ground's remaining "impulse".
+
+    ``jtab`` holds exact suffix integrals of ``|ag|``: for a record, from each sample to the end
+    (of the unscaled samples; ``epar[E_AP]`` is the scale); for a pulse, of the unit pulse
+    (``a_p = 1``, ``T_p = 1``) from each of ``n`` equally spaced points of its support. The value
+    at the grid point at or before ``t`` bounds the integral from ``t``.
+    """
+    n = jtab.shape[0]
+    if ekind == EXC_RECORD:
+        x = t / dt - 1e-9
+        j = 0 if x <= 0.0 else int(x)
+        if j >= n:
+            return 0.0
+        return abs(epar[E_AP]) * jtab[j]
+    ts = epar[E_TS]
+    te = epar[E_TE]
+    if t >= te:
+        return 0.0
+    x = (t - ts) / (te - ts) * (n - 1) - 1e-9
+    k = 0 if x <= 0.0 else int(x)
+    if k > n - 1:
+        k = n - 1
+    return abs(epar[E_AP]) * epar[E_TP] * jtab[k]
+
+
 # ---------------------------------------------------------------------------------------------
 # The simulation kernel
 # ---------------------------------------------------------------------------------------------
 @njit(cache=True)
-def simulate_core(fkind, prm, ekind, epar, acc, dt, t_begin, t_exc_end, tail, max_steps,
-                  want_history, out):
+def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, tail, horizon, max_steps,
+                  want_history, early, out):
     """Integrate one scene. Fills ``out`` (see the ``O_*`` layout) and returns the history.
+
+    End of the run (one rule for every mode)
+    ----------------------------------------
+    The run ends when the verdict is *proven* (or at overturning). Each proof below is a small
+    theorem; the code checks exactly its assumptions. A history run goes on after the proof until
+    exactly ``t_exc_end + tail`` to show the free motion; nothing after a proof can change the
+    verdict, ``theta_max`` or ``n_impacts``, and nothing before it depends on the mode or on
+    ``tail`` (the same steps are taken). A run that reaches
+    ``t_exc_end + horizon`` unproven ends there with ``O_SETTLED = 0`` (e.g. an undamped base that
+    keeps lifting the block): reported, never silently called safe.
+
+    P1 (rigid foundation, ground still, block stuck). With ``ag = 0`` and theta = 0 the uplift
+       condition ``|ag| > g tan(alpha)`` can never hold again.
+    P2 (rigid foundation, ground still, rocking, ``|theta| < alpha``). Between impacts
+       ``E = theta_dot^2/2 + p^2 cos(alpha - |theta|)`` is conserved (Eq 3 with ``ag = 0``); an impact
+       keeps theta = 0 and multiplies theta_dot by ``|eta| <= 1``, so E never grows; a rest sets
+       ``E = p^2 cos(alpha)``. The potential ``p^2 cos(alpha - |theta|)`` is largest, ``p^2``, at
+       ``|theta| = alpha``. Hence if ``E < p^2`` while ``|theta| < alpha`` the block never reaches
+       alpha, so never pi/2, and each later peak ``alpha - acos(E/p^2)`` is at most the next one,
+       which is added to ``theta_max`` (so the peak is final too). If the block is heading for the
+       pivot (``theta theta_dot < 0``) with ``|theta| < alpha``, the potential falls all the way to
+       theta = 0, so the impact is certain and ``E`` after it, ``p^2 cos(alpha) + eta^2 (E - p^2
+       cos(alpha))``, may be used. Past alpha (``|theta| >= alpha``) no such conclusion holds: the
+       same energy means the block falls away from the barrier (issue 9), and the run goes on.
+    P3 (isolated base, ground still, block stuck). The block moves with its base, a free damped
+       oscillator ``u'' + 2 xi w u' + w^2 u = 0`` (any gamma < 1: the block rides on the base) whose
+       energy ``(u'^2 + w^2 u^2)/2`` never grows for any ``xi >= 0``. The absolute base acceleration
+       ``|a| = |w^2 u + 2 xi w u'| <= w sqrt(1 + 4 xi^2) sqrt(u'^2 + w^2 u^2)`` (Cauchy-Schwarz), so
+       once this bound is below ``g tan(alpha)`` the block can never be lifted again.
+       The peak base displacement is final only once ``sqrt(u'^2 + w^2 u^2)/w``, which bounds
+       every later ``|u|``, is below it, or one base period later: the run follows the free base
+       until then (2 states, a few steps).
+    P4 (rigid foundation, ``early`` only, during the excitation, after the first uplift, block
+       stuck or ``|theta| < alpha``). ``dE/dt = -p^2 (ag/g) cos(A) theta_dot`` and, while
+       ``|theta| <= alpha``, ``theta_dot^2/2 <= E - p^2 cos(alpha) = X^2``, so
+       ``dX/dt <= p^2 |ag| / (sqrt(2) g)`` (impacts and rests only lower X). Hence
+       ``X(t') <= X(t) + p^2/(sqrt(2) g) int_t^t' |ag|``. If that bound with the whole remaining
+       impulse (:func:`_impulse_left`) is below ``p sqrt(1 - cos(alpha))`` (``E < p^2``), the block
+       cannot reach alpha before the ground stops (a first arrival at alpha needs ``E >= p^2``),
+       and P2 holds from then on: it survives. ``theta_max`` is then only the peak so far
+       (``O_PEAK_FINAL = 0``).
 
     Parameters
     ----------
@@ -437,14 +568,19 @@ def simulate_core(fkind, prm, ekind, epar, acc, dt, t_begin, t_exc_end, tail, ma
         ``epar[E_AP]``), ``epar`` (tuple of 8 floats, ``E_*`` layout) for a pulse.
     t_begin, t_exc_end : float
         Start of the integration and end of the excitation [s].
+    acc, jtab : float64 arrays
+        The record's samples and the suffix integrals of ``|ag|`` (:func:`_impulse_left`).
     tail : float
-        Free-motion time after the excitation [s]. A block still rocking then is followed until
-        it rests or overturns, up to ``4 * tail``.
+        Free motion shown by a history run after the excitation [s] (see "End of the run").
+    horizon : float
+        Longest free motion followed after the excitation to prove the verdict [s].
     max_steps : int
         Hard cap on accepted + rejected steps (status ``STATUS_MAX_STEPS`` when reached).
     want_history : bool
-        Store the state at every step end and event. Without it, stop as soon as the verdict is
-        settled (overturned, or no longer able to overturn once the ground is still).
+        Store the state at every step end and event.
+    early : bool
+        Also stop during the excitation once survival is proven (P4); ``theta_max`` is then not
+        final. Verdict-only sweeps use it; never together with ``want_history``.
     out : float64[N_OUT]
         Filled with the results.
 
@@ -461,7 +597,11 @@ def simulate_core(fkind, prm, ekind, epar, acc, dt, t_begin, t_exc_end, tail, ma
     p2 = prm[P_P2]
     w = prm[P_W]
     xi = prm[P_XI]
-    bound_fac = w * (1.0 + 2.0 * xi)  # free base: |F| <= omega (1 + 2 xi) sqrt(u_dot^2 + omega^2 u^2)
+    bound_fac = w * math.sqrt(1.0 + 4.0 * xi * xi)  # P3: |a| <= w sqrt(1 + 4 xi^2) sqrt(u'^2 + w^2 u^2)
+    cos_a = prm[P_COSA]
+    c_imp = p2 / (math.sqrt(2.0) * prm[P_G])  # P4: dX/dt <= c_imp |ag|
+    x_bar = math.sqrt(p2 * (1.0 - cos_a))  # P4: E < p^2  <=>  X < x_bar
+    peak_final = True
 
     W = np.zeros((N_W, 4))
     for k in range(N_OUT):
@@ -479,8 +619,8 @@ def simulate_core(fkind, prm, ekind, epar, acc, dt, t_begin, t_exc_end, tail, ma
     nh = 0
 
     t = t_begin
-    t_min_end = t_exc_end + tail
-    t_max_end = t_exc_end + 4.0 * tail
+    t_show_end = t_exc_end + tail
+    t_horizon = t_exc_end + max(horizon, tail)
     phase = PHASE_STUCK
     s = 0.0
     h = 0.0  # step-size proposal (0: choose one)
@@ -519,37 +659,52 @@ def simulate_core(fkind, prm, ekind, epar, acc, dt, t_begin, t_exc_end, tail, ma
             else:
                 seg, seg_end = _pulse_segment(j, ekind, epar, t_begin)
                 fresh = True
-        t_stop = min(seg_end, t_max_end)
+        t_stop = min(seg_end, t_horizon)
+        if settled and t < t_show_end:
+            t_stop = min(t_stop, t_show_end)  # a history run shows the free motion up to exactly here
 
-        # ----- is the outcome settled once the ground is still?
-        if t >= t_exc_end:
-            if phase == PHASE_STUCK:
-                if not isolated:
-                    settled = True
-                    break
-                if bound_fac * math.sqrt(W[W_Y, 3] ** 2 + w * w * W[W_Y, 2] ** 2) < thr:
-                    settled = True
-                    if not want_history or t >= t_min_end:
-                        break
-                elif t >= t_min_end and want_history:
-                    break
-            elif not isolated and not want_history:
-                # free rocking on a rigid base keeps E = thd^2/2 + p^2 cos(alpha - |theta|) between
-                # impacts and loses energy at impacts: below p^2 it can never overturn.
-                th = W[W_Y, 0]
-                thd = W[W_Y, 1]
-                En = 0.5 * thd * thd + p2 * math.cos(alpha - abs(th))
-                if th * thd < 0.0:  # heading for an impact first
-                    c_a = p2 * math.cos(alpha)
-                    En = c_a + prm[P_ETA] ** 2 * (En - c_a)
-                if En < p2:
-                    pk = alpha - math.acos(En / p2)
-                    if pk > th_max:
-                        th_max = pk
-                        out[O_T_THETA_MAX] = np.nan
-                    settled = True
-                    break
-        if t >= t_max_end:
+        # ----- end of the run: is the verdict proven? (P1-P4 in the docstring)
+        if not settled:
+            if t >= t_exc_end:
+                if phase == PHASE_STUCK:
+                    if not isolated:
+                        settled = True  # P1
+                    elif bound_fac * math.sqrt(W[W_Y, 3] ** 2 + w * w * W[W_Y, 2] ** 2) < thr:
+                        settled = True  # P3
+                elif not isolated and abs(W[W_Y, 0]) < alpha:
+                    th = W[W_Y, 0]
+                    thd = W[W_Y, 1]
+                    En = 0.5 * thd * thd + p2 * math.cos(alpha - abs(th))
+                    if th * thd < 0.0:  # heading for the pivot: the impact is certain
+                        c_a = p2 * cos_a
+                        En = c_a + prm[P_ETA] ** 2 * (En - c_a)
+                    if En < p2:  # P2
+                        pk = alpha - math.acos(En / p2)
+                        if pk > th_max:
+                            th_max = pk
+                            out[O_T_THETA_MAX] = np.nan
+                        settled = True
+            elif early and not isolated and out[O_UPLIFTED] != 0.0:
+                xx = -1.0
+                if phase == PHASE_STUCK:
+                    xx = 0.0
+                elif abs(W[W_Y, 0]) < alpha:
+                    En = 0.5 * W[W_Y, 1] ** 2 + p2 * math.cos(alpha - abs(W[W_Y, 0]))
+                    xx = math.sqrt(max(0.0, En - p2 * cos_a))
+                if xx >= 0.0 and xx + c_imp * _impulse_left(ekind, jtab, epar, dt, t) < x_bar:
+                    settled = True  # P4
+                    peak_final = False
+            if settled:
+                out[O_T_SETTLED] = t
+        if settled and (not want_history or t >= t_show_end):
+            # P3 settles the verdict; the peak base displacement is final once the free base's
+            # energy bound sqrt(u'^2 + w^2 u^2)/w cannot exceed it (or, undamped, after one more
+            # period, in which the base reaches its amplitude)
+            if not (isolated and phase == PHASE_STUCK
+                    and math.sqrt(W[W_Y, 3] ** 2 + w * w * W[W_Y, 2] ** 2) > w * u_max * (1.0 + 1e-9)
+                    and t < out[O_T_SETTLED] + 2.0 * math.pi / w and t < t_horizon):
+                break
+        if t >= t_horizon:
             break
         if steps + rejected >= max_steps:
             status = STATUS_MAX_STEPS
@@ -623,26 +778,15 @@ def simulate_core(fkind, prm, ekind, epar, acc, dt, t_begin, t_exc_end, tail, ma
 
         # ----- stuck on an isolated base: uplift when |a| crosses g tan(alpha)
         if phase == PHASE_STUCK:
-            sig = -1.0
-            su = 0.0
-            a_new = _base_force(fkind, prm, W[W_YNEW, 2], W[W_YNEW, 3])
-            a_old = _base_force(fkind, prm, W[W_Y, 2], W[W_Y, 3])
-            if max(abs(a_new), abs(a_old)) > 0.9 * thr:
-                # a(sigma) is linear in the states, so a quartic in sigma like them
-                cu = _dense(W, hs, 2, 1.0)
-                cv = _dense(W, hs, 3, 1.0)
-                ca = (-w * w * cu[0] - 2.0 * xi * w * cv[0], -w * w * cu[1] - 2.0 * xi * w * cv[1],
-                      -w * w * cu[2] - 2.0 * xi * w * cv[2], -w * w * cu[3] - 2.0 * xi * w * cv[3],
-                      -w * w * cu[4] - 2.0 * xi * w * cv[4])
-                cn = (-ca[0], -ca[1], -ca[2], -ca[3], -ca[4])
-                sig_up = _first_down(cn, -thr, 0.0, 1.0)  # a rises above +thr
-                sig_dn = _first_down(ca, -thr, 0.0, 1.0)  # a falls below -thr
-                if sig_up >= 0.0 and (sig_dn < 0.0 or sig_up <= sig_dn):
-                    sig = sig_up
-                    su = -1.0
-                elif sig_dn >= 0.0:
-                    sig = sig_dn
-                    su = 1.0
+            # a(sigma) is linear in the states, so a quartic in sigma like them; every step is
+            # checked (no pre-filter on the step ends)
+            cu = _dense(W, hs, 2, 1.0)
+            cv = _dense(W, hs, 3, 1.0)
+            ca = (-w * w * cu[0] - 2.0 * xi * w * cv[0], -w * w * cu[1] - 2.0 * xi * w * cv[1],
+                  -w * w * cu[2] - 2.0 * xi * w * cv[2], -w * w * cu[3] - 2.0 * xi * w * cv[3],
+                  -w * w * cu[4] - 2.0 * xi * w * cv[4])
+            sig, sa = _first_exceed(ca, thr)
+            su = -sa  # the block pivots on the corner s = -sign(a)
             if (W[W_Y, 3] > 0.0) != (W[W_YNEW, 3] > 0.0):
                 u_max = max(u_max, _u_extremum(W, hs, 1.0 if sig < 0.0 else sig))
             if sig >= 0.0:
@@ -679,7 +823,7 @@ def simulate_core(fkind, prm, ekind, epar, acc, dt, t_begin, t_exc_end, tail, ma
             elif sth1 <= 0.0:
                 failed = True  # never rose above theta = 0: the uplift did not take
         if not failed:
-            if sd0 > 0.0 and (sd1 <= 0.0 or impact):
+            if sd0 >= 0.0 and (sd1 <= 0.0 or impact):  # sd0 = 0 right after an uplift
                 sp = _first_down(_dense(W, hs, 1, s), 0.0, 0.0, sig_end)
                 if sp >= 0.0:
                     thp = _poly(_dense(W, hs, 0, s), sp)
@@ -715,7 +859,12 @@ def simulate_core(fkind, prm, ekind, epar, acc, dt, t_begin, t_exc_end, tail, ma
 
         if failed:
             # the block never left theta = 0: back to the stuck phase at the end of the step,
-            # keeping the total horizontal momentum (u_dot + gamma h theta_dot per unit mass)
+            # keeping the total horizontal momentum (u_dot + gamma h theta_dot per unit mass); an
+            # uplift that did not take is not counted
+            out[O_N_UPLIFTS] -= 1
+            if out[O_N_UPLIFTS] == 0.0:
+                out[O_UPLIFTED] = 0.0
+                out[O_T_UPLIFT] = np.nan
             t = t_new
             if isolated:
                 W[W_Y, 2] = W[W_YNEW, 2]
@@ -748,9 +897,17 @@ def simulate_core(fkind, prm, ekind, epar, acc, dt, t_begin, t_exc_end, tail, ma
             if isolated:
                 W[W_Y, 3] += prm[P_DU] * thd1
             s = -s
-            # rest: the rotation still reachable by free rocking, thd^2/(2 p^2 sin alpha), is
-            # below rest_tol * alpha (a plastic impact ends the motion, momentum kept)
-            if thd2 * thd2 / (2.0 * p2 * prm[P_SINA]) < prm[P_REST] * alpha:
+            # rest: the block could not lift off under the current base acceleration a, and the
+            # rotation it could still reach against the restoring p^2 cos(alpha) (tan(alpha) - |a|/g),
+            # thd^2 / (2 p^2 cos(alpha) (tan(alpha) - |a|/g)), is below rest_tol * alpha (a plastic
+            # impact ends the train of impacts, momentum kept). With a = 0 this is the free-rocking
+            # reach thd^2 / (2 p^2 sin(alpha)).
+            if isolated:
+                a_rest = _base_force(fkind, prm, W[W_Y, 2], W[W_Y, 3] + prm[P_GAMMA] * prm[P_H] * thd2)
+            else:
+                a_rest = _ground(t, seg, epar)
+            c_rest = p2 * cos_a * (thr - abs(a_rest)) / prm[P_G]
+            if c_rest > 0.0 and thd2 * thd2 < 2.0 * c_rest * prm[P_REST] * alpha:
                 if isolated:
                     W[W_Y, 3] += prm[P_GAMMA] * prm[P_H] * thd2
                 W[W_Y, 1] = 0.0
@@ -775,8 +932,6 @@ def simulate_core(fkind, prm, ekind, epar, acc, dt, t_begin, t_exc_end, tail, ma
         if want_history:
             H, nh = _hist_push(H, nh, t, _ground(t, seg, epar), W, W_Y)
 
-    if phase == PHASE_STUCK and isolated and not settled:
-        settled = bound_fac * math.sqrt(W[W_Y, 3] ** 2 + w * w * W[W_Y, 2] ** 2) < thr
     out[O_STATUS] = status
     out[O_THETA_MAX] = th_max
     out[O_U_MAX] = u_max
@@ -785,18 +940,20 @@ def simulate_core(fkind, prm, ekind, epar, acc, dt, t_begin, t_exc_end, tail, ma
     out[O_NRHS] = nrhs
     out[O_T_END] = t
     out[O_SETTLED] = 1.0 if (settled or status == STATUS_OVERTURNED) else 0.0
+    out[O_PEAK_FINAL] = 1.0 if peak_final else 0.0
     out[O_THETA_END] = W[W_Y, 0]
     out[O_U_END] = W[W_Y, 2]
     return H[:nh]
 
 
 @njit(cache=True, parallel=True)
-def simulate_batch(fkinds, prms, ekinds, epars, acc_all, acc_off, acc_len, dts, t_begins, t_exc_ends, tails,
-                   max_steps, outs):
+def simulate_batch(fkinds, prms, ekinds, epars, acc_all, jtab_all, acc_off, acc_len, dts, t_begins, t_exc_ends,
+                   tails, horizon, max_steps, early, outs):
     """Verdict-only runs of many scenes in parallel (one scene per ``prange`` iteration).
 
     Row ``i`` of each argument describes scene ``i``; records are slices
-    ``acc_all[acc_off[i]:acc_off[i] + acc_len[i]]`` (scenes may share one). Results go to
+    ``acc_all[acc_off[i]:acc_off[i] + acc_len[i]]`` (scenes may share one; ``jtab_all`` is laid out
+    alike). Results go to
     ``outs[i]`` (``O_*`` layout); nothing else is stored.
     """
     for i in prange(fkinds.shape[0]):
@@ -806,5 +963,6 @@ def simulate_batch(fkinds, prms, ekinds, epars, acc_all, acc_off, acc_len, dts, 
         e = epars[i]
         epar = (e[0], e[1], e[2], e[3], e[4], e[5], e[6], e[7])
         acc = acc_all[acc_off[i]:acc_off[i] + acc_len[i]]
-        simulate_core(fkinds[i], prm, ekinds[i], epar, acc, dts[i], t_begins[i], t_exc_ends[i], tails[i],
-                      max_steps, False, outs[i])
+        jtab = jtab_all[acc_off[i]:acc_off[i] + acc_len[i]]
+        simulate_core(fkinds[i], prm, ekinds[i], epar, acc, jtab, dts[i], t_begins[i], t_exc_ends[i], tails[i],
+                      horizon, max_steps, False, early, outs[i])

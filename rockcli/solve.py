@@ -10,16 +10,25 @@ Solver contract
 * Impacts at theta = 0 keep the total horizontal momentum and the block's angular momentum about
   the new pivot: ``theta_dot+ = eta theta_dot-`` with ``eta = (k - 2)/(k + 4)``,
   ``k = (4 - 3 gamma) cot^2(alpha)`` (Housner's ``1 - 1.5 sin^2 alpha`` when gamma = 0).
-* Rest: after an impact, when the rotation the block could still reach by free rocking,
-  ``theta_dot^2 / (2 p^2 sin alpha)``, is below ``rest_tol * alpha``, the block is set at rest
-  (a plastic impact, momentum kept) and moves with its base until the uplift condition holds again.
+* Rest: after an impact, when the current base acceleration ``a`` could not lift the block
+  (``|a| < g tan alpha``) and the rotation it could still reach against the restoring
+  acceleration ``p^2 cos(alpha) (tan(alpha) - |a|/g)``, ``theta_dot^2 / (2 p^2 cos(alpha) (tan(alpha) -
+  |a|/g))``, is below ``rest_tol * alpha``, the block is set at rest (a plastic impact that ends
+  the train of ever smaller impacts, momentum kept) and moves with its base until the uplift
+  condition holds again. ``rest_tol > 0``: without a rest rule the train of impacts never ends.
 * Overturning: ``|theta|`` reaches ``pi/2`` (the block lies on its side). The first time
   ``|theta|`` exceeds ``alpha`` is reported separately: passing alpha is not final while the
   ground still moves.
-* After the excitation, free motion is followed for ``tail`` seconds; a block still rocking then
-  is followed until it rests or overturns, up to ``4 * tail``. A run without history stops as soon
-  as the verdict is settled (overturned; or, on a rigid foundation with the ground still, once the
-  block's energy is below the energy needed to reach ``|theta| = alpha``).
+* End of the run, the same in every mode: the run ends once the verdict is *proven*
+  (overturned; after the excitation, a block at rest that the still ground, or the free base,
+  can no longer lift; on a rigid foundation a block with ``|theta| < alpha`` whose energy is below
+  the energy needed to reach alpha). The proofs are stated in
+  :func:`rockcli.kernels.simulate_core`. A history run then goes on to ``t_exc_end + tail`` to
+  show the free motion. A run still unproven ``horizon`` seconds after the excitation ends there
+  with ``settled = False`` and says so (e.g. an undamped base that keeps lifting the block).
+  ``early=True`` (verdict-only sweeps) also stops during the excitation once survival is proven
+  by the energy the rest of the ground motion can still supply; its ``theta_max`` is then only a
+  lower bound (``peak_final = False``).
 """
 
 from __future__ import annotations
@@ -40,8 +49,11 @@ VERDICT_OVERTURNED = "overturned"
 
 DEFAULT_RTOL = 1e-8
 DEFAULT_TAIL = 10.0
-DEFAULT_REST_TOL = 1e-6
+DEFAULT_REST_TOL = 1e-8
+DEFAULT_HORIZON = 600.0
 DEFAULT_MAX_STEPS = 5_000_000
+#: points of the unit-pulse tables of the remaining ground impulse (kernels._impulse_left)
+N_IMPULSE_TABLE = 257
 
 _PULSE_CODES = {"ricker-sym": 1, "ricker-anti": 2, "sine": 3, "cosine": 4}
 
@@ -79,6 +91,11 @@ class Response:
     n_impacts_total : int
         Impacts integrated, including free rocking after the excitation (a verdict-only run
         stops once the outcome is settled, so it may count fewer).
+    settled : bool
+        The verdict is proven (see the module notes); False when the run reached its horizon.
+    peak_final : bool
+        ``theta_max`` is the run's peak (False only for ``early`` verdict-only runs stopped during
+        the excitation: then it is the peak so far).
     """
 
     verdict: str
@@ -100,6 +117,8 @@ class Response:
     nfev: int
     settled: bool
     t_end_s: float
+    peak_final: bool = True
+    t_settled_s: float = math.nan
     history: History | None = field(default=None, repr=False)
 
     @property
@@ -116,8 +135,8 @@ class Response:
 
         keys = ("verdict", "t_uplift_s", "t_overturn_s", "t_exceed_alpha_s", "theta_max_over_alpha",
                 "theta_max", "t_theta_max_s", "n_impacts", "n_impacts_total", "n_uplifts", "n_rests",
-                "base_disp_max_m", "steps", "rejected_steps", "nfev", "settled", "t_end_s", "status",
-                "message")
+                "base_disp_max_m", "steps", "rejected_steps", "nfev", "settled", "t_settled_s", "peak_final",
+                "t_end_s", "status", "message")
         return {k: clean(getattr(self, k)) for k in keys}
 
 
@@ -127,8 +146,57 @@ def _kernel():
     return kernels
 
 
+def record_impulse_table(acc: np.ndarray, dt: float) -> np.ndarray:
+    """Suffix integrals ``int_{t_j}^{t_end} |ag| dt`` [m/s] of a piecewise-linear record, one per sample.
+
+    Exact per interval (a linear piece that changes sign integrates to ``dt (a0^2 + a1^2) /
+    (2 (|a0| + |a1|))``), summed from the end and enlarged by 1e-9 relative for rounding: an upper
+    bound, as the kernel's early stop (P4) needs.
+    """
+    a0, a1 = np.abs(acc[:-1]), np.abs(acc[1:])
+    same = acc[:-1] * acc[1:] >= 0.0
+    tot = a0 + a1
+    piece = np.where(same, 0.5 * dt * tot, 0.5 * dt * (a0 * a0 + a1 * a1) / np.where(tot > 0, tot, 1.0))
+    out = np.zeros(acc.size)
+    out[:-1] = np.cumsum(piece[::-1])[::-1]
+    return out * (1.0 + 1e-9)
+
+
+_PULSE_ZEROS = {  # zeros of the unit pulse's acceleration, tau = t - t0 in units of T_p
+    "ricker-sym": (-1.0 / (math.pi * math.sqrt(2.0)), 1.0 / (math.pi * math.sqrt(2.0))),
+    "ricker-anti": (-1.5 / math.pi, 0.0, 1.5 / math.pi),
+    "sine": (0.0, 0.5, 1.0),
+    "cosine": (0.25, 0.75),
+}
+_UNIT_TABLES: dict = {}
+
+
+def pulse_impulse_table(shape: str) -> tuple[np.ndarray, np.ndarray]:
+    """``(zeros, J)``: suffix integrals of ``|ag|`` of the unit pulse (a_p = 1, T_p = 1) from
+    :data:`N_IMPULSE_TABLE` equally spaced points of its support to its end.
+
+    Exact: between consecutive zeros of the acceleration, ``int |ag| = |delta v|`` with the
+    pulse's closed-form velocity. Enlarged by 1e-9 relative for rounding. Cached per shape (the
+    zeros array is the kernel's dummy ``acc`` for a pulse, shared by all pulses of the shape).
+    """
+    if shape not in _UNIT_TABLES:
+        from rockcli.pulses import make_pulse
+
+        unit = make_pulse(shape, 1.0, 1.0)
+        ts, te = unit.support()
+        grid = np.linspace(ts, te, N_IMPULSE_TABLE)
+        zeros = [unit.t0 + z for z in _PULSE_ZEROS[shape] if ts < unit.t0 + z < te]
+        pts = np.unique(np.concatenate([grid, zeros]))
+        dv = np.abs(np.diff(np.asarray(unit.velocity(pts), dtype=float)))
+        suffix = np.zeros(pts.size)
+        suffix[:-1] = np.cumsum(dv[::-1])[::-1]
+        J = suffix[np.searchsorted(pts, grid)] * (1.0 + 1e-9) + 1e-15
+        _UNIT_TABLES[shape] = (np.zeros(N_IMPULSE_TABLE), J)
+    return _UNIT_TABLES[shape]
+
+
 def _excitation_arrays(excitation):
-    """(ekind, epar, acc, dt, t_begin, t_exc_end) for the kernel."""
+    """(ekind, epar, acc, jtab, dt, t_begin, t_exc_end) for the kernel."""
     k = _kernel()
     if hasattr(excitation, "acc") and hasattr(excitation, "dt"):
         acc = np.ascontiguousarray(excitation.acc, dtype=np.float64)
@@ -141,7 +209,7 @@ def _excitation_arrays(excitation):
             raise RockcliInputError(f"record {getattr(excitation, 'name', '')!r} has a non-positive time step {dt!r}")
         epar = np.zeros(8)
         epar[k.E_AP] = 1.0  # scale factor of the record
-        return k.EXC_RECORD, epar, acc, dt, 0.0, (acc.size - 1) * dt
+        return k.EXC_RECORD, epar, acc, record_impulse_table(acc, dt), dt, 0.0, (acc.size - 1) * dt
     shape = getattr(excitation, "shape", None)
     if shape in _PULSE_CODES:
         a_p, T_p, t0 = float(excitation.a_p), float(excitation.T_p), float(excitation.t0)
@@ -154,7 +222,8 @@ def _excitation_arrays(excitation):
             from rockcli.pulses import RICKER_ANTI_BETA
 
             epar[k.E_BETA] = RICKER_ANTI_BETA
-        return _PULSE_CODES[shape], epar, np.zeros(2), 1.0, min(0.0, ts), te
+        zeros, jtab = pulse_impulse_table(shape)
+        return _PULSE_CODES[shape], epar, zeros, jtab, 1.0, min(0.0, ts), te
     raise RockcliInputError(f"cannot simulate excitation of type {type(excitation).__name__}")
 
 
@@ -198,18 +267,22 @@ def _parameters(block: Block, foundation, rtol: float, rest_tol: float):
     return fkind, prm
 
 
-def _validate_options(rtol, tail, rest_tol):
+def _validate_options(rtol, tail, rest_tol, horizon=DEFAULT_HORIZON):
     if not (math.isfinite(rtol) and 1e-14 <= rtol <= 1e-2):
         raise RockcliInputError(f"rtol must lie between 1e-14 and 1e-2, got {rtol!r}")
     if not (math.isfinite(tail) and tail >= 0):
         raise RockcliInputError(f"tail must be a non-negative time in s, got {tail!r}")
-    if not (math.isfinite(rest_tol) and 0 <= rest_tol < 1):
-        raise RockcliInputError(f"rest_tol must satisfy 0 <= rest_tol < 1, got {rest_tol!r}")
+    if not (math.isfinite(horizon) and horizon >= 0):
+        raise RockcliInputError(f"horizon must be a non-negative time in s, got {horizon!r}")
+    if not (math.isfinite(rest_tol) and 0 < rest_tol < 1):
+        raise RockcliInputError(
+            f"rest_tol must satisfy 0 < rest_tol < 1 (without a rest rule a train of impacts never ends), "
+            f"got {rest_tol!r}")
 
 
 def simulate(block: Block, foundation=None, excitation=None, *, rtol: float = DEFAULT_RTOL,
              history: bool = False, tail: float = DEFAULT_TAIL, rest_tol: float = DEFAULT_REST_TOL,
-             max_steps: int = DEFAULT_MAX_STEPS) -> Response:
+             horizon: float = DEFAULT_HORIZON, max_steps: int = DEFAULT_MAX_STEPS, early: bool = False) -> Response:
     """Rocking response of ``block`` on ``foundation`` under ``excitation``.
 
     Parameters
@@ -226,11 +299,16 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float = DE
         ``rtol * max(|y|, scale)`` with scales alpha, p alpha, g tan(alpha)/omega_b^2, g tan(alpha)/omega_b.
     history : bool
         Return the time history (every step end and event). Without it the run stores nothing
-        and stops as soon as the verdict is settled.
+        and stops as soon as the verdict is proven.
     tail : float
-        Free-motion time after the excitation [s].
+        Free motion a history run shows after the excitation [s]; it never changes the verdict.
     rest_tol : float
-        Rest threshold (see the module notes).
+        Rest threshold (see the module notes), 0 < rest_tol < 1.
+    horizon : float
+        Longest free motion followed after the excitation to prove the verdict [s].
+    early : bool
+        Verdict only: also stop during the excitation once survival is proven (then
+        ``peak_final`` is False). Not with ``history``.
     max_steps : int
         Safety cap on integrator steps.
 
@@ -244,13 +322,16 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float = DE
         raise RockcliInputError(f"block must be a rockcli.models.Block, got {type(block).__name__}")
     if excitation is None:
         raise RockcliInputError("simulate needs an excitation (a record or a pulse)")
-    _validate_options(rtol, tail, rest_tol)
+    _validate_options(rtol, tail, rest_tol, horizon)
+    if early and history:
+        raise RockcliInputError("early stopping is for verdict-only runs; it cannot be combined with history")
     k = _kernel()
-    ekind, epar, acc, dt, t_begin, t_exc_end = _excitation_arrays(excitation)
+    ekind, epar, acc, jtab, dt, t_begin, t_exc_end = _excitation_arrays(excitation)
     fkind, prm = _parameters(block, foundation, float(rtol), float(rest_tol))
     out = np.zeros(k.N_OUT)
-    H = k.simulate_core(fkind, tuple(float(v) for v in prm), ekind, tuple(float(v) for v in epar), acc, dt,
-                        t_begin, t_exc_end, float(tail), int(max_steps), bool(history), out)
+    H = k.simulate_core(fkind, tuple(float(v) for v in prm), ekind, tuple(float(v) for v in epar), acc, jtab, dt,
+                        t_begin, t_exc_end, float(tail), float(horizon), int(max_steps), bool(history),
+                        bool(early), out)
     return _response(out, H if history else None, block)
 
 
@@ -268,8 +349,9 @@ def _response(out: np.ndarray, H, block: Block) -> Response:
         message = "never uplifted: the base acceleration stayed below g tan(alpha)"
     if status == k.STATUS_MAX_STEPS:
         message = f"stopped after {int(out[k.O_STEPS])} steps at t = {out[k.O_T_END]:.3f} s (step cap reached): " + message
-    elif not out[k.O_SETTLED] and verdict == VERDICT_ROCKED:
-        message += "; still rocking when the run ended (lengthen the tail to follow it)"
+    elif not out[k.O_SETTLED]:
+        message += (f"; NOT PROVEN: at t = {out[k.O_T_END]:.1f} s (the horizon) the block could still be lifted "
+                    f"or overturn (lightly damped base?); lengthen the horizon to follow it")
     hist = None
     if H is not None:
         hist = History(t=H[:, k.H_T].copy(), ag=H[:, k.H_AG].copy(), theta=H[:, k.H_TH].copy(),
@@ -283,12 +365,15 @@ def _response(out: np.ndarray, H, block: Block) -> Response:
         n_uplifts=int(out[k.O_N_UPLIFTS]), n_rests=int(out[k.O_N_RESTS]),
         base_disp_max_m=float(out[k.O_U_MAX]), steps=int(out[k.O_STEPS]),
         rejected_steps=int(out[k.O_REJECTED]), nfev=int(out[k.O_NRHS]), settled=bool(out[k.O_SETTLED]),
-        t_end_s=float(out[k.O_T_END]), history=hist,
+        t_end_s=float(out[k.O_T_END]), peak_final=bool(out[k.O_PEAK_FINAL]),
+        t_settled_s=float(out[k.O_T_SETTLED]) if out[k.O_SETTLED] and status != k.STATUS_OVERTURNED else math.nan,
+        history=hist,
     )
 
 
 def simulate_many(jobs, *, rtol: float = DEFAULT_RTOL, tail: float = DEFAULT_TAIL,
-                  rest_tol: float = DEFAULT_REST_TOL, max_steps: int = DEFAULT_MAX_STEPS,
+                  rest_tol: float = DEFAULT_REST_TOL, horizon: float = DEFAULT_HORIZON,
+                  max_steps: int = DEFAULT_MAX_STEPS, early: bool = False,
                   progress=None, chunk: int | None = None) -> list[Response]:
     """Verdict-only :func:`simulate` of many scenes, run in parallel on all cores.
 
@@ -301,13 +386,16 @@ def simulate_many(jobs, *, rtol: float = DEFAULT_RTOL, tail: float = DEFAULT_TAI
         Called as ``progress(n_done)`` after each chunk of scenes.
     chunk : int, optional
         Scenes per parallel batch (default: all at once without ``progress``, else ~1/50 of them).
+    early : bool
+        Stop each run as soon as its verdict is proven, even during the excitation (the
+        verdicts are the same; ``theta_max`` is then only the peak so far, ``peak_final`` False).
 
     Returns
     -------
     list of Response
         In the order of ``jobs``, identical to what :func:`simulate` returns without history.
     """
-    _validate_options(rtol, tail, rest_tol)
+    _validate_options(rtol, tail, rest_tol, horizon)
     k = _kernel()
     jobs = list(jobs)
     n = len(jobs)
@@ -322,7 +410,7 @@ def simulate_many(jobs, *, rtol: float = DEFAULT_RTOL, tail: float = DEFAULT_TAI
     t_exc_ends = np.zeros(n)
     acc_off = np.zeros(n, np.int64)
     acc_len = np.zeros(n, np.int64)
-    pieces, where, total = [], {}, 0
+    pieces, jpieces, where, total = [], [], {}, 0
     blocks = []
     prepared = {}  # id(excitation) -> validated kernel arrays: a shared record is checked once
     for i, job in enumerate(jobs):
@@ -333,32 +421,35 @@ def simulate_many(jobs, *, rtol: float = DEFAULT_RTOL, tail: float = DEFAULT_TAI
         key = id(excitation)
         if key not in prepared:
             prepared[key] = _excitation_arrays(excitation)
-        ekind, epar, acc, dt, t_begin, t_exc_end = prepared[key]
+        ekind, epar, acc, jtab, dt, t_begin, t_exc_end = prepared[key]
         epar = epar.copy()
         fkind, prm = _parameters(block, foundation if foundation is not None else Rigid(), float(rtol),
                                  float(rest_tol))
         if ekind == k.EXC_RECORD:
             epar[k.E_AP] = scale
-            if key not in where:
-                where[key] = total
-                pieces.append(acc)
-                total += acc.size
-            acc_off[i], acc_len[i] = where[key], acc.size
         elif scale != 1.0:
             raise RockcliInputError(f"job {i}: a scale factor applies to records only (scale the pulse's a_p)")
+        akey = id(acc)  # a record's samples, or the table shared by all pulses of one shape
+        if akey not in where:
+            where[akey] = total
+            pieces.append(acc)
+            jpieces.append(jtab)
+            total += acc.size
+        acc_off[i], acc_len[i] = where[akey], acc.size
         fkinds[i], ekinds[i], prms[i], epars[i] = fkind, ekind, prm, epar
         dts[i], t_begins[i], t_exc_ends[i] = dt, t_begin, t_exc_end
         blocks.append(block)
-    acc_all = np.concatenate(pieces) if pieces else np.zeros(2)
+    acc_all = np.concatenate(pieces)
+    jtab_all = np.concatenate(jpieces)
     tails = np.full(n, float(tail))
     outs = np.zeros((n, k.N_OUT))
     if chunk is None:
         chunk = n if progress is None else max(1, n // 50)
     for lo in range(0, n, chunk):
         hi = min(n, lo + chunk)
-        k.simulate_batch(fkinds[lo:hi], prms[lo:hi], ekinds[lo:hi], epars[lo:hi], acc_all, acc_off[lo:hi],
-                         acc_len[lo:hi], dts[lo:hi], t_begins[lo:hi], t_exc_ends[lo:hi], tails[lo:hi],
-                         int(max_steps), outs[lo:hi])
+        k.simulate_batch(fkinds[lo:hi], prms[lo:hi], ekinds[lo:hi], epars[lo:hi], acc_all, jtab_all,
+                         acc_off[lo:hi], acc_len[lo:hi], dts[lo:hi], t_begins[lo:hi], t_exc_ends[lo:hi],
+                         tails[lo:hi], float(horizon), int(max_steps), bool(early), outs[lo:hi])
         if progress is not None:
             progress(hi)
     return [_response(outs[i], None, blocks[i]) for i in range(n)]

@@ -4,7 +4,10 @@ Written independently of :mod:`rockcli.kernels`: the equations are typed again f
 (Eq 3; Eqs 7-11 with the reading-notes corrections), the impact map is obtained by solving the
 two momentum balances (Eqs 14 and 16) as a 2x2 linear system instead of using the closed form,
 and the phases are chained in plain Python. The same documented rules are applied: uplift
-threshold, rest criterion, overturning at |theta| = pi/2, tail after the excitation.
+threshold, rest criterion (with the base acceleration), overturning at |theta| = pi/2. The end of
+the run takes no shortcut on a rigid foundation: after the excitation the free rocking is followed
+until the block rests (the rest rule) or overturns. On an isolated base a stuck block is followed
+until the free base provably cannot lift it again (its oscillator energy bounds |a|), or the horizon.
 """
 
 from __future__ import annotations
@@ -14,7 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.integrate import solve_ivp
-from scipy.optimize import brentq
+from scipy.optimize import brentq, minimize_scalar
 
 from rockcli.models import Block, LinearIsolation
 from rockcli.units import G
@@ -70,8 +73,8 @@ def impact_map_linear_system(block: Block, gamma: float, thd1: float, ud1: float
     return float(thd2), float(ud2)
 
 
-def reference_simulate(block: Block, foundation, excitation, *, rtol=1e-10, atol=1e-13, tail=10.0,
-                       rest_tol=1e-6, max_phases=20000) -> RefResult:
+def reference_simulate(block: Block, foundation, excitation, *, rtol=1e-10, atol=1e-13, horizon=600.0,
+                       rest_tol=1e-8, max_phases=200000) -> RefResult:
     """Chain stuck and rocking phases with ``solve_ivp`` (DOP853) and terminal events."""
     ag, t_exc_end, scan_step, max_step = ground_function(excitation)
     g = G
@@ -83,11 +86,14 @@ def reference_simulate(block: Block, foundation, excitation, *, rtol=1e-10, atol
     gamma = foundation.gamma if isolated else 0.0
     wb = foundation.omega_b if isolated else 0.0
     xi = foundation.xi if isolated else 0.0
-    t_min_end = t_exc_end + tail
-    t_max_end = t_exc_end + 4 * tail
+    t_max_end = t_exc_end + horizon
 
     def F(u, ud):
         return -wb * wb * u - 2 * xi * wb * ud
+
+    def base_cannot_lift(u, ud):
+        # free base: (ud^2 + wb^2 u^2)/2 never grows and |a| <= wb sqrt(1 + 4 xi^2) sqrt(ud^2 + wb^2 u^2)
+        return wb * math.hypot(1.0, 2.0 * xi) * math.hypot(ud, wb * u) < thr
 
     def rock_rhs(s):
         def f(t, y):
@@ -114,7 +120,7 @@ def reference_simulate(block: Block, foundation, excitation, *, rtol=1e-10, atol
         if t >= t_max_end - 1e-12:
             break
         if phase == "stuck":
-            if t >= t_exc_end and (not isolated or t >= t_min_end):
+            if t >= t_exc_end and (not isolated or base_cannot_lift(y[2], y[3])):
                 break
             if not isolated:
                 # scan the ground motion on a fine grid, bracket and solve |ag| = thr
@@ -137,29 +143,59 @@ def reference_simulate(block: Block, foundation, excitation, *, rtol=1e-10, atol
                 if abs(a_now) > thr:
                     s = -math.copysign(1.0, a_now)
                 else:
-                    ev_up = lambda tt, yy: F(yy[0], yy[1]) - thr  # noqa: E731
-                    ev_dn = lambda tt, yy: F(yy[0], yy[1]) + thr  # noqa: E731
-                    ev_up.terminal = ev_dn.terminal = True
-                    ev_up.direction, ev_dn.direction = 1, -1
-                    t_end = t_max_end if t >= t_exc_end else t_exc_end
-                    if t < t_exc_end:
-                        t_end = t_exc_end
-                    else:
-                        t_end = t_min_end
+                    # integrate the free base, then look for the first |a| > thr on the dense output:
+                    # a fine grid, every sampled local maximum near thr refined by a bounded search
+                    ev_settle = lambda tt, yy: (  # noqa: E731
+                        wb * math.hypot(1.0, 2.0 * xi) * math.hypot(yy[1], wb * yy[0]) - thr)
+                    ev_settle.terminal, ev_settle.direction = True, -1
+                    after = t >= t_exc_end
+                    t_end = t_max_end if after else t_exc_end
                     sol = solve_ivp(stuck_rhs, (t, t_end), y[2:4], method="DOP853", rtol=rtol, atol=atol,
-                                    max_step=max_step, events=(ev_up, ev_dn), dense_output=True)
-                    ts_ = np.linspace(t, sol.t[-1], 2000)
-                    u_max = max(u_max, float(np.max(np.abs(sol.sol(ts_)[0]))), float(np.max(np.abs(sol.y[0]))))
-                    y[2:4] = sol.y[:, -1]
-                    if sol.status == 1:
-                        if sol.t_events[0].size:
-                            s = -1.0
-                        else:
-                            s = 1.0
-                        t = sol.t[-1]
-                    else:
-                        t = sol.t[-1]
+                                    max_step=max_step, events=(ev_settle,) if after else None, dense_output=True)
+                    T = sol.t[-1]
+                    fine = min(2 * math.pi / wb, 4 * scan_step) / 2000.0
+                    grid = np.union1d(np.linspace(t, T, max(3, int((T - t) / fine) + 1)), sol.t)
+                    yy = sol.sol(grid)
+                    absa = np.abs(F(yy[0], yy[1]))
+                    hit = None
+                    for k in range(1, grid.size):
+                        if absa[k] > thr:
+                            hit = (grid[k - 1], grid[k])
+                            break
+                        if k + 1 < grid.size and absa[k] >= absa[k - 1] and absa[k] >= absa[k + 1] \
+                                and absa[k] > 0.99 * thr:
+                            def neg(x):
+                                z = sol.sol(x)
+                                return -abs(F(z[0], z[1]))
+                            m = minimize_scalar(neg, bounds=(grid[k - 1], grid[k + 1]), method="bounded",
+                                                options={"xatol": 1e-14})
+                            if -m.fun > thr:
+                                hit = (grid[k - 1], m.x)
+                                break
+                    if hit is None:
+                        u_max = max(u_max, float(np.max(np.abs(yy[0]))))
+                        y[2:4] = sol.y[:, -1]
+                        t = T
+                        if after:
+                            # settled (P3) or at the horizon; the free base may still reach a larger |u|
+                            if T < t_max_end - 1e-12:
+                                tail_sol = solve_ivp(stuck_rhs, (T, T + 4 * math.pi / wb), y[2:4], method="DOP853",
+                                                     rtol=rtol, atol=atol, dense_output=True)
+                                tt = np.linspace(T, tail_sol.t[-1], 4000)
+                                u_max = max(u_max, float(np.max(np.abs(tail_sol.sol(tt)[0]))))
+                            break
                         continue
+
+                    def excess(x):
+                        z = sol.sol(x)
+                        return abs(F(z[0], z[1])) - thr
+
+                    tu = brentq(excess, hit[0], hit[1], xtol=1e-15)
+                    z = sol.sol(tu)
+                    u_max = max(u_max, float(np.max(np.abs(sol.sol(np.linspace(t, tu, 200))[0]))))
+                    y[2:4] = z
+                    t = tu
+                    s = -math.copysign(1.0, F(z[0], z[1]))
             phase = "rock"
             if not uplifted:
                 uplifted = True
@@ -197,13 +233,16 @@ def reference_simulate(block: Block, foundation, excitation, *, rtol=1e-10, atol
             if isolated:
                 y[3] = ud2
             s = -s
-            if thd2 ** 2 / (2 * p2 * math.sin(alpha)) < rest_tol * alpha:
+            # rest: the base acceleration the block would ride on cannot lift it, and the reach
+            # against the restoring acceleration p^2 cos(alpha) (tan(alpha) - |a|/g) is below rest_tol alpha
+            ud_rest = y[3] + gamma * block.h * thd2 if isolated else 0.0
+            a_rest = F(y[2], ud_rest) if isolated else ag(t)
+            restoring = p2 * math.cos(alpha) * (math.tan(alpha) - abs(a_rest) / g)
+            if restoring > 0 and thd2 ** 2 / (2 * restoring) < rest_tol * alpha:
                 if isolated:
-                    y[3] = y[3] + gamma * block.h * thd2  # plastic: keep the momentum
+                    y[3] = ud_rest  # plastic: keep the momentum
                 y[0] = y[1] = 0.0
                 phase = "stuck"
-            continue
-        if t >= t_exc_end and t < t_min_end:
             continue
         if t >= t_max_end - 1e-12:
             break
