@@ -14,6 +14,49 @@ def assess():
     """Assess free-standing bodies against records and isolation configurations."""
 
 
+def _headerless_options(func):
+    """``--units`` and ``--dt`` for record files that do not state them (headerless text, SAC, ...)."""
+    func = click.option("--dt", type=float, default=None, metavar="SECONDS",
+                        help="Time step [s] of the record files that state none; a file that states "
+                             "another one is an error row. Catalogue files are read as the catalogue says.")(func)
+    return click.option("--units", default=None, metavar="UNITS",
+                        help="Units of the record files that do not state them (g, m/s^2, cm/s^2, gal, "
+                             "mm/s^2, g/10); a file that states other units is an error row.")(func)
+
+
+def _progress(total: int):
+    """A progress bar with an ETA on stderr when it is a terminal, else nothing (a context manager)."""
+    import contextlib
+
+    if not sys.stderr.isatty():
+        return contextlib.nullcontext(None)
+    return click.progressbar(length=total, label="runs", file=sys.stderr, show_eta=True)
+
+
+def _warn_failed(failed, n_total: int):
+    if failed:
+        click.echo(f"Warning: {len(failed)} of {n_total} records could not be read or run; they have "
+                   f"error rows: {', '.join(x.label for x in failed[:5])}{' ...' if len(failed) > 5 else ''}",
+                   err=True)
+
+
+def _columns(names, R, alpha, height, width, name):
+    from rockcli.assess import custom_column, parse_column_spec
+    from rockcli.cli.options import BLOCK_FLAGS
+
+    columns = [parse_column_spec(n) for n in names]
+    if any(v is not None for v in (R, alpha, height, width)):
+        columns.append(custom_column(name, R=R, alpha=alpha, height=height, width=width, labels=BLOCK_FLAGS))
+    if not columns:
+        raise InputError("name at least one column (bassae, nemea, or NAME:R=<m>,alpha=<deg>), or give --R/--alpha")
+    seen = set()
+    for b in columns:
+        if b.name in seen:
+            raise InputError(f"column name {b.name!r} is given twice; give each column its own name")
+        seen.add(b.name)
+    return columns
+
+
 @assess.command(name="column")
 @click.argument("names", nargs=-1, metavar="NAME...")
 @click.option("--R", "R", type=float, default=None, metavar="M",
@@ -26,6 +69,7 @@ def assess():
 @click.option("--records", "records", multiple=True, metavar="ID|FILE|DIR",
               help="Records to run (repeatable): catalogue ids, files, folders. Default: the catalogue's "
                    "Table II records (file where found on ROCKCLI_RECORDS, else the catalogued pulse).")
+@_headerless_options
 @click.option("--excitation", type=click.Choice(["auto", "record", "pulse"]), default="auto", show_default=True,
               help="Catalogue records: the file where found else its fitted Ricker pulse (auto), files only "
                    "(record), or the pulses only (pulse).")
@@ -43,8 +87,8 @@ def assess():
 @click.option("--plot", "plot_dir", type=click.Path(file_okay=False), default=None,
               help="Write one figure per run (like the paper's Figure 12) into this folder.")
 @user_errors
-def column(names, R, alpha, height, width, name, records, excitation, isolation, margin, neighbourhood, csv_path,
-           hist_dir, plot_dir):
+def column(names, R, alpha, height, width, name, records, units, dt, excitation, isolation, margin, neighbourhood,
+           csv_path, hist_dir, plot_dir):
     """Do the columns NAME... survive the records, on a rigid base and on isolators?
 
     NAME is a preset (bassae, nemea) or a custom block NAME:R=<m>,alpha=<deg> or
@@ -61,44 +105,32 @@ def column(names, R, alpha, height, width, name, records, excitation, isolation,
     """
     from pathlib import Path
 
-    from rockcli.assess import (count_runs, custom_column, parse_column_spec, parse_configurations,
-                                resolve_excitations, run_assessment)
+    from rockcli.assess import count_runs, parse_configurations, resolve_excitations, run_assessment
 
-    columns = [parse_column_spec(n) for n in names]
-    if any(v is not None for v in (R, alpha, height, width)):
-        columns.append(custom_column(name, R=R, alpha=alpha, height=height, width=width))
-    if not columns:
-        raise InputError("name at least one column (bassae, nemea, or NAME:R=<m>,alpha=<deg>), or give --R/--alpha")
-    seen = set()
-    for b in columns:
-        if b.name in seen:
-            raise InputError(f"column name {b.name!r} is given twice; give each column its own name")
-        seen.add(b.name)
+    columns = _columns(names, R, alpha, height, width, name)
     configurations = parse_configurations(isolation)
     for folder, opt in ((hist_dir, "--histories"), (plot_dir, "--plot")):
         if folder is not None and Path(folder).exists() and not Path(folder).is_dir():
             raise InputError(f"{opt} {folder}: exists and is not a folder")
     if csv_path is not None and not Path(csv_path).resolve().parent.is_dir():
         raise InputError(f"--csv {csv_path}: folder {Path(csv_path).resolve().parent} does not exist")
-    excitations, unavailable = resolve_excitations(records, excitation)
+    excitations, unavailable = resolve_excitations(records, excitation, units=units, dt=dt)
     if not excitations:
         raise InputError("no record to run: " + "; ".join(f"{u.label}: {u.reason}" for u in unavailable))
 
     total = count_runs(columns, excitations, configurations, margin, neighbourhood)
-    if sys.stderr.isatty():
-        with click.progressbar(length=total, label="runs", file=sys.stderr) as bar:
-            result = run_assessment(columns, excitations, configurations, margin=margin, neighbourhood=neighbourhood,
-                                    unavailable=unavailable, progress=bar.update)
-            bar.update(total)
-    else:
+    with _progress(total) as bar:
         result = run_assessment(columns, excitations, configurations, margin=margin, neighbourhood=neighbourhood,
-                                unavailable=unavailable)
+                                unavailable=unavailable, progress=bar.update if bar else None)
+        if bar:
+            bar.update(total)
 
     from rockcli.report.tables import format_matrix, format_notes
 
     click.echo(format_matrix(result))
     click.echo("")
     click.echo(format_notes(result))
+    _warn_failed(result.failed, len(result.excitations))
 
     if csv_path:
         from rockcli.report.tables import write_assessment_csv
