@@ -20,6 +20,8 @@ The library behind ``rockcli assess`` (no click, no pandas). Read it in this ord
 Every public name is importable from ``rockcli.assess``.
 """
 
+from rockcli.assess.fragility import (IMS, Fragility, FragilityCurve, FragilityRow, fit_lognormal,
+                                      fragility_probability, intensity_measure, run_fragility)
 from rockcli.assess.margin import (MARGIN_GRID, MARGIN_RTOL, NEIGHBOURHOOD, find_overturn_scales, map_chunks,
                                    overturn_scales_chunked, overturn_shares, run_local)
 from rockcli.assess.scenes import (DEFAULT_ISOLATION, EXCITATION_MODES, EXCITATION_PULSE, EXCITATION_RECORD,
@@ -28,10 +30,10 @@ from rockcli.assess.scenes import (DEFAULT_ISOLATION, EXCITATION_MODES, EXCITATI
 from rockcli.assess.table import (ROW_FIELDS, Assessment, AssessmentRow, count_runs, history_runs, run_assessment,
                                   safe_name)
 
-__all__ = ["DEFAULT_ISOLATION", "EXCITATION_MODES", "EXCITATION_PULSE", "EXCITATION_RECORD", "MARGIN_GRID",
+__all__ = ["DEFAULT_ISOLATION", "EXCITATION_MODES", "EXCITATION_PULSE", "EXCITATION_RECORD", "IMS", "MARGIN_GRID",
            "MARGIN_RTOL", "NEIGHBOURHOOD", "ROW_FIELDS", "Assessment", "AssessmentRow", "Configuration", "Excitation",
-           "Unavailable", "column_title", "count_runs",
-           "custom_column", "find_overturn_scales", "history_runs",
-           "map_chunks", "overturn_scales_chunked", "overturn_shares", "parse_column_spec",
-           "parse_configurations", "resolve_excitations", "run_assessment", "run_local",
+           "Fragility", "FragilityCurve", "FragilityRow", "Unavailable", "column_title", "count_runs",
+           "custom_column", "find_overturn_scales", "fit_lognormal", "fragility_probability", "history_runs",
+           "intensity_measure", "map_chunks", "overturn_scales_chunked", "overturn_shares", "parse_column_spec",
+           "parse_configurations", "resolve_excitations", "run_assessment", "run_fragility", "run_local",
            "safe_name", "table_ii_entries"]
