@@ -361,6 +361,8 @@ def simulate_many(jobs, *, rtol: float = DEFAULT_RTOL, tail: float = DEFAULT_TAI
             scale = float(job[3]) if len(job) > 3 else 1.0
             if not isinstance(block, Block):
                 raise RockcliInputError(f"job {i}: block must be a rockcli.models.Block")
+            if foundation is not None and not hasattr(foundation, "gamma"):
+                raise RockcliInputError(f"job {i}: unknown foundation {foundation!r}")
             key = id(excitation)
             if key not in prepared:
                 try:
