@@ -31,7 +31,7 @@ def format_fragility(fr) -> str:
     table = [head]
     for c in fr.curves:
         table.append((c.column, c.configuration.header, str(c.n_records), str(c.n_exact),
-                      str(c.n_right + c.n_left), _fmt(c.median), _ci(c.median_ci), _fmt(c.beta, ".2f"),
+                      str(c.n_right + c.n_left), _fmt(c.median, ".3f"), _ci(c.median_ci, ".3f"), _fmt(c.beta, ".2f"),
                       _ci(c.beta_ci, ".2f"), _fmt(c.ratio_to_rigid, ".2f"), _ci(c.ratio_ci, ".2f")))
     right = set(range(2, len(head)))
     widths = [max(len(r[i]) for r in table) for i in range(len(head))]
@@ -119,7 +119,7 @@ def write_fragility_csv(fr, path: str | os.PathLike) -> Path:
     return Path(path)
 
 
-def plot_fragility(fr, path: str | os.PathLike, *, dpi: int = 100) -> Path:
+def plot_fragility(fr, path: str | os.PathLike, *, dpi: int = 90) -> Path:
     """One panel per column: the fitted curve of every configuration with its bootstrap band and the records.
 
     Filled markers: the records' capacities at their Kaplan-Meier plotting positions; open
@@ -163,7 +163,7 @@ def plot_fragility(fr, path: str | os.PathLike, *, dpi: int = 100) -> Path:
                 ex = [(v, p) for v, p, cen in pts if cen != CENSORED_RIGHT]
                 ce = [(v, p) for v, p, cen in pts if cen == CENSORED_RIGHT and x[0] <= v <= x[-1]]
                 if math.isfinite(curve.median):
-                    label = (f"{c.header}: median {curve.median:.3g} {im.units}, beta {curve.beta:.2f}")
+                    label = (f"{c.header}: median {curve.median:.3f} {im.units}, beta {curve.beta:.2f}")
                     ax.plot(x, fragility_probability(x, curve.median, curve.beta), style, color=color, lw=1.8,
                             label=label)
                     if curve.boot_median is not None and curve.n_boot_ok >= 2:
