@@ -20,7 +20,7 @@ from scipy.stats import norm
 from rockcli.assess import (IMS, fit_lognormal, fragility_probability, intensity_measure, map_chunks,
                             overturn_scales_chunked, parse_column_spec, parse_configurations, resolve_excitations,
                             run_fragility)
-from rockcli.assess.fragility import CENSORED_LEFT, CENSORED_RIGHT, bootstrap_lognormal, empirical_points
+from rockcli.assess.fragility import CENSORED_RIGHT, bootstrap_lognormal, empirical_points
 from rockcli.assess.margin import MARGIN_GRID, find_overturn_scales
 from rockcli.cli import main
 from rockcli.errors import RockcliInputError

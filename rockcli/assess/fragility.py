@@ -191,14 +191,12 @@ def _tobit_mle(x: np.ndarray, codes: np.ndarray, W: np.ndarray, *, max_iter: int
         # l_u and l_uu of each censored term
         l_u = np.where(right, -lam, np.where(left, kap, 0.0))
         l_uu = np.where(right, -lam * (lam - u), np.where(left, -kap * (kap + u), 0.0))
-        cens = right | left
         # exact: l = log d - u^2/2
         gg = np.where(exact, u, -l_u)
         gd = np.where(exact, 1.0 / d[:, None] - u * z[None, :], l_u * z[None, :])
         hgg = np.where(exact, -1.0, l_uu)
         hgd = np.where(exact, z[None, :], -l_uu * z[None, :])
         hdd = np.where(exact, -1.0 / d[:, None] ** 2 - z[None, :] ** 2, l_uu * z[None, :] ** 2)
-        del cens
         s = lambda a: (Wk * a).sum(axis=1)  # noqa: E731
         return s(gg), s(gd), s(hgg), s(hgd), s(hdd)
 
