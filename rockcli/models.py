@@ -136,6 +136,62 @@ def column(name: str) -> Block:
     return Block.from_dimensions(height, width, key)
 
 
+#: How :func:`build_block` names each quantity in its messages (the library's words). The CLI
+#: passes its flag names instead (``{"R": "--R", ...}``).
+BLOCK_LABELS = {"preset": "a preset name", "R": "R (m)", "alpha": "alpha (deg)", "height": "height (m)",
+                "width": "width (m)"}
+
+
+def build_block(*, preset: str | None = None, R: float | None = None, alpha_deg: float | None = None,
+                height: float | None = None, width: float | None = None, name: str | None = None,
+                labels: dict | None = None, allow_preset: bool = True, context: str = "") -> Block:
+    """The :class:`Block` given by exactly one of three forms: a preset, R with alpha, height with width.
+
+    The one block builder of rockcli (the library's custom columns and the CLI's block options).
+
+    Parameters
+    ----------
+    preset : str, optional
+        A column preset (:data:`COLUMN_PRESETS`); with ``allow_preset=False`` it is not offered.
+    R, alpha_deg : float, optional
+        Semi-diagonal [m] and slenderness [deg], together.
+    height, width : float, optional
+        Full height and base width [m], together.
+    name : str, optional
+        Label of a custom block (default ``R<R>m-alpha<alpha>deg`` or ``<height>x<width>m``).
+    labels : dict, optional
+        How to name ``preset``, ``R``, ``alpha``, ``height``, ``width`` in error messages
+        (default :data:`BLOCK_LABELS`; the CLI gives its flags, e.g. ``{"R": "--R"}``).
+    context : str
+        Prefix of error messages (e.g. ``"column 'statue'"``).
+
+    Raises
+    ------
+    RockcliInputError
+        No form or more than one; half a pair; values out of range (from :class:`Block`).
+    """
+    L = {**BLOCK_LABELS, **(labels or {})}
+    head = f"{context}: " if context else ""
+    by_preset = allow_preset and preset is not None
+    by_r = R is not None or alpha_deg is not None
+    by_dim = height is not None or width is not None
+    pairs = f"{L['R']} with {L['alpha']}, or {L['height']} with {L['width']}"
+    n = by_preset + by_r + by_dim
+    if n != 1:
+        if allow_preset:
+            raise RockcliInputError(f"{head}give the block as exactly one of {L['preset']}, {pairs}")
+        raise RockcliInputError(f"{head}give {pairs}" + (", not both" if n > 1 else ""))
+    if by_preset:
+        return column(preset)
+    if by_r:
+        if R is None or alpha_deg is None:
+            raise RockcliInputError(f"{head}{L['R']} and {L['alpha']} go together")
+        return Block.from_degrees(R, alpha_deg, name or f"R{R:g}m-alpha{alpha_deg:g}deg")
+    if height is None or width is None:
+        raise RockcliInputError(f"{head}{L['height']} and {L['width']} go together")
+    return Block.from_dimensions(height, width, name or f"{height:g}x{width:g}m")
+
+
 def impact_coefficient(alpha: float, gamma: float) -> float:
     """Ratio theta_dot after / before an impact, with momentum conserved (paper Eq 18, corrected).
 

@@ -68,6 +68,8 @@ __all__ = [
     "WAVELETS",
     "PulseFit",
     "fit_pulse",
+    "fit_pulse_candidates",
+    "same_pulse",
     "parse_periods",
     "scale_to_period",
     "period_to_scale",
@@ -279,14 +281,13 @@ class _Projector:
         return xp / pp, xp * xp / pp
 
 
-def _fit_one(acc, dt, t_start, name, kind, periods, scales_per_octave):
+def _cwt_grid(acc, dt, kind, periods, scales_per_octave):
+    """Step 1: the CWT on the log-spaced period grid -> (T_grid, scales, coef, dtc)."""
     import pywt
-    from scipy.optimize import minimize
 
     w = WAVELETS[kind]
     lo, hi = periods
-
-    # 1. coarse CWT grid, on a low-passed, decimated copy when the record is sampled much finer
+    # coarse CWT grid, on a low-passed, decimated copy when the record is sampled much finer
     q = max(int(math.floor(lo / (_COARSE_SAMPLES_PER_PERIOD * dt))), 1)
     xc = _decimate(acc, q) if q > 1 else acc
     dtc = dt * q
@@ -294,18 +295,28 @@ def _fit_one(acc, dt, t_start, name, kind, periods, scales_per_octave):
     T_grid = np.geomspace(lo, hi, n_per)
     scales = period_to_scale(kind, T_grid, dtc)
     coef, _ = pywt.cwt(xc, scales, w.pywt_name, method="fft")
-    mag = np.abs(coef)
-    i, j = np.unravel_index(int(np.argmax(mag)), mag.shape)
+    return T_grid, scales, coef, dtc
 
-    # 2. parabolic refinement in log(period) and in position; amplitude from the coefficient
+
+def _grid_estimate(kind, T_grid, scales, coef, mag, dtc, t_start, periods, i, j):
+    """Step 2 at grid point (i, j): parabolic refinement in log(period) and position; amplitude."""
+    lo, hi = periods
+    n_per, n_t = mag.shape
     di = _parabola_offset(mag[i - 1, j], mag[i, j], mag[i + 1, j]) if 0 < i < n_per - 1 else 0.0
-    dj = _parabola_offset(mag[i, j - 1], mag[i, j], mag[i, j + 1]) if 0 < j < xc.size - 1 else 0.0
+    dj = _parabola_offset(mag[i, j - 1], mag[i, j], mag[i, j + 1]) if 0 < j < n_t - 1 else 0.0
     step = math.log(T_grid[1] / T_grid[0])
     T_cwt = float(np.clip(T_grid[i] * math.exp(di * step), lo, hi))
     t0_cwt = t_start + (j + dj) * dtc
     a_cwt = float(coefficient_to_amplitude(kind, coef[i, j], scales[i]))
+    return T_cwt, float(t0_cwt), a_cwt, step
 
-    # 3. least-squares refinement of (T_p, t0) on the original samples
+
+def _refine(acc, dt, t_start, name, kind, periods, T_cwt, t0_cwt, a_cwt, step):
+    """Step 3: least-squares refinement of (T_p, t0) on the original samples -> PulseFit."""
+    from scipy.optimize import minimize
+
+    w = WAVELETS[kind]
+    lo, hi = periods
     proj = _Projector(acc, dt, t_start, w.pulse_cls)
     log_lo, log_hi = math.log(lo), math.log(hi)
 
@@ -337,6 +348,14 @@ def _fit_one(acc, dt, t_start, name, kind, periods, scales_per_octave):
         record_name=name, periods=(lo, hi), at_period_bound=bool(at_bound),
         cwt_a_p_g=a_cwt / G, cwt_T_p_s=T_cwt, cwt_t0_s=float(t0_cwt),
     )
+
+
+def _fit_one(acc, dt, t_start, name, kind, periods, scales_per_octave):
+    T_grid, scales, coef, dtc = _cwt_grid(acc, dt, kind, periods, scales_per_octave)
+    mag = np.abs(coef)
+    i, j = np.unravel_index(int(np.argmax(mag)), mag.shape)
+    est = _grid_estimate(kind, T_grid, scales, coef, mag, dtc, t_start, periods, i, j)
+    return _refine(acc, dt, t_start, name, kind, periods, *est)
 
 
 def fit_pulse(record, wavelet: str = "best", *, periods=DEFAULT_PERIODS, scales_per_octave: int = 12) -> PulseFit:
@@ -379,6 +398,16 @@ def fit_pulse(record, wavelet: str = "best", *, periods=DEFAULT_PERIODS, scales_
     >>> round(fit.a_p_g, 4), round(fit.T_p_s, 4), round(fit.t0_s, 4)
     (0.3, 0.8, 4.0)
     """
+    acc, dt, t_start, name, kinds, periods, spo = _prepare(record, wavelet, periods, scales_per_octave)
+    fits = [_fit_one(acc, dt, t_start, name, k, periods, spo) for k in kinds]
+    if len(fits) == 1:
+        return fits[0]
+    best, other = sorted(fits, key=lambda f: f.energy_fraction, reverse=True)
+    return PulseFit(**{**best.__dict__, "alternative": other})
+
+
+def _prepare(record, wavelet, periods, scales_per_octave):
+    """Validated inputs of a fit: (acc, dt, t_start, name, wavelet kinds, effective periods, scales per octave)."""
     key = str(wavelet).strip().lower()
     if key not in ("best", *WAVELETS):
         raise RockcliInputError(f"unknown wavelet {wavelet!r} (expected symmetric, antisymmetric or best)")
@@ -395,8 +424,79 @@ def fit_pulse(record, wavelet: str = "best", *, periods=DEFAULT_PERIODS, scales_
         raise RockcliInputError("scales_per_octave must be at least 2")
     t_start = float(getattr(record, "t_start", 0.0))
     kinds = list(WAVELETS) if key == "best" else [key]
-    fits = [_fit_one(acc, dt, t_start, name, k, (lo_eff, hi), int(scales_per_octave)) for k in kinds]
-    if len(fits) == 1:
-        return fits[0]
-    best, other = sorted(fits, key=lambda f: f.energy_fraction, reverse=True)
-    return PulseFit(**{**best.__dict__, "alternative": other})
+    return acc, dt, t_start, name, kinds, (lo_eff, hi), int(scales_per_octave)
+
+
+#: Two pulses are the same pulse when their centres are closer than this share of the longer period
+#: (about where a Ricker's side lobes end) ...
+DUPLICATE_TIME_SHARE = 0.75
+#: ... and their periods differ by less than this factor (half an octave).
+DUPLICATE_PERIOD_RATIO = math.sqrt(2.0)
+
+
+def same_pulse(a: PulseFit, b: PulseFit) -> bool:
+    """True when two fitted pulses overlap in time and period (see :func:`fit_pulse_candidates`)."""
+    T_long, T_short = max(a.T_p_s, b.T_p_s), min(a.T_p_s, b.T_p_s)
+    return abs(a.t0_s - b.t0_s) < DUPLICATE_TIME_SHARE * T_long and T_long / T_short < DUPLICATE_PERIOD_RATIO
+
+
+def fit_pulse_candidates(record, n: int = 3, wavelet: str = "best", *, periods=DEFAULT_PERIODS,
+                         scales_per_octave: int = 12) -> list[PulseFit]:
+    """The ``n`` strongest distinct pulses of ``record``: the fit of :func:`fit_pulse` and its competitors.
+
+    Where two pulses explain similar energy (a near tie), the largest wavelet coefficient picks one
+    and hides the other; this lists both, so that one can see the alternative another fit (or a
+    paper) picked.
+
+    Parameters
+    ----------
+    record, wavelet, periods, scales_per_octave
+        As :func:`fit_pulse` (``"best"``: both shapes compete).
+    n : int
+        How many pulses, >= 1.
+
+    Returns
+    -------
+    list of PulseFit
+        Sorted by explained energy fraction (largest first), at most ``n``; the first fit of
+        :func:`fit_pulse` (same settings) is always among them (``alternative`` is None on all).
+
+    Notes
+    -----
+    1. Candidates are the local maxima of ``|CWT|`` over period and time (each grid value at
+       least as large as its 8 neighbours), for each shape; the ``4 n + 8`` largest of each shape
+       are refined exactly like the main fit (parabolas on the grid, then least squares on the
+       record's samples), each on its own: its ``energy_fraction`` is what that pulse alone
+       explains (fractions of different pulses do not add up).
+    2. De-duplication: the fit of :func:`fit_pulse` first, then the others by explained energy; a
+       pulse is dropped when it overlaps one already kept in time *and* period (:func:`same_pulse`:
+       centres closer than 3/4 of the longer period and periods within a factor sqrt 2) -- e.g. the
+       antisymmetric description of the same symmetric pulse, or two maxima refined onto one pulse.
+    """
+    if int(n) != n or n < 1:
+        raise RockcliInputError(f"the number of candidate pulses must be a whole number >= 1, got {n!r}")
+    from scipy.ndimage import maximum_filter
+
+    acc, dt, t_start, name, kinds, periods, spo = _prepare(record, wavelet, periods, scales_per_octave)
+    per_shape = 4 * int(n) + 8
+    mains, others = [], []
+    for kind in kinds:
+        T_grid, scales, coef, dtc = _cwt_grid(acc, dt, kind, periods, spo)
+        mag = np.abs(coef)
+        peaks = np.argwhere((mag == maximum_filter(mag, size=3, mode="nearest")) & (mag > 0))
+        order = np.argsort(-mag[peaks[:, 0], peaks[:, 1]], kind="stable")[:per_shape]
+        top = np.unravel_index(int(np.argmax(mag)), mag.shape)
+        for k in order:
+            i, j = (int(v) for v in peaks[k])
+            est = _grid_estimate(kind, T_grid, scales, coef, mag, dtc, t_start, periods, i, j)
+            fit = _refine(acc, dt, t_start, name, kind, periods, *est)
+            (mains if (i, j) == tuple(int(v) for v in top) else others).append(fit)
+    main = max(mains, key=lambda f: f.energy_fraction)  # what fit_pulse returns (without 'alternative')
+    kept = [main]
+    for f in sorted(mains + others, key=lambda f: f.energy_fraction, reverse=True):
+        if len(kept) == n:
+            break
+        if f is main or any(same_pulse(f, k) for k in kept):
+            continue
+        kept.append(f)
+    return sorted(kept, key=lambda f: f.energy_fraction, reverse=True)

@@ -46,6 +46,8 @@ from rockcli.units import G
 VERDICT_NO_UPLIFT = "no_uplift"
 VERDICT_ROCKED = "rocked"
 VERDICT_OVERTURNED = "overturned"
+#: Verdict of a :func:`simulate_many` job that could not be run (see :class:`JobError`).
+VERDICT_ERROR = "error"
 
 DEFAULT_RTOL = 1e-8
 DEFAULT_TAIL = 10.0
@@ -138,6 +140,30 @@ class Response:
                 "base_disp_max_m", "steps", "rejected_steps", "nfev", "settled", "t_settled_s", "peak_final",
                 "t_end_s", "status", "message")
         return {k: clean(getattr(self, k)) for k in keys}
+
+
+@dataclass(frozen=True)
+class JobError:
+    """What :func:`simulate_many` returns for a job that fails validation: the reason, no results.
+
+    It reads like a :class:`Response` where callers look (``verdict`` is ``"error"``,
+    ``overturned`` is False, ``message`` says why, numbers are NaN), so one bad scene does not
+    stop a batch; ``error`` is the message (a :class:`Response` has no ``error``).
+    """
+
+    error: str
+    verdict: str = VERDICT_ERROR
+    status: int = -2
+    overturned: bool = False
+    theta_max_over_alpha: float = math.nan
+    t_overturn_s: float = math.nan
+    t_uplift_s: float = math.nan
+    base_disp_max_m: float = math.nan
+    n_impacts: int | None = None
+
+    @property
+    def message(self) -> str:
+        return self.error
 
 
 def _kernel():
@@ -392,8 +418,11 @@ def simulate_many(jobs, *, rtol: float = DEFAULT_RTOL, tail: float = DEFAULT_TAI
 
     Returns
     -------
-    list of Response
-        In the order of ``jobs``, identical to what :func:`simulate` returns without history.
+    list of Response or JobError
+        In the order of ``jobs``, identical to what :func:`simulate` returns without history; a
+        job that :func:`simulate` would refuse (bad block, foundation or excitation, a scale
+        factor on a pulse) gets a :class:`JobError` with the reason and the others still run.
+        Invalid solver options (``rtol``, ``tail``, ``rest_tol``) concern every job and raise.
     """
     _validate_options(rtol, tail, rest_tol, horizon)
     k = _kernel()
@@ -412,23 +441,36 @@ def simulate_many(jobs, *, rtol: float = DEFAULT_RTOL, tail: float = DEFAULT_TAI
     acc_len = np.zeros(n, np.int64)
     pieces, jpieces, where, total = [], [], {}, 0
     blocks = []
-    prepared = {}  # id(excitation) -> validated kernel arrays: a shared record is checked once
+    prepared = {}  # id(excitation) -> validated kernel arrays (or the error): a shared record is checked once
+    failed = {}  # job index -> JobError; those jobs are not run
     for i, job in enumerate(jobs):
-        block, foundation, excitation = job[:3]
-        scale = float(job[3]) if len(job) > 3 else 1.0
-        if not isinstance(block, Block):
-            raise RockcliInputError(f"job {i}: block must be a rockcli.models.Block")
-        key = id(excitation)
-        if key not in prepared:
-            prepared[key] = _excitation_arrays(excitation)
-        ekind, epar, acc, jtab, dt, t_begin, t_exc_end = prepared[key]
-        epar = epar.copy()
-        fkind, prm = _parameters(block, foundation if foundation is not None else Rigid(), float(rtol),
-                                 float(rest_tol))
+        try:
+            block, foundation, excitation = job[:3]
+            scale = float(job[3]) if len(job) > 3 else 1.0
+            if not isinstance(block, Block):
+                raise RockcliInputError(f"job {i}: block must be a rockcli.models.Block")
+            if foundation is not None and not hasattr(foundation, "gamma"):
+                raise RockcliInputError(f"job {i}: unknown foundation {foundation!r}")
+            key = id(excitation)
+            if key not in prepared:
+                try:
+                    prepared[key] = _excitation_arrays(excitation)
+                except RockcliInputError as exc:
+                    prepared[key] = exc
+            if isinstance(prepared[key], RockcliInputError):
+                raise prepared[key]
+            ekind, epar, acc, jtab, dt, t_begin, t_exc_end = prepared[key]
+            epar = epar.copy()
+            fkind, prm = _parameters(block, foundation if foundation is not None else Rigid(), float(rtol),
+                                     float(rest_tol))
+            if ekind != k.EXC_RECORD and scale != 1.0:
+                raise RockcliInputError(f"job {i}: a scale factor applies to records only (scale the pulse's a_p)")
+        except (RockcliInputError, TypeError, ValueError) as exc:
+            failed[i] = JobError(str(exc))
+            blocks.append(None)
+            continue
         if ekind == k.EXC_RECORD:
             epar[k.E_AP] = scale
-        elif scale != 1.0:
-            raise RockcliInputError(f"job {i}: a scale factor applies to records only (scale the pulse's a_p)")
         akey = id(acc)  # a record's samples, or the table shared by all pulses of one shape
         if akey not in where:
             where[akey] = total
@@ -439,12 +481,18 @@ def simulate_many(jobs, *, rtol: float = DEFAULT_RTOL, tail: float = DEFAULT_TAI
         fkinds[i], ekinds[i], prms[i], epars[i] = fkind, ekind, prm, epar
         dts[i], t_begins[i], t_exc_ends[i] = dt, t_begin, t_exc_end
         blocks.append(block)
-    acc_all = np.concatenate(pieces)
-    jtab_all = np.concatenate(jpieces)
+    if failed:
+        # run the valid jobs only (the kernel never sees a job that failed validation)
+        ok = np.array([i for i in range(n) if i not in failed], dtype=np.int64)
+        fkinds, ekinds, prms, epars = fkinds[ok], ekinds[ok], prms[ok], epars[ok]
+        dts, t_begins, t_exc_ends, acc_off, acc_len = dts[ok], t_begins[ok], t_exc_ends[ok], acc_off[ok], acc_len[ok]
+        n_all, n = n, ok.size
+    acc_all = np.concatenate(pieces) if pieces else np.zeros(2)
+    jtab_all = np.concatenate(jpieces) if jpieces else np.zeros(2)
     tails = np.full(n, float(tail))
     outs = np.zeros((n, k.N_OUT))
     if chunk is None:
-        chunk = n if progress is None else max(1, n // 50)
+        chunk = max(n, 1) if progress is None else max(1, n // 50)
     for lo in range(0, n, chunk):
         hi = min(n, lo + chunk)
         k.simulate_batch(fkinds[lo:hi], prms[lo:hi], ekinds[lo:hi], epars[lo:hi], acc_all, jtab_all,
@@ -452,4 +500,9 @@ def simulate_many(jobs, *, rtol: float = DEFAULT_RTOL, tail: float = DEFAULT_TAI
                          tails[lo:hi], float(horizon), int(max_steps), bool(early), outs[lo:hi])
         if progress is not None:
             progress(hi)
-    return [_response(outs[i], None, blocks[i]) for i in range(n)]
+    if not failed:
+        return [_response(outs[i], None, blocks[i]) for i in range(n)]
+    if progress is not None:
+        progress(n_all)
+    done = iter(range(n))
+    return [failed[i] if i in failed else _response(outs[next(done)], None, blocks[i]) for i in range(n_all)]

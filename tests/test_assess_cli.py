@@ -96,7 +96,7 @@ def test_junk_file_in_folder_is_reported_in_its_rows(pulse_records, tmp_path):
     (["bassae", "--records", "no/such/file.AT2"], "no/such/file.AT2: no such file or folder"),
     (["bassae", "--records", "kobe-1995"], "nor a catalogue id"),
     (["bassae", "--records", "vrancea-1977-bucharest"], "cannot be run: no public file is known"),
-    (["--R", "2"], "R (m) and alpha (deg) go together"),
+    (["--R", "2"], "--R and --alpha go together"),
     ([], "name at least one column"),
     (["bassae", "bassae"], "given twice"),
     (["bassae", "--csv", "no/such/dir/t.csv"], "folder"),

@@ -347,3 +347,67 @@ def test_parse_periods():
     for bad in ("6", "1:2:3", "a:b", "3:1", "-1:2"):
         with pytest.raises(RockcliInputError, match="--periods"):
             parse_periods(bad)
+
+
+# --------------------------------------------------------------------------------------------------
+# competing pulses (--candidates)
+# --------------------------------------------------------------------------------------------------
+
+def _two_pulse_record(first, second, dt=0.01, t_end=20.0, noise=0.0, seed=3):
+    t = dt * np.arange(int(round(t_end / dt)) + 1)
+    acc = first.acceleration(t) + second.acceleration(t)
+    if noise:
+        acc = acc + noise * G * np.random.default_rng(seed).standard_normal(t.size)
+    return Record(acc, dt, "two")
+
+
+@pytest.mark.parametrize("first, second, tol", [
+    # apart in time, different shapes: each single-pulse fit is exact
+    (RickerSymmetric(0.5 * G, 0.6, 4.0), RickerAntisymmetric(-0.25 * G, 1.6, 12.0), 0.01),
+    # at the same time, periods a factor 5 apart: found, but each fit alone carries a share of the other
+    (RickerSymmetric(0.4 * G, 0.4, 8.0), RickerSymmetric(-0.15 * G, 2.0, 8.0), 0.15),
+])
+def test_candidates_recover_both_pulses_of_a_two_pulse_signal(first, second, tol):
+    from rockcli.pulses_fit import fit_pulse_candidates, same_pulse
+
+    rec = _two_pulse_record(first, second, noise=0.005)
+    cands = fit_pulse_candidates(rec, 3)
+    assert len(cands) == 3
+    assert [c.energy_fraction for c in cands] == sorted((c.energy_fraction for c in cands), reverse=True)
+    fit = fit_pulse(rec)
+    assert cands[0].pulse == fit.pulse  # the strongest is the fit, identical to fit_pulse's
+    acc = rec.acc
+    for truth in (first, second):
+        c = min(cands[:2], key=lambda c: abs(math.log(c.T_p_s / truth.T_p)))
+        assert c.pulse.shape == truth.shape
+        assert c.a_p_g == pytest.approx(truth.a_p / G, rel=tol)
+        assert c.T_p_s == pytest.approx(truth.T_p, rel=tol)
+        assert c.t0_s == pytest.approx(truth.t0, abs=0.03 * truth.T_p)
+        if tol <= 0.01:  # disjoint pulses: each explains its own share of the energy
+            p = truth.acceleration(rec.times)
+            assert c.energy_fraction == pytest.approx(float(p @ p) / float(acc @ acc), abs=0.01)
+    assert cands[2].energy_fraction < 0.1  # the rest is small
+    # no two candidates are the same pulse
+    assert not any(same_pulse(a, b) for i, a in enumerate(cands) for b in cands[i + 1:])
+
+
+def test_candidates_arguments():
+    from rockcli.pulses_fit import fit_pulse_candidates
+
+    rec = RickerSymmetric(0.3 * G, 0.8, 4.0).sampled(0.01, 10.0)
+    one = fit_pulse_candidates(rec, 1, "symmetric")
+    assert len(one) == 1 and one[0].pulse == fit_pulse(rec, "symmetric").pulse
+    for bad in (0, 1.5):
+        with pytest.raises(RockcliInputError, match="whole number >= 1"):
+            fit_pulse_candidates(rec, bad)
+
+
+def test_kobe_candidates_show_the_fitted_pulse_and_a_longer_competitor(find_record):
+    from rockcli.pulses_fit import fit_pulse_candidates
+    from rockcli.records import read_record
+
+    rec = read_record(find_record("RSN1119_KOBE_TAZ000.AT2"))
+    cands = fit_pulse_candidates(rec, 3)
+    assert cands[0].T_p_s == pytest.approx(0.806, abs=0.005) and cands[0].wavelet == "symmetric"
+    longer = [c for c in cands[1:] if 1.0 < c.T_p_s < 1.3]  # the paper reads ~1.1 s
+    assert len(longer) == 1 and 0.15 < longer[0].energy_fraction < cands[0].energy_fraction

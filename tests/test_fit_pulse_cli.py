@@ -220,3 +220,29 @@ def test_committed_catalog_holds_the_current_fits(catalogue_records):
         assert stored.T_p_s == pytest.approx(f.T_p_s, abs=6e-5)
         assert stored.t0_s == pytest.approx(f.t0_s, abs=6e-4)
         assert stored.pulse_energy == pytest.approx(f.energy_fraction, abs=6e-5)
+
+
+def test_candidates_table_json_csv_and_plot(tmp_path):
+    first, second = RickerSymmetric(0.5 * G, 0.6, 4.0), RickerAntisymmetric(-0.25 * G, 1.6, 12.0)
+    t = 0.01 * np.arange(2001)
+    path = tmp_path / "two.txt"
+    np.savetxt(path, (first.acceleration(t) + second.acceleration(t)) / G, fmt="%.10e")
+    args = ["fit-pulse", str(path), "--units", "g", "--dt", "0.01", "--candidates", "2"]
+    res = _invoke(args + ["--csv", str(tmp_path / "c.csv"), "--plot", str(tmp_path / "c.png")])
+    assert res.exit_code == 0, res.output
+    lines = res.output.splitlines()
+    assert lines[0].split() == ["record", "rank", "wavelet", "a_p_g", "T_p_s", "t0_s", "energy_fraction"]
+    one, two = lines[1].split(), lines[2].split()  # the longer pulse explains more energy (52 %)
+    assert one[:3] == ["two.txt", "1", "antisymmetric"] and one[-2:] == ["<-", "fit"]
+    assert float(one[4]) == pytest.approx(1.6, rel=0.01)
+    assert two[:2] == ["2", "symmetric"] and float(two[3]) == pytest.approx(0.6, rel=0.01)
+    rows = list(csv.DictReader(open(tmp_path / "c.csv")))
+    assert [(r["rank"], r["fit"], r["pulse_shape"]) for r in rows] == [("1", "True", "ricker-anti"),
+                                                                       ("2", "False", "ricker-sym")]
+    assert (tmp_path / "c.png").stat().st_size > 10_000
+    data = json.loads(_invoke(args + ["--json"]).output)
+    cands = data[0]["candidates"]
+    assert [c["rank"] for c in cands] == [1, 2] and cands[0]["fit"] and not cands[1]["fit"]
+    assert cands[1]["a_p_g"] == pytest.approx(0.5, rel=0.01)
+    res = CliRunner().invoke(main, args[:-2] + ["--candidates", "0"])
+    assert res.exit_code == 2

@@ -1,4 +1,5 @@
-"""``rockcli assess column``: which columns survive which records, on the ground and on isolators."""
+"""``rockcli assess column`` (which columns survive which records, on the ground and on isolators) and
+``rockcli assess fragility`` (how likely they overturn at a given intensity)."""
 
 from __future__ import annotations
 
@@ -14,6 +15,49 @@ def assess():
     """Assess free-standing bodies against records and isolation configurations."""
 
 
+def _headerless_options(func):
+    """``--units`` and ``--dt`` for record files that do not state them (headerless text, SAC, ...)."""
+    func = click.option("--dt", type=float, default=None, metavar="SECONDS",
+                        help="Time step [s] of the record files that state none; a file that states "
+                             "another one is an error row. Catalogue files are read as the catalogue says.")(func)
+    return click.option("--units", default=None, metavar="UNITS",
+                        help="Units of the record files that do not state them (g, m/s^2, cm/s^2, gal, "
+                             "mm/s^2, g/10); a file that states other units is an error row.")(func)
+
+
+def _progress(total: int):
+    """A progress bar with an ETA on stderr when it is a terminal, else nothing (a context manager)."""
+    import contextlib
+
+    if not sys.stderr.isatty():
+        return contextlib.nullcontext(None)
+    return click.progressbar(length=total, label="runs", file=sys.stderr, show_eta=True)
+
+
+def _warn_failed(failed, n_total: int):
+    if failed:
+        click.echo(f"Warning: {len(failed)} of {n_total} records could not be read or run; they have "
+                   f"error rows: {', '.join(x.label for x in failed[:5])}{' ...' if len(failed) > 5 else ''}",
+                   err=True)
+
+
+def _columns(names, R, alpha, height, width, name):
+    from rockcli.assess import custom_column, parse_column_spec
+    from rockcli.cli.options import BLOCK_FLAGS
+
+    columns = [parse_column_spec(n) for n in names]
+    if any(v is not None for v in (R, alpha, height, width)):
+        columns.append(custom_column(name, R=R, alpha=alpha, height=height, width=width, labels=BLOCK_FLAGS))
+    if not columns:
+        raise InputError("name at least one column (bassae, nemea, or NAME:R=<m>,alpha=<deg>), or give --R/--alpha")
+    seen = set()
+    for b in columns:
+        if b.name in seen:
+            raise InputError(f"column name {b.name!r} is given twice; give each column its own name")
+        seen.add(b.name)
+    return columns
+
+
 @assess.command(name="column")
 @click.argument("names", nargs=-1, metavar="NAME...")
 @click.option("--R", "R", type=float, default=None, metavar="M",
@@ -26,6 +70,7 @@ def assess():
 @click.option("--records", "records", multiple=True, metavar="ID|FILE|DIR",
               help="Records to run (repeatable): catalogue ids, files, folders. Default: the catalogue's "
                    "Table II records (file where found on ROCKCLI_RECORDS, else the catalogued pulse).")
+@_headerless_options
 @click.option("--excitation", type=click.Choice(["auto", "record", "pulse"]), default="auto", show_default=True,
               help="Catalogue records: the file where found else its fitted Ricker pulse (auto), files only "
                    "(record), or the pulses only (pulse).")
@@ -43,8 +88,8 @@ def assess():
 @click.option("--plot", "plot_dir", type=click.Path(file_okay=False), default=None,
               help="Write one figure per run (like the paper's Figure 12) into this folder.")
 @user_errors
-def column(names, R, alpha, height, width, name, records, excitation, isolation, margin, neighbourhood, csv_path,
-           hist_dir, plot_dir):
+def column(names, R, alpha, height, width, name, records, units, dt, excitation, isolation, margin, neighbourhood,
+           csv_path, hist_dir, plot_dir):
     """Do the columns NAME... survive the records, on a rigid base and on isolators?
 
     NAME is a preset (bassae, nemea) or a custom block NAME:R=<m>,alpha=<deg> or
@@ -61,44 +106,32 @@ def column(names, R, alpha, height, width, name, records, excitation, isolation,
     """
     from pathlib import Path
 
-    from rockcli.assess import (count_runs, custom_column, parse_column_spec, parse_configurations,
-                                resolve_excitations, run_assessment)
+    from rockcli.assess import count_runs, parse_configurations, resolve_excitations, run_assessment
 
-    columns = [parse_column_spec(n) for n in names]
-    if any(v is not None for v in (R, alpha, height, width)):
-        columns.append(custom_column(name, R=R, alpha=alpha, height=height, width=width))
-    if not columns:
-        raise InputError("name at least one column (bassae, nemea, or NAME:R=<m>,alpha=<deg>), or give --R/--alpha")
-    seen = set()
-    for b in columns:
-        if b.name in seen:
-            raise InputError(f"column name {b.name!r} is given twice; give each column its own name")
-        seen.add(b.name)
+    columns = _columns(names, R, alpha, height, width, name)
     configurations = parse_configurations(isolation)
     for folder, opt in ((hist_dir, "--histories"), (plot_dir, "--plot")):
         if folder is not None and Path(folder).exists() and not Path(folder).is_dir():
             raise InputError(f"{opt} {folder}: exists and is not a folder")
     if csv_path is not None and not Path(csv_path).resolve().parent.is_dir():
         raise InputError(f"--csv {csv_path}: folder {Path(csv_path).resolve().parent} does not exist")
-    excitations, unavailable = resolve_excitations(records, excitation)
+    excitations, unavailable = resolve_excitations(records, excitation, units=units, dt=dt)
     if not excitations:
         raise InputError("no record to run: " + "; ".join(f"{u.label}: {u.reason}" for u in unavailable))
 
     total = count_runs(columns, excitations, configurations, margin, neighbourhood)
-    if sys.stderr.isatty():
-        with click.progressbar(length=total, label="runs", file=sys.stderr) as bar:
-            result = run_assessment(columns, excitations, configurations, margin=margin, neighbourhood=neighbourhood,
-                                    unavailable=unavailable, progress=bar.update)
-            bar.update(total)
-    else:
+    with _progress(total) as bar:
         result = run_assessment(columns, excitations, configurations, margin=margin, neighbourhood=neighbourhood,
-                                unavailable=unavailable)
+                                unavailable=unavailable, progress=bar.update if bar else None)
+        if bar:
+            bar.update(total)
 
     from rockcli.report.tables import format_matrix, format_notes
 
     click.echo(format_matrix(result))
     click.echo("")
     click.echo(format_notes(result))
+    _warn_failed(result.failed, len(result.excitations))
 
     if csv_path:
         from rockcli.report.tables import write_assessment_csv
@@ -129,3 +162,90 @@ def _write_histories(result, hist_dir, plot_dir):
         n += 1
     what = " and ".join(f"{k} in {d}" for k, d in (("histories", hist_dir), ("figures", plot_dir)) if d)
     click.echo(f"wrote {what} ({n} runs)")
+
+
+@assess.command(name="fragility")
+@click.argument("names", nargs=-1, metavar="NAME...")
+@click.option("--R", "R", type=float, default=None, metavar="M",
+              help="Custom block: semi-diagonal R [m] (with --alpha).")
+@click.option("--alpha", type=float, default=None, metavar="DEG", help="Custom block: slenderness [deg] (with --R).")
+@click.option("--height", type=float, default=None, metavar="M", help="Custom block: full height [m] (with --width).")
+@click.option("--width", type=float, default=None, metavar="M",
+              help="Custom block: base width or drum diameter [m] (with --height).")
+@click.option("--name", default="custom", show_default=True, help="Name of the custom block.")
+@click.option("--records", "records", multiple=True, metavar="DIR|ID|FILE",
+              help="The suite (repeatable, required): folders (every non-hidden file), catalogue ids, files. "
+                   "A file that cannot be read becomes an error row; the others carry on.")
+@_headerless_options
+@click.option("--isolation", "isolation", multiple=True, metavar="SPEC",
+              help="Foundation (repeatable): 'none' or 'linear:Tb=2.5,xi=0.1,gamma=0.01'. Default: none and "
+                   "linear Tb = 2, 2.5, 3 s with xi = 0.1 (gamma = 0.01), as in the paper's Table III.")
+@click.option("--im", type=click.Choice(["pga", "pgv", "ap"]), default="pga", show_default=True,
+              help="Intensity measure: pga [g]; pgv [m/s] (trapezoid rule from rest, as 'records show'); "
+                   "ap [g], the amplitude of the record's fitted Ricker pulse.")
+@click.option("--bootstrap", "n_boot", type=click.IntRange(0, 100000), default=1000, show_default=True,
+              help="Bootstrap resamples over records for the confidence intervals (0: none).")
+@click.option("--seed", type=int, default=13, show_default=True, help="Seed of the bootstrap resamples.")
+@click.option("--csv", "csv_path", type=click.Path(dir_okay=False), default=None,
+              help="Write one row per column x record x configuration (IM, scale, capacity, censoring, error) "
+                   "with the fit of its column and configuration.")
+@click.option("--plot", "plot_path", type=click.Path(dir_okay=False), default=None,
+              help="Write the fragility curves (one panel per column, every configuration) to this image, e.g. FILE.png.")
+@user_errors
+def fragility(names, R, alpha, height, width, name, records, units, dt, isolation, im, n_boot, seed, csv_path,
+              plot_path):
+    """Fragility curves of overturning: P(the column overturns | IM) from a suite of records.
+
+    Each record is scaled (0.1x..4x, then bisection) to the smallest factor that overturns the
+    column; that factor x the record's IM is its capacity. A lognormal (median, beta) is fitted to
+    the capacities by maximum likelihood, records that never overturn up to 4x counting as
+    right-censored, with intervals from a bootstrap over records. Prints median and beta per
+    column and configuration, and each isolated median over the rigid one (< 1: isolation hurts).
+
+    \b
+    Examples:
+      rockcli assess fragility bassae nemea --records ../shared/records --records ../shared/records/extra \\
+          --csv fragility.csv --plot fragility.png
+      rockcli assess fragility nemea --records my/suite --units g --dt 0.01 --im pgv --isolation none
+    """
+    from pathlib import Path
+
+    from rockcli.assess import parse_configurations, resolve_excitations
+    from rockcli.assess.fragility import count_fragility_runs, run_fragility
+
+    columns = _columns(names, R, alpha, height, width, name)
+    if not records:
+        raise InputError("give the record suite with --records DIR|ID|FILE (repeatable)")
+    configurations = parse_configurations(isolation)
+    for path, opt in ((csv_path, "--csv"), (plot_path, "--plot")):
+        if path is not None and not Path(path).resolve().parent.is_dir():
+            raise InputError(f"{opt} {path}: folder {Path(path).resolve().parent} does not exist")
+    if plot_path is not None and not Path(plot_path).suffix:
+        raise InputError(f"--plot {plot_path}: give the file a suffix such as .png or .pdf")
+    excitations, unavailable = resolve_excitations(records, "record", units=units, dt=dt)
+    if not any(x.motion is not None for x in excitations):
+        raise InputError("no record of the suite could be read: " + "; ".join(x.error for x in excitations[:3]))
+
+    total = count_fragility_runs(columns, excitations, configurations)
+    with _progress(total) as bar:
+        result = run_fragility(columns, excitations, configurations, im=im, n_boot=n_boot, seed=seed,
+                               unavailable=unavailable, progress=bar.update if bar else None)
+        if bar:
+            bar.update(total)
+
+    from rockcli.report.fragility import format_fragility, format_fragility_notes
+
+    click.echo(format_fragility(result))
+    click.echo("")
+    click.echo(format_fragility_notes(result))
+    _warn_failed(result.failed, len(result.excitations))
+    if csv_path:
+        from rockcli.report.fragility import write_fragility_csv
+
+        write_fragility_csv(result, csv_path)
+        click.echo(f"wrote {csv_path} ({len(result.rows)} rows)")
+    if plot_path:
+        from rockcli.report.fragility import plot_fragility
+
+        plot_fragility(result, plot_path)
+        click.echo(f"wrote {plot_path}")

@@ -45,6 +45,31 @@ def _table(fits) -> str:
     return "\n".join(lines)
 
 
+def _candidate_row(c, rank, fit) -> dict:
+    """A candidate pulse as a JSON/CSV row: its rank, whether it is the fit, and its parameters."""
+    row = c.as_row()
+    return {"rank": rank, "fit": c.pulse == fit.pulse, **{k: row[k] for k in (
+        "wavelet", "pulse_shape", "a_p_g", "T_p_s", "t0_s", "energy_fraction", "at_period_bound")}}
+
+
+def _candidates_table(fits, candidates) -> str:
+    head = ("record", "rank", "wavelet", "a_p_g", "T_p_s", "t0_s", "energy_fraction", "")
+    rows = [head]
+    for f, cands in zip(fits, candidates):
+        for k, c in enumerate(cands, 1):
+            flag = "*" if c.at_period_bound else ""
+            rows.append((f.record_name if k == 1 else "", str(k), c.wavelet, f"{c.a_p_g:+.4f}", f"{c.T_p_s:.4f}{flag}",
+                         f"{c.t0_s:.3f}", f"{c.energy_fraction:.3f}", "<- fit" if c.pulse == f.pulse else ""))
+    widths = [max(len(r[i]) for r in rows) for i in range(len(head))]
+    right = {1, 3, 4, 5, 6}
+    lines = ["  ".join(c.rjust(w) if i in right else c.ljust(w) for i, (c, w) in enumerate(zip(r, widths))).rstrip()
+             for r in rows]
+    lines.append("energy_fraction: share of the record's energy (integral of a^2 dt) that the pulse explains on its "
+                 "own; pulses overlapping in time and period (centres within half the longer period, periods "
+                 "within a factor 1.41) count as one.")
+    return "\n".join(lines)
+
+
 def _update_catalog(fits):
     """Fill the pulse columns of the fitted catalogue entries; every other cell and the row order stay."""
     from dataclasses import replace
@@ -79,19 +104,24 @@ def _update_catalog(fits):
 @click.option("--json", "as_json", is_flag=True, help="Print the fits as JSON instead of a table.")
 @click.option("--plot", "plot_path", type=click.Path(dir_okay=False), default=None,
               help="Overlay each fitted pulse on its record (one panel per record) in this image, e.g. FILE.png.")
+@click.option("--candidates", "n_candidates", type=click.IntRange(1, 20), default=None, metavar="N",
+              help="List the N strongest distinct pulses of each record (local maxima of the wavelet transform, "
+                   "both shapes, each refined like the fit), with the energy each explains alone.")
 @click.option("--update-catalog", is_flag=True,
               help="With --catalog: store the fitted pulse (pulse_shape, a_p_g, T_p_s, t0_s, pulse_energy) "
                    "in records/catalog.csv (or ROCKCLI_CATALOG).")
 @user_errors
 def fit_pulse(sources, units, dt, fmt, column, use_catalog, wavelet, periods, csv_path, as_json, plot_path,
-              update_catalog):
+              n_candidates, update_catalog):
     """Fit the dominant acceleration pulse of each SOURCE (a record file or a catalogue id).
 
     The pulse is the symmetric or antisymmetric Ricker wavelet (Vassiliou & Makris 2011) that is
     closest to the record in the least-squares sense: largest continuous-wavelet-transform
     coefficient, refined off the scale grid. Prints one row per record: amplitude a_p [g] (signed),
     period T_p [s], centre t0 [s, record time] and the fraction of the record's energy (integral of
-    a^2 dt) the pulse explains. A * after T_p marks a period at an end of --periods.
+    a^2 dt) the pulse explains. A * after T_p marks a period at an end of --periods. With
+    --candidates N: the N strongest distinct pulses of each record, ranked by the energy each
+    explains alone (the fit is marked), e.g. where a published T_p differs from the fit.
 
     \b
     Examples:
@@ -99,6 +129,7 @@ def fit_pulse(sources, units, dt, fmt, column, use_catalog, wavelet, periods, cs
       rockcli fit-pulse C02-065 --units g --dt 0.01 --wavelet antisymmetric
       ROCKCLI_RECORDS=../shared/records rockcli fit-pulse --catalog --plot fits.png
       ROCKCLI_RECORDS=../shared/records rockcli fit-pulse --catalog --update-catalog
+      ROCKCLI_RECORDS=../shared/records rockcli fit-pulse kobe-1995-takarazuka-000 --candidates 3
     """
     from rockcli.pulses_fit import parse_periods
 
@@ -109,6 +140,8 @@ def fit_pulse(sources, units, dt, fmt, column, use_catalog, wavelet, periods, cs
     if use_catalog and options_given:
         raise InputError("--units, --dt, --format and --column apply to files, not to --catalog records "
                          "(the catalogue states them)")
+    if update_catalog and n_candidates:
+        raise InputError("--update-catalog stores the fit only; leave out --candidates")
     if not sources and not use_catalog:
         raise InputError("give at least one SOURCE (a record file or catalogue id), or --catalog")
 
@@ -120,11 +153,15 @@ def fit_pulse(sources, units, dt, fmt, column, use_catalog, wavelet, periods, cs
     from rockcli.pulses_fit import fit_pulse as fit
     from rockcli.records import read_record
 
-    records, fits = [], []
+    records, fits, candidates = [], [], []
     for source, kwargs in jobs:
         rec = read_record(source, **kwargs)
         records.append(rec)
         fits.append(fit(rec, wavelet.lower(), periods=period_range))
+        if n_candidates:
+            from rockcli.pulses_fit import fit_pulse_candidates
+
+            candidates.append(fit_pulse_candidates(rec, n_candidates, wavelet.lower(), periods=period_range))
 
     if as_json:
         import json
@@ -137,25 +174,30 @@ def fit_pulse(sources, units, dt, fmt, column, use_catalog, wavelet, periods, cs
                 a = f.alternative
                 row["alternative"] = {"wavelet": a.wavelet, "a_p_g": a.a_p_g, "T_p_s": a.T_p_s, "t0_s": a.t0_s,
                                       "energy_fraction": a.energy_fraction}
+            if n_candidates:
+                row["candidates"] = [_candidate_row(c, k, f) for k, c in enumerate(candidates[len(out)], 1)]
             out.append(row)
         click.echo(json.dumps(out, indent=2))
     else:
-        click.echo(_table(fits))
-        if any(f.at_period_bound for f in fits):
+        click.echo(_candidates_table(fits, candidates) if n_candidates else _table(fits))
+        if any(f.at_period_bound for f in fits) or any(c.at_period_bound for cs in candidates for c in cs):
             click.echo(f"* T_p at an end of the searched range {period_range[0]:g}:{period_range[1]:g} s; "
                        f"widen --periods to check.")
     for w in warnings:
         click.echo(f"Warning: {w}", err=True)
 
     if csv_path:
-        from rockcli.report.pulses import write_fit_csv
+        from rockcli.report.pulses import write_candidates_csv, write_fit_csv
 
-        write_fit_csv(fits, csv_path)
+        if n_candidates:
+            write_candidates_csv(fits, candidates, csv_path)
+        else:
+            write_fit_csv(fits, csv_path)
         click.echo(f"wrote {csv_path}", err=as_json)
     if plot_path:
         from rockcli.report.pulses import plot_pulse_fits
 
-        plot_pulse_fits(records, fits, plot_path)
+        plot_pulse_fits(records, fits, plot_path, candidates=candidates or None)
         click.echo(f"wrote {plot_path}", err=as_json)
     if update_catalog:
         path = _update_catalog(fits)

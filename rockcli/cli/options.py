@@ -62,21 +62,13 @@ def block_options(func):
     return func
 
 
+#: The block flags, as :func:`rockcli.models.build_block` names them in messages.
+BLOCK_FLAGS = {"preset": "--column NAME", "R": "--R", "alpha": "--alpha", "height": "--height", "width": "--width"}
+
+
 def block_from_options(column_name=None, R=None, alpha=None, height=None, width=None, name=None):
     """The :class:`Block` named by exactly one of the three forms of :func:`block_options`."""
-    from rockcli.errors import RockcliInputError
-    from rockcli.models import Block, column
+    from rockcli.models import build_block
 
-    forms = [column_name is not None, R is not None or alpha is not None, height is not None or width is not None]
-    if sum(forms) != 1:
-        raise RockcliInputError("give the block as exactly one of --column NAME, --R with --alpha, "
-                                "or --height with --width")
-    if column_name is not None:
-        return column(column_name)
-    if forms[1]:
-        if R is None or alpha is None:
-            raise RockcliInputError("--R and --alpha go together (semi-diagonal in m, slenderness in degrees)")
-        return Block.from_degrees(R, alpha, name or f"R{R:g}m-alpha{alpha:g}deg")
-    if height is None or width is None:
-        raise RockcliInputError("--height and --width go together (full height and base width in m)")
-    return Block.from_dimensions(height, width, name or f"{height:g}x{width:g}m")
+    return build_block(preset=column_name, R=R, alpha_deg=alpha, height=height, width=width, name=name,
+                       labels=BLOCK_FLAGS)

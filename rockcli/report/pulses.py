@@ -39,7 +39,31 @@ def write_fit_csv(fits, path) -> Path:
     return Path(path)
 
 
-def plot_pulse_fits(records, fits, path, *, dpi: int = 120) -> Path:
+#: Columns of ``rockcli fit-pulse --candidates N --csv``: one row per candidate pulse.
+CANDIDATE_COLUMNS = ("record", "rank", "fit", "wavelet", "pulse_shape", "a_p_g", "T_p_s", "t0_s", "energy_fraction",
+                     "at_period_bound", "period_min_s", "period_max_s")
+
+
+def write_candidates_csv(fits, candidates, path) -> Path:
+    """Write the candidate pulses of each record (columns :data:`CANDIDATE_COLUMNS`), atomically.
+
+    ``fit`` is True on the candidate that is the record's fit; ``rank`` orders by explained energy.
+    """
+    with atomic_path(path) as tmp:
+        with open(tmp, "w", newline="", encoding="utf-8") as fh:
+            writer = csv.DictWriter(fh, fieldnames=CANDIDATE_COLUMNS, lineterminator="\n")
+            writer.writeheader()
+            for f, cands in zip(fits, candidates):
+                for rank, c in enumerate(cands, 1):
+                    row = c.as_row()
+                    row["rank"], row["fit"] = rank, c.pulse == f.pulse
+                    row["period_min_s"], row["period_max_s"] = c.periods
+                    writer.writerow({k: (repr(row[k]) if isinstance(row[k], float) else row[k])
+                                     for k in CANDIDATE_COLUMNS})
+    return Path(path)
+
+
+def plot_pulse_fits(records, fits, path, *, candidates=None, dpi: int = 120) -> Path:
     """Overlay each fitted pulse on its record, one panel per record (like Figure 3 of the paper).
 
     Parameters
@@ -48,6 +72,9 @@ def plot_pulse_fits(records, fits, path, *, dpi: int = 120) -> Path:
         The records [m/s^2].
     fits : sequence of PulseFit
         Their fits, in the same order.
+    candidates : sequence of list of PulseFit, optional
+        Competing pulses of each record (:func:`rockcli.pulses_fit.fit_pulse_candidates`), drawn
+        dashed in colour over the record with the fit.
     path : path-like
         Image file; the format follows the suffix (``.png``, ``.pdf``, ``.svg``).
     """
@@ -62,14 +89,22 @@ def plot_pulse_fits(records, fits, path, *, dpi: int = 120) -> Path:
         raise RockcliInputError(f"{path}: give the plot file a suffix such as .png or .pdf")
     n = len(fits)
     fig, axes = plt.subplots(n, 1, figsize=(8.0, 2.3 * n + 0.4), squeeze=False)
+    colors = ("tab:red", "tab:blue", "tab:green", "tab:orange", "tab:purple", "tab:brown", "tab:pink", "tab:olive")
     try:
-        for ax, rec, fit in zip(axes[:, 0], records, fits):
+        for k, (ax, rec, fit) in enumerate(zip(axes[:, 0], records, fits)):
             t = rec.times
             ax.plot(t, rec.acc / G, color="0.55", lw=0.6, label="record")
             s0, s1 = fit.pulse.support()
             tp = np.linspace(max(s0, t[0]), min(s1, t[-1]), 1500)
             ax.plot(tp, fit.pulse.acceleration(tp) / G, color="k", lw=2.2,
                     label=f"{'symmetric' if fit.wavelet == 'symmetric' else 'antisymmetric'} Ricker")
+            others = [c for c in (candidates[k] if candidates else []) if c.pulse != fit.pulse]
+            for n, c in enumerate(others):
+                c0, c1 = c.pulse.support()
+                tc = np.linspace(max(c0, t[0]), min(c1, t[-1]), 1500)
+                ax.plot(tc, c.pulse.acceleration(tc) / G, "--", color=colors[n % len(colors)], lw=1.6,
+                        label=f"{c.wavelet[:4]}. $T_p$ = {c.T_p_s:.2f} s, $a_p$ = {c.a_p_g:+.2f} g, "
+                              f"energy {c.energy_fraction:.2f}")
             ax.axhline(0.0, color="0.8", lw=0.5)
             ax.set_ylabel("acceleration [g]")
             ax.set_title(f"{fit.record_name}: $a_p$ = {fit.a_p_g:+.3f} g, $T_p$ = {fit.T_p_s:.3f} s, "

@@ -1,0 +1,39 @@
+"""Assessment of free-standing columns: scenes, margin search, and fragility.
+
+The library behind ``rockcli assess`` (no click, no pandas). Read it in this order:
+
+:mod:`rockcli.assess.scenes`
+    What is assessed: *columns* (presets or custom blocks), *configurations* (isolation specs)
+    and *excitations* (catalogue records, files, folders; a file that cannot be read is kept
+    with its ``error``). A scene is one column on one configuration under one excitation.
+:mod:`rockcli.assess.margin`
+    The margin search: the smallest scale factor of a record that overturns a scene (a scan of
+    40 log-spaced factors 0.1..4, then a bisection below the first overturning factor), the
+    neighbourhood share, and :func:`map_chunks`, the seam for running the search elsewhere.
+:mod:`rockcli.assess.table`
+    ``assess column``: every scene verdict-only, with its margin -> :class:`Assessment` rows.
+:mod:`rockcli.assess.fragility`
+    ``assess fragility``: each record's overturning capacity (smallest overturning scale x the
+    record's intensity measure) and a lognormal fragility per column x configuration fitted by
+    maximum likelihood with right-censoring, with a bootstrap confidence band.
+
+Every public name is importable from ``rockcli.assess``.
+"""
+
+from rockcli.assess.fragility import (IMS, Fragility, FragilityCurve, FragilityRow, fit_lognormal,
+                                      fragility_probability, intensity_measure, run_fragility)
+from rockcli.assess.margin import (MARGIN_GRID, MARGIN_RTOL, NEIGHBOURHOOD, find_overturn_scales, map_chunks,
+                                   overturn_scales_chunked, overturn_shares, run_local)
+from rockcli.assess.scenes import (DEFAULT_ISOLATION, EXCITATION_MODES, EXCITATION_PULSE, EXCITATION_RECORD,
+                                   Configuration, Excitation, Unavailable, column_title, custom_column,
+                                   parse_column_spec, parse_configurations, resolve_excitations, table_ii_entries)
+from rockcli.assess.table import (ROW_FIELDS, Assessment, AssessmentRow, count_runs, history_runs, run_assessment,
+                                  safe_name)
+
+__all__ = ["DEFAULT_ISOLATION", "EXCITATION_MODES", "EXCITATION_PULSE", "EXCITATION_RECORD", "IMS", "MARGIN_GRID",
+           "MARGIN_RTOL", "NEIGHBOURHOOD", "ROW_FIELDS", "Assessment", "AssessmentRow", "Configuration", "Excitation",
+           "Fragility", "FragilityCurve", "FragilityRow", "Unavailable", "column_title", "count_runs",
+           "custom_column", "find_overturn_scales", "fit_lognormal", "fragility_probability", "history_runs",
+           "intensity_measure", "map_chunks", "overturn_scales_chunked", "overturn_shares", "parse_column_spec",
+           "parse_configurations", "resolve_excitations", "run_assessment", "run_fragility", "run_local",
+           "safe_name", "table_ii_entries"]

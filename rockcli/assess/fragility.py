@@ -1,0 +1,556 @@
+"""Fragility of overturning: P(the column overturns | IM = x) from a suite of records.
+
+Method
+------
+For each column, configuration and record, the record's **overturning capacity** is the smallest
+scale factor that overturns the column (the margin search of :mod:`rockcli.assess.margin`: a scan
+of 40 log-spaced factors 0.1..4, then a bisection to 1 % below the first overturning factor)
+times the record's intensity measure (IM): the IM at which that record, scaled, first topples the
+column. This is incremental dynamic analysis (IDA) reduced to its collapse point ("IDA-like").
+The capacities of the records are taken as a sample of a lognormal variable, and the fragility is
+its distribution function
+
+    P(overturn | IM = x) = Phi( ln(x / theta) / beta )
+
+with median ``theta`` and dispersion ``beta`` fitted by **maximum likelihood** (Baker 2015,
+*Earthquake Spectra* 31(1):579-599, the IDA case). A record that does not overturn the column up
+to the largest factor scanned (4x) is **right-censored**: its capacity is only known to exceed
+4 x IM, and it enters the likelihood as ``1 - Phi(ln(4 IM / theta) / beta)`` instead of a density
+(the censored-normal / Tobit likelihood in ``ln IM``). A record that overturns it already at the
+smallest factor (0.1x) is left-censored (``Phi(ln(0.1 IM / theta) / beta)``). Without censoring the
+MLE is closed-form: ``ln theta`` = mean of ``ln c``, ``beta`` = their standard deviation with
+divisor n (not n - 1: the MLE is biased low by ``sqrt((n - 1)/n)``, 5 % for n = 10).
+
+The likelihood is maximised by Newton's method in Olsen's (1978) parameters ``(mu/beta, 1/beta)``,
+in which the censored-normal log-likelihood is concave, so the maximum found is the global one; it
+exists when at least two records have different exact capacities.
+
+Confidence: a bootstrap over records (resample the records with replacement, refit; percentile
+intervals), with a fixed seed so that runs repeat. The same resamples serve every column and
+configuration (a paired bootstrap), so the ratio of the isolated to the non-isolated median has
+its own interval: "does isolation help" is a statement about that ratio.
+
+Intensity measures (:data:`IMS`)
+--------------------------------
+``pga`` peak |acceleration| [g]; ``pgv`` peak |velocity| [m/s] of the record integrated by the
+trapezoid rule from rest, as given (no baseline correction; the ``PGV`` of ``rockcli records
+show``); ``ap`` the |a_p| [g] of the record's fitted Ricker pulse (:func:`rockcli.pulses_fit.fit_pulse`,
+default settings, the catalogue's ``a_p_g``). All scale with the record, so capacity = factor x IM.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from typing import Callable, Sequence
+
+import numpy as np
+
+from rockcli.assess.margin import MARGIN_GRID, MARGIN_RTOL, NOTE_NO_OVERTURN, NOTE_OVERTURNS_AT_MIN, \
+    overturn_scales_chunked
+from rockcli.assess.scenes import Configuration, Excitation, Unavailable
+from rockcli.errors import RockcliInputError
+from rockcli.models import Block
+from rockcli.units import G
+
+#: Bootstrap resamples of the confidence intervals, and the seed that makes them repeatable.
+DEFAULT_N_BOOT = 1000
+DEFAULT_SEED = 13
+#: Two-sided confidence level of the intervals.
+DEFAULT_LEVEL = 0.90
+
+CENSORED_RIGHT = "right"
+CENSORED_LEFT = "left"
+
+
+@dataclass(frozen=True)
+class IntensityMeasure:
+    """An intensity measure: its key, how it is printed, its units and its column name."""
+
+    key: str
+    name: str
+    units: str
+    column: str
+    description: str
+
+    @property
+    def suffix(self) -> str:
+        """Unit suffix of column names: ``g`` or ``mps``."""
+        return self.column.rsplit("_", 1)[-1]
+
+
+IMS = {
+    "pga": IntensityMeasure("pga", "PGA", "g", "pga_g", "peak ground acceleration [g]"),
+    "pgv": IntensityMeasure("pgv", "PGV", "m/s", "pgv_mps",
+                            "peak ground velocity [m/s], trapezoid rule from rest, no baseline correction"),
+    "ap": IntensityMeasure("ap", "a_p", "g", "a_p_g", "amplitude |a_p| of the fitted Ricker pulse [g]"),
+}
+
+
+def intensity_measure(motion, im: str) -> float:
+    """The intensity measure ``im`` (a key of :data:`IMS`) of a record or pulse, in its units (g or m/s).
+
+    Raises
+    ------
+    RockcliInputError
+        Unknown ``im``; a record whose pulse cannot be fitted (``ap``).
+    """
+    if im not in IMS:
+        raise RockcliInputError(f"intensity measure {im!r} is not one of {', '.join(IMS)}")
+    if hasattr(motion, "acc"):
+        if im == "pga":
+            return float(np.max(np.abs(motion.acc))) / G
+        if im == "pgv":
+            from rockcli.records.motion import cumtrapz
+
+            return float(np.max(np.abs(cumtrapz(motion.acc, motion.dt))))
+        from rockcli.pulses_fit import fit_pulse
+
+        return abs(fit_pulse(motion).a_p_g)
+    # an analytic pulse: a_p is its peak acceleration; its velocity is exact
+    if im in ("pga", "ap"):
+        return abs(float(motion.a_p)) / G
+    t0, t1 = motion.support()
+    t = np.linspace(t0, t1, 4001)
+    return float(np.max(np.abs(motion.velocity(t))))
+
+
+# --------------------------------------------------------------------------------------------------
+# maximum likelihood with censoring
+# --------------------------------------------------------------------------------------------------
+
+def _censor_codes(censored, n: int) -> np.ndarray:
+    """0 exact, +1 right-censored, -1 left-censored, from bools or ``"right"``/``"left"``/``""``."""
+    if censored is None:
+        return np.zeros(n, dtype=np.int8)
+    codes = np.zeros(n, dtype=np.int8)
+    for i, c in enumerate(censored):
+        if c is True or c == CENSORED_RIGHT or c == 1:
+            codes[i] = 1
+        elif c == CENSORED_LEFT or c == -1:
+            codes[i] = -1
+        elif c not in (False, "", 0, None):
+            raise RockcliInputError(f"censoring {c!r} is not one of '', 'right', 'left'")
+    return codes
+
+
+def _tobit_mle(x: np.ndarray, codes: np.ndarray, W: np.ndarray, *, max_iter: int = 100, tol: float = 1e-10):
+    """MLE of a normal (mu, sigma) from exact and censored values, for each row of weights ``W``.
+
+    Parameters
+    ----------
+    x : (n,) array
+        Values (exact values, or censoring bounds).
+    codes : (n,) int array
+        0 exact, +1 right-censored (value > x), -1 left-censored (value < x).
+    W : (B, n) array
+        Non-negative weights (bootstrap counts; 1 for the plain fit).
+
+    Returns
+    -------
+    mu, sigma : (B,) arrays
+        NaN where the maximum does not exist (fewer than two distinct exact values).
+    """
+    from scipy.special import log_ndtr
+
+    W = np.atleast_2d(np.asarray(W, dtype=float))
+    exact = codes == 0
+    right = codes == 1
+    left = codes == -1
+    # centre and scale for conditioning (the MLE is equivariant)
+    shift = float(np.median(x))
+    scale = float(np.std(x)) or 1.0
+    z = (x - shift) / scale
+    we = W * exact
+    ne = we.sum(axis=1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        m0 = (we * z).sum(axis=1) / ne
+        v0 = (we * (z - m0[:, None]) ** 2).sum(axis=1) / ne
+    ok = (ne >= 2) & (v0 > 1e-12)
+    B = W.shape[0]
+    mu, sigma = np.full(B, np.nan), np.full(B, np.nan)
+    if not ok.any():
+        return mu, sigma
+    Wk = W[ok]
+    # Olsen's parameters: g = mu/sigma, d = 1/sigma; start from the moments of the exact values
+    g = m0[ok] / np.sqrt(v0[ok])
+    d = 1.0 / np.sqrt(v0[ok])
+
+    def loglik(g, d):
+        u = d[:, None] * z[None, :] - g[:, None]
+        ll = np.where(exact, np.log(d)[:, None] - 0.5 * u * u, 0.0)
+        ll = ll + np.where(right, log_ndtr(-u), 0.0) + np.where(left, log_ndtr(u), 0.0)
+        return (Wk * ll).sum(axis=1)
+
+    def derivatives(g, d):
+        u = d[:, None] * z[None, :] - g[:, None]
+        log_phi = -0.5 * u * u - 0.5 * math.log(2.0 * math.pi)
+        lam = np.exp(log_phi - log_ndtr(-u))  # phi/Q: d/du of -log Q
+        kap = np.exp(log_phi - log_ndtr(u))  # phi/Phi: d/du of log Phi
+        # l_u and l_uu of each censored term
+        l_u = np.where(right, -lam, np.where(left, kap, 0.0))
+        l_uu = np.where(right, -lam * (lam - u), np.where(left, -kap * (kap + u), 0.0))
+        # exact: l = log d - u^2/2
+        gg = np.where(exact, u, -l_u)
+        gd = np.where(exact, 1.0 / d[:, None] - u * z[None, :], l_u * z[None, :])
+        hgg = np.where(exact, -1.0, l_uu)
+        hgd = np.where(exact, z[None, :], -l_uu * z[None, :])
+        hdd = np.where(exact, -1.0 / d[:, None] ** 2 - z[None, :] ** 2, l_uu * z[None, :] ** 2)
+        s = lambda a: (Wk * a).sum(axis=1)  # noqa: E731
+        return s(gg), s(gd), s(hgg), s(hgd), s(hdd)
+
+    ll = loglik(g, d)
+    active = np.ones(g.size, dtype=bool)
+    for _ in range(max_iter):
+        if not active.any():
+            break
+        Gg, Gd, Hgg, Hgd, Hdd = derivatives(g, d)
+        det = Hgg * Hdd - Hgd * Hgd
+        # Newton step of a concave function: -H^-1 grad (H negative definite)
+        sg = -(Hdd * Gg - Hgd * Gd) / det
+        sd = -(-Hgd * Gg + Hgg * Gd) / det
+        sg, sd = np.where(active, sg, 0.0), np.where(active, sd, 0.0)
+        t = np.ones_like(g)
+        for _ in range(60):  # backtracking: keep d > 0 and do not decrease the likelihood
+            gn, dn = g + t * sg, d + t * sd
+            good = dn > 0
+            lln = np.where(good, loglik(gn, np.where(good, dn, 1.0)), -np.inf)
+            bad = active & ~(lln >= ll - 1e-12 * np.abs(ll))
+            if not bad.any():
+                break
+            t = np.where(bad, 0.5 * t, t)
+        g, d, ll = np.where(active, gn, g), np.where(active, dn, d), np.where(active, lln, ll)
+        active &= (np.abs(t * sg) > tol * (1 + np.abs(g))) | (np.abs(t * sd) > tol * d)
+    mu[ok] = shift + scale * g / d
+    sigma[ok] = scale / d
+    return mu, sigma
+
+
+def fit_lognormal(values, censored=None) -> tuple[float, float]:
+    """Maximum-likelihood lognormal (median, beta) of capacities, some of them censored.
+
+    Parameters
+    ----------
+    values : sequence of float
+        Capacities (> 0); for a censored record, its bound.
+    censored : sequence, optional
+        Per value: ``""``/False (exact), ``"right"``/True (the capacity exceeds the value: the
+        record did not overturn the column up to the largest scale), ``"left"`` (it is below).
+
+    Returns
+    -------
+    (median, beta)
+        NaN when the maximum does not exist (fewer than two distinct exact values).
+
+    Examples
+    --------
+    >>> m, b = fit_lognormal([0.2, 0.3, 0.45])
+    >>> round(m, 4), round(b, 4)
+    (0.3, 0.3311)
+    """
+    x = np.asarray(values, dtype=float)
+    if x.ndim != 1 or not np.all(np.isfinite(x)) or np.any(x <= 0):
+        raise RockcliInputError("capacities must be positive finite numbers")
+    codes = _censor_codes(censored, x.size)
+    mu, sigma = _tobit_mle(np.log(x), codes, np.ones((1, x.size)))
+    return float(np.exp(mu[0])), float(sigma[0])
+
+
+def bootstrap_lognormal(values, censored=None, *, n_boot: int = DEFAULT_N_BOOT, seed: int = DEFAULT_SEED,
+                        indices: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Median and beta of ``n_boot`` resamples (with replacement) of the records; NaN where no fit exists.
+
+    ``indices`` (n_boot x n) gives the resamples (to pair several fits on the same records).
+    """
+    x = np.log(np.asarray(values, dtype=float))
+    codes = _censor_codes(censored, x.size)
+    if indices is None:
+        indices = np.random.default_rng(seed).integers(0, x.size, size=(n_boot, x.size))
+    W = np.zeros((indices.shape[0], x.size))
+    np.add.at(W, (np.repeat(np.arange(indices.shape[0]), indices.shape[1]), indices.ravel()), 1.0)
+    mu, sigma = _tobit_mle(x, codes, W)
+    return np.exp(mu), sigma
+
+
+def fragility_probability(im, median: float, beta: float):
+    """``Phi(ln(im / median) / beta)``: probability of overturning at intensity ``im``."""
+    from scipy.special import ndtr
+
+    im = np.asarray(im, dtype=float)
+    with np.errstate(divide="ignore"):
+        return ndtr(np.log(im / median) / beta)
+
+
+# --------------------------------------------------------------------------------------------------
+# the suite
+# --------------------------------------------------------------------------------------------------
+
+@dataclass
+class FragilityRow:
+    """One record for one column and configuration: its IM, overturning scale and capacity."""
+
+    column: str
+    R_m: float
+    alpha_deg: float
+    record: str
+    source: str
+    isolation: str
+    configuration: str
+    im_value: float = math.nan
+    overturn_scale: float = math.nan
+    overturn_scale_survives: float = math.nan
+    capacity: float = math.nan
+    censored: str = ""
+    margin_note: str = ""
+    error: str = ""
+
+
+@dataclass
+class FragilityCurve:
+    """The fitted fragility of one column in one configuration.
+
+    ``median`` is in the IM's units; the ``*_ci`` are (low, high) percentile intervals of the
+    bootstrap at the suite's level; ``boot_median``/``boot_beta`` hold the resamples (NaN where a
+    resample had no fit). ``ratio_to_rigid`` is this median over the median on a rigid foundation
+    (same column), with its paired-bootstrap interval; NaN on the rigid configuration itself.
+    """
+
+    column: str
+    configuration: Configuration
+    n_records: int
+    n_exact: int
+    n_right: int
+    n_left: int
+    median: float
+    beta: float
+    median_ci: tuple = (math.nan, math.nan)
+    beta_ci: tuple = (math.nan, math.nan)
+    boot_median: np.ndarray = field(default=None, repr=False)
+    boot_beta: np.ndarray = field(default=None, repr=False)
+    n_boot_ok: int = 0
+    ratio_to_rigid: float = math.nan
+    ratio_ci: tuple = (math.nan, math.nan)
+    note: str = ""
+
+
+@dataclass
+class Fragility:
+    """What :func:`run_fragility` returns."""
+
+    columns: list
+    configurations: list
+    excitations: list
+    im: IntensityMeasure
+    rows: list
+    curves: list
+    n_boot: int
+    seed: int
+    level: float
+    grid: tuple
+    unavailable: list = field(default_factory=list)
+    timings: dict = field(default_factory=dict)
+
+    def curve(self, column: str, configuration: str) -> FragilityCurve:
+        """The curve of a column (name) and configuration (header)."""
+        for c in self.curves:
+            if c.column == column and c.configuration.header == configuration:
+                return c
+        raise KeyError((column, configuration))
+
+    def rows_of(self, column: str, configuration: str) -> list:
+        return [r for r in self.rows if r.column == column and r.configuration == configuration]
+
+    @property
+    def failed(self) -> list:
+        """Excitations that could not be read or measured (their rows carry the error)."""
+        return [x for x in self.excitations if x.error]
+
+
+def count_fragility_runs(columns, excitations, configurations) -> int:
+    """Upper bound of the runs (for a progress bar): every grid factor plus the bisection of each scene."""
+    n = len(columns) * sum(x.motion is not None and not x.error for x in excitations) * len(configurations)
+    bisection = int(math.ceil(math.log2(math.log(MARGIN_GRID[1] / MARGIN_GRID[0]) / math.log1p(MARGIN_RTOL))))
+    return n * (MARGIN_GRID.size + bisection)
+
+
+def _measure(excitations, im: str) -> tuple[list, dict]:
+    """(excitations with the IM errors folded in, {label: IM value})."""
+    from dataclasses import replace
+
+    out, values = [], {}
+    for x in excitations:
+        if x.motion is None or x.error:
+            out.append(x)
+            continue
+        try:
+            v = intensity_measure(x.motion, im)
+        except RockcliInputError as exc:
+            out.append(replace(x, motion=None, error=f"{x.source}: {IMS[im].name} could not be measured: {exc}"))
+            continue
+        if not (math.isfinite(v) and v > 0):
+            out.append(replace(x, motion=None, error=f"{x.source}: {IMS[im].name} is {v:g}: nothing to scale"))
+            continue
+        values[x.label] = v
+        out.append(x)
+    return out, values
+
+
+def run_fragility(columns: Sequence[Block], excitations: Sequence[Excitation],
+                  configurations: Sequence[Configuration], *, im: str = "pga", n_boot: int = DEFAULT_N_BOOT,
+                  seed: int = DEFAULT_SEED, level: float = DEFAULT_LEVEL, unavailable: Sequence[Unavailable] = (),
+                  progress: Callable[[int], None] | None = None, runner: Callable | None = None,
+                  chunk_size: int | None = None, **solver) -> Fragility:
+    """Overturning capacities of every record and a lognormal fragility per column x configuration.
+
+    Parameters
+    ----------
+    columns, excitations, configurations
+        From :func:`rockcli.assess.parse_column_spec`, :func:`rockcli.assess.resolve_excitations`,
+        :func:`rockcli.assess.parse_configurations`. Excitations with an ``error`` give error rows.
+    im : {"pga", "pgv", "ap"}
+        Intensity measure (:data:`IMS`).
+    n_boot, seed, level
+        Bootstrap resamples over records, their seed, the two-sided level of the intervals.
+    progress : callable, optional
+        ``progress(n)`` after each batch of ``n`` runs (local runner only);
+        :func:`count_fragility_runs` is an upper bound of the total.
+    runner, chunk_size
+        Where the margin searches run: see :func:`rockcli.assess.margin.map_chunks` (default:
+        here, all scenes in one chunk).
+    **solver
+        Passed to :func:`rockcli.solve.simulate_many`.
+
+    Returns
+    -------
+    Fragility
+        Rows in the order column, excitation, configuration; curves in the order column,
+        configuration.
+    """
+    if im not in IMS:
+        raise RockcliInputError(f"intensity measure {im!r} is not one of {', '.join(IMS)}")
+    if not columns:
+        raise RockcliInputError("no column to assess: name a preset (bassae, nemea) or give a custom block")
+    if not configurations:
+        raise RockcliInputError("no isolation configuration to assess")
+    if int(n_boot) < 0 or not (0 < level < 1):
+        raise RockcliInputError("n_boot must be >= 0 and the confidence level between 0 and 1")
+    timings = {}
+    t0 = time.perf_counter()
+    excitations, im_values = _measure(list(excitations), im)
+    timings["im_s"] = time.perf_counter() - t0
+
+    rows, scenes, run_rows = [], [], []
+    for b in columns:
+        for x in excitations:
+            for c in configurations:
+                row = FragilityRow(b.name, b.R, b.alpha_deg, x.label, x.source, c.label, c.header,
+                                   im_values.get(x.label, math.nan), error=x.error)
+                rows.append(row)
+                if x.motion is not None and not x.error:
+                    scenes.append((b, c.foundation, x.motion))
+                    run_rows.append(row)
+    t0 = time.perf_counter()
+    kw = dict(solver)
+    if progress is not None and runner is None:
+        kw["progress"] = progress
+    found = overturn_scales_chunked(scenes, runner=runner, chunk_size=chunk_size, **kw)
+    timings["margin_s"] = time.perf_counter() - t0
+    lo_f, hi_f = float(MARGIN_GRID[0]), float(MARGIN_GRID[-1])
+    for row, (hi, lo, note) in zip(run_rows, found):
+        row.overturn_scale, row.overturn_scale_survives, row.margin_note = hi, lo, note
+        if note.startswith("error"):
+            row.error = note[len("error: "):]
+        elif note == NOTE_NO_OVERTURN.format(hi_f):
+            row.capacity, row.censored = hi_f * row.im_value, CENSORED_RIGHT
+        elif note == NOTE_OVERTURNS_AT_MIN.format(lo_f):
+            row.capacity, row.censored = lo_f * row.im_value, CENSORED_LEFT
+        else:
+            row.capacity = hi * row.im_value
+
+    t0 = time.perf_counter()
+    curves = _fit_curves(columns, configurations, excitations, rows, int(n_boot), int(seed), float(level))
+    timings["fit_s"] = time.perf_counter() - t0
+    return Fragility(list(columns), list(configurations), excitations, IMS[im], rows, curves, int(n_boot),
+                     int(seed), float(level), (lo_f, hi_f), list(unavailable), timings)
+
+
+def _fit_curves(columns, configurations, excitations, rows, n_boot, seed, level) -> list:
+    labels = [x.label for x in excitations if x.motion is not None and not x.error]
+    n = len(labels)
+    pos = {lab: k for k, lab in enumerate(labels)}
+    # one set of resamples for every column and configuration (paired)
+    idx = np.random.default_rng(seed).integers(0, n, size=(n_boot, n)) if n and n_boot else None
+    q = (100 * (1 - level) / 2, 100 * (1 + level) / 2)
+    by_key = {}
+    for r in rows:
+        by_key.setdefault((r.column, r.configuration), []).append(r)
+    curves = []
+    for b in columns:
+        rigid = None
+        for c in configurations:
+            group = [r for r in by_key.get((b.name, c.header), []) if not r.error and r.record in pos]
+            x = np.full(n, np.nan)
+            codes = np.zeros(n, dtype=np.int8)
+            for r in group:
+                x[pos[r.record]] = r.capacity
+                codes[pos[r.record]] = 1 if r.censored == CENSORED_RIGHT else (-1 if r.censored == CENSORED_LEFT else 0)
+            have = np.isfinite(x)
+            n_exact = int((have & (codes == 0)).sum())
+            curve = FragilityCurve(b.name, c, int(have.sum()), n_exact, int((have & (codes == 1)).sum()),
+                                   int((have & (codes == -1)).sum()), math.nan, math.nan)
+            if have.any():
+                logx = np.where(have, np.log(np.where(have, x, 1.0)), 0.0)
+                mu, sigma = _tobit_mle(logx, codes, have[None, :].astype(float))
+                curve.median, curve.beta = float(np.exp(mu[0])), float(sigma[0])
+            if not math.isfinite(curve.median):
+                curve.note = (f"no fit: {n_exact} record(s) with an exact capacity; at least two different "
+                              f"ones are needed")
+            elif idx is not None:
+                W = np.zeros((n_boot, n))
+                np.add.at(W, (np.repeat(np.arange(n_boot), n), idx.ravel()), 1.0)
+                W *= have[None, :]
+                mu_b, sig_b = _tobit_mle(logx, codes, W)
+                curve.boot_median, curve.boot_beta = np.exp(mu_b), sig_b
+                okb = np.isfinite(mu_b)
+                curve.n_boot_ok = int(okb.sum())
+                if curve.n_boot_ok >= 2:
+                    curve.median_ci = tuple(float(v) for v in np.percentile(curve.boot_median[okb], q))
+                    curve.beta_ci = tuple(float(v) for v in np.percentile(sig_b[okb], q))
+            if not c.isolated and rigid is None:
+                rigid = curve
+            curves.append(curve)
+        if rigid is not None and math.isfinite(rigid.median):
+            for curve in curves[-len(configurations):]:
+                if curve is rigid or not math.isfinite(curve.median):
+                    continue
+                curve.ratio_to_rigid = curve.median / rigid.median
+                if curve.boot_median is not None and rigid.boot_median is not None:
+                    ratio = curve.boot_median / rigid.boot_median
+                    ok = np.isfinite(ratio)
+                    if ok.sum() >= 2:
+                        curve.ratio_ci = tuple(float(v) for v in np.percentile(ratio[ok], q))
+    return curves
+
+
+def empirical_points(rows) -> list[tuple[float, float, str]]:
+    """Plotting positions of the records' capacities: (capacity, probability, censored).
+
+    Kaplan-Meier estimate of the distribution of capacities with right-censoring (a censored
+    record leaves the risk set at its bound); each exact capacity is placed at the midpoint of its
+    step (``(i - 0.5)/n`` without censoring). Left-censored capacities are placed as exact at their
+    bound. Censored records are returned at their bound with the estimate reached there.
+    """
+    pts = sorted(((r.capacity, r.censored) for r in rows if not r.error and math.isfinite(r.capacity)),
+                 key=lambda p: (p[0], p[1] == CENSORED_RIGHT))
+    n = len(pts)
+    out, S, at_risk = [], 1.0, n
+    for cap, cens in pts:
+        if cens == CENSORED_RIGHT:
+            out.append((cap, 1.0 - S, cens))
+        else:
+            S_new = S * (1.0 - 1.0 / at_risk)
+            out.append((cap, 1.0 - 0.5 * (S + S_new), cens))
+            S = S_new
+        at_risk -= 1
+    return out

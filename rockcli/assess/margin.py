@@ -1,0 +1,276 @@
+"""Margin search: the smallest scale factor of a record that overturns a column (``overturn_scale``).
+
+Overturning is not monotone in the amplitude of the excitation (there are safe islands above the
+smallest overturning amplitude), so a bisection alone could step over a lower overturning scale.
+:func:`find_overturn_scales` therefore
+
+1. scans the factors of :data:`MARGIN_GRID` (40 log-spaced values from 0.1 to 4, a ratio of about
+   1.1 between neighbours; 1 is one of them and can reuse a run already made), all scenes in one
+   batch, and takes the *first* (smallest) factor that overturns;
+2. bisects geometrically between that factor and the grid factor below it (which survives), all
+   scenes together at each iteration, until the two ends are within :data:`MARGIN_RTOL` (1 %).
+
+``overturn_scale`` is the upper end (it overturns), ``overturn_scale_survives`` the lower end (it
+survives). Overturning islands narrower than the grid step (10 %) can be missed; nothing
+overturning up to 4x gives NaN and the note ``no overturning up to 4x``. The scan is pruned
+without changing its result (see :func:`find_overturn_scales`, Notes).
+
+:func:`overturn_shares` is the neighbourhood check (share of 0.90x..1.10x that overturns), and
+:func:`map_chunks` the seam for running the search on chunks of scenes elsewhere (one local
+chunk by default; a distributed runner only has to map a function over a list).
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from typing import Callable, Sequence
+
+import numpy as np
+
+from rockcli.models import LinearIsolation, Rigid
+
+#: Scale factors scanned for the margin: 0.1 .. 1 (25 values) and 1 .. 4 (16 values), log-spaced.
+MARGIN_GRID = np.unique(np.concatenate([np.geomspace(0.1, 1.0, 25), np.geomspace(1.0, 4.0, 16)]))
+#: Relative width of the bracket at which the bisection stops.
+MARGIN_RTOL = 0.01
+
+NOTE_NO_OVERTURN = "no overturning up to {:g}x"
+NOTE_OVERTURNS_AT_MIN = "overturns already at {:g}x, the smallest factor scanned"
+
+
+def _scaled_job(block, foundation, motion, scale: float):
+    """A simulate_many job at ``scale`` times the motion (records scale in the kernel, pulses by a_p)."""
+    if hasattr(motion, "acc"):
+        return (block, foundation, motion, scale)
+    return (block, foundation, motion if scale == 1.0 else motion.scaled(scale))
+
+
+def _linear_before_uplift(foundation) -> bool:
+    """True when the motion before uplift is linear in the excitation (rigid, linear bearings).
+
+    Then "no uplift at scale s" implies "no uplift at any smaller scale", which prunes the scan.
+    """
+    return isinstance(foundation, (Rigid, LinearIsolation))
+
+
+def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL, known=None,
+                         progress: Callable[[int], None] | None = None, batch: int = 4, **solver):
+    """Smallest scale factor of the excitation that overturns each scene (see the module notes).
+
+    Parameters
+    ----------
+    scenes : sequence of (block, foundation, motion)
+        ``motion`` a Record or a pulse.
+    grid : array
+        Increasing scale factors scanned; 1 should be one of them.
+    rtol : float
+        Bisection stops when ``hi / lo - 1 <= rtol``.
+    known : sequence of Response or None, optional
+        Responses at scale 1 when already computed.
+    progress : callable, optional
+        ``progress(n)`` with the number of runs just done.
+    batch : int
+        Grid factors per scene per parallel batch of the scan.
+    **solver
+        Passed to :func:`rockcli.solve.simulate_many`.
+
+    Returns
+    -------
+    list of (overturn_scale, survives_scale, note)
+        ``overturn_scale`` overturns, ``survives_scale`` (< it, within rtol) survives; NaN and a
+        note when nothing up to ``grid[-1]`` overturns; ``(grid[0], NaN, note)`` when ``grid[0]``
+        already overturns; ``(NaN, NaN, "error: ...")`` when the solver refused the scene.
+
+    Notes
+    -----
+    The result is that of scanning every grid factor, then bisecting below the first overturning
+    one. The scan is pruned without changing it: factors are visited downwards from 1 until the
+    block no longer uplifts (for rigid and linear foundations the motion before uplift is linear
+    in the scale, so no smaller factor uplifts either; on a rigid base the record's PGA tells
+    this without a run), then, only for scenes that did not overturn at or below 1, upwards from
+    1 until the first overturning factor.
+    """
+    from rockcli.solve import VERDICT_ERROR, VERDICT_NO_UPLIFT, simulate_many
+
+    grid = np.asarray(grid, dtype=float)
+    n, m = len(scenes), grid.size
+    # state[i, j]: 0 not run, 1 survives, 2 overturns, 3 survives without uplift, 4 refused
+    state = np.zeros((n, m), dtype=np.int8)
+    ones = np.flatnonzero(np.isclose(grid, 1.0))
+    i1 = int(ones[0]) if ones.size else int(np.searchsorted(grid, 1.0))
+    errors = {}
+
+    def code(r):
+        if r.verdict == VERDICT_ERROR:
+            return 4
+        return 2 if r.overturned else (3 if r.verdict == VERDICT_NO_UPLIFT else 1)
+
+    def run(pairs):
+        if not pairs:
+            return
+        pairs = _balanced([(i, j) for i, j in pairs], [_cost(scenes[i][2]) for i, _ in pairs])
+        jobs = [_scaled_job(*scenes[i], float(grid[j])) for i, j in pairs]
+        res = simulate_many(jobs, early=True, **solver)  # verdicts only
+        for (i, j), r in zip(pairs, res):
+            state[i, j] = code(r)
+            if state[i, j] == 4:
+                errors.setdefault(i, r.error)
+        if progress is not None:
+            progress(len(pairs))
+
+    linear = [_linear_before_uplift(f) for _, f, _ in scenes]
+    for i, (b, f, mo) in enumerate(scenes):
+        if known is not None and ones.size:
+            state[i, i1] = code(known[i])
+            if state[i, i1] == 4:
+                errors[i] = known[i].error
+        if isinstance(f, Rigid):
+            state[i, grid * _peak(mo) < b.uplift_acceleration * (1 - 1e-9)] = 3
+    # downwards from 1 (or from the top of the grid below 1)
+    down = {i: list(range(min(i1, m - 1), -1, -1)) for i in range(n)}
+    while True:
+        pairs = []
+        for i, js in down.items():
+            taken = 0
+            while js and taken < batch:
+                j = js[0]
+                if state[i, j] == 3 and linear[i]:
+                    js.clear()
+                    break
+                js.pop(0)
+                if state[i, j] == 0:
+                    pairs.append((i, j))
+                    taken += 1
+        if not pairs:
+            break
+        run(pairs)
+    # upwards from 1 for the scenes that have not overturned at or below 1
+    up = {i: list(range(i1 + 1, m)) for i in range(n) if not (state[i, : i1 + 1] == 2).any()}
+    while up:
+        pairs = []
+        for i, js in up.items():
+            pairs += [(i, j) for j in js[:batch] if state[i, j] == 0]
+            del js[:batch]
+        run(pairs)
+        up = {i: js for i, js in up.items() if js and not (state[i] == 2).any()}
+
+    out = [None] * n
+    lo, hi, active = np.zeros(n), np.zeros(n), []
+    for i in range(n):
+        idx = np.flatnonzero(state[i] == 2)
+        if i in errors:
+            out[i] = (math.nan, math.nan, f"error: {errors[i]}")
+        elif idx.size == 0:
+            out[i] = (math.nan, grid[-1], NOTE_NO_OVERTURN.format(grid[-1]))
+        elif idx[0] == 0:
+            out[i] = (grid[0], math.nan, NOTE_OVERTURNS_AT_MIN.format(grid[0]))
+        else:
+            lo[i], hi[i] = grid[idx[0] - 1], grid[idx[0]]
+            active.append(i)
+    while active:
+        mids = {i: math.sqrt(lo[i] * hi[i]) for i in active}
+        res = simulate_many([_scaled_job(*scenes[i], mids[i]) for i in active], early=True, **solver)
+        for i, r in zip(active, res):
+            if r.verdict == VERDICT_ERROR:  # cannot happen for a scene that ran at the grid factors
+                out[i], hi[i], lo[i] = (math.nan, math.nan, f"error: {r.error}"), 1.0, 1.0
+            elif r.overturned:
+                hi[i] = mids[i]
+            else:
+                lo[i] = mids[i]
+        active = [i for i in active if hi[i] / lo[i] - 1.0 > rtol]
+    for i in range(n):
+        if out[i] is None:
+            out[i] = (float(hi[i]), float(lo[i]), "")
+    return out
+
+
+#: Scale factors of the neighbourhood check: 0.90, 0.91, ..., 1.10.
+NEIGHBOURHOOD = np.round(np.linspace(0.9, 1.1, 21), 10)
+
+
+def overturn_shares(scenes, *, factors=NEIGHBOURHOOD, progress=None, **solver) -> list[float]:
+    """Share of the scale factors ``factors`` (default 0.90..1.10 in steps of 0.01) that overturn each scene.
+
+    Near the overturning boundary the verdict can flip back and forth within a per cent of the
+    amplitude (the boundary is ragged, not a single threshold); this share says how robust the
+    verdict at scale 1 is: 0 or 1 robust, around 0.5 a coin toss within the uncertainty of any record.
+    """
+    from rockcli.solve import simulate_many
+
+    pairs = [(i, float(s)) for i in range(len(scenes)) for s in factors]
+    pairs = _balanced(pairs, [_cost(scenes[i][2]) for i, _ in pairs])
+    res = simulate_many([_scaled_job(*scenes[i], s) for i, s in pairs], progress=progress,
+                        chunk=max(1, len(pairs) // 50) if progress else None, early=True, **solver)
+    count = np.zeros(len(scenes))
+    for (i, _), r in zip(pairs, res):
+        count[i] += r.overturned
+    return list(count / len(factors))
+
+
+def _cost(motion) -> float:
+    """Rough cost of a run: the samples of a record (the solver steps at least once per sample)."""
+    return float(motion.acc.size) if hasattr(motion, "acc") else 100.0
+
+
+def _balanced(items, costs):
+    """Items reordered so that the halves of the list (numba's static split over 2+ threads) cost alike."""
+    order = sorted(range(len(items)), key=lambda k: -costs[k])
+    return [items[k] for k in order[0::2]] + [items[k] for k in order[1::2]]
+
+
+def _peak(motion) -> float:
+    if hasattr(motion, "acc"):
+        return float(np.max(np.abs(motion.acc)))
+    return abs(float(motion.a_p))
+
+
+def run_local(func: Callable, chunks: Sequence) -> list:
+    """The default runner of :func:`map_chunks`: ``[func(chunk) for chunk in chunks]`` in this process.
+
+    Each call uses every core of this machine (:func:`rockcli.solve.simulate_many`).
+    """
+    return [func(chunk) for chunk in chunks]
+
+
+def map_chunks(func: Callable, items: Sequence, *, chunk_size: int | None = None,
+               runner: Callable | None = None) -> list:
+    """``func`` applied to consecutive chunks of ``items`` by ``runner``; the results, flattened in order.
+
+    This is the seam for running a long margin search elsewhere: ``func`` takes a list of items
+    (e.g. scenes) and returns one result per item; ``runner(func, chunks)`` returns one result
+    list per chunk, in order. The default, :func:`run_local`, runs one chunk of everything here.
+    A distributed runner needs only to map a picklable function over a list, e.g. with Dask::
+
+        runner = lambda func, chunks: client.gather(client.map(func, chunks))
+
+    ``func`` must then be picklable (a module-level function or a :func:`functools.partial` of one;
+    no progress callback).
+    """
+    items = list(items)
+    if not items:
+        return []
+    size = len(items) if not chunk_size else max(1, int(chunk_size))
+    chunks = [items[k:k + size] for k in range(0, len(items), size)]
+    results = (runner or run_local)(func, chunks)
+    out = []
+    for chunk, res in zip(chunks, results):
+        res = list(res)
+        if len(res) != len(chunk):
+            raise RuntimeError(f"runner returned {len(res)} results for a chunk of {len(chunk)}")
+        out.extend(res)
+    return out
+
+
+def overturn_scales_chunked(scenes, *, chunk_size: int | None = None, runner: Callable | None = None,
+                            **kwargs) -> list:
+    """:func:`find_overturn_scales` over chunks of ``scenes`` through :func:`map_chunks` (same results).
+
+    Each scene's search depends on that scene only, so chunking changes nothing but where and in
+    which batches the runs happen. ``known`` (responses at 1x) is not taken: pass it to
+    :func:`find_overturn_scales` directly.
+    """
+    if "known" in kwargs:
+        raise TypeError("overturn_scales_chunked takes no 'known' responses")
+    return map_chunks(functools.partial(find_overturn_scales, **kwargs), scenes, chunk_size=chunk_size,
+                      runner=runner)

@@ -1,0 +1,352 @@
+"""The inputs of an assessment: columns, configurations (foundations) and excitations (records).
+
+A *scene* is one column standing on one configuration under one excitation; an assessment runs
+every combination. This module turns what the user wrote into those three lists:
+
+* :func:`parse_column_spec`: ``bassae``, ``nemea``, ``NAME:R=<m>,alpha=<deg>``, ``NAME:height=<m>,width=<m>``;
+* :func:`parse_configurations`: isolation specs (default: the paper's Table III set);
+* :func:`resolve_excitations`: catalogue ids, files and folders -> :class:`Excitation` objects; a
+  file that cannot be read is kept, with its ``error``, so that one bad file in a folder of
+  hundreds costs one row, not the run.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Sequence
+
+import numpy as np
+
+from rockcli.errors import RockcliInputError
+from rockcli.models import COLUMN_PRESETS, Block, Rigid, build_block, column, parse_isolation_spec
+from rockcli.units import G
+
+#: The paper's Table III configurations: rigid foundation and linear bearings with
+#: T_b = 2, 2.5, 3 s and xi_b = 0.1 (gamma = rockcli.models.DEFAULT_GAMMA = 0.01).
+DEFAULT_ISOLATION = ("none", "linear:Tb=2,xi=0.1", "linear:Tb=2.5,xi=0.1", "linear:Tb=3,xi=0.1")
+
+EXCITATION_RECORD = "record"
+EXCITATION_PULSE = "pulse"
+#: How records are turned into excitations: the file where found, else the catalogued pulse
+#: (``auto``); files only (``record``); catalogued pulses only (``pulse``).
+EXCITATION_MODES = ("auto", "record", "pulse")
+
+
+# --------------------------------------------------------------------------------------------------
+# columns
+# --------------------------------------------------------------------------------------------------
+
+_NUMBER = re.compile(r"\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*")
+
+
+def parse_column_spec(text: str) -> Block:
+    """A column from a preset name or a custom spec.
+
+    ``bassae``, ``nemea`` (presets, see :data:`rockcli.models.COLUMN_PRESETS`), or
+    ``NAME:R=<m>,alpha=<deg>`` or ``NAME:height=<m>,width=<m>`` (full height and base width).
+
+    Examples
+    --------
+    >>> parse_column_spec("statue:R=1.2,alpha=14").name
+    'statue'
+    """
+    raw = str(text).strip()
+    name, colon, rest = raw.partition(":")
+    name = name.strip()
+    if not colon:
+        return column(name)
+    if not name:
+        raise RockcliInputError(f"column {raw!r} needs a name before ':' (e.g. statue:R=1.2,alpha=14)")
+    values = {}
+    keys = {"r": "R", "alpha": "alpha", "height": "height", "width": "width"}
+    for item in filter(None, (s.strip() for s in rest.split(","))):
+        key, eq, val = item.partition("=")
+        k = key.strip().lower()
+        if not eq or k not in keys:
+            raise RockcliInputError(f"column {raw!r}: {item!r} is not one of R=<m>, alpha=<deg>, "
+                                    f"height=<m>, width=<m>")
+        if not _NUMBER.fullmatch(val):
+            raise RockcliInputError(f"column {raw!r}: {key.strip()} must be a number, got {val.strip()!r}")
+        values[keys[k]] = float(val)
+    return custom_column(name, **values)
+
+
+def custom_column(name: str, R=None, alpha=None, height=None, width=None, *, labels: dict | None = None) -> Block:
+    """A custom block from ``R`` [m] and ``alpha`` [deg], or from ``height`` and ``width`` [m].
+
+    ``labels`` names the quantities in error messages (see :func:`rockcli.models.build_block`;
+    the CLI passes its flags).
+    """
+    return build_block(R=R, alpha_deg=alpha, height=height, width=width, name=name, labels=labels,
+                       allow_preset=False, context="" if labels else f"column {name!r}")
+
+
+def column_title(block: Block) -> str:
+    """``Temple of Apollo at Bassae (bassae): R = 3.03 m, alpha = 10.56 deg, h/b = 5.36``."""
+    preset = COLUMN_PRESETS.get(block.name)
+    head = f"{preset[2]} ({block.name})" if preset else block.name
+    return (f"{head}: R = {block.R:.2f} m, alpha = {block.alpha_deg:.2f} deg, h/b = {block.h / block.b:.2f}, "
+            f"height {block.height:.2f} m, width {block.width:.2f} m")
+
+
+# --------------------------------------------------------------------------------------------------
+# configurations
+# --------------------------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Configuration:
+    """A foundation and how the user wrote it."""
+
+    spec: str
+    foundation: object
+    header: str
+
+    @property
+    def label(self) -> str:
+        return self.foundation.label
+
+    @property
+    def isolated(self) -> bool:
+        return not isinstance(self.foundation, Rigid)
+
+
+def _short_header(foundation, spec: str) -> str:
+    if isinstance(foundation, Rigid):
+        return "none"
+    T_b = getattr(foundation, "T_b", None)
+    return f"Tb={T_b:g}s" if T_b is not None else spec
+
+
+def parse_configurations(specs: Sequence[str] | None = None) -> list[Configuration]:
+    """Parse isolation specs (default :data:`DEFAULT_ISOLATION`) with column headers for the table.
+
+    Headers are short (``none``, ``Tb=2s``) when that is unambiguous, else the spec as written.
+    Any spec :func:`rockcli.models.parse_isolation_spec` accepts works.
+    """
+    specs = list(specs) if specs else list(DEFAULT_ISOLATION)
+    out, seen = [], set()
+    for s in specs:
+        f = parse_isolation_spec(s)
+        if f.label in seen:
+            continue  # the same foundation twice: run it once
+        seen.add(f.label)
+        out.append((s.strip(), f))
+    headers = [_short_header(f, s) for s, f in out]
+    if len(set(headers)) < len(headers):
+        headers = ["none" if isinstance(f, Rigid) else s for s, f in out]
+    return [Configuration(s, f, h) for (s, f), h in zip(out, headers)]
+
+
+# --------------------------------------------------------------------------------------------------
+# excitations
+# --------------------------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Excitation:
+    """One ground motion of the assessment.
+
+    Attributes
+    ----------
+    label : str
+        Catalogue id or file name (``folder/name`` when two folders hold files of the same name).
+    kind : str
+        ``record`` (the accelerogram) or ``pulse`` (the catalogued Ricker pulse that idealises it).
+    motion : Record or pulse or None
+        What the solver runs (None when it could not be read: see ``error``).
+    source : str
+        File path, or ``catalogue pulse <shape> a_p=.. g T_p=.. s``.
+    pga_g : float
+        Peak ground acceleration of the motion [g] (|a_p| for a pulse).
+    error : str
+        Why the motion could not be read (runs then get this error in their rows).
+    """
+
+    label: str
+    kind: str
+    motion: object
+    source: str
+    pga_g: float = math.nan
+    error: str = ""
+    a_p_g: float = math.nan
+    T_p_s: float = math.nan
+
+
+@dataclass(frozen=True)
+class Unavailable:
+    """A record asked for (or in the default set) that cannot be run: neither file nor pulse."""
+
+    label: str
+    reason: str
+
+
+def _pulse_excitation(entry) -> Excitation:
+    from rockcli.pulses import make_pulse
+
+    pulse = make_pulse(entry.pulse_shape, entry.a_p_g * G, entry.T_p_s)
+    source = f"catalogue pulse {entry.pulse_shape} a_p={entry.a_p_g:+.4f} g T_p={entry.T_p_s:.4f} s"
+    return Excitation(entry.id, EXCITATION_PULSE, pulse, source, abs(entry.a_p_g), "", entry.a_p_g, entry.T_p_s)
+
+
+def _read_excitation(label: str, path: Path, read_kwargs: dict) -> Excitation:
+    from rockcli.records import read_record
+
+    try:
+        rec = read_record(path, **read_kwargs)
+    except RockcliInputError as exc:
+        return Excitation(label, EXCITATION_RECORD, None, str(path), error=str(exc))
+    except Exception as exc:  # a file the reader chokes on: report it in its rows, keep the others
+        return Excitation(label, EXCITATION_RECORD, None, str(path), error=f"{path}: {type(exc).__name__}: {exc}")
+    if rec.npts < 2 or not np.all(np.isfinite(rec.acc)) or not rec.dt > 0:
+        return Excitation(label, EXCITATION_RECORD, None, str(path),
+                          error=f"{path}: not a usable record (needs >= 2 finite samples and dt > 0)")
+    return Excitation(label, EXCITATION_RECORD, rec, str(path), rec.pga_g)
+
+
+def _entry_read_kwargs(entry) -> dict:
+    return {"format": entry.format or None, "units": entry.units, "dt": entry.dt, "column": entry.column}
+
+
+def _has_pulse(entry) -> bool:
+    return bool(entry.pulse_shape) and entry.a_p_g is not None and entry.T_p_s is not None
+
+
+def _from_entry(entry, mode: str):
+    """Excitation (or Unavailable) for a catalogue entry."""
+    from rockcli.records.catalog import find_file, search_path
+
+    path = find_file(entry) if (entry.available and mode != "pulse") else None
+    if path is not None:
+        return _read_excitation(entry.id, path, _entry_read_kwargs(entry))
+    if mode != "record" and _has_pulse(entry):
+        return _pulse_excitation(entry)
+    if not entry.available:
+        why = "no public file is known"
+    elif mode == "pulse":
+        why = "it has no catalogued pulse"
+    else:
+        why = f"file {entry.file!r} not found in {', '.join(str(p) for p in search_path())}"
+    if mode == "auto" and not _has_pulse(entry):
+        why += " and it has no catalogued pulse"
+    return Unavailable(entry.id, why)
+
+
+def table_ii_entries() -> list:
+    """The catalogue rows of the paper's Table II (those with a published PGA), in catalogue order."""
+    from rockcli.records.catalog import load_catalog
+
+    return [e for e in load_catalog() if e.pga_published_g is not None]
+
+
+def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto", *, units: str | None = None,
+                        dt: float | None = None):
+    """Turn record sources into excitations.
+
+    Parameters
+    ----------
+    sources : sequence of str, optional
+        Catalogue ids, record files, or folders (every regular, non-hidden file in it, sorted;
+        not recursive). Default: the catalogue's Table II records.
+    mode : {"auto", "record", "pulse"}
+        For catalogue records: the file where found, else the catalogued pulse (``auto``); files
+        only (``record``); the catalogued pulses (``pulse``).
+    units, dt : optional
+        Units of the values and time step [s] of the files that do not state them (headerless
+        text, SAC, ...), passed to :func:`rockcli.records.read_record`: a file that states other
+        units or another time step gets the loader's error in its rows. Files the catalogue lists
+        are read as the catalogue says.
+
+    Returns
+    -------
+    excitations : list of Excitation
+        In the order given; a file that cannot be read is kept, with its ``error``. A file given
+        twice (e.g. by its folder and by name) is read once; two different files of the same
+        name in different folders are labelled ``folder/name``.
+    unavailable : list of Unavailable
+        Default-set records that can be run neither from a file nor as a pulse.
+
+    Raises
+    ------
+    RockcliInputError
+        A named source that is neither an existing file or folder nor a catalogue id, a named
+        catalogue record that cannot be run, an empty folder, an unknown ``mode``, bad
+        ``units``/``dt`` values.
+    """
+    from rockcli.records.catalog import load_catalog
+
+    if mode not in EXCITATION_MODES:
+        raise RockcliInputError(f"excitation mode {mode!r} is not one of {', '.join(EXCITATION_MODES)}")
+    file_kwargs = _file_read_kwargs(units, dt)
+    entries = load_catalog()
+    by_id = {e.id: e for e in entries}
+    by_file = {e.file: e for e in entries if e.file}
+    out, unavailable, seen = [], [], {}
+
+    def add(x, path=None):
+        key = str(Path(path).resolve()) if path is not None else x.label
+        if x.label in seen:
+            if seen[x.label] == key:
+                return  # the same file or id again
+            x = _relabel(x, f"{Path(path).parent.name}/{Path(path).name}" if path is not None else x.label)
+            if x.label in seen:
+                return
+        seen[x.label] = key
+        out.append(x)
+
+    if not sources:
+        for e in table_ii_entries():
+            x = _from_entry(e, mode)
+            (unavailable.append(x) if isinstance(x, Unavailable) else add(x))
+        return out, unavailable
+
+    for src in sources:
+        src = str(src)
+        path = Path(src).expanduser()
+        if path.is_dir():
+            files = sorted(p for p in path.iterdir() if p.is_file() and not p.name.startswith("."))
+            if not files:
+                raise RockcliInputError(f"--records {src}: the folder holds no files")
+            for p in files:
+                add(_file_excitation(p, by_file, file_kwargs), p)
+        elif path.is_file():
+            add(_file_excitation(path, by_file, file_kwargs), path)
+        elif src in by_id:
+            x = _from_entry(by_id[src], mode)
+            if isinstance(x, Unavailable):
+                raise RockcliInputError(f"record {src!r} cannot be run: {x.reason}")
+            add(x, Path(x.source) if x.kind == EXCITATION_RECORD else None)
+        else:
+            raise RockcliInputError(f"--records {src}: no such file or folder, nor a catalogue id "
+                                    f"(see 'rockcli records list')")
+    return out, unavailable
+
+
+def _relabel(x: Excitation, label: str) -> Excitation:
+    from dataclasses import replace
+
+    return replace(x, label=label)
+
+
+def _file_read_kwargs(units, dt) -> dict:
+    """``read_record`` keywords for files outside the catalogue (validated once, up front)."""
+    from rockcli.units import accel_factor
+
+    kwargs = {}
+    if units is not None:
+        accel_factor(units)  # an unknown units word is one error up front, not one per file
+        kwargs["units"] = str(units)
+    if dt is not None:
+        if not (isinstance(dt, (int, float)) and math.isfinite(dt) and dt > 0):
+            raise RockcliInputError(f"--dt {dt!r}: the time step must be a positive number of seconds")
+        kwargs["dt"] = float(dt)
+    return kwargs
+
+
+def _file_excitation(path: Path, by_file: dict, read_kwargs: dict | None = None) -> Excitation:
+    """A record file; one the catalogue lists is read as the catalogue says and labelled by its id."""
+    entry = by_file.get(path.name)
+    if entry is not None:
+        return _read_excitation(entry.id, path, _entry_read_kwargs(entry))
+    return _read_excitation(path.name, path, dict(read_kwargs or {}))

@@ -1,0 +1,222 @@
+"""``rockcli assess column``: the Table-III-like matrix of verdicts, with the margin of each scene.
+
+:func:`run_assessment` runs every scene column x excitation x configuration verdict-only through
+:func:`rockcli.solve.simulate_many` (all cores), optionally finds each scene's overturning scale
+(:mod:`rockcli.assess.margin`) and the neighbourhood share, and returns plain
+:class:`AssessmentRow` objects; :mod:`rockcli.report.tables` turns them into text and CSV.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass, field
+from typing import Sequence
+
+from rockcli.errors import RockcliInputError
+from rockcli.models import Block
+from rockcli.assess.margin import MARGIN_GRID, NEIGHBOURHOOD, _scaled_job, find_overturn_scales, overturn_shares
+from rockcli.assess.scenes import EXCITATION_PULSE, Configuration, Excitation, Unavailable
+
+
+# --------------------------------------------------------------------------------------------------
+# runs
+# --------------------------------------------------------------------------------------------------
+
+@dataclass
+class AssessmentRow:
+    """One scene: column x excitation x configuration (SI/g/deg as the names say)."""
+
+    column: str
+    R_m: float
+    alpha_deg: float
+    height_m: float
+    width_m: float
+    record: str
+    excitation: str
+    source: str
+    pga_g: float
+    a_p_g: float
+    T_p_s: float
+    isolation: str
+    configuration: str
+    Tb_s: float
+    xi: float
+    mu: float
+    gamma: float
+    verdict: str = ""
+    overturned: bool | None = None
+    theta_max_over_alpha: float = math.nan
+    t_overturn_s: float = math.nan
+    t_uplift_s: float = math.nan
+    n_impacts: int | None = None
+    base_disp_max_m: float = math.nan
+    overturn_scale: float = math.nan
+    overturn_scale_survives: float = math.nan
+    margin_note: str = ""
+    overturn_share_pm10: float = math.nan
+    error: str = ""
+
+
+#: CSV column order (every field of :class:`AssessmentRow`).
+ROW_FIELDS = tuple(AssessmentRow.__dataclass_fields__)
+
+
+@dataclass
+class Assessment:
+    """What :func:`run_assessment` returns: the inputs, the rows and what could not be run."""
+
+    columns: list
+    excitations: list
+    configurations: list
+    rows: list
+    unavailable: list = field(default_factory=list)
+    margin: bool = True
+    timings: dict = field(default_factory=dict)
+    neighbourhood: bool = False
+
+    def row(self, column: str, record: str, configuration: str) -> AssessmentRow:
+        """The row of one scene (by column name, record label, configuration header)."""
+        index = self.__dict__.get("_index")
+        if index is None or len(index) != len(self.rows):
+            index = self.__dict__["_index"] = {(r.column, r.record, r.configuration): r for r in self.rows}
+        return index[(column, record, configuration)]
+
+    @property
+    def idealised(self) -> list:
+        return [x.label for x in self.excitations if x.kind == EXCITATION_PULSE]
+
+    @property
+    def failed(self) -> list:
+        return [x for x in self.excitations if x.error]
+
+
+def _nan(v):
+    return math.nan if v is None else float(v)
+
+
+def _base_row(block: Block, x: Excitation, conf: Configuration) -> AssessmentRow:
+    f = conf.foundation
+    return AssessmentRow(
+        column=block.name, R_m=block.R, alpha_deg=block.alpha_deg, height_m=block.height, width_m=block.width,
+        record=x.label, excitation=x.kind, source=x.source, pga_g=x.pga_g, a_p_g=x.a_p_g, T_p_s=x.T_p_s,
+        isolation=conf.label, configuration=conf.header, Tb_s=_nan(getattr(f, "T_b", None)),
+        xi=_nan(getattr(f, "xi", None)), mu=_nan(getattr(f, "mu", None)), gamma=float(getattr(f, "gamma", 0.0)),
+        error=x.error)
+
+
+def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
+                   configurations: Sequence[Configuration], *, margin: bool = True, neighbourhood: bool = False,
+                   unavailable: Sequence[Unavailable] = (), progress=None, **solver) -> Assessment:
+    """Run every scene column x excitation x configuration (verdict only, all cores).
+
+    Parameters
+    ----------
+    columns, excitations, configurations
+        From :func:`parse_column_spec`, :func:`resolve_excitations`, :func:`parse_configurations`.
+    margin : bool
+        Also find ``overturn_scale`` for every scene (see the module notes).
+    neighbourhood : bool
+        Also run 0.90x..1.10x of every record and store the share that overturns
+        (``overturn_share_pm10``, see :func:`overturn_shares`).
+    progress : callable, optional
+        ``progress(n)`` after each chunk of ``n`` runs; :func:`count_runs` gives the total.
+    **solver
+        Passed to :func:`rockcli.solve.simulate_many` (``rtol``, ``tail``, ...).
+
+    Returns
+    -------
+    Assessment
+        Rows in the order column, excitation, configuration. Excitations that could not be read
+        give rows with ``error`` set and no results.
+    """
+    import time
+
+    if not columns:
+        raise RockcliInputError("no column to assess: name a preset (bassae, nemea) or give a custom block")
+    if not configurations:
+        raise RockcliInputError("no isolation configuration to assess")
+    timings = {}
+    rows, scenes, run_rows = [], [], []
+    for b in columns:
+        for x in excitations:
+            for c in configurations:
+                row = _base_row(b, x, c)
+                rows.append(row)
+                if x.motion is not None:
+                    scenes.append((b, c.foundation, x.motion))
+                    run_rows.append(row)
+    t0 = time.perf_counter()
+    chunk_progress = None
+    if progress is not None:
+        chunk_progress = _Advance(progress)
+    from rockcli.solve import VERDICT_ERROR, simulate_many
+
+    responses = simulate_many([_scaled_job(*s, 1.0) for s in scenes], progress=chunk_progress, **solver)
+    timings["runs_s"] = time.perf_counter() - t0
+    for row, r in zip(run_rows, responses):
+        if r.verdict == VERDICT_ERROR:  # the solver refused this scene; the others ran
+            row.error = r.error
+            continue
+        row.verdict = r.verdict
+        row.overturned = r.overturned
+        row.theta_max_over_alpha = r.theta_max_over_alpha
+        row.t_overturn_s = r.t_overturn_s
+        row.t_uplift_s = r.t_uplift_s
+        row.n_impacts = r.n_impacts
+        row.base_disp_max_m = r.base_disp_max_m
+    if margin:
+        t0 = time.perf_counter()
+        ok = [i for i, r in enumerate(responses) if r.verdict != VERDICT_ERROR]
+        found = find_overturn_scales([scenes[i] for i in ok], known=[responses[i] for i in ok],
+                                     progress=_Advance(progress) if progress else None, **solver)
+        for i, (hi, lo, note) in zip(ok, found):
+            run_rows[i].overturn_scale, run_rows[i].overturn_scale_survives, run_rows[i].margin_note = hi, lo, note
+        timings["margin_s"] = time.perf_counter() - t0
+    if neighbourhood:
+        t0 = time.perf_counter()
+        ok = [i for i, r in enumerate(responses) if r.verdict != VERDICT_ERROR]
+        shares = overturn_shares([scenes[i] for i in ok], progress=_Advance(progress) if progress else None, **solver)
+        for i, share in zip(ok, shares):
+            run_rows[i].overturn_share_pm10 = share
+        timings["neighbourhood_s"] = time.perf_counter() - t0
+    return Assessment(list(columns), list(excitations), list(configurations), rows, list(unavailable), margin,
+                      timings, neighbourhood)
+
+
+class _Advance:
+    """Adapts simulate_many's cumulative ``progress(n_done)`` to increments ``progress(n)``."""
+
+    def __init__(self, progress):
+        self.progress, self.done = progress, 0
+
+    def __call__(self, n_done):
+        self.progress(n_done - self.done)
+        self.done = n_done
+
+
+def count_runs(columns, excitations, configurations, margin: bool, neighbourhood: bool = False) -> int:
+    """Runs for the progress bar: the scenes, plus the margin grid (an upper bound) and the neighbourhood."""
+    n = len(columns) * sum(x.motion is not None for x in excitations) * len(configurations)
+    return n * (1 + (MARGIN_GRID.size - 1 if margin else 0) + (NEIGHBOURHOOD.size if neighbourhood else 0))
+
+
+def history_runs(assessment: Assessment, **solver):
+    """Full-history runs of every scene that ran, serially: yields (row, block, configuration, excitation, response)."""
+    from rockcli.solve import simulate
+
+    blocks = {b.name: b for b in assessment.columns}
+    confs = {c.header: c for c in assessment.configurations}
+    xs = {x.label: x for x in assessment.excitations}
+    for row in assessment.rows:
+        x = xs[row.record]
+        if x.motion is None or row.error:
+            continue
+        b, c = blocks[row.column], confs[row.configuration]
+        yield row, b, c, x, simulate(b, c.foundation, x.motion, history=True, **solver)
+
+
+def safe_name(*parts: str) -> str:
+    """A file-name stem from parts (``bassae_kobe-1995-takarazuka-000_Tb=2s`` -> safe characters only)."""
+    text = "_".join(str(p) for p in parts)
+    return re.sub(r"[^A-Za-z0-9.=+-]+", "_", text).strip("_")[:150] or "run"
