@@ -556,6 +556,15 @@ def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, ta
        cannot reach alpha before the ground stops (a first arrival at alpha needs ``E >= p^2``),
        and P2 holds from then on: it survives. ``theta_max`` is then only the peak so far
        (``O_PEAK_FINAL = 0``).
+    P5 (rigid foundation, ``early`` only, after the first uplift, ``|theta| >= alpha``). Beyond
+       alpha the potential is at least ``p^2 sin(alpha)`` (its value at pi/2), so with
+       ``Z^2 = E - p^2 sin(alpha)`` the same argument gives ``Z(t') <= Z(t) + p^2/(sqrt(2) g)
+       int_t^t' |ag|``. Coming back inside needs ``|theta| = alpha`` again, so ``E >= p^2``,
+       ``Z >= p sqrt(1 - sin(alpha))``; if the bound with the whole remaining impulse stays below
+       that, the block can never come back, and once the ground is still it falls (between alpha
+       and pi/2 the potential falls outward; below the barrier a block moving inward turns back).
+       With the ground already still, a block beyond alpha moving outward falls as well. The run
+       ends as overturned with ``t_overturn`` unknown (NaN).
 
     Parameters
     ----------
@@ -601,6 +610,8 @@ def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, ta
     cos_a = prm[P_COSA]
     c_imp = p2 / (math.sqrt(2.0) * prm[P_G])  # P4: dX/dt <= c_imp |ag|
     x_bar = math.sqrt(p2 * (1.0 - cos_a))  # P4: E < p^2  <=>  X < x_bar
+    sin_a = prm[P_SINA]
+    z_bar = math.sqrt(p2 * (1.0 - sin_a))  # P5: E < p^2  <=>  Z < z_bar
     peak_final = True
 
     W = np.zeros((N_W, 4))
@@ -684,16 +695,27 @@ def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, ta
                             th_max = pk
                             out[O_T_THETA_MAX] = np.nan
                         settled = True
-            elif early and not isolated and out[O_UPLIFTED] != 0.0:
-                xx = -1.0
+            if not settled and early and not isolated and out[O_UPLIFTED] != 0.0:
+                imp = c_imp * _impulse_left(ekind, jtab, epar, dt, t)
                 if phase == PHASE_STUCK:
-                    xx = 0.0
-                elif abs(W[W_Y, 0]) < alpha:
-                    En = 0.5 * W[W_Y, 1] ** 2 + p2 * math.cos(alpha - abs(W[W_Y, 0]))
-                    xx = math.sqrt(max(0.0, En - p2 * cos_a))
-                if xx >= 0.0 and xx + c_imp * _impulse_left(ekind, jtab, epar, dt, t) < x_bar:
-                    settled = True  # P4
-                    peak_final = False
+                    if imp < x_bar:
+                        settled = True  # P4
+                        peak_final = False
+                else:
+                    ath = abs(W[W_Y, 0])
+                    En = 0.5 * W[W_Y, 1] ** 2 + p2 * math.cos(alpha - ath)
+                    if ath < alpha:
+                        if math.sqrt(max(0.0, En - p2 * cos_a)) + imp < x_bar:
+                            settled = True  # P4
+                            peak_final = False
+                    elif (math.sqrt(max(0.0, En - p2 * sin_a)) + imp < z_bar
+                          or (imp == 0.0 and s * W[W_Y, 1] >= 0.0)):
+                        # P5: it falls; the time it lands is not computed
+                        status = STATUS_OVERTURNED
+                        th_max = halfpi
+                        peak_final = False
+                        out[O_T_SETTLED] = t
+                        break
             if settled:
                 out[O_T_SETTLED] = t
         if settled and (not want_history or t >= t_show_end):

@@ -27,8 +27,9 @@ Solver contract
   show the free motion. A run still unproven ``horizon`` seconds after the excitation ends there
   with ``settled = False`` and says so (e.g. an undamped base that keeps lifting the block).
   ``early=True`` (verdict-only sweeps) also stops during the excitation once survival is proven
-  by the energy the rest of the ground motion can still supply; its ``theta_max`` is then only a
-  lower bound (``peak_final = False``).
+  by the energy the rest of the ground motion can still supply, or overturning once the block,
+  past alpha, can no longer be brought back; its ``theta_max`` is then only a lower bound and
+  ``t_overturn_s`` may be NaN (``peak_final = False``).
 """
 
 from __future__ import annotations
@@ -366,7 +367,10 @@ def _response(out: np.ndarray, H, block: Block) -> Response:
     status = int(out[k.O_STATUS])
     if status == k.STATUS_OVERTURNED:
         verdict = VERDICT_OVERTURNED
-        message = f"overturned at t = {out[k.O_T_OVERTURN]:.3f} s"
+        if math.isnan(out[k.O_T_OVERTURN]):
+            message = f"overturns: proven at t = {out[k.O_T_SETTLED]:.3f} s (early stop; the time it lands is not computed)"
+        else:
+            message = f"overturned at t = {out[k.O_T_OVERTURN]:.3f} s"
     elif out[k.O_UPLIFTED]:
         verdict = VERDICT_ROCKED
         message = f"rocked and survived (peak |theta|/alpha = {out[k.O_THETA_MAX] / block.alpha:.3f})"

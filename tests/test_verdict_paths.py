@@ -99,6 +99,7 @@ def test_verdict_only_equals_full_history_on_5000_random_scenes():
     # the set covers all outcomes, and the early stop does stop early on some scenes
     assert min(verdicts.count(v) for v in ("no_uplift", "rocked", "overturned")) > 200
     assert sum(not r.peak_final for r in early) > 100
+    assert sum(r.overturned and math.isnan(r.t_overturn_s) for r in early) > 100  # P5 proofs
     assert all(r.settled for r in verdict_only)
 
 
