@@ -21,7 +21,10 @@ from rockcli.cli.options import block_from_options, block_options, record_kwargs
 @click.option("--scale", type=float, default=1.0, help="Multiply the record's acceleration by this factor.")
 @click.option("--flip", is_flag=True, help="Reverse the sign of the ground motion.")
 @click.option("--rtol", type=float, default=1e-8, help="Relative tolerance of the integrator.")
-@click.option("--tail", type=float, default=10.0, help="Free motion followed after the excitation [s].")
+@click.option("--tail", type=float, default=10.0,
+              help="Free motion shown after the excitation in --history/--plot [s]; never changes the verdict.")
+@click.option("--horizon", type=float, default=600.0,
+              help="Longest free motion followed after the excitation to prove the verdict [s].")
 @click.option("--json", "as_json", is_flag=True, help="Print the results as one JSON object.")
 @click.option("--history", "history_path", type=click.Path(dir_okay=False), default=None,
               help="Write the time history (t, ground acceleration, theta, theta_dot, u, u_dot) as CSV.")
@@ -29,7 +32,7 @@ from rockcli.cli.options import block_from_options, block_options, record_kwargs
               help="Draw ground acceleration, theta/alpha, theta_dot/p (and base displacement) to an image.")
 @user_errors
 def simulate(column_name, R, alpha, height, width, name, isolation, record_source, units, dt, fmt, column,
-             pulse, scale, flip, rtol, tail, as_json, history_path, plot_path):
+             pulse, scale, flip, rtol, tail, horizon, as_json, history_path, plot_path):
     """Rocking response of one block to one ground motion, on a rigid or an isolated base.
 
     \b
@@ -70,7 +73,8 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
 
     from rockcli.solve import simulate as run
 
-    res = run(block, foundation, excitation, rtol=rtol, tail=tail, history=bool(history_path or plot_path))
+    res = run(block, foundation, excitation, rtol=rtol, tail=tail, horizon=horizon,
+              history=bool(history_path or plot_path))
     if history_path:
         from rockcli.report.response import write_history_csv
 
@@ -107,8 +111,9 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     width_ = max(len(k) for k, _ in rows)
     for k, v in rows:
         click.echo(f"{k:<{width_}}  {v}")
-    if not res.settled and res.verdict == "rocked":
-        click.echo("note: the block was still rocking when the run ended; lengthen --tail to follow it")
+    if not res.settled:
+        click.echo(f"NOTE: the verdict is NOT PROVEN: at {res.t_end_s:.1f} s (the horizon) the base could still lift "
+                   "the block; lengthen --horizon to follow it")
     if res.status < 0:
         raise click.ClickException(res.message)
 
