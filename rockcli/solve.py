@@ -254,15 +254,16 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float = DE
     return _response(out, H if history else None, block)
 
 
-def _response(out: np.ndarray, H, block: Block) -> Response:
+def _response(out: np.ndarray, H, block) -> Response:
     k = _kernel()
+    alpha = block.alpha if isinstance(block, Block) else float(block)
     status = int(out[k.O_STATUS])
     if status == k.STATUS_OVERTURNED:
         verdict = VERDICT_OVERTURNED
         message = f"overturned at t = {out[k.O_T_OVERTURN]:.3f} s"
     elif out[k.O_UPLIFTED]:
         verdict = VERDICT_ROCKED
-        message = f"rocked and survived (peak |theta|/alpha = {out[k.O_THETA_MAX] / block.alpha:.3f})"
+        message = f"rocked and survived (peak |theta|/alpha = {out[k.O_THETA_MAX] / alpha:.3f})"
     else:
         verdict = VERDICT_NO_UPLIFT
         message = "never uplifted: the base acceleration stayed below g tan(alpha)"
@@ -278,7 +279,7 @@ def _response(out: np.ndarray, H, block: Block) -> Response:
         verdict=verdict, status=status, message=message,
         t_uplift_s=float(out[k.O_T_UPLIFT]), t_overturn_s=float(out[k.O_T_OVERTURN]),
         t_exceed_alpha_s=float(out[k.O_T_EXCEED]), theta_max=float(out[k.O_THETA_MAX]),
-        theta_max_over_alpha=float(out[k.O_THETA_MAX] / block.alpha), t_theta_max_s=float(out[k.O_T_THETA_MAX]),
+        theta_max_over_alpha=float(out[k.O_THETA_MAX] / alpha), t_theta_max_s=float(out[k.O_T_THETA_MAX]),
         n_impacts=int(out[k.O_N_IMPACTS]), n_impacts_total=int(out[k.O_N_IMPACTS_ALL]),
         n_uplifts=int(out[k.O_N_UPLIFTS]), n_rests=int(out[k.O_N_RESTS]),
         base_disp_max_m=float(out[k.O_U_MAX]), steps=int(out[k.O_STEPS]),
@@ -287,7 +288,7 @@ def _response(out: np.ndarray, H, block: Block) -> Response:
     )
 
 
-def simulate_many(jobs, *, rtol: float = DEFAULT_RTOL, tail: float = DEFAULT_TAIL,
+def simulate_many(jobs, *, rtol: float = DEFAULT_RTOL, tail=DEFAULT_TAIL,
                   rest_tol: float = DEFAULT_REST_TOL, max_steps: int = DEFAULT_MAX_STEPS,
                   progress=None, chunk: int | None = None) -> list[Response]:
     """Verdict-only :func:`simulate` of many scenes, run in parallel on all cores.
@@ -301,18 +302,71 @@ def simulate_many(jobs, *, rtol: float = DEFAULT_RTOL, tail: float = DEFAULT_TAI
         Called as ``progress(n_done)`` after each chunk of scenes.
     chunk : int, optional
         Scenes per parallel batch (default: all at once without ``progress``, else ~1/50 of them).
+    tail : float or sequence of float
+        Free-motion time after the excitation [s]: one value for all scenes or one per scene.
 
     Returns
     -------
     list of Response
         In the order of ``jobs``, identical to what :func:`simulate` returns without history.
     """
-    _validate_options(rtol, tail, rest_tol)
+    outs, alphas = _run_many(jobs, rtol=rtol, tail=tail, rest_tol=rest_tol, max_steps=max_steps,
+                             progress=progress, chunk=chunk)
+    return [_response(outs[i], None, alphas[i]) for i in range(len(alphas))]
+
+
+@dataclass(frozen=True)
+class Verdicts:
+    """Outcome of :func:`simulate_verdicts`: one array entry per scene, in the order of the jobs.
+
+    ``overturned``, ``uplifted``, ``settled`` (bool); ``theta_max_over_alpha`` (pi/2/alpha when
+    overturned); ``status`` (0 finished, 1 overturned, -1 step cap); ``nfev`` (right-hand sides).
+    """
+
+    overturned: np.ndarray
+    uplifted: np.ndarray
+    theta_max_over_alpha: np.ndarray
+    settled: np.ndarray
+    status: np.ndarray
+    nfev: np.ndarray
+
+    def __len__(self) -> int:
+        return int(self.overturned.size)
+
+
+def simulate_verdicts(jobs, *, rtol: float = DEFAULT_RTOL, tail=DEFAULT_TAIL, rest_tol: float = DEFAULT_REST_TOL,
+                      max_steps: int = DEFAULT_MAX_STEPS, progress=None, chunk: int | None = None) -> Verdicts:
+    """:func:`simulate_many` returning arrays (no :class:`Response` per scene): for large sweeps.
+
+    Same arguments and the same runs; ``Verdicts.overturned[i]`` is
+    ``simulate_many(jobs)[i].overturned`` and so on.
+    """
     k = _kernel()
+    outs, alphas = _run_many(jobs, rtol=rtol, tail=tail, rest_tol=rest_tol, max_steps=max_steps,
+                             progress=progress, chunk=chunk)
+    return Verdicts(
+        overturned=outs[:, k.O_STATUS] == k.STATUS_OVERTURNED, uplifted=outs[:, k.O_UPLIFTED] != 0.0,
+        theta_max_over_alpha=outs[:, k.O_THETA_MAX] / np.asarray(alphas, dtype=float).reshape(-1),
+        settled=outs[:, k.O_SETTLED] != 0.0, status=outs[:, k.O_STATUS].astype(np.int64),
+        nfev=outs[:, k.O_NRHS].astype(np.int64))
+
+
+def _run_many(jobs, *, rtol, tail, rest_tol, max_steps, progress, chunk):
+    """The kernel outputs of many scenes (``O_*`` rows) and each scene's block slenderness."""
     jobs = list(jobs)
+    tails_in = np.asarray(tail, dtype=float)
+    if tails_in.ndim == 0:
+        _validate_options(rtol, float(tails_in), rest_tol)
+    else:
+        if tails_in.shape != (len(jobs),):
+            raise RockcliInputError(f"tail must be one value or one per job ({len(jobs)}), got {tails_in.shape}")
+        if not np.all(np.isfinite(tails_in) & (tails_in >= 0)):
+            raise RockcliInputError("tail must be a non-negative time in s for every job")
+        _validate_options(rtol, 0.0, rest_tol)
+    k = _kernel()
     n = len(jobs)
     if n == 0:
-        return []
+        return np.zeros((0, k.N_OUT)), []
     fkinds = np.zeros(n, np.int64)
     ekinds = np.zeros(n, np.int64)
     prms = np.zeros((n, k.N_PRM))
@@ -323,8 +377,9 @@ def simulate_many(jobs, *, rtol: float = DEFAULT_RTOL, tail: float = DEFAULT_TAI
     acc_off = np.zeros(n, np.int64)
     acc_len = np.zeros(n, np.int64)
     pieces, where, total = [], {}, 0
-    blocks = []
+    alphas = []
     prepared = {}  # id(excitation) -> validated kernel arrays: a shared record is checked once
+    params = {}  # (block, foundation) -> kernel parameters: built once per distinct pair
     for i, job in enumerate(jobs):
         block, foundation, excitation = job[:3]
         scale = float(job[3]) if len(job) > 3 else 1.0
@@ -335,8 +390,14 @@ def simulate_many(jobs, *, rtol: float = DEFAULT_RTOL, tail: float = DEFAULT_TAI
             prepared[key] = _excitation_arrays(excitation)
         ekind, epar, acc, dt, t_begin, t_exc_end = prepared[key]
         epar = epar.copy()
-        fkind, prm = _parameters(block, foundation if foundation is not None else Rigid(), float(rtol),
-                                 float(rest_tol))
+        foundation = foundation if foundation is not None else Rigid()
+        try:
+            cached = params.get((block, foundation))
+        except TypeError:  # an unhashable foundation: built for each job
+            cached = _parameters(block, foundation, float(rtol), float(rest_tol))
+        if cached is None:
+            cached = params[(block, foundation)] = _parameters(block, foundation, float(rtol), float(rest_tol))
+        fkind, prm = cached
         if ekind == k.EXC_RECORD:
             epar[k.E_AP] = scale
             if key not in where:
@@ -348,9 +409,9 @@ def simulate_many(jobs, *, rtol: float = DEFAULT_RTOL, tail: float = DEFAULT_TAI
             raise RockcliInputError(f"job {i}: a scale factor applies to records only (scale the pulse's a_p)")
         fkinds[i], ekinds[i], prms[i], epars[i] = fkind, ekind, prm, epar
         dts[i], t_begins[i], t_exc_ends[i] = dt, t_begin, t_exc_end
-        blocks.append(block)
+        alphas.append(block.alpha)
     acc_all = np.concatenate(pieces) if pieces else np.zeros(2)
-    tails = np.full(n, float(tail))
+    tails = np.full(n, float(tails_in)) if tails_in.ndim == 0 else tails_in.copy()
     outs = np.zeros((n, k.N_OUT))
     if chunk is None:
         chunk = n if progress is None else max(1, n // 50)
@@ -361,4 +422,4 @@ def simulate_many(jobs, *, rtol: float = DEFAULT_RTOL, tail: float = DEFAULT_TAI
                          int(max_steps), outs[lo:hi])
         if progress is not None:
             progress(hi)
-    return [_response(outs[i], None, blocks[i]) for i in range(n)]
+    return outs, alphas
