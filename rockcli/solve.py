@@ -296,8 +296,8 @@ def simulate_many(jobs, *, rtol: float = DEFAULT_RTOL, tail=DEFAULT_TAIL,
     Parameters
     ----------
     jobs : sequence of (block, foundation, excitation) or (block, foundation, excitation, scale)
-        ``scale`` multiplies a record's acceleration (default 1; records only, pulses carry their
-        own a_p). Scenes that share a record object share its samples.
+        ``scale`` multiplies a record's acceleration or a pulse's ``a_p`` (default 1): the same run
+        as the scaled excitation. Scenes that share a record object share its samples.
     progress : callable, optional
         Called as ``progress(n_done)`` after each chunk of scenes.
     chunk : int, optional
@@ -405,8 +405,10 @@ def _run_many(jobs, *, rtol, tail, rest_tol, max_steps, progress, chunk):
                 pieces.append(acc)
                 total += acc.size
             acc_off[i], acc_len[i] = where[key], acc.size
-        elif scale != 1.0:
-            raise RockcliInputError(f"job {i}: a scale factor applies to records only (scale the pulse's a_p)")
+        elif scale != 1.0:  # a pulse: the kernel reads its amplitude from epar[E_AP]
+            if not math.isfinite(scale):
+                raise RockcliInputError(f"job {i}: the scale factor must be finite, got {scale!r}")
+            epar[k.E_AP] *= scale
         fkinds[i], ekinds[i], prms[i], epars[i] = fkind, ekind, prm, epar
         dts[i], t_begins[i], t_exc_ends[i] = dt, t_begin, t_exc_end
         alphas.append(block.alpha)
