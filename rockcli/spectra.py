@@ -714,8 +714,9 @@ def critical_sizes(pulses: Sequence[PulseChoice], alphas_deg: Sequence[float], i
 
     For every pulse (with ``T_p``), slenderness and isolation: the curves on ``wp_grid``, the last
     change from ``y_rigid <= y_iso`` to ``y_rigid > y_iso`` beyond which the rigid curve stays above
-    (no overturning up to ``ap_max`` counts as infinitely high), refined by bisection in ``x`` to
-    ``xtol`` (relative). Rows come in the order pulse, alpha, isolation.
+    (no overturning up to ``ap_max`` counts as infinitely high; where neither overturns, as "rigid
+    better": isolation brings nothing there), refined by bisection in ``x`` to ``xtol`` (relative).
+    Rows come in the order pulse, alpha, isolation.
     """
     for pc in pulses:
         if pc.T_p is None:
@@ -742,9 +743,12 @@ def critical_sizes(pulses: Sequence[PulseChoice], alphas_deg: Sequence[float], i
                        ap_max, step, tol) for a, sh, iso in fam_keys]
 
     def better_rigid(yr, yi):
+        # no overturning up to ap_max counts as infinitely high; when neither overturns, isolation
+        # brings nothing within the range explored: counted as "rigid better"
+        both = np.isnan(yr) & np.isnan(yi)
         yr = np.where(np.isnan(yr), np.inf, yr)
         yi = np.where(np.isnan(yi), np.inf, yi)
-        return yr > yi
+        return (yr > yi) | both
 
     # per (shape, alpha, isolation): bracket on the grid
     tasks = {}
@@ -760,7 +764,8 @@ def critical_sizes(pulses: Sequence[PulseChoice], alphas_deg: Sequence[float], i
                 changes = int(np.count_nonzero(b[1:] != b[:-1]))
                 if both_inf.any():
                     notes.append(f"{sh}, alpha = {a:g} deg, {iso.label}: neither overturns up to "
-                                 f"{ap_max:g} g tan(alpha) at {int(both_inf.sum())} grid values")
+                                 f"{ap_max:g} g tan(alpha) at omega_p/p >= {xs[both_inf][0]:.3g} "
+                                 f"({int(both_inf.sum())} grid values, counted as rigid better)")
                 if b.all():
                     tasks[key] = ("below", xs[0], xs[0])
                 elif not b[-1]:
