@@ -270,3 +270,30 @@ def test_cli_record_gives_shape_and_period(tmp_path, pulse_records):
                                   str(pulse_records / "anti.txt"), "--isolation", "none", "--wp-p", "2:3:2"])
     assert r.exit_code == 0, r.output
     assert "fitted to record" in r.output and "ricker-anti" in r.output and "T_p = 0.500 s" in r.output
+
+
+# ------------------------------------------------------------------------------------------
+# solve helpers the sweeps use
+# ------------------------------------------------------------------------------------------
+def test_simulate_verdicts_scaled_pulses_and_tails_per_job():
+    from rockcli.models import Block
+    from rockcli.solve import simulate_many, simulate_verdicts
+
+    b = Block.from_degrees(1.0, 14.0)
+    unit = make_pulse("ricker-anti", G * math.tan(b.alpha), 0.5)
+    lin = LinearIsolation(1.0, 0.05, 0.01)
+    ys = [0.8, 1.4, 2.2, 3.1, 4.5]
+    jobs = [(b, f, unit, y) for f in (Rigid(), lin) for y in ys]
+    tails = [3.0 + i for i in range(len(jobs))]
+    many = simulate_many(jobs, tail=tails)
+    v = simulate_verdicts(jobs, tail=tails)
+    for i, (bb, f, p, y) in enumerate(jobs):
+        single = simulate(bb, f, make_pulse("ricker-anti", y * unit.a_p, 0.5), tail=tails[i])
+        assert many[i].summary() == single.summary()  # the kernel scales a_p: the same run
+        assert v.overturned[i] == single.overturned and v.uplifted[i] == (single.verdict != "no_uplift")
+        assert v.theta_max_over_alpha[i] == single.theta_max_over_alpha and v.nfev[i] == single.nfev
+    assert v.overturned.any() and not v.overturned.all()
+    with pytest.raises(RockcliInputError):
+        simulate_verdicts(jobs, tail=[1.0, 2.0])
+    with pytest.raises(RockcliInputError):
+        simulate_verdicts(jobs, tail=[-1.0] * len(jobs))
