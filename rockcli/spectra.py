@@ -820,7 +820,7 @@ def critical_sizes(pulses: Sequence[PulseChoice], alphas_deg: Sequence[float], i
                     note = (f"isolation better up to omega_p/p = {x1:g}: crossing beyond the grid "
                             f"(R > {critical_R(pc.T_p, x1):.3g} m)")
                 rows.append(CriticalRow(pc.source, pc.shape, float(pc.T_p), float(a), float(iso.ratio),
-                                        float(iso.ratio * pc.T_p), float(xc), float(Rc), iso.label, note, float(yc)))
+                                        float(f"{iso.ratio * pc.T_p:.12g}"), float(xc), float(Rc), iso.label, note, float(yc)))
     return CriticalResult(rows=rows, curves=curves, notes=notes, runs=runs)
 
 

@@ -222,9 +222,9 @@ def plot_min_curves(curves, path, *, crossings=None, title: str | None = None, y
             ax = axes[alphas.index(a), shapes.index(sh)]
             k = 0
             top = 0.0
-            for c in curves:
-                if (c.alpha_deg, c.pulse.shape) != (a, sh):
-                    continue
+            mine = [c for c in curves if (c.alpha_deg, c.pulse.shape) == (a, sh)]
+            labels, common = _curve_labels([c.isolation for c in mine])
+            for c in mine:
                 y = np.asarray(c.ap_min, dtype=float)
                 if np.isfinite(y).any():
                     top = max(top, float(np.nanmax(y)))
@@ -232,13 +232,13 @@ def plot_min_curves(curves, path, *, crossings=None, title: str | None = None, y
                     ax.plot(c.wp_over_p, y, color="k", lw=2.6, label="rigid foundation", zorder=3)
                 else:
                     ax.plot(c.wp_over_p, y, ls=styles[k % len(styles)], lw=1.3, color=f"C{k % 10}",
-                            label=c.isolation.short_label)
+                            label=labels[c.isolation])
                     k += 1
                 T_p = c.pulse.T_p
             for (xc, yc, lab) in (crossings or {}).get((a, sh), []):
                 ax.plot([xc], [yc], "o", ms=5, mfc="none", mec="k")
                 ax.annotate(lab, (xc, yc), textcoords="offset points", xytext=(4, -10), fontsize=6)
-            ax.set_title(f"$\\alpha$ = {a:g}$\\degree$, {sh}", fontsize=9)
+            ax.set_title(f"$\\alpha$ = {a:g}$\\degree$, {sh}" + (f"\n{common}" if common else ""), fontsize=8)
             ax.set_xlabel(r"$\omega_p / p$", fontsize=8)
             ax.set_ylabel(r"minimum overturning $a_p / (g \tan\alpha)$", fontsize=8)
             ax.set_ylim(0.0, y_max if y_max is not None else max(2.0, 1.05 * top))
@@ -253,6 +253,29 @@ def plot_min_curves(curves, path, *, crossings=None, title: str | None = None, y
         return _save(fig, path, dpi)
     finally:
         plt.close(fig)
+
+
+def _curve_labels(isolations):
+    """Legend labels of isolated curves: the parameters that differ between them; the shared ones
+    are returned once (for the panel title)."""
+    isos = [iso for iso in isolations if not iso.rigid]
+    items = {}
+    for iso in isos:
+        kind, _, rest = iso.label.partition(":")
+        items[iso] = [("kind", kind)] + [tuple(kv.split("=", 1)) for kv in rest.split(",") if "=" in kv]
+    keys = list(dict.fromkeys(k for its in items.values() for k, _ in its))
+    varying = [k for k in keys if len({dict(its).get(k) for its in items.values()}) > 1]
+    names = {"TbTp": "$T_b/T_p$", "xi": r"$\xi$", "gamma": r"$\gamma$", "mu": r"$\mu$"}
+
+    def show(pairs):
+        return ", ".join(v if k == "kind" else f"{names.get(k, k)} = {v}" for k, v in pairs)
+
+    if len(isos) < 2:
+        return {iso: show(items[iso]) for iso in isos}, ""
+    labels = {iso: show([(k, v) for k, v in items[iso] if k in varying]) for iso in isos}
+    first = items[isos[0]]
+    common = show([(k, v) for k, v in first if k not in varying])
+    return labels, (f"isolation: {common}" if common else "")
 
 
 def format_min_table(curves, n_rows: int = 12) -> str:
