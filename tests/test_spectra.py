@@ -297,3 +297,18 @@ def test_simulate_verdicts_scaled_pulses_and_tails_per_job():
         simulate_verdicts(jobs, tail=[1.0, 2.0])
     with pytest.raises(RockcliInputError):
         simulate_verdicts(jobs, tail=[-1.0] * len(jobs))
+
+
+def test_help_and_the_sweeps_library_import_nothing_heavy():
+    import subprocess
+    import sys
+
+    code = ("import sys; from click.testing import CliRunner; from rockcli.cli import main\n"
+            "for args in (['spectrum', '--help'], ['spectrum', 'overturning', '--help'],\n"
+            "             ['spectrum', 'min-overturning', '--help'], ['spectrum', 'critical-size', '--help']):\n"
+            "    r = CliRunner().invoke(main, args); assert r.exit_code == 0, r.output\n"
+            "import rockcli.spectra\n"
+            "print(sorted(m for m in ('numba', 'pandas', 'matplotlib', 'obspy', 'scipy', 'dask', 'distributed')\n"
+            "             if m in sys.modules))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "[]"
