@@ -881,12 +881,8 @@ def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, ta
 
         if failed:
             # the block never left theta = 0: back to the stuck phase at the end of the step,
-            # keeping the total horizontal momentum (u_dot + gamma h theta_dot per unit mass); an
-            # uplift that did not take is not counted
-            out[O_N_UPLIFTS] -= 1
-            if out[O_N_UPLIFTS] == 0.0:
-                out[O_UPLIFTED] = 0.0
-                out[O_T_UPLIFT] = np.nan
+            # keeping the total horizontal momentum (u_dot + gamma h theta_dot per unit mass); the
+            # uplift still counts (the uplift condition held; the rotation is below resolution)
             t = t_new
             if isolated:
                 W[W_Y, 2] = W[W_YNEW, 2]

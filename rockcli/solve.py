@@ -362,8 +362,9 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float = DE
     return _response(out, H if history else None, block)
 
 
-def _response(out: np.ndarray, H, block: Block) -> Response:
+def _response(out: np.ndarray, H, block) -> Response:
     k = _kernel()
+    alpha = block.alpha if isinstance(block, Block) else float(block)
     status = int(out[k.O_STATUS])
     if status == k.STATUS_OVERTURNED:
         verdict = VERDICT_OVERTURNED
@@ -373,7 +374,7 @@ def _response(out: np.ndarray, H, block: Block) -> Response:
             message = f"overturned at t = {out[k.O_T_OVERTURN]:.3f} s"
     elif out[k.O_UPLIFTED]:
         verdict = VERDICT_ROCKED
-        message = f"rocked and survived (peak |theta|/alpha = {out[k.O_THETA_MAX] / block.alpha:.3f})"
+        message = f"rocked and survived (peak |theta|/alpha = {out[k.O_THETA_MAX] / alpha:.3f})"
     else:
         verdict = VERDICT_NO_UPLIFT
         message = "never uplifted: the base acceleration stayed below g tan(alpha)"
@@ -390,7 +391,7 @@ def _response(out: np.ndarray, H, block: Block) -> Response:
         verdict=verdict, status=status, message=message,
         t_uplift_s=float(out[k.O_T_UPLIFT]), t_overturn_s=float(out[k.O_T_OVERTURN]),
         t_exceed_alpha_s=float(out[k.O_T_EXCEED]), theta_max=float(out[k.O_THETA_MAX]),
-        theta_max_over_alpha=float(out[k.O_THETA_MAX] / block.alpha), t_theta_max_s=float(out[k.O_T_THETA_MAX]),
+        theta_max_over_alpha=float(out[k.O_THETA_MAX] / alpha), t_theta_max_s=float(out[k.O_T_THETA_MAX]),
         n_impacts=int(out[k.O_N_IMPACTS]), n_impacts_total=int(out[k.O_N_IMPACTS_ALL]),
         n_uplifts=int(out[k.O_N_UPLIFTS]), n_rests=int(out[k.O_N_RESTS]),
         base_disp_max_m=float(out[k.O_U_MAX]), steps=int(out[k.O_STEPS]),
@@ -401,39 +402,103 @@ def _response(out: np.ndarray, H, block: Block) -> Response:
     )
 
 
-def simulate_many(jobs, *, rtol: float = DEFAULT_RTOL, tail: float = DEFAULT_TAIL,
+def simulate_many(jobs, *, rtol: float = DEFAULT_RTOL, tail=DEFAULT_TAIL,
                   rest_tol: float = DEFAULT_REST_TOL, horizon: float = DEFAULT_HORIZON,
                   max_steps: int = DEFAULT_MAX_STEPS, early: bool = False,
-                  progress=None, chunk: int | None = None) -> list[Response]:
+                  progress=None, chunk: int | None = None) -> list:
     """Verdict-only :func:`simulate` of many scenes, run in parallel on all cores.
 
     Parameters
     ----------
     jobs : sequence of (block, foundation, excitation) or (block, foundation, excitation, scale)
-        ``scale`` multiplies a record's acceleration (default 1; records only, pulses carry their
-        own a_p). Scenes that share a record object share its samples.
+        ``scale`` multiplies a record's acceleration or a pulse's ``a_p`` (default 1): the same run
+        as the scaled excitation. Scenes that share a record object share its samples.
+    tail : float or sequence of float
+        Free motion a history run would show [s] (one value or one per scene); it never changes a
+        verdict-only run, which ends when its verdict is proven.
+    early : bool
+        Stop each run as soon as its verdict is proven, even during the excitation (the
+        verdicts are the same; ``theta_max`` is then only the peak so far, ``peak_final`` False).
     progress : callable, optional
         Called as ``progress(n_done)`` after each chunk of scenes.
     chunk : int, optional
         Scenes per parallel batch (default: all at once without ``progress``, else ~1/50 of them).
-    early : bool
-        Stop each run as soon as its verdict is proven, even during the excitation (the
-        verdicts are the same; ``theta_max`` is then only the peak so far, ``peak_final`` False).
 
     Returns
     -------
     list of Response or JobError
         In the order of ``jobs``, identical to what :func:`simulate` returns without history; a
-        job that :func:`simulate` would refuse (bad block, foundation or excitation, a scale
-        factor on a pulse) gets a :class:`JobError` with the reason and the others still run.
-        Invalid solver options (``rtol``, ``tail``, ``rest_tol``) concern every job and raise.
+        job that :func:`simulate` would refuse (bad block, foundation or excitation) gets a
+        :class:`JobError` with the reason and the others still run. Invalid solver options
+        (``rtol``, ``tail``, ``rest_tol``, ``horizon``) concern every job and raise.
     """
-    _validate_options(rtol, tail, rest_tol, horizon)
+    outs, alphas, failed = _run_many(jobs, rtol=rtol, tail=tail, rest_tol=rest_tol, horizon=horizon,
+                                     max_steps=max_steps, early=early, progress=progress, chunk=chunk)
+    done = iter(range(outs.shape[0]))
+    return [failed[i] if i in failed else _response(outs[next(done)], None, alphas[i]) for i in range(len(alphas))]
+
+
+@dataclass(frozen=True)
+class Verdicts:
+    """Outcome of :func:`simulate_verdicts`: one array entry per scene, in the order of the jobs.
+
+    ``overturned``, ``uplifted``, ``settled``, ``peak_final`` (bool); ``theta_max_over_alpha``
+    (pi/2/alpha when overturned; with early stops only the peak so far where ``peak_final`` is
+    False); ``status`` (0 finished, 1 overturned, -1 step cap); ``nfev`` (right-hand sides).
+    """
+
+    overturned: np.ndarray
+    uplifted: np.ndarray
+    theta_max_over_alpha: np.ndarray
+    settled: np.ndarray
+    status: np.ndarray
+    nfev: np.ndarray
+    peak_final: np.ndarray
+
+    def __len__(self) -> int:
+        return int(self.overturned.size)
+
+
+def simulate_verdicts(jobs, *, rtol: float = DEFAULT_RTOL, tail=DEFAULT_TAIL, rest_tol: float = DEFAULT_REST_TOL,
+                      horizon: float = DEFAULT_HORIZON, max_steps: int = DEFAULT_MAX_STEPS, early: bool = False,
+                      progress=None, chunk: int | None = None) -> Verdicts:
+    """:func:`simulate_many` returning arrays (no :class:`Response` per scene): for large sweeps.
+
+    Same arguments and the same runs; a job that fails validation raises here.
+    """
     k = _kernel()
+    outs, alphas, failed = _run_many(jobs, rtol=rtol, tail=tail, rest_tol=rest_tol, horizon=horizon,
+                                     max_steps=max_steps, early=early, progress=progress, chunk=chunk)
+    if failed:
+        i = min(failed)
+        raise RockcliInputError(f"job {i}: {failed[i].error}")
+    return Verdicts(
+        overturned=outs[:, k.O_STATUS] == k.STATUS_OVERTURNED, uplifted=outs[:, k.O_UPLIFTED] != 0.0,
+        theta_max_over_alpha=outs[:, k.O_THETA_MAX] / np.asarray(alphas, dtype=float).reshape(-1),
+        settled=outs[:, k.O_SETTLED] != 0.0, status=outs[:, k.O_STATUS].astype(np.int64),
+        nfev=outs[:, k.O_NRHS].astype(np.int64), peak_final=outs[:, k.O_PEAK_FINAL] != 0.0)
+
+
+def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress, chunk):
+    """Kernel outputs (``O_*`` rows) of the valid jobs, each job's slenderness, and the failed jobs.
+
+    Returns ``(outs, alphas, failed)``: ``outs`` has one row per valid job in job order,
+    ``alphas`` one entry per job (NaN for a failed one), ``failed`` maps job index -> JobError.
+    """
     jobs = list(jobs)
+    tails_in = np.asarray(tail, dtype=float)
+    if tails_in.ndim == 0:
+        _validate_options(rtol, float(tails_in), rest_tol, horizon)
+    else:
+        if tails_in.shape != (len(jobs),):
+            raise RockcliInputError(f"tail must be one value or one per job ({len(jobs)}), got {tails_in.shape}")
+        if not np.all(np.isfinite(tails_in) & (tails_in >= 0)):
+            raise RockcliInputError("tail must be a non-negative time in s for every job")
+        _validate_options(rtol, 0.0, rest_tol, horizon)
+    k = _kernel()
     n = len(jobs)
     if n == 0:
-        return []
+        return np.zeros((0, k.N_OUT)), [], {}
     fkinds = np.zeros(n, np.int64)
     ekinds = np.zeros(n, np.int64)
     prms = np.zeros((n, k.N_PRM))
@@ -444,8 +509,9 @@ def simulate_many(jobs, *, rtol: float = DEFAULT_RTOL, tail: float = DEFAULT_TAI
     acc_off = np.zeros(n, np.int64)
     acc_len = np.zeros(n, np.int64)
     pieces, jpieces, where, total = [], [], {}, 0
-    blocks = []
+    alphas = []
     prepared = {}  # id(excitation) -> validated kernel arrays (or the error): a shared record is checked once
+    params = {}  # (block, foundation) -> kernel parameters: built once per distinct pair
     failed = {}  # job index -> JobError; those jobs are not run
     for i, job in enumerate(jobs):
         try:
@@ -453,8 +519,11 @@ def simulate_many(jobs, *, rtol: float = DEFAULT_RTOL, tail: float = DEFAULT_TAI
             scale = float(job[3]) if len(job) > 3 else 1.0
             if not isinstance(block, Block):
                 raise RockcliInputError(f"job {i}: block must be a rockcli.models.Block")
-            if foundation is not None and not hasattr(foundation, "gamma"):
+            foundation = foundation if foundation is not None else Rigid()
+            if not hasattr(foundation, "gamma"):
                 raise RockcliInputError(f"job {i}: unknown foundation {foundation!r}")
+            if not math.isfinite(scale):
+                raise RockcliInputError(f"job {i}: the scale factor must be finite, got {scale!r}")
             key = id(excitation)
             if key not in prepared:
                 try:
@@ -465,16 +534,21 @@ def simulate_many(jobs, *, rtol: float = DEFAULT_RTOL, tail: float = DEFAULT_TAI
                 raise prepared[key]
             ekind, epar, acc, jtab, dt, t_begin, t_exc_end = prepared[key]
             epar = epar.copy()
-            fkind, prm = _parameters(block, foundation if foundation is not None else Rigid(), float(rtol),
-                                     float(rest_tol))
-            if ekind != k.EXC_RECORD and scale != 1.0:
-                raise RockcliInputError(f"job {i}: a scale factor applies to records only (scale the pulse's a_p)")
+            try:
+                cached = params.get((block, foundation))
+            except TypeError:  # an unhashable foundation: built for each job
+                cached = _parameters(block, foundation, float(rtol), float(rest_tol))
+            if cached is None:
+                cached = params[(block, foundation)] = _parameters(block, foundation, float(rtol), float(rest_tol))
+            fkind, prm = cached
         except (RockcliInputError, TypeError, ValueError) as exc:
             failed[i] = JobError(str(exc))
-            blocks.append(None)
+            alphas.append(math.nan)
             continue
         if ekind == k.EXC_RECORD:
             epar[k.E_AP] = scale
+        else:  # a pulse: the kernel reads its amplitude from epar[E_AP]
+            epar[k.E_AP] *= scale
         akey = id(acc)  # a record's samples, or the table shared by all pulses of one shape
         if akey not in where:
             where[akey] = total
@@ -484,29 +558,26 @@ def simulate_many(jobs, *, rtol: float = DEFAULT_RTOL, tail: float = DEFAULT_TAI
         acc_off[i], acc_len[i] = where[akey], acc.size
         fkinds[i], ekinds[i], prms[i], epars[i] = fkind, ekind, prm, epar
         dts[i], t_begins[i], t_exc_ends[i] = dt, t_begin, t_exc_end
-        blocks.append(block)
+        alphas.append(block.alpha)
+    tails = np.full(n, float(tails_in)) if tails_in.ndim == 0 else tails_in.copy()
     if failed:
-        # run the valid jobs only (the kernel never sees a job that failed validation)
         ok = np.array([i for i in range(n) if i not in failed], dtype=np.int64)
         fkinds, ekinds, prms, epars = fkinds[ok], ekinds[ok], prms[ok], epars[ok]
         dts, t_begins, t_exc_ends, acc_off, acc_len = dts[ok], t_begins[ok], t_exc_ends[ok], acc_off[ok], acc_len[ok]
-        n_all, n = n, ok.size
+        tails = tails[ok]
+    m = fkinds.size
     acc_all = np.concatenate(pieces) if pieces else np.zeros(2)
     jtab_all = np.concatenate(jpieces) if jpieces else np.zeros(2)
-    tails = np.full(n, float(tail))
-    outs = np.zeros((n, k.N_OUT))
+    outs = np.zeros((m, k.N_OUT))
     if chunk is None:
-        chunk = max(n, 1) if progress is None else max(1, n // 50)
-    for lo in range(0, n, chunk):
-        hi = min(n, lo + chunk)
+        chunk = max(m, 1) if progress is None else max(1, m // 50)
+    for lo in range(0, m, chunk):
+        hi = min(m, lo + chunk)
         k.simulate_batch(fkinds[lo:hi], prms[lo:hi], ekinds[lo:hi], epars[lo:hi], acc_all, jtab_all,
                          acc_off[lo:hi], acc_len[lo:hi], dts[lo:hi], t_begins[lo:hi], t_exc_ends[lo:hi],
                          tails[lo:hi], float(horizon), int(max_steps), bool(early), outs[lo:hi])
         if progress is not None:
-            progress(hi)
-    if not failed:
-        return [_response(outs[i], None, blocks[i]) for i in range(n)]
-    if progress is not None:
-        progress(n_all)
-    done = iter(range(n))
-    return [failed[i] if i in failed else _response(outs[next(done)], None, blocks[i]) for i in range(n_all)]
+            progress(n if hi == m else hi)
+    if progress is not None and m == 0:
+        progress(n)
+    return outs, alphas, failed

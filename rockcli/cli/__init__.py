@@ -18,6 +18,7 @@ _COMMANDS = {
     "simulate": "rockcli.cli.simulate:simulate",
     "fit-pulse": "rockcli.cli.fit_pulse:fit_pulse",
     "assess": "rockcli.cli.assess:assess",
+    "spectrum": "rockcli.cli.spectrum:spectrum",
 }
 
 

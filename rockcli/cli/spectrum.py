@@ -1,0 +1,353 @@
+"""``rockcli spectrum``: overturning maps, minimum overturning acceleration, critical block size."""
+
+from __future__ import annotations
+
+import sys
+
+import click
+
+from rockcli.cli.errors import InputError, user_errors
+from rockcli.cli.options import record_kwargs, record_options
+
+_SHAPES = "ricker-sym|ricker-anti|sine|cosine"
+
+
+@click.group(name="spectrum")
+def spectrum():
+    """Overturning spectra over omega_p/p and a_p/(g tan alpha) (the paper's Figures 6-9, 11, Table I).
+
+    Every cell is a pulse of amplitude a_p and period T_p = 2 pi/omega_p on a block of slenderness
+    alpha; the result does not depend on the block size when T_b/T_p is kept fixed, so isolation
+    is given as KIND:TbTp=<T_b/T_p>,... (e.g. linear:TbTp=2,xi=0.05,gamma=0.01).
+    """
+
+
+def _scene_options(isolation_help: str, isolation_default, multiple_isolation: bool = True):
+    def decorate(f):
+        options = [
+            click.option("--alpha", "alpha", required=True, metavar="DEG[,DEG...]",
+                         help="Block slenderness atan(b/h) [degrees]; a comma list gives one row of panels each."),
+            click.option("--pulse", "pulses", multiple=True, metavar="SHAPE[:Tp=S]",
+                         help=f"Pulse shape ({_SHAPES}), repeatable; an optional period Tp [s] adds a block-size "
+                              "axis. Default ricker-sym."),
+            click.option("--record", "records", multiple=True, metavar="ID|FILE",
+                         help="Take the pulse shape and T_p from the pulse fitted to this record (catalogue id or "
+                              "file; rockcli fit-pulse), repeatable."),
+            click.option("--isolation", "isolations", multiple=multiple_isolation, default=isolation_default,
+                         metavar="SPEC", help=isolation_help),
+            click.option("--csv", "csv_path", type=click.Path(dir_okay=False), default=None,
+                         help="Write the result as CSV."),
+            click.option("--plot", "plot_path", type=click.Path(dir_okay=False), default=None,
+                         help="Draw the figure (.png, .pdf, .svg)."),
+            click.option("--scheduler", default=None, metavar="tcp://HOST:PORT|local",
+                         help="Run the cells in chunks on a Dask cluster (pip install -e \".[dask]\"): an "
+                              "existing scheduler, or 'local' for a LocalCluster on this machine."),
+        ]
+        f = record_options(f, column_flag="--record-column")
+        for option in reversed(options):
+            f = option(f)
+        return f
+
+    return decorate
+
+
+def _check_outputs(csv_path, plot_path):
+    from pathlib import Path
+
+    for path, opt in ((csv_path, "--csv"), (plot_path, "--plot")):
+        if path is None:
+            continue
+        folder = Path(path).resolve().parent
+        if not folder.is_dir():
+            raise InputError(f"{opt} {path}: folder {folder} does not exist")
+        if Path(path).is_dir():
+            raise InputError(f"{opt} {path}: is a folder")
+    if plot_path is not None and not Path(plot_path).suffix:
+        raise InputError(f"--plot {plot_path}: give the file a suffix such as .png or .pdf")
+
+
+def _pulses(pulses, records, units, dt, fmt, column, default=("ricker-sym",)):
+    """PulseChoices from --pulse and --record (notes printed for fitted records)."""
+    from rockcli.spectra import parse_pulse_choice, pulse_from_record
+
+    if any(v is not None for v in (units, dt, fmt, column)) and not records:
+        raise InputError("--units, --dt, --format and --record-column apply to --record")
+    out = [parse_pulse_choice(p) for p in pulses]
+    if records:
+        from rockcli.records import read_record
+
+        for src in records:
+            out.append(pulse_from_record(read_record(src, **record_kwargs(units, dt, fmt, column))))
+    if not out:
+        out = [parse_pulse_choice(p) for p in default]
+    return out
+
+
+def _progress(total, label):
+    """(context manager, update) for a progress bar on stderr, only on a terminal."""
+    import contextlib
+
+    if not sys.stderr.isatty() or total <= 0:
+        return contextlib.nullcontext(), None
+    bar = click.progressbar(length=total, label=label, file=sys.stderr)
+    return bar, bar.update
+
+
+def _runner(scheduler):
+    from rockcli.spectra import Runner
+
+    if scheduler is not None:
+        from rockcli.distributed import check_scheduler
+
+        check_scheduler(scheduler)
+    return Runner(scheduler)
+
+
+def _echo_notes(pcs):
+    for pc in pcs:
+        if pc.note:
+            click.echo(pc.note)
+
+
+@spectrum.command(name="overturning")
+@_scene_options("Foundation: none, or KIND:TbTp=<T_b/T_p>,... e.g. linear:TbTp=2,xi=0.05,gamma=0.01 "
+                "(repeatable: one panel each). Default none.", ("none",))
+@click.option("--wp-p", "wp_p", default="0.5:12:200", show_default=True, metavar="START:STOP:COUNT",
+              help="omega_p/p grid, both ends included.")
+@click.option("--ap", "ap", default="0:10:200", show_default=True, metavar="START:STOP:COUNT",
+              help="a_p/(g tan alpha) grid, both ends included.")
+@user_errors
+def overturning(alpha, pulses, records, isolations, csv_path, plot_path, scheduler, units, dt, fmt, column, wp_p, ap):
+    """Overturning map over omega_p/p x a_p/(g tan alpha), like the paper's Figures 6 and 9.
+
+    Light grey: the block rocks and survives; dark grey: it overturns; white: it never uplifts.
+    The CSV has one row per cell (alpha_deg, pulse, isolation, T_p_s, R_m, wp_over_p,
+    ap_over_g_tan_alpha, ap_g, overturned, theta_max_over_alpha, uplift).
+
+    \b
+    Examples:
+      rockcli spectrum overturning --alpha 10 --plot fig6.png
+      rockcli spectrum overturning --alpha 10,20 --isolation none --isolation linear:TbTp=2,xi=0.05,gamma=0.01 \\
+          --isolation linear:TbTp=3,xi=0.05,gamma=0.01 --wp-p 0.5:12:120 --ap 0:10:120 --plot fig6.png
+    """
+    import time
+
+    from rockcli.spectra import overturning_maps, parse_grid, parse_isolation, parse_list
+
+    alphas = parse_list(alpha, "--alpha", lo=0, hi=90, lo_open=True, hi_open=True)
+    wp_grid = parse_grid(wp_p, "--wp-p", positive=True)
+    ap_grid = parse_grid(ap, "--ap")
+    isos = [parse_isolation(s) for s in isolations]
+    _check_outputs(csv_path, plot_path)
+    runner = _runner(scheduler)
+    pcs = _pulses(pulses, records, units, dt, fmt, column)
+    n = len(alphas) * len(pcs) * len(isos) * wp_grid.count * ap_grid.count
+    t0 = time.perf_counter()
+    bar, update = _progress(n, "cells")
+    with runner, bar:
+        maps = overturning_maps(alphas, pcs, isos, wp_grid, ap_grid, runner=runner, progress=update)
+    elapsed = time.perf_counter() - t0
+    _echo_notes(pcs)
+    for m in maps:
+        cells = m.overturned.size
+        unsettled = int((~m.settled & ~m.overturned).sum())
+        click.echo(f"alpha = {m.alpha_deg:g} deg, {m.pulse.label}, {m.isolation.label}: "
+                   f"{int(m.overturned.sum())} of {cells} cells overturn, {int((~m.uplifted).sum())} never uplift"
+                   + (f", {unsettled} still moving at the end of the run" if unsettled else ""))
+    click.echo(f"{n} cells (omega_p/p {wp_grid}, a_p/(g tan alpha) {ap_grid}) in {elapsed:.2f} s")
+    if csv_path:
+        from rockcli.report.spectra import write_map_csv
+
+        write_map_csv(maps, csv_path)
+        click.echo(f"wrote {csv_path} ({n} rows)")
+    if plot_path:
+        from rockcli.report.spectra import plot_maps
+
+        plot_maps(maps, plot_path, n_cols=len(pcs) * len(isos))
+        click.echo(f"wrote {plot_path}")
+
+
+@spectrum.command(name="min-overturning")
+@_scene_options("Foundation (repeatable, one curve each): none, or KIND:TbTp=<T_b/T_p>,... "
+                "Default: none and linear TbTp = 2, 3, 4 with xi = 0.05, gamma = 0.01 (Figure 7).",
+                ("none", "linear:TbTp=2,xi=0.05,gamma=0.01", "linear:TbTp=3,xi=0.05,gamma=0.01",
+                 "linear:TbTp=4,xi=0.05,gamma=0.01"))
+@click.option("--gamma", "gammas", default=None, metavar="G[,G...]",
+              help="Mass ratios m/(m + m_b): each isolated --isolation is run once per value (Figure 8).")
+@click.option("--wp-p", "wp_p", default="0.5:12:93", show_default=True, metavar="START:STOP:COUNT",
+              help="omega_p/p values, both ends included.")
+@click.option("--ap-max", type=float, default=20.0, show_default=True,
+              help="Largest a_p/(g tan alpha) tried; above it the curve is left empty.")
+@click.option("--step", type=float, default=0.01, show_default=True,
+              help="Relative step of the scan up from the uplift threshold (overturning windows narrower "
+                   "than this can be missed).")
+@click.option("--tol", type=float, default=0.001, show_default=True,
+              help="Relative resolution of the bisection after the scan.")
+@user_errors
+def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, scheduler, units, dt, fmt, column,
+                    gammas, wp_p, ap_max, step, tol):
+    """Minimum overturning acceleration over omega_p/p, like the paper's Figures 7, 8, 9 and 11.
+
+    For each omega_p/p: the smallest a_p that overturns, found by scanning up from the uplift
+    threshold in steps of --step (relative) and bisecting to --tol between the last safe and the
+    first overturning value, so overturning below a safe island is not missed (windows narrower
+    than one step can be). One curve per configuration; the rigid foundation as a heavy line.
+
+    \b
+    Examples:
+      rockcli spectrum min-overturning --alpha 10,20 --pulse ricker-sym --pulse ricker-anti --plot fig7.png
+      rockcli spectrum min-overturning --alpha 12 --isolation linear:TbTp=2,xi=0.05 \\
+          --gamma 0.01,0.05,0.1,0.3,0.5 --pulse ricker-sym --pulse ricker-anti --plot fig8.png
+    """
+    import time
+
+    from rockcli.spectra import min_overturning_curves, parse_grid, parse_isolation, parse_list
+
+    alphas = parse_list(alpha, "--alpha", lo=0, hi=90, lo_open=True, hi_open=True)
+    xs = parse_grid(wp_p, "--wp-p", positive=True).values
+    isos = [parse_isolation(s) for s in isolations]
+    if gammas is not None:
+        gs = parse_list(gammas, "--gamma", lo=0, hi=1, hi_open=True)
+        isos = [iso if iso.rigid else iso.with_param("gamma", g) for iso in isos for g in (gs if not iso.rigid else [0])]
+        for iso in isos:
+            iso.foundation(1.0)
+    isos = list(dict.fromkeys(isos))
+    _check_outputs(csv_path, plot_path)
+    runner = _runner(scheduler)
+    pcs = _pulses(pulses, records, units, dt, fmt, column)
+    n = len(alphas) * len(pcs) * len(isos) * xs.size
+    t0 = time.perf_counter()
+    bar, update = _progress(n, "columns")
+    with runner, bar:
+        curves = min_overturning_curves(alphas, pcs, isos, xs, ap_max=ap_max, step=step, tol=tol, runner=runner,
+                                        progress=update)
+    elapsed = time.perf_counter() - t0
+
+    from rockcli.report.spectra import format_min_table
+
+    _echo_notes(pcs)
+    click.echo(format_min_table(curves))
+    click.echo(f"{len(curves)} curves x {xs.size} values of omega_p/p: {runner.cells_run} runs in {elapsed:.2f} s "
+               f"(scan step {step:g}, tolerance {tol:g}, up to {ap_max:g} g tan alpha)")
+    if csv_path:
+        from rockcli.report.spectra import write_min_csv
+
+        write_min_csv(curves, csv_path)
+        click.echo(f"wrote {csv_path} ({len(curves) * xs.size} rows)")
+    if plot_path:
+        from rockcli.report.spectra import plot_min_curves
+
+        plot_min_curves(curves, plot_path)
+        click.echo(f"wrote {plot_path}")
+
+
+@spectrum.command(name="critical-size")
+@click.option("--alpha", "alpha", default="10,20", show_default=True, metavar="DEG[,DEG...]",
+              help="Block slenderness [degrees] (Table I: 10 and 20).")
+@click.option("--tb-tp", "tb_tp", default="2,3,4", show_default=True, metavar="R[,R...]",
+              help="Isolation periods as T_b/T_p (Table I: 2, 3, 4).")
+@click.option("--isolation", "bearing", default="linear", show_default=True, metavar="KIND[:k=v,...]",
+              help="Bearing kind and its parameters other than the period (T_b = ratio x T_p).")
+@click.option("--xi", type=float, default=None,
+              help="Damping ratio of linear bearings [default 0.05, as in Figures 6-7].")
+@click.option("--gamma", type=float, default=0.01, show_default=True,
+              help="Mass ratio m/(m + m_b) (heavy base, as in Figures 6-7).")
+@click.option("--pulse", "pulses", multiple=True, metavar="SHAPE:Tp=S",
+              help="A pulse with its period [s], repeatable. Default: the paper's Table I pulses, "
+                   "ricker-sym:Tp=0.6 (Aigio OTE FP 1995) and ricker-anti:Tp=0.9 (Coyote Lake Gilroy #6 230).")
+@click.option("--record", "records", multiple=True, metavar="ID|FILE",
+              help="Take shape and T_p from the pulse fitted to this record (repeatable).")
+@record_options(column_flag="--record-column")
+@click.option("--wp-p", "wp_p", default="0.5:12:47", show_default=True, metavar="START:STOP:COUNT",
+              help="omega_p/p grid on which the curves are compared before the crossing is refined.")
+@click.option("--xtol", type=float, default=1e-3, show_default=True,
+              help="Relative resolution of the crossing in omega_p/p.")
+@click.option("--ap-max", type=float, default=50.0, show_default=True,
+              help="Largest a_p/(g tan alpha) tried (above it: no overturning).")
+@click.option("--step", type=float, default=0.01, show_default=True, help="Relative scan step (see min-overturning).")
+@click.option("--tol", type=float, default=0.001, show_default=True, help="Relative bisection tolerance.")
+@click.option("--csv", "csv_path", type=click.Path(dir_okay=False), default=None,
+              help="Write the table as CSV (source, pulse, T_p_s, alpha_deg, Tb_over_Tp, Tb_s, "
+                   "wp_over_p_cross, R_critical_m).")
+@click.option("--plot", "plot_path", type=click.Path(dir_okay=False), default=None,
+              help="Draw the compared curves with the crossings marked.")
+@click.option("--scheduler", default=None, metavar="tcp://HOST:PORT|local",
+              help="Run the cells on a Dask cluster (see overturning).")
+@user_errors
+def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, fmt, column, wp_p, xtol, ap_max,
+                  step, tol, csv_path, plot_path, scheduler):
+    """Block size beyond which a block is safer without isolation, like the paper's Table I.
+
+    Where the minimum overturning curves of the rigid foundation and of the isolated base cross
+    (the last crossing on the grid, rigid better beyond it), converted to the semi-diagonal R with
+    p = omega_p/(omega_p/p)_cross and R = 3 g/(4 p^2). Defaults: the paper's Table I scenes,
+    alpha = 10 and 20 deg, T_b/T_p = 2, 3, 4, linear bearings xi = 0.05, gamma = 0.01, pulses
+    ricker-sym T_p = 0.6 s and ricker-anti T_p = 0.9 s.
+
+    \b
+    Examples:
+      rockcli spectrum critical-size --csv table1.csv
+      rockcli spectrum critical-size --alpha 10.56 --tb-tp 2,2.5,3 --xi 0.1 --record coyotelake-1979-gilroy6-230
+    """
+    import time
+
+    from rockcli.spectra import critical_sizes, parse_grid, parse_list, table_i_isolations, table_i_pulses
+
+    alphas = parse_list(alpha, "--alpha", lo=0, hi=90, lo_open=True, hi_open=True)
+    ratios = parse_list(tb_tp, "--tb-tp", lo=0, lo_open=True)
+    grid = parse_grid(wp_p, "--wp-p", positive=True)
+    if grid.count < 2:
+        raise InputError(f"--wp-p {wp_p}: the crossing needs at least 2 grid values")
+    kind = bearing.strip().partition(":")[0].strip().lower()
+    if kind in ("none", "rigid", "fixed"):
+        raise InputError("--isolation: give a bearing kind (e.g. linear); the rigid foundation is always compared")
+    if xi is None and kind == "linear":
+        xi = 0.05
+    isos = table_i_isolations(ratios, xi=xi, gamma=gamma, template=bearing)
+    _check_outputs(csv_path, plot_path)
+    runner = _runner(scheduler)
+    if pulses or records:
+        pcs = _pulses(pulses, records, units, dt, fmt, column, default=())
+    else:
+        if any(v is not None for v in (units, dt, fmt, column)):
+            raise InputError("--units, --dt, --format and --record-column apply to --record")
+        pcs = table_i_pulses()
+    for pc in pcs:
+        if pc.T_p is None:
+            raise InputError(f"--pulse {pc.shape}: give its period, e.g. {pc.shape}:Tp=0.6")
+    shapes = list(dict.fromkeys(pc.shape for pc in pcs))
+    n = len(shapes) * len(alphas) * (1 + len(isos)) * grid.count
+    t0 = time.perf_counter()
+    bar, update = _progress(n, "columns")
+    with runner, bar:
+        result = critical_sizes(pcs, alphas, isos, wp_grid=grid, xtol=xtol, ap_max=ap_max, step=step, tol=tol,
+                                runner=runner, progress=update)
+    elapsed = time.perf_counter() - t0
+
+    from rockcli.report.spectra import format_critical_table
+
+    _echo_notes(pcs)
+    click.echo(f"isolation: {isos[0].label.replace(f'TbTp={isos[0].ratio:g}', 'TbTp=<ratio>')}")
+    click.echo(format_critical_table(result.rows))
+    for r in result.rows:
+        if r.note:
+            click.echo(f"note: {r.source}, alpha = {r.alpha_deg:g} deg, T_b/T_p = {r.Tb_over_Tp:g}: {r.note}")
+    for note in result.notes:
+        click.echo(f"note: {note}")
+    click.echo(f"{len(result.rows)} crossings: {result.runs} runs in {elapsed:.2f} s (omega_p/p grid {grid}, "
+               f"refined to {xtol:g})")
+    if csv_path:
+        from rockcli.report.spectra import write_critical_csv
+
+        write_critical_csv(result.rows, csv_path)
+        click.echo(f"wrote {csv_path} ({len(result.rows)} rows)")
+    if plot_path:
+        from rockcli.report.spectra import plot_min_curves
+
+        crossings = {}
+        for r in result.rows:
+            if r.wp_over_p_cross == r.wp_over_p_cross:
+                crossings.setdefault((r.alpha_deg, r.pulse), []).append(
+                    (r.wp_over_p_cross, r.ap_cross_over_g_tan_alpha, f"{r.R_critical_m:.2f} m"))
+        plot_min_curves(result.curves, plot_path, crossings=crossings)
+        click.echo(f"wrote {plot_path}")

@@ -1,0 +1,334 @@
+"""Spectra reports: overturning maps (Figures 6, 9), minimum-overturning curves (Figures 7, 8, 9, 11),
+the Table-I-like critical-size table, as CSV, aligned text and figures.
+
+matplotlib is imported inside the functions (Agg backend); every file is written atomically.
+Accelerations are in units of ``g tan(alpha)`` (column names say so), periods in s, sizes in m.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+from pathlib import Path
+
+from rockcli.errors import RockcliInputError
+from rockcli.report.files import atomic_path
+from rockcli.units import G
+
+#: Columns of ``rockcli spectrum overturning --csv`` (one row per cell of every map).
+MAP_COLUMNS = ("alpha_deg", "pulse", "isolation", "T_p_s", "R_m", "wp_over_p", "ap_over_g_tan_alpha", "ap_g",
+               "overturned", "theta_max_over_alpha", "uplift")
+#: Columns of ``rockcli spectrum min-overturning --csv`` (one row per omega_p/p of every curve).
+MIN_COLUMNS = ("alpha_deg", "pulse", "isolation", "T_p_s", "R_m", "wp_over_p", "ap_min_over_g_tan_alpha",
+               "ap_safe_over_g_tan_alpha", "ap_uplift_over_g_tan_alpha", "ap_min_g", "scan_step", "tolerance",
+               "ap_max_over_g_tan_alpha")
+#: Columns of ``rockcli spectrum critical-size --csv`` (the paper's Table I layout, one row per entry).
+CRITICAL_COLUMNS = ("source", "pulse", "T_p_s", "alpha_deg", "Tb_over_Tp", "Tb_s", "wp_over_p_cross", "R_critical_m")
+
+#: Grey levels of the maps: no uplift, uplift without overturning (light), overturning (dark).
+MAP_COLOURS = ("white", "0.80", "0.30")
+
+
+def _size(T_p, x):
+    """Block semi-diagonal [m] at omega_p/p = x for a pulse of period T_p [s] (NaN without T_p)."""
+    if T_p is None:
+        return float("nan")
+    p = 2.0 * math.pi / (T_p * x)
+    return 0.75 * G / (p * p)
+
+
+def _fmt(v):
+    if isinstance(v, bool):
+        return "1" if v else "0"
+    if isinstance(v, float):
+        return "" if math.isnan(v) else repr(v)
+    return v
+
+
+def _write_rows(path, columns, rows) -> Path:
+    with atomic_path(path) as tmp:
+        with open(tmp, "w", newline="", encoding="utf-8") as fh:
+            w = csv.writer(fh, lineterminator="\n")
+            w.writerow(columns)
+            for row in rows:
+                w.writerow([_fmt(row[c]) for c in columns])
+    return Path(path)
+
+
+def _check_image_path(path) -> tuple[Path, str]:
+    path = Path(path)
+    if not path.suffix:
+        raise RockcliInputError(f"{path}: give the plot file a suffix such as .png or .pdf")
+    return path, path.suffix.lstrip(".").lower()
+
+
+def _save(fig, path, dpi):
+    path, fmt = _check_image_path(path)
+    with atomic_path(path) as tmp:
+        try:
+            fig.savefig(tmp, dpi=dpi, format=fmt)
+        except ValueError as exc:
+            raise RockcliInputError(f"{path}: cannot write a {fmt!r} image ({exc})") from None
+    return path
+
+
+def _pyplot():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+# --------------------------------------------------------------------------------------------------
+# Overturning maps
+# --------------------------------------------------------------------------------------------------
+def map_rows(maps):
+    """One dict per cell of every map, keyed by :data:`MAP_COLUMNS`."""
+    for m in maps:
+        tan_a = math.tan(math.radians(m.alpha_deg))
+        T_p = m.pulse.T_p
+        for i, y in enumerate(m.ap_over_g_tan_alpha):
+            for j, x in enumerate(m.wp_over_p):
+                yield {"alpha_deg": m.alpha_deg, "pulse": m.pulse.shape, "isolation": m.isolation.label,
+                       "T_p_s": float("nan") if T_p is None else T_p, "R_m": _size(T_p, float(x)),
+                       "wp_over_p": float(x), "ap_over_g_tan_alpha": float(y), "ap_g": float(y) * tan_a,
+                       "overturned": bool(m.overturned[i, j]),
+                       "theta_max_over_alpha": float(m.theta_max_over_alpha[i, j]),
+                       "uplift": bool(m.uplifted[i, j])}
+
+
+def write_map_csv(maps, path) -> Path:
+    """Write every cell of ``maps`` (:class:`rockcli.spectra.OverturningMap`) as CSV, atomically."""
+    return _write_rows(path, MAP_COLUMNS, map_rows(maps))
+
+
+def _panel_grid(n_rows, n_cols, plt, width=3.4, height=3.0):
+    fig, axes = plt.subplots(n_rows, n_cols, figsize=(width * n_cols + 0.4, height * n_rows + 0.5), squeeze=False)
+    return fig, axes
+
+
+def _r_axis(ax, T_p):
+    import numpy as np
+
+    if T_p is None:
+        return
+
+    def fwd(x):
+        x = np.asarray(x, dtype=float)
+        return 3.0 * G * T_p ** 2 * np.maximum(x, 0.0) ** 2 / (16.0 * math.pi ** 2)
+
+    def inv(r):
+        r = np.asarray(r, dtype=float)
+        return np.sqrt(np.maximum(r, 0.0) * 16.0 * math.pi ** 2 / (3.0 * G * T_p ** 2))
+
+    sec = ax.secondary_xaxis("top", functions=(fwd, inv))
+    sec.set_xlabel(f"R [m] for $T_p$ = {T_p:.3g} s", fontsize=7)
+    sec.tick_params(labelsize=7)
+
+
+def plot_maps(maps, path, *, n_cols: int | None = None, title: str | None = None, dpi: int = 100) -> Path:
+    """Overturning maps like the paper's Figure 6: one panel per map, rows by slenderness.
+
+    White: no uplift; light grey: rocks and survives; dark grey: overturns. x = omega_p/p,
+    y = a_p/(g tan alpha); a top axis gives the block size R when the pulse period is known.
+    """
+    import numpy as np
+    from matplotlib.colors import BoundaryNorm, ListedColormap
+    from matplotlib.patches import Patch
+
+    _check_image_path(path)
+    plt = _pyplot()
+    maps = list(maps)
+    alphas = list(dict.fromkeys(m.alpha_deg for m in maps))
+    if n_cols is None:
+        n_cols = max(1, len(maps) // len(alphas))
+    n_rows = math.ceil(len(maps) / n_cols)
+    fig, axes = _panel_grid(n_rows, n_cols, plt)
+    cmap = ListedColormap(list(MAP_COLOURS))
+    norm = BoundaryNorm([-0.5, 0.5, 1.5, 2.5], 3)
+    try:
+        for k, ax in enumerate(axes.ravel()):
+            if k >= len(maps):
+                ax.set_visible(False)
+                continue
+            m = maps[k]
+            code = np.where(m.overturned, 2, np.where(m.uplifted, 1, 0))
+            x, y = m.wp_over_p, m.ap_over_g_tan_alpha
+            dx = (x[-1] - x[0]) / max(1, x.size - 1) if x.size > 1 else 1.0
+            dy = (y[-1] - y[0]) / max(1, y.size - 1) if y.size > 1 else 1.0
+            ax.imshow(code, origin="lower", aspect="auto", cmap=cmap, norm=norm, interpolation="nearest",
+                      extent=(x[0] - dx / 2, x[-1] + dx / 2, y[0] - dy / 2, y[-1] + dy / 2))
+            ax.set_title(f"$\\alpha$ = {m.alpha_deg:g}$\\degree$, {m.pulse.shape}\n{m.isolation.short_label}",
+                         fontsize=8)
+            ax.set_xlabel(r"$\omega_p / p$", fontsize=8)
+            ax.set_ylabel(r"$a_p / (g \tan\alpha)$", fontsize=8)
+            ax.tick_params(labelsize=7)
+            _r_axis(ax, m.pulse.T_p)
+        handles = [Patch(facecolor=c, edgecolor="0.5", label=lab)
+                   for c, lab in zip(MAP_COLOURS, ("no uplift", "no overturning", "overturning"))]
+        fig.legend(handles=handles, loc="lower center", ncol=3, fontsize=8, frameon=False)
+        if title:
+            fig.suptitle(title, fontsize=9)
+        fig.tight_layout(rect=(0, 0.05, 1, 0.97 if title else 1))
+        return _save(fig, path, dpi)
+    finally:
+        plt.close(fig)
+
+
+# --------------------------------------------------------------------------------------------------
+# Minimum overturning curves
+# --------------------------------------------------------------------------------------------------
+def min_rows(curves):
+    """One dict per point of every curve, keyed by :data:`MIN_COLUMNS`."""
+    for c in curves:
+        tan_a = math.tan(math.radians(c.alpha_deg))
+        T_p = c.pulse.T_p
+        for j, x in enumerate(c.wp_over_p):
+            yield {"alpha_deg": c.alpha_deg, "pulse": c.pulse.shape, "isolation": c.isolation.label,
+                   "T_p_s": float("nan") if T_p is None else T_p, "R_m": _size(T_p, float(x)),
+                   "wp_over_p": float(x), "ap_min_over_g_tan_alpha": float(c.ap_min[j]),
+                   "ap_safe_over_g_tan_alpha": float(c.ap_safe[j]),
+                   "ap_uplift_over_g_tan_alpha": float(c.ap_uplift[j]), "ap_min_g": float(c.ap_min[j]) * tan_a,
+                   "scan_step": c.step, "tolerance": c.tol, "ap_max_over_g_tan_alpha": c.ap_max}
+
+
+def write_min_csv(curves, path) -> Path:
+    """Write the minimum-overturning curves as CSV (:data:`MIN_COLUMNS`), atomically."""
+    return _write_rows(path, MIN_COLUMNS, min_rows(curves))
+
+
+def plot_min_curves(curves, path, *, crossings=None, title: str | None = None, y_max: float | None = None,
+                    dpi: int = 100) -> Path:
+    """Minimum overturning acceleration like the paper's Figures 7, 8, 11: one panel per
+    ``(alpha, pulse)``, one curve per configuration, the rigid foundation as a heavy dark line.
+
+    ``crossings``: optional ``{(alpha_deg, shape): [(x, y, label), ...]}`` points to mark.
+    A curve is drawn only where something overturns up to its ``ap_max``.
+    """
+    import numpy as np
+
+    _check_image_path(path)
+    plt = _pyplot()
+    curves = list(curves)
+    panels = list(dict.fromkeys((c.alpha_deg, c.pulse.shape) for c in curves))
+    alphas = list(dict.fromkeys(a for a, _ in panels))
+    shapes = list(dict.fromkeys(s for _, s in panels))
+    fig, axes = _panel_grid(len(alphas), len(shapes), plt, width=4.2, height=3.3)
+    styles = ["-", "--", "-.", ":"]
+    try:
+        for (a, sh) in panels:
+            ax = axes[alphas.index(a), shapes.index(sh)]
+            k = 0
+            top = 0.0
+            mine = [c for c in curves if (c.alpha_deg, c.pulse.shape) == (a, sh)]
+            labels, common = _curve_labels([c.isolation for c in mine])
+            for c in mine:
+                y = np.asarray(c.ap_min, dtype=float)
+                if np.isfinite(y).any():
+                    top = max(top, float(np.nanmax(y)))
+                if c.isolation.rigid:
+                    ax.plot(c.wp_over_p, y, color="k", lw=2.6, label="rigid foundation", zorder=3)
+                else:
+                    ax.plot(c.wp_over_p, y, ls=styles[k % len(styles)], lw=1.3, color=f"C{k % 10}",
+                            label=labels[c.isolation])
+                    k += 1
+                T_p = c.pulse.T_p
+            for (xc, yc, lab) in (crossings or {}).get((a, sh), []):
+                ax.plot([xc], [yc], "o", ms=5, mfc="none", mec="k")
+                ax.annotate(lab, (xc, yc), textcoords="offset points", xytext=(4, -10), fontsize=6)
+            ax.set_title(f"$\\alpha$ = {a:g}$\\degree$, {sh}" + (f"\n{common}" if common else ""), fontsize=8)
+            ax.set_xlabel(r"$\omega_p / p$", fontsize=8)
+            ax.set_ylabel(r"minimum overturning $a_p / (g \tan\alpha)$", fontsize=8)
+            ax.set_ylim(0.0, y_max if y_max is not None else max(2.0, 1.05 * top))
+            ax.set_xlim(c.wp_over_p[0], c.wp_over_p[-1])
+            ax.grid(color="0.9", lw=0.5)
+            ax.tick_params(labelsize=7)
+            ax.legend(fontsize=6, frameon=False, loc="upper left")
+            _r_axis(ax, T_p)
+        if title:
+            fig.suptitle(title, fontsize=9)
+        fig.tight_layout(rect=(0, 0, 1, 0.96 if title else 1))
+        return _save(fig, path, dpi)
+    finally:
+        plt.close(fig)
+
+
+def _curve_labels(isolations):
+    """Legend labels of isolated curves: the parameters that differ between them; the shared ones
+    are returned once (for the panel title)."""
+    isos = [iso for iso in isolations if not iso.rigid]
+    items = {}
+    for iso in isos:
+        kind, _, rest = iso.label.partition(":")
+        items[iso] = [("kind", kind)] + [tuple(kv.split("=", 1)) for kv in rest.split(",") if "=" in kv]
+    keys = list(dict.fromkeys(k for its in items.values() for k, _ in its))
+    varying = [k for k in keys if len({dict(its).get(k) for its in items.values()}) > 1]
+    names = {"TbTp": "$T_b/T_p$", "xi": r"$\xi$", "gamma": r"$\gamma$", "mu": r"$\mu$"}
+
+    def show(pairs):
+        return ", ".join(v if k == "kind" else f"{names.get(k, k)} = {v}" for k, v in pairs)
+
+    if len(isos) < 2:
+        return {iso: show(items[iso]) for iso in isos}, ""
+    labels = {iso: show([(k, v) for k, v in items[iso] if k in varying]) for iso in isos}
+    first = items[isos[0]]
+    common = show([(k, v) for k, v in first if k not in varying])
+    return labels, (f"isolation: {common}" if common else "")
+
+
+def format_min_table(curves, n_rows: int = 12) -> str:
+    """The curves at about ``n_rows`` values of omega_p/p, aligned (units of g tan alpha)."""
+    import numpy as np
+
+    curves = list(curves)
+    if not curves:
+        return ""
+    lines = []
+    panels = list(dict.fromkeys((c.alpha_deg, c.pulse.shape) for c in curves))
+    for (a, sh) in panels:
+        cs = [c for c in curves if (c.alpha_deg, c.pulse.shape) == (a, sh)]
+        x = cs[0].wp_over_p
+        idx = np.unique(np.linspace(0, x.size - 1, min(n_rows, x.size)).round().astype(int))
+        head = ["wp/p"] + [c.isolation.label for c in cs]
+        table = [head, ["uplift"] + [_num(c.ap_uplift[0]) for c in cs]]
+        for i in idx:
+            table.append([f"{x[i]:.3g}"] + [_num(c.ap_min[i], c.ap_max) for c in cs])
+        widths = [max(len(r[j]) for r in table) for j in range(len(head))]
+        lines.append(f"alpha = {a:g} deg, {sh}: minimum overturning a_p / (g tan alpha)")
+        for r in table:
+            lines.append("  ".join(v.rjust(w) for v, w in zip(r, widths)))
+        lines.append("")
+    return "\n".join(lines).rstrip()
+
+
+def _num(v, ap_max=None):
+    if v is None or (isinstance(v, float) and math.isnan(v)) or (hasattr(v, "__float__") and math.isnan(float(v))):
+        return f">{ap_max:g}" if ap_max is not None else "-"
+    return f"{float(v):.3f}"
+
+
+# --------------------------------------------------------------------------------------------------
+# Critical size (Table I)
+# --------------------------------------------------------------------------------------------------
+def write_critical_csv(rows, path) -> Path:
+    """Write the critical sizes (:class:`rockcli.spectra.CriticalRow`) as CSV (:data:`CRITICAL_COLUMNS`)."""
+    return _write_rows(path, CRITICAL_COLUMNS, (r.as_dict() for r in rows))
+
+
+def format_critical_table(rows) -> str:
+    """Table I as aligned text: one line per pulse, slenderness and T_b/T_p."""
+    head = ["source", "pulse", "T_p [s]", "alpha [deg]", "Tb/Tp", "T_b [s]", "wp/p cross", "R_critical [m]"]
+    table = [head]
+    for r in rows:
+        table.append([r.source, r.pulse, f"{r.T_p_s:.3g}", f"{r.alpha_deg:g}", f"{r.Tb_over_Tp:g}", f"{r.Tb_s:.3g}",
+                      "-" if math.isnan(r.wp_over_p_cross) else f"{r.wp_over_p_cross:.3f}",
+                      "-" if math.isnan(r.R_critical_m) else f"{r.R_critical_m:.3f}"])
+    widths = [max(len(t[j]) for t in table) for j in range(len(head))]
+    out = []
+    for k, t in enumerate(table):
+        out.append("  ".join(v.ljust(w) if j < 2 else v.rjust(w) for j, (v, w) in enumerate(zip(t, widths))))
+        if k == 0:
+            out.append("  ".join("-" * w for w in widths))
+    return "\n".join(out)
