@@ -4,8 +4,8 @@ Prints (no assertions):
 
 1. wall time of the whole process (median and min of ``--repeat`` runs, warm kernel cache):
    ``spectrum overturning --alpha 10`` (200 x 200 rigid map), the same with
-   ``--isolation linear:TbTp=2,xi=0.05,gamma=0.01``, ``spectrum critical-size`` with its defaults
-   (Table I, one run), and ``rockcli --help`` (the start-up floor);
+   ``--isolation linear:TbTp=2,xi=0.05,gamma=0.01``, each also with ``--early``,
+   ``spectrum critical-size`` with its defaults (Table I, one run), and ``rockcli --help``;
 2. the split of the rigid and linear maps inside one process: imports, loading the compiled
    kernels, building the 40,000 scenes, the kernel (wall and CPU), with cells/s and right-hand sides;
 3. with ``--cold``: the first run with an empty numba cache (``NUMBA_CACHE_DIR`` pointed at a new
@@ -57,7 +57,7 @@ def timed(jobs, **kw):
     return v
 solve.simulate_verdicts = timed
 t = time.perf_counter()
-m = S.overturning_map(10, "ricker-sym", ISO, S.Grid(0.5, 12, 200), S.Grid(0, 10, 200))
+m = S.overturning_map(10, "ricker-sym", ISO, S.Grid(0.5, 12, 200), S.Grid(0, 10, 200), early=EARLY)
 mark("the 200 x 200 map (scenes + kernel)")
 print(json.dumps({"w0": w0, "c0": c0, "marks": marks, "stats": stats,
                   "overturned": int(m.overturned.sum())}))
@@ -75,8 +75,9 @@ def whole(args, repeat, env):
     return statistics.median(times), min(times)
 
 
-def split(iso, env):
-    out = subprocess.run([sys.executable, "-c", f"ISO = {iso!r}\n" + SPLIT], env=env, cwd=ROOT, check=True,
+def split(iso, early, env):
+    out = subprocess.run([sys.executable, "-c", f"ISO = {iso!r}\nEARLY = {early!r}\n" + SPLIT], env=env, cwd=ROOT,
+                         check=True,
                          capture_output=True, text=True).stdout
     d = json.loads(out.strip().splitlines()[-1])
     prev_w, prev_c = d["w0"], d["c0"]
@@ -108,7 +109,9 @@ def main():
           f"(machine shared with other jobs: noisy):")
     for label, args, n in (("rockcli --help (start-up floor)", base + ["--help"], opts.repeat),
                            ("overturning --alpha 10 (200 x 200, rigid)", rigid, opts.repeat),
+                           ("  ... --early", rigid + ["--early"], opts.repeat),
                            ("  ... --isolation " + LIN, linear, opts.repeat),
+                           ("  ... --isolation " + LIN + " --early", linear + ["--early"], opts.repeat),
                            ("critical-size (Table I defaults)", base + ["spectrum", "critical-size"],
                             0 if opts.skip_table else 1)):
         if n == 0:
@@ -116,9 +119,10 @@ def main():
         med, best = whole(args, n, env)
         print(f"  {label:60s} {med:6.2f} s ({best:.2f} s)")
 
-    for iso in ("none", LIN):
-        rows, nfev, kw = split(iso, env)
-        print(f"\nsplit of one 200 x 200 map in a fresh process, isolation {iso} (wall / CPU):")
+    for iso, early in (("none", False), ("none", True), (LIN, False)):
+        rows, nfev, kw = split(iso, early, env)
+        print(f"\nsplit of one 200 x 200 map in a fresh process, isolation {iso}{', early' if early else ''} "
+              f"(wall / CPU):")
         for name, w, c in rows:
             print(f"  {name:52s} {w:6.3f} s / {c:6.3f} s")
         print(f"  {40000 / kw:,.0f} cells/s, {nfev:,} right-hand sides ({nfev / 40000:,.0f} per cell)")

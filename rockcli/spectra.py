@@ -12,10 +12,16 @@ block size as long as ``T_b / T_p`` is kept fixed over the map, as the paper doe
 every cell on one reference block, ``R = REFERENCE_R = 1 m`` (``p = 2.712 rad/s``) unless told
 otherwise, and sets ``T_p = 2 pi / (x p)`` for each column; ``tests/test_spectra.py`` checks that
 another ``R`` gives the same map. The solver's tolerances are scaled by ``alpha``, ``p alpha`` and
-``g tan(alpha) / max(omega_b, p)^2``, its first step by ``1/p`` and ``T_p``, and the free motion
-followed after the pulse (``tail``) is set here in periods, ``TAIL_PERIODS x max(T_p, T_b, 2 pi/p)``
-(the kernel follows a still rocking block up to 4 tails): all scale with the block, so the
-dimensionless result is the same to rounding.
+``g tan(alpha) / max(omega_b, p)^2`` and its first step by ``1/p`` and ``T_p``, and a verdict-only run
+ends when its verdict is proven (the theorems of :func:`rockcli.kernels.simulate_core`), which does not
+depend on the block size either: the dimensionless result is the same to rounding. (A run still
+unproven at the solver's horizon, 600 s after the pulse, would end there: such cells are counted and
+reported as "still moving", ``settled`` False.)
+
+Verdicts only: the minimum-overturning search runs with ``early=True`` (each run stops as soon as its
+verdict is proven, even during the pulse; the same verdicts). Maps run to the end of the motion by
+default so that ``theta_max_over_alpha`` is the run's peak; ``early=True`` makes them faster, with the
+peak then only a lower bound for runs stopped during the pulse (``peak_final`` False).
 
 Pulses have ``a_p > 0`` (the larger lobe first for the antisymmetric Ricker). Reversing the sign
 mirrors theta and leaves every verdict unchanged (the block is symmetric).
@@ -64,9 +70,6 @@ from rockcli.units import G
 
 #: Semi-diagonal of the reference block every cell is run on [m] (``p = sqrt(3 g / 4) = 2.712 rad/s``).
 REFERENCE_R = 1.0
-#: Free motion followed after the pulse, in units of ``max(T_p, T_b, 2 pi / p)`` (the kernel follows a
-#: still rocking block up to 4 times this: 20 such periods).
-TAIL_PERIODS = 5.0
 #: Pulse shapes of the spectra.
 SHAPES = ("ricker-sym", "ricker-anti", "sine", "cosine")
 #: Defaults of the minimum-overturning search: relative scan step, relative bisection tolerance,
@@ -316,14 +319,9 @@ class Family:
         return 2.0 * math.pi / (x * self.block.p)
 
     def scene(self, x: float, y: float):
-        """``(block, foundation, pulse, tail)`` of cell ``(x, y)``."""
-        block = self.block
+        """``(block, foundation, pulse)`` of cell ``(x, y)``."""
         T_p = self.T_p(x)
-        foundation = self.isolation.foundation(T_p)
-        pulse = make_pulse(self.shape, y * (G * math.tan(self.alpha)), T_p)
-        T_b = getattr(foundation, "T_b", 0.0)
-        tail = TAIL_PERIODS * max(T_p, T_b, 2.0 * math.pi / block.p)
-        return block, foundation, pulse, tail
+        return self.block, self.isolation.foundation(T_p), make_pulse(self.shape, y * (G * math.tan(self.alpha)), T_p)
 
 
 @dataclass(frozen=True)
@@ -334,21 +332,23 @@ class Cells:
     uplifted: np.ndarray
     theta_max_over_alpha: np.ndarray
     settled: np.ndarray
+    peak_final: np.ndarray
     nfev: np.ndarray
 
     @staticmethod
     def concatenate(parts: Sequence["Cells"]) -> "Cells":
         if not parts:
-            return Cells(*(np.zeros(0, dt) for dt in (bool, bool, float, bool, np.int64)))
+            return Cells(*(np.zeros(0, dt) for dt in (bool, bool, float, bool, bool, np.int64)))
         return Cells(*(np.concatenate([getattr(p, f) for p in parts])
-                       for f in ("overturned", "uplifted", "theta_max_over_alpha", "settled", "nfev")))
+                       for f in ("overturned", "uplifted", "theta_max_over_alpha", "settled", "peak_final", "nfev")))
 
 
 def run_cells_local(families: Sequence[Family], fam: np.ndarray, x: np.ndarray, y: np.ndarray,
-                    progress: Optional[Callable[[int], None]] = None) -> Cells:
+                    progress: Optional[Callable[[int], None]] = None, early: bool = False) -> Cells:
     """Run cells ``(families[fam[i]], x[i], y[i])`` with :func:`rockcli.solve.simulate_verdicts` (all cores).
 
-    ``progress(n)`` is called with the number of cells finished since the last call.
+    ``progress(n)`` is called with the number of cells finished since the last call; ``early``: stop
+    each run once its verdict is proven (the same verdicts; peaks may be lower bounds).
     """
     from rockcli.solve import simulate_verdicts
 
@@ -356,16 +356,14 @@ def run_cells_local(families: Sequence[Family], fam: np.ndarray, x: np.ndarray, 
     if n == 0:
         return Cells.concatenate([])
     jobs = []
-    tails = np.empty(n)
     columns = {}  # (family, x) -> the scene at y = 1 (a_p = g tan alpha), built once per column
     for i in range(n):
         key = (int(fam[i]), float(x[i]))
         col = columns.get(key)
         if col is None:
             col = columns[key] = families[key[0]].scene(key[1], 1.0)
-        # the kernel scales the unit pulse's a_p by y: the same run as make_pulse(shape, y g tan(alpha), T_p)
+        # the kernel scales the unit pulse's a_p by y: the same run as Family.scene(x, y)
         jobs.append((col[0], col[1], col[2], float(y[i])))
-        tails[i] = col[3]
     done = [0]
 
     def step(k):
@@ -376,16 +374,17 @@ def run_cells_local(families: Sequence[Family], fam: np.ndarray, x: np.ndarray, 
     # grows with a_p (rows): run the cells in a fixed shuffled order so that every thread gets a
     # fair share, and put the results back. Cells are independent: the order changes no result.
     order = np.random.default_rng(0).permutation(n)
-    v = simulate_verdicts([jobs[i] for i in order], tail=tails[order], progress=step if progress else None)
+    v = simulate_verdicts([jobs[i] for i in order], early=early, progress=step if progress else None)
     back = np.empty(n, np.int64)
     back[order] = np.arange(n)
-    return Cells(v.overturned[back], v.uplifted[back], v.theta_max_over_alpha[back], v.settled[back], v.nfev[back])
+    return Cells(v.overturned[back], v.uplifted[back], v.theta_max_over_alpha[back], v.settled[back],
+                 v.peak_final[back], v.nfev[back])
 
 
 def _run_cells_task(args) -> Cells:
     """One chunk on a Dask worker (module-level so that it pickles by reference)."""
-    families, fam, x, y = args
-    return run_cells_local(families, fam, x, y)
+    families, fam, x, y, early = args
+    return run_cells_local(families, fam, x, y, early=early)
 
 
 class Runner:
@@ -408,6 +407,7 @@ class Runner:
         self._close = None
         self.cells_run = 0
         self.nfev = 0
+        self.unproven = 0  # runs that reached the solver's horizon with the verdict unproven
 
     def __enter__(self):
         if self.scheduler is not None:
@@ -423,12 +423,12 @@ class Runner:
             self._close = self._client = None
         return False
 
-    def __call__(self, families, fam, x, y, progress=None) -> Cells:
+    def __call__(self, families, fam, x, y, progress=None, early: bool = False) -> Cells:
         fam = np.asarray(fam, dtype=np.int64)
         x = np.asarray(x, dtype=float)
         y = np.asarray(y, dtype=float)
         if self.scheduler is None:
-            out = run_cells_local(families, fam, x, y, progress)
+            out = run_cells_local(families, fam, x, y, progress, early)
         else:
             if self._client is None:
                 raise RuntimeError("use the Runner as a context manager to run on a scheduler")
@@ -436,13 +436,14 @@ class Runner:
 
             n = len(x)
             bounds = [(lo, min(n, lo + self.chunk)) for lo in range(0, n, self.chunk)]
-            tasks = [(tuple(families), fam[lo:hi], x[lo:hi], y[lo:hi]) for lo, hi in bounds]
+            tasks = [(tuple(families), fam[lo:hi], x[lo:hi], y[lo:hi], early) for lo, hi in bounds]
             sizes = [hi - lo for lo, hi in bounds]
             parts = map_chunks(self._client, _run_cells_task, tasks,
                                progress=(lambda i: progress(sizes[i])) if progress else None)
             out = Cells.concatenate(parts)
         self.cells_run += len(x)
         self.nfev += int(out.nfev.sum())
+        self.unproven += int(np.count_nonzero(~out.settled & ~out.overturned))
         return out
 
 
@@ -465,6 +466,7 @@ class OverturningMap:
     uplifted: np.ndarray
     theta_max_over_alpha: np.ndarray
     settled: np.ndarray
+    peak_final: np.ndarray
     nfev: int
 
     @property
@@ -474,8 +476,12 @@ class OverturningMap:
 
 def overturning_maps(alphas_deg: Sequence[float], pulses: Sequence[PulseChoice], isolations: Sequence[Isolation],
                      wp_grid: Grid, ap_grid: Grid, *, R: float = REFERENCE_R, runner: Optional[Runner] = None,
-                     progress=None) -> list[OverturningMap]:
-    """Overturning maps for every ``alpha x pulse x isolation`` (in that nesting order), in one batch."""
+                     progress=None, early: bool = False) -> list[OverturningMap]:
+    """Overturning maps for every ``alpha x pulse x isolation`` (in that nesting order), in one batch.
+
+    ``early``: stop each run once its verdict is proven (faster; the same verdicts and uplift flags,
+    ``theta_max_over_alpha`` then a lower bound where ``peak_final`` is False).
+    """
     runner = runner or Runner()
     xs, ys = wp_grid.values, ap_grid.values
     families = [Family(math.radians(a), pc.shape, iso, R) for a in alphas_deg for pc in pulses for iso in isolations]
@@ -483,7 +489,8 @@ def overturning_maps(alphas_deg: Sequence[float], pulses: Sequence[PulseChoice],
     Y, X = np.meshgrid(ys, xs, indexing="ij")
     ncell = X.size
     fam = np.repeat(np.arange(len(families)), ncell)
-    res = runner(families, fam, np.tile(X.ravel(), len(families)), np.tile(Y.ravel(), len(families)), progress)
+    res = runner(families, fam, np.tile(X.ravel(), len(families)), np.tile(Y.ravel(), len(families)), progress,
+                 early=early)
     maps = []
     shape = X.shape
     for j, (a, pc, iso) in enumerate(keys):
@@ -492,7 +499,8 @@ def overturning_maps(alphas_deg: Sequence[float], pulses: Sequence[PulseChoice],
             alpha_deg=float(a), pulse=pc, isolation=iso, wp_over_p=xs, ap_over_g_tan_alpha=ys,
             overturned=res.overturned[s].reshape(shape), uplifted=res.uplifted[s].reshape(shape),
             theta_max_over_alpha=res.theta_max_over_alpha[s].reshape(shape),
-            settled=res.settled[s].reshape(shape), nfev=int(res.nfev[s].sum())))
+            settled=res.settled[s].reshape(shape), peak_final=res.peak_final[s].reshape(shape),
+            nfev=int(res.nfev[s].sum())))
     return maps
 
 
@@ -512,13 +520,14 @@ class MinSearch:
 
     ``ap_min`` overturns, ``ap_safe`` (within ``tol`` below it) does not; both NaN when nothing
     overturns up to ``ap_max`` (``ap_uplift`` NaN too when the block does not even uplift). All in
-    units of ``g tan(alpha)``.
+    units of ``g tan(alpha)``. ``unproven``: runs still moving at the solver's horizon (counted safe).
     """
 
     ap_uplift: np.ndarray
     ap_min: np.ndarray
     ap_safe: np.ndarray
     runs: int
+    unproven: int = 0  # runs that reached the solver's horizon unproven (counted as safe)
 
 
 def search_min_overturning(families: Sequence[Family], fam, x, *, ap_max: float = DEFAULT_AP_MAX,
@@ -542,10 +551,14 @@ def search_min_overturning(families: Sequence[Family], fam, x, *, ap_max: float 
     n = len(x)
     runs = 0
 
-    def run(idx, yv):
-        nonlocal runs
+    unproven = 0
+
+    def run(idx, yv, early=True):
+        nonlocal runs, unproven
         runs += len(idx)
-        return runner(families, fam[idx], x[idx], yv)
+        out = runner(families, fam[idx], x[idx], yv, early=early)
+        unproven += int(np.count_nonzero(~out.settled & ~out.overturned))
+        return out
 
     # 1. uplift threshold: exactly 1 on a rigid foundation (every shape peaks at |a_p|); on an
     # isolated base the stuck motion is linear in a_p, so uplift is monotone: bisection.
@@ -556,7 +569,7 @@ def search_min_overturning(families: Sequence[Family], fam, x, *, ap_max: float 
         hi = np.ones(iso_cols.size)
         pending = np.arange(iso_cols.size)
         while pending.size:  # bracket: double hi until the block uplifts
-            up = run(iso_cols[pending], hi[pending]).uplifted
+            up = run(iso_cols[pending], hi[pending], early=False).uplifted
             lo[pending[~up]] = hi[pending[~up]]
             hi[pending[~up]] *= 2.0
             pending = pending[~up & (hi[pending] <= 2.0 * ap_max)]
@@ -564,13 +577,14 @@ def search_min_overturning(families: Sequence[Family], fam, x, *, ap_max: float 
         act = np.flatnonzero(ok)
         while act.size:
             mid = 0.5 * (lo[act] + hi[act])
-            up = run(iso_cols[act], mid).uplifted
+            up = run(iso_cols[act], mid, early=False).uplifted
             hi[act[up]] = mid[up]
             lo[act[~up]] = mid[~up]
             act = act[(hi[act] - lo[act]) > 1e-7 * hi[act]]
         y_u[iso_cols] = np.where(ok, lo, np.nan)
 
-    # 2. scan upwards from the threshold on y_u (1 + step)^k; first overturning grid value
+    # 2. scan upwards from the threshold on y_u (1 + step)^k; first overturning grid value. From here
+    # on only verdicts count: early runs (stopped once the verdict is proven; the same verdicts).
     ratio = 1.0 + step
     ap_min = np.full(n, np.nan)
     ap_safe = np.full(n, np.nan)
@@ -635,7 +649,7 @@ def search_min_overturning(families: Sequence[Family], fam, x, *, ap_max: float 
     found = np.isfinite(hi_ot)
     ap_min[found] = hi[found]
     ap_safe[found] = lo[found]
-    return MinSearch(ap_uplift=y_u, ap_min=ap_min, ap_safe=ap_safe, runs=runs)
+    return MinSearch(ap_uplift=y_u, ap_min=ap_min, ap_safe=ap_safe, runs=runs, unproven=unproven)
 
 
 @dataclass(frozen=True)

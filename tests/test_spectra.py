@@ -73,10 +73,10 @@ def test_a_cell_is_the_single_simulate_run(shape, iso):
     fam = Family(math.radians(15.0), shape, parse_isolation(iso))
     for i, y in enumerate(gy.values):
         for j, x in enumerate(gx.values):
-            block, foundation, pulse, tail = fam.scene(x, y)
+            block, foundation, pulse = fam.scene(x, y)
             assert pulse.a_p == pytest.approx(y * G * math.tan(block.alpha), rel=1e-15)
             assert pulse.T_p == pytest.approx(2 * math.pi / (x * block.p), rel=1e-15)
-            r = simulate(block, foundation, pulse, tail=tail)
+            r = simulate(block, foundation, pulse)
             assert m.overturned[i, j] == r.overturned
             assert m.uplifted[i, j] == (r.verdict != "no_uplift")
             assert m.theta_max_over_alpha[i, j] == r.theta_max_over_alpha
@@ -245,10 +245,11 @@ def test_cli_overturning_csv_one_row_per_cell(tmp_path):
     rows = list(csv.DictReader(out.open()))
     assert len(rows) == 30
     assert list(rows[0]) == ["alpha_deg", "pulse", "isolation", "T_p_s", "R_m", "wp_over_p", "ap_over_g_tan_alpha",
-                             "ap_g", "overturned", "theta_max_over_alpha", "uplift"]
+                             "ap_g", "overturned", "theta_max_over_alpha", "uplift", "peak_final", "proven"]
     for row in rows:
         assert (row["uplift"] == "1") == (float(row["ap_over_g_tan_alpha"]) > 1.0)
         assert float(row["R_m"]) == pytest.approx(critical_R(0.9, float(row["wp_over_p"])))
+        assert row["peak_final"] == "1" and row["proven"] == "1"
     assert png.stat().st_size > 1000
 
 
@@ -275,28 +276,37 @@ def test_cli_record_gives_shape_and_period(tmp_path, pulse_records):
 # ------------------------------------------------------------------------------------------
 # solve helpers the sweeps use
 # ------------------------------------------------------------------------------------------
-def test_simulate_verdicts_scaled_pulses_and_tails_per_job():
+def test_simulate_verdicts_are_simulate_many_as_arrays():
     from rockcli.models import Block
     from rockcli.solve import simulate_many, simulate_verdicts
 
     b = Block.from_degrees(1.0, 14.0)
-    unit = make_pulse("ricker-anti", G * math.tan(b.alpha), 0.5)
     lin = LinearIsolation(1.0, 0.05, 0.01)
-    ys = [0.8, 1.4, 2.2, 3.1, 4.5]
-    jobs = [(b, f, unit, y) for f in (Rigid(), lin) for y in ys]
-    tails = [3.0 + i for i in range(len(jobs))]
-    many = simulate_many(jobs, tail=tails)
-    v = simulate_verdicts(jobs, tail=tails)
-    for i, (bb, f, p, y) in enumerate(jobs):
-        single = simulate(bb, f, make_pulse("ricker-anti", y * unit.a_p, 0.5), tail=tails[i])
-        assert many[i].summary() == single.summary()  # the kernel scales a_p: the same run
-        assert v.overturned[i] == single.overturned and v.uplifted[i] == (single.verdict != "no_uplift")
-        assert v.theta_max_over_alpha[i] == single.theta_max_over_alpha and v.nfev[i] == single.nfev
-    assert v.overturned.any() and not v.overturned.all()
-    with pytest.raises(RockcliInputError):
-        simulate_verdicts(jobs, tail=[1.0, 2.0])
-    with pytest.raises(RockcliInputError):
-        simulate_verdicts(jobs, tail=[-1.0] * len(jobs))
+    jobs = [(b, f, make_pulse("ricker-anti", y * G * math.tan(b.alpha), 0.5)) for f in (Rigid(), lin)
+            for y in (0.8, 1.4, 2.2, 3.1, 4.5)]
+    for early in (False, True):
+        many = simulate_many(jobs, early=early)
+        v = simulate_verdicts(jobs, early=early)
+        for i, (bb, f, p) in enumerate(jobs):
+            single = simulate(bb, f, p, early=early)
+            assert many[i].summary() == single.summary()
+            assert v.overturned[i] == single.overturned and v.uplifted[i] == (single.verdict != "no_uplift")
+            assert v.theta_max_over_alpha[i] == single.theta_max_over_alpha and v.nfev[i] == single.nfev
+            assert v.settled[i] == single.settled and v.peak_final[i] == single.peak_final
+        assert v.overturned.any() and not v.overturned.all()
+    with pytest.raises(RockcliInputError, match="finite"):  # a sweep's bad job raises, no JobError
+        simulate_verdicts([(b, Rigid(), jobs[0][2], float("nan"))])
+
+
+def test_early_maps_have_the_same_verdicts():
+    gx, gy = Grid(0.5, 10.0, 12), Grid(0.0, 8.0, 12)
+    for iso in ("none", LIN2):
+        full = overturning_map(10.0, "ricker-anti", iso, gx, gy)
+        early = overturning_map(10.0, "ricker-anti", iso, gx, gy, early=True)
+        assert np.array_equal(full.overturned, early.overturned) and np.array_equal(full.uplifted, early.uplifted)
+        assert full.peak_final.all()
+        assert np.all(early.theta_max_over_alpha <= full.theta_max_over_alpha + 1e-12)
+        assert early.nfev <= full.nfev
 
 
 def test_help_and_the_sweeps_library_import_nothing_heavy():

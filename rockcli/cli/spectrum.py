@@ -103,6 +103,12 @@ def _runner(scheduler):
     return Runner(scheduler)
 
 
+def _echo_unproven(runner):
+    if runner.unproven:
+        click.echo(f"note: {runner.unproven} runs reached the solver's horizon with the verdict NOT PROVEN "
+                   "(counted as surviving)")
+
+
 def _echo_notes(pcs):
     for pc in pcs:
         if pc.note:
@@ -116,13 +122,17 @@ def _echo_notes(pcs):
               help="omega_p/p grid, both ends included.")
 @click.option("--ap", "ap", default="0:10:200", show_default=True, metavar="START:STOP:COUNT",
               help="a_p/(g tan alpha) grid, both ends included.")
+@click.option("--early", is_flag=True,
+              help="Stop each run as soon as its verdict is proven, even during the pulse: the same map, "
+                   "faster; theta_max_over_alpha is then only a lower bound where peak_final is 0.")
 @user_errors
-def overturning(alpha, pulses, records, isolations, csv_path, plot_path, scheduler, units, dt, fmt, column, wp_p, ap):
+def overturning(alpha, pulses, records, isolations, csv_path, plot_path, scheduler, units, dt, fmt, column, wp_p, ap,
+                early):
     """Overturning map over omega_p/p x a_p/(g tan alpha), like the paper's Figures 6 and 9.
 
     Light grey: the block rocks and survives; dark grey: it overturns; white: it never uplifts.
     The CSV has one row per cell (alpha_deg, pulse, isolation, T_p_s, R_m, wp_over_p,
-    ap_over_g_tan_alpha, ap_g, overturned, theta_max_over_alpha, uplift).
+    ap_over_g_tan_alpha, ap_g, overturned, theta_max_over_alpha, uplift, peak_final, proven).
 
     \b
     Examples:
@@ -145,15 +155,15 @@ def overturning(alpha, pulses, records, isolations, csv_path, plot_path, schedul
     t0 = time.perf_counter()
     bar, update = _progress(n, "cells")
     with runner, bar:
-        maps = overturning_maps(alphas, pcs, isos, wp_grid, ap_grid, runner=runner, progress=update)
+        maps = overturning_maps(alphas, pcs, isos, wp_grid, ap_grid, runner=runner, progress=update, early=early)
     elapsed = time.perf_counter() - t0
     _echo_notes(pcs)
     for m in maps:
         cells = m.overturned.size
-        unsettled = int((~m.settled & ~m.overturned).sum())
+        unsettled = int((~m.settled & ~m.overturned).sum())  # reached the solver's horizon unproven
         click.echo(f"alpha = {m.alpha_deg:g} deg, {m.pulse.label}, {m.isolation.label}: "
                    f"{int(m.overturned.sum())} of {cells} cells overturn, {int((~m.uplifted).sum())} never uplift"
-                   + (f", {unsettled} still moving at the end of the run" if unsettled else ""))
+                   + (f", {unsettled} NOT PROVEN (still moving at the solver's horizon)" if unsettled else ""))
     click.echo(f"{n} cells (omega_p/p {wp_grid}, a_p/(g tan alpha) {ap_grid}) in {elapsed:.2f} s")
     if csv_path:
         from rockcli.report.spectra import write_map_csv
@@ -229,6 +239,7 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
     click.echo(format_min_table(curves))
     click.echo(f"{len(curves)} curves x {xs.size} values of omega_p/p: {runner.cells_run} runs in {elapsed:.2f} s "
                f"(scan step {step:g}, tolerance {tol:g}, up to {ap_max:g} g tan alpha)")
+    _echo_unproven(runner)
     if csv_path:
         from rockcli.report.spectra import write_min_csv
 
@@ -336,6 +347,7 @@ def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, 
         click.echo(f"note: {note}")
     click.echo(f"{len(result.rows)} crossings: {result.runs} runs in {elapsed:.2f} s (omega_p/p grid {grid}, "
                f"refined to {xtol:g})")
+    _echo_unproven(runner)
     if csv_path:
         from rockcli.report.spectra import write_critical_csv
 

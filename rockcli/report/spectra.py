@@ -17,7 +17,7 @@ from rockcli.units import G
 
 #: Columns of ``rockcli spectrum overturning --csv`` (one row per cell of every map).
 MAP_COLUMNS = ("alpha_deg", "pulse", "isolation", "T_p_s", "R_m", "wp_over_p", "ap_over_g_tan_alpha", "ap_g",
-               "overturned", "theta_max_over_alpha", "uplift")
+               "overturned", "theta_max_over_alpha", "uplift", "peak_final", "proven")
 #: Columns of ``rockcli spectrum min-overturning --csv`` (one row per omega_p/p of every curve).
 MIN_COLUMNS = ("alpha_deg", "pulse", "isolation", "T_p_s", "R_m", "wp_over_p", "ap_min_over_g_tan_alpha",
                "ap_safe_over_g_tan_alpha", "ap_uplift_over_g_tan_alpha", "ap_min_g", "scan_step", "tolerance",
@@ -96,7 +96,8 @@ def map_rows(maps):
                        "wp_over_p": float(x), "ap_over_g_tan_alpha": float(y), "ap_g": float(y) * tan_a,
                        "overturned": bool(m.overturned[i, j]),
                        "theta_max_over_alpha": float(m.theta_max_over_alpha[i, j]),
-                       "uplift": bool(m.uplifted[i, j])}
+                       "uplift": bool(m.uplifted[i, j]), "peak_final": bool(m.peak_final[i, j]),
+                       "proven": bool(m.settled[i, j] or m.overturned[i, j])}
 
 
 def write_map_csv(maps, path) -> Path:
