@@ -220,3 +220,39 @@ def safe_name(*parts: str) -> str:
     """A file-name stem from parts (``bassae_kobe-1995-takarazuka-000_Tb=2s`` -> safe characters only)."""
     text = "_".join(str(p) for p in parts)
     return re.sub(r"[^A-Za-z0-9.=+-]+", "_", text).strip("_")[:150] or "run"
+
+
+@dataclass(frozen=True)
+class ToleranceCheck:
+    """Outcome of :func:`check_tolerance`: every scene rerun at ``rtol`` (``factor`` times tighter).
+
+    ``changed`` holds ``(row, verdict at the tight rtol)`` for each scene whose verdict differs;
+    ``max_peak_change`` is the largest change of theta_max/alpha among scenes that survive at both.
+    """
+
+    rtol: float
+    base_rtol: float
+    n_runs: int
+    changed: list
+    max_peak_change: float
+
+
+def check_tolerance(assessment: Assessment, *, factor: float = 100.0, base_rtol: float | None = None) -> ToleranceCheck:
+    """Rerun every scene of ``assessment`` that ran at a ``factor`` times tighter rtol (verdict
+    only, all cores) and report the verdicts that change (they were decided by the numerics)."""
+    from rockcli.solve import DEFAULT_RTOL, simulate_many
+
+    base = DEFAULT_RTOL if base_rtol is None else float(base_rtol)
+    blocks = {b.name: b for b in assessment.columns}
+    confs = {c.header: c for c in assessment.configurations}
+    xs = {x.label: x for x in assessment.excitations}
+    rows = [r for r in assessment.rows if not r.error and r.verdict and xs[r.record].motion is not None]
+    jobs = [(blocks[r.column], confs[r.configuration].foundation, xs[r.record].motion) for r in rows]
+    tight = simulate_many(jobs, rtol=base / factor)
+    changed, peak = [], 0.0
+    for row, r in zip(rows, tight):
+        if r.verdict != row.verdict:
+            changed.append((row, r.verdict))
+        elif r.verdict == "rocked":
+            peak = max(peak, abs(r.theta_max_over_alpha - row.theta_max_over_alpha))
+    return ToleranceCheck(base / factor, base, len(rows), changed, peak)

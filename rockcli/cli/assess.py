@@ -87,9 +87,11 @@ def _columns(names, R, alpha, height, width, name):
               help="Write one time-history CSV per run into this folder.")
 @click.option("--plot", "plot_dir", type=click.Path(file_okay=False), default=None,
               help="Write one figure per run (like the paper's Figure 12) into this folder.")
+@click.option("--check-tolerance", is_flag=True,
+              help="Rerun every scene at a 100x tighter rtol (1e-10) and flag any verdict that changes.")
 @user_errors
 def column(names, R, alpha, height, width, name, records, units, dt, excitation, isolation, margin, neighbourhood,
-           csv_path, hist_dir, plot_dir):
+           csv_path, hist_dir, plot_dir, check_tolerance):
     """Do the columns NAME... survive the records, on a rigid base and on isolators?
 
     NAME is a preset (bassae, nemea) or a custom block NAME:R=<m>,alpha=<deg> or
@@ -132,6 +134,8 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
     click.echo("")
     click.echo(format_notes(result))
     _warn_failed(result.failed, len(result.excitations))
+    if check_tolerance:
+        _echo_tolerance_check(result)
 
     if csv_path:
         from rockcli.report.tables import write_assessment_csv
@@ -140,6 +144,20 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
         click.echo(f"wrote {csv_path} ({len(result.rows)} rows)")
     if hist_dir or plot_dir:
         _write_histories(result, hist_dir, plot_dir)
+
+
+def _echo_tolerance_check(result):
+    from rockcli.assess.table import check_tolerance
+
+    chk = check_tolerance(result)
+    head = f"Tolerance check: {chk.n_runs} scenes rerun at rtol {chk.rtol:g} (100x tighter than {chk.base_rtol:g}): "
+    if not chk.changed:
+        click.echo(head + f"no verdict changes (largest change of a survivor's peak |theta|/alpha: "
+                          f"{chk.max_peak_change:.1e}).")
+        return
+    click.echo(head + f"{len(chk.changed)} VERDICTS CHANGE (decided by the numerics; treat as a coin toss):")
+    for row, tight in chk.changed:
+        click.echo(f"  {row.column} / {row.record} / {row.configuration}: {row.verdict} -> {tight}")
 
 
 def _write_histories(result, hist_dir, plot_dir):
