@@ -19,6 +19,7 @@ _COMMANDS = {
     "fit-pulse": "rockcli.cli.fit_pulse:fit_pulse",
     "assess": "rockcli.cli.assess:assess",
     "spectrum": "rockcli.cli.spectrum:spectrum",
+    "bench": "rockcli.cli.bench:bench",
 }
 
 
