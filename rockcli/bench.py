@@ -755,14 +755,23 @@ def _weak_chatter():
     return b, Rigid(), _record(acc, dt, "weak-2Hz")
 
 
+def _subnormal_uplift():
+    """A random extreme scene (``--random 5000 --seed 7``, number 3669), its numbers kept exactly."""
+    from rockcli.models import Block, LinearIsolation
+    from rockcli.pulses import make_pulse
+
+    return (Block(4.185866746376747, 0.023977874382879526, "subnormal-uplift"),
+            LinearIsolation(0.533663188523473, 0.5, 0.0), make_pulse("ricker-sym", 0.9275447215073718, 0.25285436453418914))
+
+
 def _iso(spec):
     return parse_foundation(spec)
 
 
-def _alpha_block(deg):
+def _alpha_block(deg, R=1.0):
     from rockcli.models import Block
 
-    return Block.from_degrees(1.0, deg, f"R1m-alpha{deg:g}deg")
+    return Block.from_degrees(R, deg, f"R{R:g}m-alpha{deg:g}deg")
 
 
 def _ap_g_for(block, factor):
@@ -809,9 +818,48 @@ STABILITY_SCENES = (
                    _ends_mid_rocking),
     StabilityScene("alpha-at-end", "Bassae, rigid, sampled Ricker 0.8 g, 1.2 s ending exactly as |theta| reaches "
                    "alpha", _passes_alpha_at_end, expect="overturned"),
+    StabilityScene("alpha-45deg-gamma-0.9", "R = 2 m, alpha = 45 deg, linear Tb = 0.5 s, xi = 0.1, gamma = 0.9 (a squat "
+                   "block on a light base: eta clamped to 0), antisymmetric Ricker 5 g, 0.25 s",
+                   lambda: (_alpha_block(45.0, 2.0), _iso("linear:Tb=0.5,xi=0.1,gamma=0.9"),
+                            _pulse("ricker-anti", 5.0, 0.25))),
+    StabilityScene("slender-1.4deg-linear", "R = 17 m, alpha = 1.4 deg, linear Tb = 0.8 s, xi = 0.1, symmetric Ricker "
+                   "0.7 g, 0.3 s (eta = 0.9991: the free rocking outlasts the horizon)",
+                   lambda: (_alpha_block(1.4, 17.0), _iso("linear:Tb=0.8,xi=0.1"), _pulse("ricker-sym", 0.7, 0.3))),
+    StabilityScene("subnormal-uplift", "R = 4.19 m, alpha = 1.37 deg, linear Tb = 0.534 s, xi = 0.5, gamma = 0, "
+                   "symmetric Ricker 0.0946 g, 0.253 s (micro-uplifts: theta falls to subnormal numbers; found by "
+                   "--random 5000 --seed 7)", _subnormal_uplift),
     StabilityScene("bouc-wen-uy-0.01mm", "Bassae, SCSS Tb = 3 s, mu = 0.05, u_y = 0.01 mm, symmetric Ricker 0.5 g, "
                    "1.2 s", lambda: (_bassae(), _iso("scss:Tb=3,mu=0.05,uy=0.00001"), _pulse("ricker-sym", 0.5, 1.2))),
 )
+
+
+def random_scenes(n: int, seed: int = 1) -> list:
+    """``n`` random extreme pulse scenes (fixed ``seed``): alpha 1-45 deg, R 0.2-20 m (log-uniform),
+    rigid (40 %) or linear bearings (T_b 0.3-6 s, xi in {0, 0.02, 0.1, 0.5, 1}, gamma in {0, 0.01, 0.3,
+    0.9, 0.99}), any pulse shape, T_p 0.05-10 s, a_p 0.5-50 g tan(alpha) capped at 5 g. An undamped
+    base (xi = 0) may end NOT PROVEN (stated)."""
+    from rockcli.models import Block, LinearIsolation, Rigid
+
+    rng = np.random.default_rng(seed)
+    out = []
+    for i in range(n):
+        alpha = math.radians(float(np.exp(rng.uniform(math.log(1), math.log(45)))))
+        R = float(np.exp(rng.uniform(math.log(0.2), math.log(20))))
+        if rng.random() < 0.4:
+            f = Rigid()
+        else:
+            f = LinearIsolation(float(np.exp(rng.uniform(math.log(0.3), math.log(6)))),
+                                float(rng.choice([0, 0.02, 0.1, 0.5, 1.0])), float(rng.choice([0, 0.01, 0.3, 0.9, 0.99])))
+        shape = str(rng.choice(["ricker-sym", "ricker-anti", "sine", "cosine"]))
+        tp = float(np.exp(rng.uniform(math.log(0.05), math.log(10))))
+        ap_g = min(float(np.exp(rng.uniform(math.log(0.5), math.log(50)))) * math.tan(alpha), 5.0)
+        blk = Block(R, alpha, f"random-{i}")
+        title = (f"R = {R:.3g} m, alpha = {math.degrees(alpha):.3g} deg, {getattr(f, 'label', 'none')}, {shape} "
+                 f"{ap_g:.3g} g, {tp:.3g} s")
+        out.append(StabilityScene(f"random-{seed}-{i}", title,
+                                  (lambda b=blk, f=f, e=(shape, ap_g, tp): (b, f, _pulse(*e))),
+                                  unproven_ok=bool(getattr(f, "xi", 1.0) == 0.0)))
+    return out
 
 
 @dataclass
@@ -880,6 +928,7 @@ def run_stability(scenes, *, rtols=STABILITY_RTOLS, progress: Callable[[str], No
             res.status, res.reason = "refused", f"refused: {exc_}"
             continue
         responses = {}
+        rt = rtols[0]
         try:
             # load (or compile) the kernels outside the timed runs: the budget is for the run
             key = (type(foundation).__name__, hasattr(exc, "acc"))
@@ -900,6 +949,11 @@ def run_stability(scenes, *, rtols=STABILITY_RTOLS, progress: Callable[[str], No
         except RockcliInputError as exc_:
             res.status, res.reason = "refused", f"refused: {exc_}"
             continue
+        except Exception as exc_:  # noqa: BLE001  (a crash is a result of the study, not of the bench)
+            res.status = "FAIL"
+            res.reason = f"crash at rtol {rt:g}: {type(exc_).__name__}: {exc_}"
+            res.checks.append(Check(f"crash @{rt:g}", False, f"{type(exc_).__name__}: {exc_}"))
+            continue
         a, b = (responses[rt] for rt in rtols[:2])
         res.checks.append(check_tolerance(a.verdict, b.verdict, a.theta_max_over_alpha, b.theta_max_over_alpha,
                                           a.t_overturn_s, b.t_overturn_s))
@@ -910,7 +964,10 @@ def run_stability(scenes, *, rtols=STABILITY_RTOLS, progress: Callable[[str], No
         unproven = [rt for rt, r in responses.items() if not r.settled]
         failed = [c for c in res.checks if not c.ok]
         if unproven and not sc.unproven_ok:
-            failed.append(Check("proven", False, f"NOT PROVEN at the horizon (rtol {', '.join(f'{x:g}' for x in unproven)})"))
+            r = responses[unproven[-1]]
+            failed.append(Check("proven", False, f"NOT PROVEN at the horizon (rtol {', '.join(f'{x:g}' for x in unproven)}"
+                                                 f"; t = {r.t_end_s:.1f} s, {r.n_impacts_total} impacts, "
+                                                 f"{r.n_rests} rests)"))
         if failed:
             res.status = "FAIL"
             res.reason = "; ".join(f"{c.name}: {c.detail}" for c in failed)

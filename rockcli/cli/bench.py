@@ -54,6 +54,16 @@ def _progress():
     return lambda line: click.echo(f"  {line}", err=True)
 
 
+def _failed_checks(results) -> dict:
+    """How many scenes failed each kind of check (name before the '@')."""
+    out = {}
+    for res in results:
+        for kind in sorted({c.name.split(" @")[0] for c in res.checks if not c.ok}
+                           | ({"proven"} if "NOT PROVEN" in res.reason and res.status == "FAIL" else set())):
+            out[kind] = out.get(kind, 0) + 1
+    return out
+
+
 def _scene_list(catalogue) -> str:
     return "\n".join(f"  {s.name:22s} {s.title}" for s in catalogue)
 
@@ -142,8 +152,12 @@ def work_precision(scenes, csv_path, plot_path, kernel_rtol, scipy_rtol, methods
 @click.option("--csv", "csv_path", type=click.Path(dir_okay=False), default=None, help="Write one row per scene.")
 @click.option("--list", "list_only", is_flag=True, help="List the scenes and exit.")
 @click.option("--verbose", "-v", is_flag=True, help="Print every check of every scene.")
+@click.option("--random", "n_random", type=click.IntRange(0, 100000), default=0, metavar="N",
+              help="Instead of the named scenes, N random extreme pulse scenes (alpha 1-45 deg, R 0.2-20 m, rigid "
+                   "or linear bearings with xi 0-1 and gamma 0-0.99, T_p 0.05-10 s, a_p up to 5 g).")
+@click.option("--seed", type=int, default=1, show_default=True, help="Seed of --random.")
 @user_errors
-def stability(scenes, csv_path, list_only, verbose):
+def stability(scenes, csv_path, list_only, verbose, n_random, seed):
     """Stiff and extreme scenes, each run at rtol 1e-6 and 1e-10 within a wall-time and step budget.
 
     A scene passes when: no NaN; no hang (budget); no step-size collapse; the same verdict at both
@@ -164,12 +178,24 @@ def stability(scenes, csv_path, list_only, verbose):
     if list_only:
         click.echo(_scene_list(STABILITY_SCENES))
         return
-    chosen = select_scenes(scenes, STABILITY_SCENES)
+    if n_random and scenes:
+        raise InputError("--random replaces the named scenes: give --scene or --random, not both")
+    if n_random:
+        from rockcli.bench import random_scenes
+
+        chosen = random_scenes(n_random, seed)
+    else:
+        chosen = select_scenes(scenes, STABILITY_SCENES)
     _check_outputs(csv=csv_path)
     results = run_stability(chosen, progress=_progress())
     from rockcli.report.bench import format_stability
 
-    click.echo(format_stability(results))
+    if n_random:
+        results_shown = [r for r in results if r.status not in ("pass", "stated")]
+        click.echo(format_stability(results_shown) if results_shown else "every random scene passes")
+        click.echo("\nFailed checks: " + (", ".join(f"{k} {v}" for k, v in _failed_checks(results).items()) or "none"))
+    else:
+        click.echo(format_stability(results))
     if verbose:
         for res in results:
             click.echo(f"\n{res.scene.name}: {res.scene.title}")
