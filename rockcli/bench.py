@@ -116,12 +116,12 @@ WP_SCENES = (
           "linear:Tb=2,xi=0.1", "pulse:ricker-sym:ap=0.3,Tp=1.2"),
     Scene("linear-kobe", "Bassae, linear Tb = 2.5 s, xi = 0.1, Kobe Takarazuka 000", "bassae",
           "linear:Tb=2.5,xi=0.1", KOBE),
-    Scene("scss-ricker", "Bassae, SCSS Tb = 3 s, mu = 0.05, symmetric Ricker 0.5 g, 1.2 s", "bassae",
-          "scss:Tb=3,mu=0.05", "pulse:ricker-sym:ap=0.5,Tp=1.2"),
-    Scene("scss-kobe", "Bassae, SCSS Tb = 3 s, mu = 0.05, Kobe Takarazuka 000", "bassae", "scss:Tb=3,mu=0.05", KOBE),
+    Scene("scss-ricker", "Bassae, SCSS Tb = 3 s, mu = 0.1, symmetric Ricker 0.5 g, 1.2 s", "bassae",
+          "scss:Tb=3,mu=0.1", "pulse:ricker-sym:ap=0.5,Tp=1.2"),
+    Scene("scss-kobe", "Nemea, SCSS Tb = 3 s, mu = 0.1, Kobe Takarazuka 000", "nemea", "scss:Tb=3,mu=0.1", KOBE),
     Scene("dcss-ricker", "Bassae, DCSS R1 = R2 = 1.1 m, mu1 = 0.03, mu2 = 0.07, symmetric Ricker 0.5 g, 1.2 s",
           "bassae", "dcss:R1=1.1,R2=1.1,mu1=0.03,mu2=0.07", "pulse:ricker-sym:ap=0.5,Tp=1.2"),
-    Scene("dcss-kobe", "Bassae, DCSS R1 = R2 = 1.1 m, mu1 = 0.03, mu2 = 0.07, Kobe Takarazuka 000", "bassae",
+    Scene("dcss-kobe", "Nemea, DCSS R1 = R2 = 1.1 m, mu1 = 0.03, mu2 = 0.07, Kobe Takarazuka 000", "nemea",
           "dcss:R1=1.1,R2=1.1,mu1=0.03,mu2=0.07", KOBE),
 )
 

@@ -210,6 +210,8 @@ class _Work:
         self.nlu += int(sol.nlu)
         if sol.status == -1:
             raise ReferenceFailure(f"{self.method} at rtol {self.rtol:g}: {sol.message}")
+        if not np.all(np.isfinite(sol.y)):  # e.g. an explicit method on a stiff Bouc-Wen element
+            raise ReferenceFailure(f"{self.method} at rtol {self.rtol:g}: diverged (non-finite states)")
         return sol
 
 
@@ -291,12 +293,9 @@ def reference_simulate(block: Block, foundation, excitation, *, rtol=1e-10, atol
     work = _Work(method, rtol, atol, lambda n: full[-n:], deadline_s)
     if align and hasattr(excitation, "acc"):
         work.breaks = float(excitation.dt) * np.arange(1, np.asarray(excitation.acc).size)
-    if is_hysteretic(foundation):
-        out = _reference_hysteretic(block, foundation, excitation, work, horizon=horizon, rest_tol=rest_tol,
-                                    max_phases=max_phases)
-    else:
-        out = _reference_linear(block, foundation, excitation, work, horizon=horizon, rest_tol=rest_tol,
-                                max_phases=max_phases)
+    run = _reference_hysteretic if is_hysteretic(foundation) else _reference_linear
+    with np.errstate(all="ignore"):  # a diverging method is reported (ReferenceFailure), not warned about
+        out = run(block, foundation, excitation, work, horizon=horizon, rest_tol=rest_tol, max_phases=max_phases)
     out.steps, out.nfev, out.njev, out.nlu = work.steps, work.nfev, work.njev, work.nlu
     out.wall_s = time.perf_counter() - t_wall
     out.method, out.rtol, out.atol = method, float(rtol), atol
