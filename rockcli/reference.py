@@ -490,8 +490,8 @@ def _reference_linear(block, foundation, excitation, work, *, horizon, rest_tol,
     verdict = "overturned" if not math.isnan(t_overturn) else ("rocked" if uplifted else "no_uplift")
     if phase != "stuck":
         t_rest = math.nan
-    return RefResult(verdict, theta_max, t_uplift, t_overturn, n_imp, u_max, t_rest=t_rest, n_rests=n_rests,
-                     t_theta_max=t_theta_max)
+    return RefResult(verdict, float(theta_max), float(t_uplift), float(t_overturn), n_imp, float(u_max),
+                     t_rest=float(t_rest), n_rests=n_rests, t_theta_max=float(t_theta_max))
 
 
 # ------------------------------------------------------------------------------------------------
@@ -687,5 +687,5 @@ def _reference_hysteretic(block, foundation, excitation, work, *, horizon, rest_
     verdict = "overturned" if not math.isnan(t_overturn) else ("rocked" if uplifted else "no_uplift")
     if phase != "stuck":
         t_rest = math.nan
-    return RefResult(verdict, theta_max, t_uplift, t_overturn, n_imp, u_max, t_rest=t_rest, n_rests=n_rests,
-                     t_theta_max=t_theta_max)
+    return RefResult(verdict, float(theta_max), float(t_uplift), float(t_overturn), n_imp, float(u_max),
+                     t_rest=float(t_rest), n_rests=n_rests, t_theta_max=float(t_theta_max))

@@ -288,6 +288,7 @@ def test_cli_work_precision_writes_csv_and_png_atomically(tmp_path):
     assert "t_overturn" in res.output and "rockcli at rtol 1e-8 against SciPy" in res.output
     lines = csv_path.read_text().splitlines()
     assert lines[0].split(",") == list(WP_COLUMNS) and len(lines) == 1 + 2 * 2 + 2
+    assert "np." not in csv_path.read_text()
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size < 150_000
     assert sorted(p.name for p in tmp_path.iterdir()) == ["wp.csv", "wp.png"]  # no temporary file left
 
@@ -322,7 +323,12 @@ def test_cli_stability_csv(tmp_path):
     assert "chatter-pulse" in res.output and "momentum @1e-10" in res.output
     lines = out.read_text().splitlines()
     assert lines[0].split(",") == list(STAB_COLUMNS) and len(lines) == 3
-    assert ",pass," in lines[1]
+    import csv
+
+    rows = list(csv.DictReader(lines))
+    assert rows[0]["status"] == "pass" and rows[0]["verdict_rtol_1e-6"] == rows[0]["verdict_rtol_1e-10"] == "rocked"
+    assert float(rows[0]["theta_max_over_alpha_rtol_1e-10"]) > 0 and int(rows[0]["steps_rtol_1e-10"]) > 0
+    assert rows[1]["status"] in ("pending", "pass") and rows[0]["settled"] == "1"
 
 
 # ------------------------------------------------------------------------------------------

@@ -33,12 +33,16 @@ METHOD_STYLE = {  # colour, marker
 
 
 def _fmt(v):
+    import numpy as np
+
     if v is None:
         return ""
-    if isinstance(v, bool):
+    if isinstance(v, (bool, np.bool_)):
         return "1" if v else "0"
-    if isinstance(v, float):
-        return "" if math.isnan(v) else repr(v)
+    if isinstance(v, (float, np.floating)):
+        return "" if math.isnan(v) else repr(float(v))
+    if isinstance(v, np.integer):
+        return str(int(v))
     return v
 
 
@@ -232,7 +236,8 @@ def stability_rows(results) -> list:
                    step_budget=sc.step_budget, checks="; ".join(f"{c.name}: {'ok' if c.ok else 'FAIL'}: {c.detail}"
                                                                 for c in res.checks))
         for rt, d in res.runs.items():
-            tag = f"rtol_{rt:g}"
+            mant, _, exp = f"{rt:.0e}".partition("e")
+            tag = f"rtol_{mant}e{int(exp)}"  # rtol_1e-6, rtol_1e-10
             row[f"verdict_{tag}"] = d["verdict"]
             row[f"theta_max_over_alpha_{tag}"] = d["theta_max_over_alpha"]
             row[f"t_overturn_s_{tag}"] = d["t_overturn_s"]
