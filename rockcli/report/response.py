@@ -5,13 +5,14 @@ matplotlib is imported inside the plotting function (Agg backend); files are wri
 
 from __future__ import annotations
 
+import io
 import math
 import os
 from pathlib import Path
 
 import numpy as np
 
-from rockcli.report.files import atomic_path
+from rockcli.report.files import check_output, save_figure, write_text
 from rockcli.units import G
 
 #: Columns of a history CSV (SI units, g only where labelled).
@@ -33,9 +34,9 @@ def write_history_csv(response, block, path: str | os.PathLike) -> Path:
     (just before and just after it).
     """
     table = history_table(response, block)
-    with atomic_path(path) as tmp:
-        np.savetxt(tmp, table, delimiter=",", header=",".join(HISTORY_COLUMNS), comments="", fmt="%.10g")
-    return Path(path)
+    buf = io.StringIO()
+    np.savetxt(buf, table, delimiter=",", header=",".join(HISTORY_COLUMNS), comments="", fmt="%.10g")
+    return write_text(path, buf.getvalue())
 
 
 def plot_response(response, block, foundation, title: str, path: str | os.PathLike, *, dpi: int = 120) -> Path:
@@ -51,6 +52,7 @@ def plot_response(response, block, foundation, title: str, path: str | os.PathLi
     H = response.history
     if H is None:
         raise ValueError("this response was computed without history (simulate(..., history=True))")
+    check_output(path, image=True)
     isolated = getattr(foundation, "kind", 0) != 0
     n = 4 if isolated else 3
     fig, axes = plt.subplots(n, 1, sharex=True, figsize=(8.0, 1.9 * n + 0.8))
@@ -77,7 +79,7 @@ def plot_response(response, block, foundation, title: str, path: str | os.PathLi
                "no_uplift": "no uplift"}[response.verdict]
     axes[0].set_title(f"{title}\n{verdict}", fontsize=9)
     fig.tight_layout()
-    with atomic_path(path) as tmp:
-        fig.savefig(tmp, dpi=dpi, format=Path(path).suffix.lstrip(".") or "png")
-    plt.close(fig)
-    return Path(path)
+    try:
+        return save_figure(fig, path, dpi=dpi)
+    finally:
+        plt.close(fig)
