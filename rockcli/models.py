@@ -30,6 +30,39 @@ DEFAULT_GAMMA = 0.01
 DEFAULT_XI = 0.1
 
 
+# --------------------------------------------------------------------------------------------------
+# Supported ranges (checked when a model is built; stated in the README's "Bad input" section)
+# --------------------------------------------------------------------------------------------------
+#: Semi-diagonal R [m]: from a figurine 2 cm tall to a monolith 140 m tall. Below 1 cm the block's
+#: frequency p = sqrt(3 g / 4 R) (27 rad/s at 1 cm) makes the rocking ever faster to integrate and the
+#: rigid-block idealisation has no object left; above 100 m no free-standing rigid body exists.
+R_RANGE_M = (0.01, 100.0)
+#: Smallest slenderness alpha [deg]: 0.1 deg is h/b = 573. A slenderer body uplifts at g tan(alpha)
+#: < 0.0018 g, i.e. under any ground noise, loses almost nothing at impacts (1 - 1.5 sin^2 alpha >
+#: 0.999995), and its theta/alpha grows without bound while theta itself stays finite: the rocking
+#: verdict of a needle says nothing (``--R 1 --alpha 1e-9`` "survived" with theta/alpha = 1e10).
+#: The upper end is 90 deg exclusive: the kernel handles squat blocks (they rarely uplift, and stop
+#: at their first impact once sin^2 alpha >= 2/3); sliding, which a squat block on a low-friction
+#: base does first, is not modelled.
+ALPHA_MIN_DEG = 0.1
+#: Isolation period T_b [s]. Below 5 ms the bearings are a rigid foundation for every record (no
+#: record carries motion above 100 Hz) and the base's frequency omega_b makes the integrator crawl;
+#: at 1e6 s (11.6 days) the base is already fully decoupled from the ground (tested).
+TB_RANGE_S = (0.005, 1e6)
+#: Viscous damping ratio xi of the bearings: real bearings have 0.02-0.3; above 10 times critical
+#: the dampers lock the base and its fastest rate, about 2 xi omega_b, sets the step (``xi=1e6``
+#: would need ~1e8 steps).
+XI_MAX = 10.0
+
+
+def _num(x) -> str:
+    """A number for a message: plain float formatting (never ``np.float64(...)``)."""
+    try:
+        return f"{float(x):g}"
+    except (TypeError, ValueError):
+        return repr(x)
+
+
 def _check(cond: bool, message: str) -> None:
     if not cond:
         raise RockcliInputError(message)
@@ -61,25 +94,26 @@ class Block:
     name: str = "block"
 
     def __post_init__(self):
-        _check(_finite(self.R) and self.R > 0, f"block size R must be a positive length in m, got {self.R!r}")
-        _check(_finite(self.alpha) and 0 < self.alpha < math.pi / 2,
-               f"block slenderness alpha must lie strictly between 0 and 90 degrees, got {self.alpha!r} rad")
+        _check_block(self.R, self.alpha)
         object.__setattr__(self, "R", float(self.R))
         object.__setattr__(self, "alpha", float(self.alpha))
 
     @classmethod
     def from_dimensions(cls, height: float, width: float, name: str = "block") -> "Block":
         """Block of full ``height`` and base ``width`` [m] (for a column: the base drum diameter)."""
-        _check(_finite(height) and height > 0, f"block height must be a positive length in m, got {height!r}")
-        _check(_finite(width) and width > 0, f"block width must be a positive length in m, got {width!r}")
+        _check(_finite(height) and float(height) > 0,
+               f"block height must be a positive length in m, got {_num(height)}")
+        _check(_finite(width) and float(width) > 0, f"block width must be a positive length in m, got {_num(width)}")
         h, b = 0.5 * float(height), 0.5 * float(width)
-        return cls(math.hypot(h, b), math.atan2(b, h), name)
+        R, alpha = math.hypot(h, b), math.atan2(b, h)
+        _check_block(R, alpha, f" (from height {_num(height)} m and width {_num(width)} m)")
+        return cls(R, alpha, name)
 
     @classmethod
     def from_degrees(cls, R: float, alpha_deg: float, name: str = "block") -> "Block":
         """Block from its semi-diagonal [m] and slenderness in degrees."""
         _check(_finite(alpha_deg) and 0 < float(alpha_deg) < 90,
-               f"block slenderness alpha must lie strictly between 0 and 90 degrees, got {alpha_deg!r}")
+               f"block slenderness alpha must lie strictly between 0 and 90 degrees, got {_num(alpha_deg)}")
         return cls(R, math.radians(float(alpha_deg)), name)
 
     @property
@@ -118,6 +152,22 @@ class Block:
     def housner_restitution(self) -> float:
         """Housner's ratio of angular velocities across an impact on a rigid base, ``1 - 1.5 sin^2 alpha``."""
         return 1.0 - 1.5 * math.sin(self.alpha) ** 2
+
+
+def _check_block(R, alpha, source: str = "") -> None:
+    """Raise one sentence when R [m] or alpha [rad] lies outside :data:`R_RANGE_M` / :data:`ALPHA_MIN_DEG`."""
+    _check(_finite(R) and float(R) > 0, f"block size R must be a positive length in m, got {_num(R)}")
+    _check(_finite(alpha) and 0 < float(alpha) < math.pi / 2,
+           f"block slenderness alpha must lie strictly between 0 and 90 degrees, got {_num(alpha)} rad")
+    lo, hi = R_RANGE_M
+    _check(lo <= float(R) <= hi,
+           f"block size R = {_num(R)} m{source} lies outside the supported {lo:g} m to {hi:g} m (a figurine 2 cm "
+           f"tall to a 140 m monolith; smaller bodies rock too fast to integrate, p = sqrt(3 g/4 R))")
+    deg = math.degrees(float(alpha))
+    _check(deg >= ALPHA_MIN_DEG * (1 - 1e-12),
+           f"block slenderness alpha = {deg:.3g} deg{source} is below the supported {ALPHA_MIN_DEG:g} deg "
+           f"(h/b = {1 / math.tan(float(alpha)):.3g} > 573): such a needle uplifts under any ground noise "
+           f"and its theta/alpha means nothing")
 
 
 #: The temple columns of the paper (monolithic idealisation): full height and base drum diameter [m].
@@ -242,10 +292,21 @@ class LinearIsolation:
     n_states = 2
 
     def __post_init__(self):
-        _check(_finite(self.T_b) and self.T_b > 0, f"isolation period Tb must be positive (s), got {self.T_b!r}")
-        _check(_finite(self.xi) and self.xi >= 0, f"isolation damping ratio xi must be >= 0, got {self.xi!r}")
-        _check(_finite(self.gamma) and 0 <= self.gamma < 1,
-               f"mass ratio gamma = m/(m+m_b) must satisfy 0 <= gamma < 1, got {self.gamma!r}")
+        _check(_finite(self.T_b) and float(self.T_b) > 0,
+               f"isolation period Tb must be positive (s), got {_num(self.T_b)}")
+        lo, hi = TB_RANGE_S
+        _check(lo <= float(self.T_b) <= hi,
+               f"isolation period Tb = {_num(self.T_b)} s lies outside the supported {lo:g} s to {hi:g} s "
+               f"(stiffer bearings are a rigid foundation for any record: use 'none'; at {hi:g} s the base is "
+               f"already free)")
+        _check(_finite(self.xi) and float(self.xi) >= 0,
+               f"isolation damping ratio xi must be >= 0, got {_num(self.xi)}")
+        _check(float(self.xi) <= XI_MAX,
+               f"isolation damping ratio xi = {_num(self.xi)} is above the supported {XI_MAX:g} (bearings have "
+               f"0.02-0.3; beyond {XI_MAX:g} times critical the dampers lock the base and the run needs "
+               f"~2 xi omega_b steps per second)")
+        _check(_finite(self.gamma) and 0 <= float(self.gamma) < 1,
+               f"mass ratio gamma = m/(m+m_b) must satisfy 0 <= gamma < 1, got {_num(self.gamma)}")
         for f in ("T_b", "xi", "gamma"):
             object.__setattr__(self, f, float(getattr(self, f)))
 
