@@ -127,16 +127,17 @@ def read_record(source, *, format=None, units=None, dt=None, column=None) -> Rec
 
 
 def _read_path(path: Path, fmt, units, dt, column, given_by: str = "caller") -> Record:
+    from rockcli.records.at2 import check_record_file
+
     name = str(path)
-    if not path.exists():
-        raise RockcliInputError(f"{name}: no such file")
-    if path.is_dir():
-        raise RockcliInputError(f"{name}: is a folder, not a record file")
-    if path.stat().st_size == 0:
+    if check_record_file(path) == 0:
         raise RockcliInputError(f"{name}: the file is empty")
 
-    with open(path, "rb") as fh:
-        head = fh.read(_PROBE_BYTES)
+    try:
+        with open(path, "rb") as fh:
+            head = fh.read(_PROBE_BYTES)
+    except OSError as exc:
+        raise RockcliInputError(f"{name}: cannot be read ({(exc.strerror or str(exc)).lower()})") from None
     is_text = b"\x00" not in head
     head_lines = head.decode("latin-1").splitlines() if is_text else []
 
@@ -182,6 +183,19 @@ def _looks_like_text_table(lines: list[str]) -> bool:
     return False
 
 
+def _claims_at2(path: Path, head_lines: list[str]) -> bool:
+    """True when a text file that is not a valid AT2 says it is one: ``.AT2`` suffix, a first line
+    naming PEER, or NPTS on line 4."""
+    from rockcli.records.at2 import _split_lines
+
+    lines = _split_lines("\n".join(head_lines)) if head_lines else []
+    if path.suffix.lower() == ".at2":
+        return True
+    if lines and "PEER" in lines[0].upper():
+        return True
+    return len(lines) >= 4 and "NPTS" in lines[3].upper()
+
+
 def _detect(path: Path, head_lines: list[str], is_text: bool) -> str:
     from rockcli.records.at2 import _is_at2
 
@@ -193,6 +207,8 @@ def _detect(path: Path, head_lines: list[str], is_text: bool) -> str:
         found = formats.probe(head_lines)
         if found:
             return found
+        if _claims_at2(path, head_lines):  # a broken AT2: its parser names the line and what it expected
+            return "PEER_AT2"
         if _looks_like_text_table(head_lines):
             return "TEXT"
     return "OBSPY"  # let ObsPy try its own detection
@@ -268,7 +284,7 @@ def _from_obspy(path: Path, fmt: str, column) -> dict[str, Any]:
         meta["calib"] = float(stats.calib)
     if values.size and not np.all(np.isfinite(values)):
         i = int(np.argmax(~np.isfinite(values)))
-        raise RockcliInputError(f"{path}: sample {i + 1} is {values[i]!r}, not a finite number")
+        raise RockcliInputError(f"{path}: sample {i + 1} is {float(values[i])!r}, not a finite number")
     return {"values": values, "dt": float(stats.delta), "dt_source": "header", "units": units,
             "t_start": 0.0, "meta": meta, "format": fmt_name}
 
@@ -288,7 +304,10 @@ def _finish(path: Path, out: dict[str, Any], units, dt, given_by: str) -> Record
         try:
             factor = accel_factor(stated_units)
         except RockcliInputError:
-            raise RockcliInputError(f"{name}: the file states units {stated_units!r}, which rockcli does not know") from None
+            from rockcli.units import KNOWN_UNITS
+
+            raise RockcliInputError(f"{name}: the file states units {stated_units!r}, which rockcli does not know "
+                                    f"(known: {KNOWN_UNITS}; give the file's units in one of these words)") from None
         if units is not None and not math.isclose(accel_factor(units), factor, rel_tol=1e-9):
             raise RockcliInputError(f"{name}: the file states units {stated_units!r} but {units!r} was given")
         used_units, units_source = stated_units, "file"
