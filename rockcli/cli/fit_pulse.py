@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 
 from rockcli.cli.errors import InputError, user_errors
-from rockcli.cli.options import record_kwargs, record_options
+from rockcli.cli.options import check_outputs, record_kwargs, record_options
 
 #: Pulse columns of records/catalog.csv that ``--update-catalog`` fills, and their rounding.
 _CATALOG_DIGITS = {"a_p_g": 4, "T_p_s": 4, "t0_s": 3, "pulse_energy": 4}
@@ -144,6 +144,11 @@ def fit_pulse(sources, units, dt, fmt, column, use_catalog, wavelet, periods, cs
         raise InputError("--update-catalog stores the fit only; leave out --candidates")
     if not sources and not use_catalog:
         raise InputError("give at least one SOURCE (a record file or catalogue id), or --catalog")
+    check_outputs((csv_path, "--csv", False), (plot_path, "--plot", True))
+    if update_catalog:
+        from rockcli.records.catalog import catalog_path
+
+        check_outputs((catalog_path(), "--update-catalog", False))
 
     warnings = []
     jobs = [(s, record_kwargs(units, dt, fmt, column)) for s in sources]
@@ -183,6 +188,13 @@ def fit_pulse(sources, units, dt, fmt, column, use_catalog, wavelet, periods, cs
         if any(f.at_period_bound for f in fits) or any(c.at_period_bound for cs in candidates for c in cs):
             click.echo(f"* T_p at an end of the searched range {period_range[0]:g}:{period_range[1]:g} s; "
                        f"widen --periods to check.")
+    for f in fits:
+        if f.periods[0] > period_range[0]:
+            warnings.append(f"{f.record_name}: periods searched from {f.periods[0]:g} s only (4 time steps), "
+                            f"not {period_range[0]:g} s")
+        if f.periods[1] < period_range[1]:
+            warnings.append(f"{f.record_name}: periods searched up to {f.periods[1]:g} s only, the record's "
+                            f"duration (a longer pulse cannot be fitted), not {period_range[1]:g} s")
     for w in warnings:
         click.echo(f"Warning: {w}", err=True)
 
