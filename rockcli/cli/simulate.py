@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 
 from rockcli.cli.errors import user_errors
-from rockcli.cli.options import block_from_options, block_options, record_kwargs, record_options
+from rockcli.cli.options import block_from_options, block_options, check_outputs, record_kwargs, record_options
 
 
 @click.command(context_settings={"show_default": True})
@@ -47,6 +47,7 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     from rockcli.models import parse_isolation_spec
     from rockcli.units import G
 
+    check_outputs((history_path, "--history", False), (plot_path, "--plot", True))
     block = block_from_options(column_name, R, alpha, height, width, name)
     foundation = parse_isolation_spec(isolation)
     if (record_source is None) == (pulse is None):
@@ -75,6 +76,10 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
 
     res = run(block, foundation, excitation, rtol=rtol, tail=tail, horizon=horizon,
               history=bool(history_path or plot_path))
+    if res.status < 0:  # a genuine numerical failure: no result is printed or written as if it were valid
+        raise click.ClickException(
+            f"the integrator stopped at its safety cap of {res.steps + res.rejected_steps:,} steps at "
+            f"t = {res.t_end_s:.3f} s, a numerical failure: no result is given (please report the command line)")
     if history_path:
         from rockcli.report.response import write_history_csv
 
@@ -114,8 +119,6 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     if not res.settled:
         click.echo(f"NOTE: the verdict is NOT PROVEN: at {res.t_end_s:.1f} s (the horizon) the base could still lift "
                    "the block; lengthen --horizon to follow it")
-    if res.status < 0:
-        raise click.ClickException(res.message)
 
 
 def _pga(excitation, G) -> str:
