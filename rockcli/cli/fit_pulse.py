@@ -99,10 +99,10 @@ def _update_catalog(fits):
                    "that explains more of the record's energy.")
 @click.option("--periods", default="0.1:6", show_default=True, metavar="MIN:MAX",
               help="Range of pulse periods T_p searched [s].")
-@click.option("--csv", "csv_path", type=click.Path(dir_okay=False), default=None,
+@click.option("--csv", "csv_path", type=click.Path(), default=None,
               help="Also write the fits to this CSV file.")
 @click.option("--json", "as_json", is_flag=True, help="Print the fits as JSON instead of a table.")
-@click.option("--plot", "plot_path", type=click.Path(dir_okay=False), default=None,
+@click.option("--plot", "plot_path", type=click.Path(), default=None,
               help="Overlay each fitted pulse on its record (one panel per record) in this image, e.g. FILE.png.")
 @click.option("--candidates", "n_candidates", type=click.IntRange(1, 20), default=None, metavar="N",
               help="List the N strongest distinct pulses of each record (local maxima of the wavelet transform, "

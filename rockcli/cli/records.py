@@ -32,7 +32,7 @@ def _fmt(value, spec: str) -> str:
 
 
 @records.command(name="list")
-@click.option("--csv", "csv_path", type=click.Path(dir_okay=False), default=None,
+@click.option("--csv", "csv_path", type=click.Path(), default=None,
               help="Also write the table to this CSV file.")
 @user_errors
 def list_records(csv_path):
@@ -65,7 +65,7 @@ def list_records(csv_path):
 @records.command(name="show")
 @click.argument("source")
 @record_options
-@click.option("--plot", "plot_path", type=click.Path(dir_okay=False), default=None,
+@click.option("--plot", "plot_path", type=click.Path(), default=None,
               help="Plot acceleration, velocity and displacement to this image (e.g. FILE.png).")
 @user_errors
 def show(source, units, dt, fmt, column, plot_path):

@@ -26,9 +26,9 @@ from rockcli.cli.options import block_from_options, block_options, check_outputs
 @click.option("--horizon", type=float, default=600.0,
               help="Longest free motion followed after the excitation to prove the verdict [s].")
 @click.option("--json", "as_json", is_flag=True, help="Print the results as one JSON object.")
-@click.option("--history", "history_path", type=click.Path(dir_okay=False), default=None,
+@click.option("--history", "history_path", type=click.Path(), default=None,
               help="Write the time history (t, ground acceleration, theta, theta_dot, u, u_dot) as CSV.")
-@click.option("--plot", "plot_path", type=click.Path(dir_okay=False), default=None,
+@click.option("--plot", "plot_path", type=click.Path(), default=None,
               help="Draw ground acceleration, theta/alpha, theta_dot/p (and base displacement) to an image.")
 @user_errors
 def simulate(column_name, R, alpha, height, width, name, isolation, record_source, units, dt, fmt, column,

@@ -252,7 +252,8 @@ def _from_obspy(path: Path, fmt: str, column) -> dict[str, Any]:
         raise RockcliInputError(f"{path}: format not recognised ({_first_line(exc)}); "
                                 f"give it with --format, or convert the record to text") from None
     except Exception as exc:  # noqa: BLE001 -- ObsPy readers raise many kinds; one sentence for the user
-        raise RockcliInputError(f"{path}: ObsPy could not read the file ({_first_line(exc)})") from None
+        raise RockcliInputError(f"{path}: format not recognised, or a damaged file (ObsPy: {_first_line(exc)}); "
+                                f"give the format with --format, or convert the record to text") from None
     if len(st) == 0:
         raise RockcliInputError(f"{path}: the file holds no traces")
     if len(st) > 1 and column is None:
