@@ -36,7 +36,7 @@ def _check_dt(dt):
     except (TypeError, ValueError):
         raise RockcliInputError(f"time step dt={dt!r} is not a number") from None
     if not math.isfinite(value) or value <= 0:
-        raise RockcliInputError(f"time step dt={dt!r} s must be a positive finite number")
+        raise RockcliInputError(f"time step dt={value!r} s must be a positive finite number")
     return value
 
 
