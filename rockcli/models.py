@@ -40,8 +40,8 @@ R_RANGE_M = (0.01, 100.0)
 #: Smallest slenderness alpha [deg]: 1 deg is h/b = 57, far slenderer than any free-standing body
 #: (temple columns 5-7, obelisks about 10). A slenderer body uplifts at g tan(alpha) < 0.017 g, i.e.
 #: under ground noise; it loses almost nothing at impacts (1 - eta ~ 1.5 sin^2 alpha), so one
-#: rocking cascade down to rest takes ln(1/rest_tol)/(3 sin^2 alpha) impacts (15,000 at 1 deg with
-#: the default rest_tol, 1.5 million at 0.1 deg: the event-driven run crawls to the step cap); and
+#: rocking cascade down to rest takes ln(1/rest_tol)/(3 sin^2 alpha) impacts (20,000 at 1 deg with
+#: the default rest_tol 1e-8, 2 million at 0.1 deg: the event-driven run crawls to the step cap); and
 #: theta/alpha grows without bound while theta stays finite (``--R 1 --alpha 1e-9`` "survived" with
 #: theta/alpha = 1e10). The upper end is 90 deg exclusive: the kernel handles squat blocks (they
 #: rarely uplift, and stop at their first impact once sin^2 alpha >= 2/3); sliding, which a squat
