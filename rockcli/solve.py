@@ -610,6 +610,7 @@ def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress
     alphas = []
     prepared = {}  # id(excitation) -> validated kernel arrays (or the error): a shared record is checked once
     params = {}  # (block, foundation) -> kernel parameters: built once per distinct pair
+    checked = set()  # work estimates that passed (see _check_work)
     failed = {}  # job index -> JobError; those jobs are not run
     for i, job in enumerate(jobs):
         try:
@@ -639,9 +640,20 @@ def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress
             if cached is None:
                 cached = params[(block, foundation)] = _parameters(block, foundation, float(rtol), float(rest_tol))
             fkind, prm = cached
-            _check_work(block, foundation, prepared[key], float(rtol),
-                        float(tails_in if tails_in.ndim == 0 else tails_in[i]), float(rest_tol), float(horizon),
-                        int(max_steps))
+            # the work estimate depends only on these (not on the amplitude): checked once per distinct set
+            tail_i = float(tails_in if tails_in.ndim == 0 else tails_in[i])
+            wkey = (block, foundation, ekind, acc.size, epar[k.E_TE] - epar[k.E_TS], t_exc_end, tail_i)
+            try:
+                known = wkey in checked
+            except TypeError:
+                known = False
+            if not known:
+                _check_work(block, foundation, prepared[key], float(rtol), tail_i, float(rest_tol), float(horizon),
+                            int(max_steps))
+                try:
+                    checked.add(wkey)
+                except TypeError:
+                    pass
         except (RockcliInputError, TypeError, ValueError) as exc:
             failed[i] = JobError(str(exc))
             alphas.append(math.nan)
