@@ -325,6 +325,33 @@ def _parameters(block: Block, foundation, rtol: float, rest_tol: float):
     return fkind, prm
 
 
+def bearing_force_path(foundation, u) -> dict[str, np.ndarray]:
+    """The bearings of ``foundation`` under an imposed base displacement history ``u`` [m].
+
+    Returns ``{"force": ..., "z": ..., "z2": ...}``: the bearings' restoring force per unit total
+    mass ``(k_b u + Q z)/(m + m_b)`` [m/s^2] (divide by g for force over weight) and the Bouc-Wen
+    variables (``z2`` for a double concave bearing only), from the same code the solver uses. The
+    path is taken as monotone between samples (exact for a piecewise-monotone path). Linear
+    bearings give their elastic force only (no velocity here).
+    """
+    if isinstance(foundation, Rigid):
+        raise RockcliInputError("a rigid foundation has no bearings")
+    u = np.ascontiguousarray(u, dtype=np.float64)
+    if u.ndim != 1 or not np.all(np.isfinite(u)):
+        raise RockcliInputError("the displacement path must be a 1-D array of finite values in m")
+    k = _kernel()
+    block = Block(1.0, 0.2)  # the bearing's parameters do not depend on the block
+    fkind, prm = _parameters(block, foundation, DEFAULT_RTOL, DEFAULT_REST_TOL)
+    out = np.zeros((u.size, 3))
+    if fkind == k.FOUNDATION_LINEAR:
+        out[:, 0] = -foundation.omega_b ** 2 * u
+    else:
+        k.force_along_path(fkind, tuple(float(v) for v in prm), u, out)
+    res = {"force": -out[:, 0], "z": out[:, 1] if fkind >= k.FOUNDATION_BILINEAR else None,
+           "z2": out[:, 2] if fkind == k.FOUNDATION_DCSS else None}
+    return res
+
+
 def _validate_options(rtol, tail, rest_tol, horizon=DEFAULT_HORIZON):
     if not (math.isfinite(rtol) and 1e-14 <= rtol <= 1e-2):
         raise RockcliInputError(f"rtol must lie between 1e-14 and 1e-2, got {rtol!r}")

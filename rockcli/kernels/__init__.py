@@ -32,7 +32,7 @@ from rockcli.kernels.ground import _impulse_left, _pulse_segment, _rigid_uplift,
 from rockcli.kernels.polynomials import (_first_down, _first_exceed, _golden_max, _poly,  # noqa: E402,F401
                                          _refine_root)
 from rockcli.kernels.bearings import (base_force, bw_phi, bw_phi_inv, bw_slope, dcss_split,  # noqa: E402,F401
-                                      free_force_bound, reanchor)
+                                      force_along_path, free_force_bound, reanchor)
 from rockcli.kernels.dopri import _dense, _dp5_step, _state_at  # noqa: E402,F401
 from rockcli.kernels.driver import simulate_core  # noqa: E402,F401
 from rockcli.kernels.batch import simulate_batch  # noqa: E402,F401

@@ -319,3 +319,47 @@ def u_at_force(fkind, prm, hy, level, a, b):
             return xn
         x = xn
     return x
+
+
+# ---------------------------------------------------------------------------------------------
+# Imposed displacement paths (hysteresis loops)
+# ---------------------------------------------------------------------------------------------
+@njit(cache=True)
+def force_along_path(fkind, prm, u_path, out):
+    """Bearing under an imposed displacement path: ``out[k] = (F, z1, z2)`` at ``u_path[k]``.
+
+    The path is taken as monotone between samples; the anchor moves only where it reverses (a
+    sample that lies back against the direction of motion), exactly as in a run, so the loop is
+    exact for a piecewise-monotone path whatever the spacing of the samples.
+    """
+    hy = initial_anchor(fkind, prm)
+    for k in range(u_path.shape[0]):
+        u = u_path[k]
+        if k > 0:
+            du = u - u_path[k - 1]
+            if du != 0.0:
+                d_new = 1.0 if du > 0.0 else -1.0
+                if d_new != hy[1]:
+                    hy = reanchor(fkind, prm, hy, u_path[k - 1], d_new)
+        elif u != 0.0:
+            hy = reanchor(fkind, prm, hy, 0.0, 1.0 if u > 0.0 else -1.0)
+        z1, z2, _ = element_states(fkind, prm, hy, u)
+        out[k, 0] = base_force(fkind, prm, u, 0.0, hy)
+        out[k, 1] = z1
+        out[k, 2] = z2
+
+
+@njit(cache=True)
+def bearing_energy(fkind, prm, hy, u):
+    """Energy stored in the bearings per unit total mass [J/kg]: ``w^2 u^2/2`` (linear), plus
+    ``Q u_y z^2/2`` for a Bouc-Wen element (its elastic part: the rest of its work is dissipated when
+    ``gamma_bw >= |beta|``); for two surfaces in series the sum over both."""
+    w = prm[P_W]
+    if fkind == FOUNDATION_LINEAR:
+        return 0.5 * w * w * u * u
+    z1, z2, u1 = element_states(fkind, prm, hy, u)
+    if fkind == FOUNDATION_BILINEAR:
+        return 0.5 * (w * w * u * u + prm[P_Q1] * prm[P_UY1] * z1 * z1)
+    u2 = u - u1
+    return 0.5 * (prm[P_K1] * u1 * u1 + prm[P_K2] * u2 * u2 + prm[P_Q1] * prm[P_UY1] * z1 * z1
+                  + prm[P_Q2] * prm[P_UY2] * z2 * z2)

@@ -23,8 +23,8 @@ import math
 import numpy as np
 from numba import njit
 
-from rockcli.kernels.bearings import (base_force, element_states, free_disp_bound, free_force_bound, initial_anchor,
-                                      reanchor, z_sensitivity)
+from rockcli.kernels.bearings import (base_force, bearing_energy, element_states, free_disp_bound, free_force_bound,
+                                      initial_anchor, reanchor, z_sensitivity)
 from rockcli.kernels.dopri import _dense, _dp5_step, _state_at
 from rockcli.kernels.events import (REV_AT, REV_WRONG_START, _count_uplift, _hist_push, _u_extremum,
                                     comes_to_rest, hysteretic_uplift, impact_map, reversal_check)
@@ -36,7 +36,7 @@ from rockcli.kernels.layout import (E_AP, E_TP, EXC_RECORD, FOUNDATION_BILINEAR,
                                     O_NRHS, O_PEAK_FINAL, O_REJECTED, O_SETTLED, O_STATUS, O_STEPS, O_T_END,
                                     O_T_EXCEED, O_T_OVERTURN, O_T_SETTLED, O_T_THETA_MAX, O_T_UPLIFT, O_THETA_END,
                                     O_THETA_MAX, O_U_END, O_U_MAX, O_UPLIFTED, P_ALPHA, P_COSA, P_ETA, P_G, P_GAMMA,
-                                    P_H, P_P2, P_RTOL, P_SC0, P_THR, P_W, P_XI, PHASE_ROCKING, PHASE_STUCK, RS_DIR,
+                                    P_H, P_P2, P_R, P_RTOL, P_SC0, P_THR, P_W, P_XI, PHASE_ROCKING, PHASE_STUCK, RS_DIR,
                                     RS_FLIPS, RS_FRESH, RS_H, RS_J, RS_NREV, RS_NRHS, RS_PEAK_FINAL, RS_PHASE,
                                     RS_REJ, RS_S, RS_SEG, RS_SEG_END, RS_SETTLED, RS_SPLIT, RS_STATUS, RS_STEPS,
                                     RS_T, RS_THMAX, RS_U1A, RS_UA, RS_UMAX, RS_XI1, RS_XI2, SEG_LINEAR,
@@ -170,6 +170,10 @@ def _end_of_run(fkind, prm, ekind, epar, jtab, dt, t_exc_end, early, want_histor
                         rs[RS_THMAX] = pk
                         out[O_T_THETA_MAX] = np.nan
                     settled = True
+            if not settled and fkind >= FOUNDATION_BILINEAR and rs[RS_THMAX] > 0.0:
+                level = min(rs[RS_THMAX], alpha)
+                if abs(W[W_Y, 0]) < level and _free_energy(fkind, prm, rs, W) < _barrier(prm, level):
+                    settled = True  # P5
         elif early and not isolated and out[O_UPLIFTED] != 0.0:
             xx = -1.0
             if phase == PHASE_STUCK:
@@ -203,6 +207,28 @@ def _end_of_run(fkind, prm, ekind, epar, jtab, dt, t_exc_end, early, want_histor
         rs[RS_STATUS] = STATUS_MAX_STEPS
         return True
     return False
+
+
+@njit(cache=True)
+def _free_energy(fkind, prm, rs, W):
+    """Mechanical energy of block + base per unit total mass ``m + m_b`` [J/kg] at ``W[W_Y]`` (P5):
+    kinetic ``u'^2/2 + gamma R cos(A) u' theta' + (2/3) gamma R^2 theta'^2`` (block centre of mass at
+    ``u + x`` with Eq 9's x, ``I_cm = m R^2/3``), the block's height above rest
+    ``gamma g R (cos A - cos alpha)``, ``A = s alpha - theta``, and the energy stored in the bearings."""
+    th = W[W_Y, 0]
+    thd = W[W_Y, 1]
+    ud = W[W_Y, 3]
+    gR = prm[P_GAMMA] * prm[P_R]
+    A = rs[RS_S] * prm[P_ALPHA] - th if rs[RS_PHASE] == PHASE_ROCKING else prm[P_ALPHA]
+    kin = 0.5 * ud * ud + gR * math.cos(A) * ud * thd + (2.0 / 3.0) * gR * prm[P_R] * thd * thd
+    pot = gR * prm[P_G] * (math.cos(A) - prm[P_COSA])
+    return kin + pot + bearing_energy(fkind, prm, _hy(rs), W[W_Y, 2])
+
+
+@njit(cache=True)
+def _barrier(prm, level):
+    """Energy per unit total mass the block needs to reach ``|theta| = level <= alpha`` from rest [J/kg]."""
+    return prm[P_GAMMA] * prm[P_R] * prm[P_G] * (math.cos(prm[P_ALPHA] - level) - prm[P_COSA])
 
 
 @njit(cache=True)
@@ -543,6 +569,19 @@ def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, ta
        displacement is final once ``sqrt(2 E)/w`` is below it (``E = v^2/2 + sum (k_i u_i^2 + q_i u_yi
        z_i^2)/2`` never grows: ``dE/dt = -sum q_i |z_i|^n (gamma_bw |u_i' z_i| + beta u_i' z_i) <= 0``
        for ``gamma_bw >= |beta|``), or one period ``2 pi/w`` later.
+    P5 (hysteretic base, ground still, after an uplift, any phase). Per unit total mass the energy
+       of block + base, ``E = u'^2/2 + gamma R cos(A) u' theta' + (2/3) gamma R^2 theta'^2 + gamma g R (cos A
+       - cos alpha) + E_b`` (kinetic energy of base and block, ``I_cm = m R^2/3``; the block's height
+       above rest; ``E_b`` the energy stored in the bearings, :func:`rockcli.kernels.bearings.bearing_energy`),
+       never grows with the ground still: the bearings are passive (P3s), an impact keeps both momenta
+       and loses kinetic energy (tests/test_solver.py), a rest or a failed uplift keeps the momentum and
+       loses ``theta'^2 gamma (2 R^2/3 - gamma h^2/2) > 0``. The block's height term alone is
+       ``gamma g R (cos(alpha - |theta|) - cos alpha)``, increasing in ``|theta|`` up to alpha. Hence if
+       ``|theta| < L = min(theta_max, alpha)`` now and ``E`` is below the height term at ``L``, the block
+       can never reach ``|theta| = L``: it survives and ``theta_max`` is final. Past alpha the same
+       energy means the block falls away (issue 9): the condition ``|theta| < L`` is essential. (It ends the long free rocking of slender
+       blocks on heavy-ish bases, ``gamma`` not small; for ``gamma -> 0`` the bearings' energy dominates
+       and it never applies. It holds for a linear base too; rockcli applies it to hysteretic bases.)
     P4 (rigid foundation, ``early`` only, during the excitation, after the first uplift, block
        stuck or ``|theta| < alpha``). ``dE/dt = -p^2 (ag/g) cos(A) theta_dot`` and, while
        ``|theta| <= alpha``, ``theta_dot^2/2 <= E - p^2 cos(alpha) = X^2``, so
