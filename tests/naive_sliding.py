@@ -95,8 +95,22 @@ class Bearing:
 
 
 def reference_sliding(block: Block, foundation, excitation, *, rtol=1e-9, atol=1e-12, horizon=600.0,
-                      rest_tol=1e-8, method="Radau", max_phases=20000, max_step=None) -> RefResult:
-    """Chain stuck and rocking phases with ``solve_ivp`` and terminal events (z as a state)."""
+                      rest_tol=1e-8, method="Radau", max_phases=20000, max_step=None, stats=None) -> RefResult:
+    """Chain stuck and rocking phases with ``solve_ivp`` and terminal events (z as a state).
+
+    ``stats`` (a dict), when given, accumulates ``steps``, ``nfev``, ``njev`` and ``nlu`` of the
+    ``solve_ivp`` calls (the benchmark's cost figures)."""
+    if stats is None:
+        stats = {}
+    for key in ("steps", "nfev", "njev", "nlu"):
+        stats.setdefault(key, 0)
+
+    def count(sol):
+        stats["steps"] += max(0, sol.t.size - 1)
+        for key in ("nfev", "njev", "nlu"):
+            stats[key] += int(getattr(sol, key, 0) or 0)
+        return sol
+
     ag, t_exc_end, _, max_step_rec = ground_function(excitation)
     if max_step is None:
         max_step = max_step_rec if hasattr(excitation, "acc") else excitation.T_p / 20.0
@@ -148,8 +162,8 @@ def reference_sliding(block: Block, foundation, excitation, *, rtol=1e-9, atol=1
                     settle.terminal, settle.direction = True, -1
                     events.append(settle)
                 t_end = t_max_end if after else t_exc_end
-                sol = solve_ivp(stuck_rhs, (t, t_end), b, method=method, rtol=rtol, atol=atol * sc[2:],
-                                max_step=max_step, events=events, dense_output=True)
+                sol = count(solve_ivp(stuck_rhs, (t, t_end), b, method=method, rtol=rtol, atol=atol * sc[2:],
+                                      max_step=max_step, events=events, dense_output=True))
                 tt = np.linspace(t, sol.t[-1], 2000)
                 u_max = max(u_max, float(np.max(np.abs(sol.sol(tt)[0]))), float(np.max(np.abs(sol.y[0]))))
                 y[2:] = sol.y[:, -1]
@@ -159,8 +173,8 @@ def reference_sliding(block: Block, foundation, excitation, *, rtol=1e-9, atol=1
                     if after:
                         if t < t_max_end - 1e-12:  # settled: the free base may still reach a larger |u|
                             T = 2 * math.pi / math.sqrt(brg.w2)
-                            tail = solve_ivp(stuck_rhs, (t, t + T), y[2:], method=method, rtol=rtol,
-                                             atol=atol * sc[2:], dense_output=True)
+                            tail = count(solve_ivp(stuck_rhs, (t, t + T), y[2:], method=method, rtol=rtol,
+                                                   atol=atol * sc[2:], dense_output=True))
                             u_max = max(u_max, float(np.max(np.abs(tail.sol(np.linspace(t, tail.t[-1], 2000))[0]))))
                         break
                     continue
@@ -178,8 +192,8 @@ def reference_sliding(block: Block, foundation, excitation, *, rtol=1e-9, atol=1
         ev_pk = lambda tt, yy: yy[1]  # noqa: E731
         t0 = t
         t_end = t_exc_end if t < t_exc_end else t_max_end
-        sol = solve_ivp(rock_rhs(s), (t, t_end), y, method=method, rtol=rtol, atol=atol * sc, max_step=max_step,
-                        events=(ev_imp, ev_ot, ev_pk), dense_output=True)
+        sol = count(solve_ivp(rock_rhs(s), (t, t_end), y, method=method, rtol=rtol, atol=atol * sc,
+                              max_step=max_step, events=(ev_imp, ev_ot, ev_pk), dense_output=True))
         theta_max = max(theta_max, float(np.max(np.abs(sol.y[0]))))
         if sol.y_events[2].size:
             theta_max = max(theta_max, float(np.max(np.abs(sol.y_events[2][:, 0]))))

@@ -109,7 +109,9 @@ def plot_response(response, block, foundation, title: str, path: str | os.PathLi
     verdict = {"overturned": f"OVERTURNS at {response.t_overturn_s:.2f} s",
                "rocked": f"survives, peak |theta|/alpha = {response.theta_max_over_alpha:.2f}",
                "no_uplift": "no uplift"}[response.verdict]
-    axes[0].set_title(f"{title}\n{verdict}", fontsize=9)
+    import textwrap
+
+    axes[0].set_title(textwrap.fill(title, 95) + f"\n{verdict}", fontsize=9)
     fig.tight_layout()
     with atomic_path(path) as tmp:
         fig.savefig(tmp, dpi=dpi, format=Path(path).suffix.lstrip(".") or "png")
