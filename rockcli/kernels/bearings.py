@@ -172,10 +172,20 @@ def dcss_split_ratio(prm, z1, z2, d):
 # ---------------------------------------------------------------------------------------------
 @njit(cache=True, inline='always')
 def base_force(fkind, prm, u, ud, hy):
-    """Force of the bearings on the base per unit total mass, ``F`` [m/s^2] (see the module notes)."""
+    """Force of the bearings on the base per unit total mass, ``F`` [m/s^2] (see the module notes).
+
+    The linear force is written out here (inlined into the right-hand side); the hysteretic ones
+    are a call, which keeps the linear and rigid steps as lean as they were.
+    """
     if fkind == FOUNDATION_LINEAR:
         w = prm[P_W]
         return -w * w * u - 2.0 * prm[P_XI] * w * ud
+    return hysteretic_force(fkind, prm, u, hy)
+
+
+@njit(cache=True)
+def hysteretic_force(fkind, prm, u, hy):
+    """``F`` of a single Bouc-Wen element (``-w^2 u - Q z``) or of two in series (``-(k1 u1 + q1 z1)``)."""
     if fkind == FOUNDATION_BILINEAR:
         w = prm[P_W]
         z, _ = bw_z(hy[2], hy[1], u - hy[0], prm[P_UY1], prm[P_BWN], prm[P_BWC])

@@ -37,7 +37,7 @@ from rockcli.kernels.layout import (E_AP, E_TP, EXC_RECORD, FOUNDATION_BILINEAR,
                                     O_T_EXCEED, O_T_OVERTURN, O_T_SETTLED, O_T_THETA_MAX, O_T_UPLIFT, O_THETA_END,
                                     O_THETA_MAX, O_U_END, O_U_MAX, O_UPLIFTED, P_ALPHA, P_COSA, P_ETA, P_G, P_GAMMA,
                                     P_H, P_P2, P_R, P_RTOL, P_SC0, P_THR, P_W, P_XI, PHASE_ROCKING, PHASE_STUCK, RS_DIR,
-                                    RS_FLIPS, RS_FRESH, RS_H, RS_J, RS_NREV, RS_NRHS, RS_PEAK_FINAL, RS_PHASE,
+                                    RS_FRESH, RS_H, RS_J, RS_NREV, RS_NRHS, RS_PEAK_FINAL, RS_PHASE,
                                     RS_REJ, RS_S, RS_SEG, RS_SEG_END, RS_SETTLED, RS_SPLIT, RS_STATUS, RS_STEPS,
                                     RS_T, RS_THMAX, RS_U1A, RS_UA, RS_UMAX, RS_XI1, RS_XI2, SEG_LINEAR,
                                     STATUS_DONE, STATUS_MAX_STEPS, STATUS_OVERTURNED, W_TMP, W_Y, W_YNEW)
@@ -76,14 +76,14 @@ def _set_hy(rs, hy):
     rs[RS_SPLIT] = hy[5]
 
 
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def _reanchor(fkind, prm, rs, u, d_new):
     """Anchor the hysteretic elements at ``u`` (reached on the current branch) for motion in ``d_new``."""
     if fkind >= FOUNDATION_BILINEAR:
         _set_hy(rs, reanchor(fkind, prm, _hy(rs), u, d_new))
 
 
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def _direction(rs, ud):
     """Direction of motion for the next step: the sign of u_dot (the current one if it is 0)."""
     if ud > 0.0:
@@ -113,7 +113,7 @@ def _history_row(H, nh, fkind, prm, rs, epar, W, row):
 # ---------------------------------------------------------------------------------------------
 # Phases
 # ---------------------------------------------------------------------------------------------
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def _advance_segment(rs, ekind, epar, acc, dt, t_begin):
     """Move to the excitation segment that contains t (records: one per sample interval)."""
     nrec = acc.shape[0]
@@ -135,7 +135,7 @@ def _advance_segment(rs, ekind, epar, acc, dt, t_begin):
             rs[RS_FRESH] = 1.0
 
 
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def _end_of_run(fkind, prm, ekind, epar, jtab, dt, t_exc_end, early, want_history, t_show_end, t_horizon,
                 max_steps, rs, W, out):
     """The end-of-run rule (P1-P4, P3s in :func:`simulate_core`): True when the run ends now."""
@@ -231,7 +231,7 @@ def _barrier(prm, level):
     return prm[P_GAMMA] * prm[P_R] * prm[P_G] * (math.cos(prm[P_ALPHA] - level) - prm[P_COSA])
 
 
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def _stuck_rigid(prm, rs, epar, t_stop, out):
     """Stuck on a rigid foundation: scan the ground motion up to ``t_stop``, integrate nothing."""
     tu, su = _rigid_uplift(_seg(rs), epar, prm[P_THR], rs[RS_T], t_stop)
@@ -245,7 +245,7 @@ def _stuck_rigid(prm, rs, epar, t_stop, out):
         rs[RS_FRESH] = 1.0
 
 
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def _take_step(fkind, prm, ekind, epar, max_steps, rs, W, t_stop, nst):
     """One accepted Dormand-Prince step from ``rs[RS_T]`` inside ``[t, t_stop]``.
 
@@ -286,27 +286,32 @@ def _take_step(fkind, prm, ekind, epar, max_steps, rs, W, t_stop, nst):
         gz = z_sensitivity(fkind, prm, _hy(rs))
         uu = abs(W[W_Y, 2])
         tol_u = prm[P_RTOL] / (1.0 / max(uu, prm[P_SC0 + 2]) + gz)
-    rs[RS_FLIPS] = 0.0
-    while rs[RS_STEPS] + rs[RS_REJ] < max_steps:
+    flips = 0
+    steps = rs[RS_STEPS]
+    rej = rs[RS_REJ]
+    nrhs = rs[RS_NRHS]
+    hy = _hy(rs)
+    while steps + rej < max_steps:
         hs = h
         last = hs >= t_stop - t
         if last:
             hs = t_stop - t
-        err = _dp5_step(fkind, phase, s, prm, seg, epar, _hy(rs), gz, t, hs, W, i0, nst)
-        rs[RS_NRHS] += 6
+        err = _dp5_step(fkind, phase, s, prm, seg, epar, hy, gz, t, hs, W, i0, nst)
+        nrhs += 6
         if err <= 1.0 and hyst:
             code, sr = reversal_check(W, hs, rs[RS_DIR], tol_u)
             if code == REV_WRONG_START:
                 # the base left the anchor against the guessed direction: take the other branch
                 # (f(t, y) does not depend on it) and retake the step; twice means u barely moves
                 # either way within the step: halve it
-                rs[RS_REJ] += 1
-                rs[RS_FLIPS] += 1
-                if rs[RS_FLIPS] > 1.0:
+                rej += 1
+                flips += 1
+                if flips > 1:
                     h = 0.5 * hs
-                    rs[RS_FLIPS] = 0.0
+                    flips = 0
                 _reanchor(fkind, prm, rs, W[W_Y, 2], -rs[RS_DIR])
-                gz = z_sensitivity(fkind, prm, _hy(rs))
+                hy = _hy(rs)
+                gz = z_sensitivity(fkind, prm, hy)
                 tol_u = prm[P_RTOL] / (1.0 / max(abs(W[W_Y, 2]), prm[P_SC0 + 2]) + gz)
                 continue
             if code == REV_AT:
@@ -317,12 +322,14 @@ def _take_step(fkind, prm, ekind, epar, max_steps, rs, W, t_stop, nst):
             if not last or fac < 1.0:
                 h = hs * fac
             break
-        rs[RS_REJ] += 1
+        rej += 1
         h = hs * max(0.2, 0.9 * err ** -0.2)
     rs[RS_H] = h
+    rs[RS_REJ] = rej
+    rs[RS_NRHS] = nrhs
     if err > 1.0:
         return False, hs, last, sig_lim
-    rs[RS_STEPS] += 1
+    rs[RS_STEPS] = steps + 1
     if sig_lim < 1.0:
         # the step stands up to the reversal of u: its end state is the dense state there
         _state_at(W, hs, sig_lim, nst)
@@ -332,7 +339,7 @@ def _take_step(fkind, prm, ekind, epar, max_steps, rs, W, t_stop, nst):
     return True, hs, last, sig_lim
 
 
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def _after_stuck_step(fkind, prm, rs, W, out, hs, t_new, sig_lim):
     """Stuck on an isolated base, after a step of the base: uplift when |a| crosses g tan(alpha)."""
     thr = prm[P_THR]
@@ -375,7 +382,7 @@ def _after_stuck_step(fkind, prm, rs, W, out, hs, t_new, sig_lim):
     rs[RS_UMAX] = max(rs[RS_UMAX], abs(W[W_Y, 2]))
 
 
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def _after_rocking_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, t_exc_end, nst):
     """Rocking, after a step: impact (s theta falls to 0), peak, alpha, overturning (s theta = pi/2).
 
@@ -478,7 +485,7 @@ def _after_rocking_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, t_exc_end, n
     return 0
 
 
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def _impact(fkind, prm, rs, W, out, seg, epar, t_exc_end):
     """The impact at theta = 0 (state in ``W[W_Y]`` with theta_dot before it): the momentum map,
     the pivot switch and the rest rule."""
