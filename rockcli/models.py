@@ -18,9 +18,11 @@ from dataclasses import dataclass
 from rockcli.errors import RockcliInputError
 from rockcli.units import G
 
-#: Foundation kinds understood by :mod:`rockcli.kernels`.
+#: Foundation kinds understood by :mod:`rockcli.kernels` (``rockcli.kernels.layout.FOUNDATION_*``).
 KIND_RIGID = 0
 KIND_LINEAR = 1
+KIND_BILINEAR = 2
+KIND_DCSS = 3
 
 #: Default mass ratio gamma = m / (m + m_b) of an isolated base: a heavy base, as in the paper's
 #: parametric figures (Figs 6, 7, 9, 11). For gamma <= 0.1 the response hardly depends on gamma
@@ -28,6 +30,15 @@ KIND_LINEAR = 1
 DEFAULT_GAMMA = 0.01
 #: Default viscous damping ratio of linear bearings: the paper's Table III (xi_b = 0.1).
 DEFAULT_XI = 0.1
+#: Default yield displacement of a sliding bearing [m]: the paper's u_y ~ 0.25 mm (after Eq 34).
+DEFAULT_UY = 0.25e-3
+#: Default Bouc-Wen exponent and shape parameters of Eq (34): n = 2, beta = gamma_bw = 0.5, common
+#: practice for sliding bearings (reading notes, note 4). The form with A = 1 and beta + gamma_bw = 1,
+#: so that |z| <= 1 and Q is the strength, is that of Constantinou, Mokha & Reinhorn (1990), "Teflon
+#: bearings in base isolation II: modeling", J Struct Eng 116(2):455-474.
+DEFAULT_BW_N = 2.0
+DEFAULT_BW_BETA = 0.5
+DEFAULT_BW_GAMMA = 0.5
 
 
 # --------------------------------------------------------------------------------------------------
@@ -321,17 +332,289 @@ class LinearIsolation:
         return f"linear:Tb={self.T_b:g},xi={self.xi:g},gamma={self.gamma:g}"
 
 
-Foundation = Rigid | LinearIsolation
+def _check_period(T_b):
+    _check(_finite(T_b) and T_b > 0, f"isolation period Tb must be positive (s), got {T_b!r}")
 
+
+def _check_gamma(gamma):
+    _check(_finite(gamma) and 0 <= gamma < 1,
+           f"mass ratio gamma = m/(m+m_b) must satisfy 0 <= gamma < 1, got {gamma!r}")
+
+
+def _check_friction(name, mu):
+    _check(_finite(mu) and 0 < mu < 1, f"friction coefficient {name} must lie strictly between 0 and 1, got {mu!r}")
+
+
+def _check_yield(u_y):
+    _check(_finite(u_y) and 0 < u_y <= 0.1,
+           f"yield displacement uy must be a positive length in m (at most 0.1 m), got {u_y!r}")
+
+
+def _check_bouc_wen(n, beta, gamma_bw):
+    """The Bouc-Wen parameters rockcli integrates exactly (see rockcli.kernels.bearings).
+
+    ``n`` 1 or 2 (closed-form branches); ``beta + gamma_bw = 1`` (A = 1: |z| <= 1, so the strength
+    is Q); ``gamma_bw >= |beta|`` (the element never gives back more energy than it stored, which
+    the end-of-run proof P3s needs), i.e. ``beta <= 0.5``.
+    """
+    _check(_finite(n) and float(n) in (1.0, 2.0), f"Bouc-Wen exponent n must be 1 or 2, got {n!r}")
+    _check(_finite(beta) and _finite(gamma_bw) and abs(float(beta) + float(gamma_bw) - 1.0) <= 1e-12,
+           f"Bouc-Wen beta + gamma_bw must equal 1 (so that Q is the strength), got {beta!r} + {gamma_bw!r}")
+    _check(float(gamma_bw) >= abs(float(beta)),
+           f"Bouc-Wen gamma_bw must be at least |beta| (a passive element), got beta = {beta!r}")
+
+
+def _spec_num(x: float) -> str:
+    """A number for a spec label: short, and read back exactly (``repr`` when ``:g`` would round)."""
+    short = f"{x:g}"
+    return short if float(short) == x else repr(x)
+
+
+def _bouc_wen_label(f) -> str:
+    if (f.n, f.beta, f.gamma_bw) == (DEFAULT_BW_N, DEFAULT_BW_BETA, DEFAULT_BW_GAMMA):
+        return ""
+    return f",n={_spec_num(f.n)},beta={_spec_num(f.beta)},gammabw={_spec_num(f.gamma_bw)}"
+
+
+def _floats(obj, names):
+    for f in names:
+        object.__setattr__(obj, f, float(getattr(obj, f)))
+
+
+@dataclass(frozen=True)
+class SingleConcaveSliding:
+    """Isolated base on single concave spherical sliding bearings (paper Eqs 33-36).
+
+    Bilinear with a Bouc-Wen element: bearing force ``k_b u + Q z`` with the second slope
+    ``k_b = (m + m_b) omega_b^2`` (``R_eff = g/omega_b^2``, the normal force taken constant) and the
+    strength ``Q = mu (m + m_b) g``.
+
+    Parameters
+    ----------
+    T_b : float
+        Isolation period of the second slope, ``2 pi sqrt(R_eff/g)`` [s], > 0.
+    mu : float
+        Coefficient of friction, 0 < mu < 1.
+    u_y : float
+        Yield displacement of the Bouc-Wen element [m] (default 0.25 mm).
+    gamma : float
+        Mass ratio ``m / (m + m_b)``, 0 <= gamma < 1.
+    n, beta, gamma_bw : float
+        Bouc-Wen parameters of Eq (34) (defaults 2, 0.5, 0.5; see :data:`DEFAULT_BW_N`).
+    """
+
+    T_b: float
+    mu: float
+    u_y: float = DEFAULT_UY
+    gamma: float = DEFAULT_GAMMA
+    n: float = DEFAULT_BW_N
+    beta: float = DEFAULT_BW_BETA
+    gamma_bw: float = DEFAULT_BW_GAMMA
+
+    kind = KIND_BILINEAR
+    n_states = 3
+
+    def __post_init__(self):
+        _check_period(self.T_b)
+        _check_friction("mu", self.mu)
+        _check_yield(self.u_y)
+        _check_gamma(self.gamma)
+        _check_bouc_wen(self.n, self.beta, self.gamma_bw)
+        _floats(self, ("T_b", "mu", "u_y", "gamma", "n", "beta", "gamma_bw"))
+
+    @property
+    def omega_b(self) -> float:
+        return 2.0 * math.pi / self.T_b
+
+    @property
+    def R_eff(self) -> float:
+        """Effective radius of curvature ``g / omega_b^2`` [m]."""
+        return G / self.omega_b ** 2
+
+    @property
+    def strength_ratio(self) -> float:
+        """``Q / ((m + m_b) g)``."""
+        return self.mu
+
+    @property
+    def label(self) -> str:
+        return (f"scss:Tb={_spec_num(self.T_b)},mu={_spec_num(self.mu)},uy={_spec_num(self.u_y)},gamma={_spec_num(self.gamma)}"
+                + _bouc_wen_label(self))
+
+
+@dataclass(frozen=True)
+class LeadRubber:
+    """Isolated base on lead-rubber bearings: Eq (36) with ``Q/(m + m_b)`` in place of ``mu g``.
+
+    Parameters
+    ----------
+    T_b : float
+        Isolation period of the second (post-yield) slope [s], > 0.
+    Q_ratio : float
+        Characteristic strength over the weight, ``Q / ((m + m_b) g)``, > 0.
+    u_y : float
+        Yield displacement [m] (a lead-rubber bearing's is of the order of 10-25 mm).
+    gamma : float
+        Mass ratio ``m / (m + m_b)``, 0 <= gamma < 1.
+    n, beta, gamma_bw : float
+        Bouc-Wen parameters of Eq (34).
+    """
+
+    T_b: float
+    Q_ratio: float
+    u_y: float
+    gamma: float = DEFAULT_GAMMA
+    n: float = DEFAULT_BW_N
+    beta: float = DEFAULT_BW_BETA
+    gamma_bw: float = DEFAULT_BW_GAMMA
+
+    kind = KIND_BILINEAR
+    n_states = 3
+
+    def __post_init__(self):
+        _check_period(self.T_b)
+        _check(_finite(self.Q_ratio) and 0 < self.Q_ratio < 1,
+               f"strength ratio Q = Q/((m+m_b) g) must lie strictly between 0 and 1, got {self.Q_ratio!r}")
+        _check_yield(self.u_y)
+        _check_gamma(self.gamma)
+        _check_bouc_wen(self.n, self.beta, self.gamma_bw)
+        _floats(self, ("T_b", "Q_ratio", "u_y", "gamma", "n", "beta", "gamma_bw"))
+
+    @property
+    def omega_b(self) -> float:
+        return 2.0 * math.pi / self.T_b
+
+    @property
+    def strength_ratio(self) -> float:
+        return self.Q_ratio
+
+    @property
+    def label(self) -> str:
+        return (f"lrb:Tb={_spec_num(self.T_b)},Q={_spec_num(self.Q_ratio)},uy={_spec_num(self.u_y)},gamma={_spec_num(self.gamma)}"
+                + _bouc_wen_label(self))
+
+
+@dataclass(frozen=True)
+class DoubleConcaveSliding:
+    """Isolated base on double concave spherical sliding bearings (paper's Figure 10, Eqs 37-38).
+
+    Two single concave surfaces in series joined by an articulated slider, modelled as a massless
+    node where the two surface forces balance (:mod:`rockcli.kernels.bearings`). Surface i has the
+    effective radius ``R_i_eff = R_i - h_i``, friction ``mu_i`` and a Bouc-Wen element of yield
+    displacement ``u_y/2``, so that the bearing as a whole yields at ``u_y`` like a single concave one.
+    With ``mu1 = mu2`` it is a single concave bearing of radius ``R1_eff + R2_eff`` (Eq 37); with
+    ``mu1 != mu2`` its loop is trilinear, and Eq (38) gives the equivalent single concave friction.
+
+    Parameters
+    ----------
+    R1_eff, R2_eff : float
+        Effective radii of the two sliding surfaces [m], > 0.
+    mu1, mu2 : float
+        Their coefficients of friction, 0 < mu < 1.
+    u_y : float
+        Yield displacement of the bearing [m] (default 0.25 mm; each surface u_y/2).
+    gamma : float
+        Mass ratio ``m / (m + m_b)``.
+    n, beta, gamma_bw : float
+        Bouc-Wen parameters of Eq (34), the same for both surfaces.
+    """
+
+    R1_eff: float
+    R2_eff: float
+    mu1: float
+    mu2: float
+    u_y: float = DEFAULT_UY
+    gamma: float = DEFAULT_GAMMA
+    n: float = DEFAULT_BW_N
+    beta: float = DEFAULT_BW_BETA
+    gamma_bw: float = DEFAULT_BW_GAMMA
+
+    kind = KIND_DCSS
+    n_states = 4
+
+    def __post_init__(self):
+        for name in ("R1_eff", "R2_eff"):
+            v = getattr(self, name)
+            _check(_finite(v) and v > 0, f"effective radius {name[:2]} must be a positive length in m, got {v!r}")
+        _check_friction("mu1", self.mu1)
+        _check_friction("mu2", self.mu2)
+        _check_yield(self.u_y)
+        _check_gamma(self.gamma)
+        _check_bouc_wen(self.n, self.beta, self.gamma_bw)
+        _floats(self, ("R1_eff", "R2_eff", "mu1", "mu2", "u_y", "gamma", "n", "beta", "gamma_bw"))
+
+    @classmethod
+    def from_period(cls, T_b: float, mu1: float, mu2: float, ratio: float = 1.0, **kwargs) -> "DoubleConcaveSliding":
+        """The bearing of period ``T_b = 2 pi sqrt((R1_eff + R2_eff)/g)`` with ``R2_eff/R1_eff = ratio``."""
+        _check_period(T_b)
+        _check(_finite(ratio) and ratio > 0, f"radius ratio r = R2/R1 must be positive, got {ratio!r}")
+        R_e = G * (float(T_b) / (2.0 * math.pi)) ** 2
+        R1 = R_e / (1.0 + float(ratio))
+        return cls(R1, R_e - R1, mu1, mu2, **kwargs)
+
+    @property
+    def R_e(self) -> float:
+        """Radius of the equivalent single concave bearing, ``R1_eff + R2_eff`` (Eq 37) [m]."""
+        return self.R1_eff + self.R2_eff
+
+    @property
+    def mu_e(self) -> float:
+        """Equivalent friction of Eq (38), ``(mu1 R1_eff + mu2 R2_eff)/(R1_eff + R2_eff)``."""
+        return (self.mu1 * self.R1_eff + self.mu2 * self.R2_eff) / self.R_e
+
+    @property
+    def mu(self) -> float:
+        """The equivalent friction ``mu_e`` (Eq 38), the friction a table of bearings reports."""
+        return self.mu_e
+
+    @property
+    def T_b(self) -> float:
+        """Isolation period of the final slope, ``2 pi sqrt((R1_eff + R2_eff)/g)`` [s]."""
+        return 2.0 * math.pi * math.sqrt(self.R_e / G)
+
+    @property
+    def omega_b(self) -> float:
+        return math.sqrt(G / self.R_e)
+
+    @property
+    def label(self) -> str:
+        return (f"dcss:R1={_spec_num(self.R1_eff)},R2={_spec_num(self.R2_eff)},mu1={_spec_num(self.mu1)},mu2={_spec_num(self.mu2)},"
+                f"uy={_spec_num(self.u_y)},gamma={_spec_num(self.gamma)}" + _bouc_wen_label(self))
+
+
+#: Foundations whose bearings are hysteretic (Bouc-Wen elements).
+HYSTERETIC = (SingleConcaveSliding, LeadRubber, DoubleConcaveSliding)
+
+Foundation = Rigid | LinearIsolation | SingleConcaveSliding | LeadRubber | DoubleConcaveSliding
+
+_BW_KEYS = {"n": "n", "beta": "beta", "gammabw": "gamma_bw"}
 _SPEC_KEYS = {
     "linear": {"tb": "T_b", "xi": "xi", "gamma": "gamma"},
+    "scss": {"tb": "T_b", "mu": "mu", "uy": "u_y", "gamma": "gamma", **_BW_KEYS},
+    "lrb": {"tb": "T_b", "q": "Q_ratio", "uy": "u_y", "gamma": "gamma", **_BW_KEYS},
+    "dcss": {"r1": "R1_eff", "r2": "R2_eff", "tb": "T_b", "r": "ratio", "mu1": "mu1", "mu2": "mu2", "uy": "u_y",
+             "gamma": "gamma", **_BW_KEYS},
 }
+_SPEC_EXAMPLES = ("'none', 'linear:Tb=2.5,xi=0.1,gamma=0.01', 'scss:Tb=3,mu=0.05[,uy=0.00025,gamma=0.01]', "
+                  "'lrb:Tb=2.5,Q=0.06,uy=0.015' or 'dcss:R1=1.1,R2=1.1,mu1=0.03,mu2=0.07[,uy=..,gamma=..]'")
+_REQUIRED = {
+    "linear": (("T_b", "Tb=<period in s>"),),
+    "scss": (("T_b", "Tb=<period in s>"), ("mu", "mu=<friction coefficient>")),
+    "lrb": (("T_b", "Tb=<period in s>"), ("Q_ratio", "Q=<strength / weight>"), ("u_y", "uy=<yield displacement in m>")),
+    "dcss": (("mu1", "mu1=<friction of surface 1>"), ("mu2", "mu2=<friction of surface 2>")),
+}
+_CLASSES = {"linear": LinearIsolation, "scss": SingleConcaveSliding, "lrb": LeadRubber}
 
 
 def parse_isolation_spec(text: str):
-    """Parse an isolation spec: ``none`` or ``linear:Tb=2.5,xi=0.1,gamma=0.01``.
+    """Parse an isolation spec into a foundation.
 
-    ``xi`` defaults to :data:`DEFAULT_XI`, ``gamma`` to :data:`DEFAULT_GAMMA`; ``Tb`` is required.
+    ``none``; ``linear:Tb=2.5[,xi=0.1,gamma=0.01]``; ``scss:Tb=3,mu=0.05[,uy=0.00025,gamma=0.01]``;
+    ``lrb:Tb=2.5,Q=0.06,uy=0.015[,gamma=0.01]`` (``Q`` = strength / weight);
+    ``dcss:R1=1.1,R2=1.1,mu1=0.03,mu2=0.07[,uy=0.00025,gamma=0.01]`` (effective radii ``R_i - h_i`` in m),
+    or ``dcss:Tb=3,mu1=0.03,mu2=0.07[,r=<R2/R1, default 1>]``. The Bouc-Wen elements also take
+    ``n``, ``beta``, ``gammabw``. Periods in s, lengths in m; defaults as in :mod:`rockcli.models`.
+    Any bad spec raises :class:`RockcliInputError` with one sentence.
     """
     raw = str(text).strip()
     kind, _, rest = raw.partition(":")
@@ -339,8 +622,7 @@ def parse_isolation_spec(text: str):
     if kind in ("none", "rigid", "fixed") and not rest.strip():
         return Rigid()
     if kind not in _SPEC_KEYS:
-        raise RockcliInputError(
-            f"unknown isolation {kind!r} in {raw!r} (use 'none' or 'linear:Tb=2.5,xi=0.1,gamma=0.01')")
+        raise RockcliInputError(f"unknown isolation {kind!r} in {raw!r} (use {_SPEC_EXAMPLES})")
     keys = _SPEC_KEYS[kind]
     values = {}
     for item in filter(None, (s.strip() for s in rest.split(","))):
@@ -351,7 +633,27 @@ def parse_isolation_spec(text: str):
                 f"isolation {raw!r}: {item!r} is not one of {', '.join(k + '=...' for k in keys)}")
         if not re.fullmatch(r"\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*", val):
             raise RockcliInputError(f"isolation {raw!r}: {key.strip()} must be a number, got {val.strip()!r}")
+        if keys[k] in values:
+            raise RockcliInputError(f"isolation {raw!r}: {key.strip()} is given twice")
         values[keys[k]] = float(val)
-    if "T_b" not in values:
-        raise RockcliInputError(f"isolation {raw!r} needs Tb=<period in s>")
-    return LinearIsolation(**values)
+    if "beta" in values and "gamma_bw" not in values:  # A = 1: one of them fixes the other
+        values["gamma_bw"] = 1.0 - values["beta"]
+    elif "gamma_bw" in values and "beta" not in values:
+        values["beta"] = 1.0 - values["gamma_bw"]
+    for name, hint in _REQUIRED[kind]:
+        if name not in values:
+            raise RockcliInputError(f"isolation {raw!r} needs {hint}")
+    by_radii = "R1_eff" in values or "R2_eff" in values
+    by_period = "T_b" in values or "ratio" in values
+    if kind == "dcss" and (by_radii == by_period or (by_radii and not ("R1_eff" in values and "R2_eff" in values))
+                           or (by_period and "T_b" not in values)):
+        raise RockcliInputError(f"isolation {raw!r} needs either R1=<m>,R2=<m> or Tb=<s>[,r=<R2/R1>]")
+    try:
+        if kind != "dcss":
+            return _CLASSES[kind](**values)
+        if by_period:
+            T_b, ratio = values.pop("T_b"), values.pop("ratio", 1.0)
+            return DoubleConcaveSliding.from_period(T_b, ratio=ratio, **values)
+        return DoubleConcaveSliding(**values)
+    except RockcliInputError as exc:
+        raise RockcliInputError(f"isolation {raw!r}: {exc}") from None

@@ -41,7 +41,8 @@ from typing import Any
 import numpy as np
 
 from rockcli.errors import RockcliInputError
-from rockcli.models import Block, LinearIsolation, Rigid, impact_coefficient
+from rockcli.models import (Block, DoubleConcaveSliding, LeadRubber, LinearIsolation, Rigid, SingleConcaveSliding,
+                            impact_coefficient)
 from rockcli.units import G
 
 VERDICT_NO_UPLIFT = "no_uplift"
@@ -71,7 +72,13 @@ _PULSE_CODES = {"ricker-sym": 1, "ricker-anti": 2, "sine": 3, "cosine": 4}
 
 @dataclass(frozen=True)
 class History:
-    """Time history of a run: arrays at every step end and event [SI units]."""
+    """Time history of a run: arrays at every step end and event [SI units].
+
+    ``z``, ``z2`` (Bouc-Wen variables; ``z2`` of the second surface of a double concave bearing)
+    and ``bearing_force`` (the bearings' restoring force per unit total mass, ``k_b u + Q z`` over
+    ``m + m_b`` [m/s^2]; linear bearings: ``k_b u + c_b u_dot`` over ``m + m_b``) are None where the
+    foundation has none.
+    """
 
     t: np.ndarray
     ag: np.ndarray
@@ -79,6 +86,9 @@ class History:
     theta_dot: np.ndarray
     u: np.ndarray
     u_dot: np.ndarray
+    z: np.ndarray | None = None
+    z2: np.ndarray | None = None
+    bearing_force: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
@@ -107,6 +117,8 @@ class Response:
     peak_final : bool
         ``theta_max`` is the run's peak (False only for ``early`` verdict-only runs stopped during
         the excitation: then it is the peak so far).
+    n_base_reversals : int
+        Steps that ended where a hysteretic base reversed (0 for other foundations).
     """
 
     verdict: str
@@ -130,6 +142,7 @@ class Response:
     t_end_s: float
     peak_final: bool = True
     t_settled_s: float = math.nan
+    n_base_reversals: int = 0
     history: History | None = field(default=None, repr=False)
 
     @property
@@ -274,6 +287,7 @@ def _excitation_arrays(excitation):
 
 
 def _parameters(block: Block, foundation, rtol: float, rest_tol: float):
+    """``(fkind, prm)``: the kernel's foundation code and parameter vector (``rockcli.kernels.layout``)."""
     k = _kernel()
     prm = np.zeros(k.N_PRM)
     p = block.p
@@ -308,9 +322,54 @@ def _parameters(block: Block, foundation, rtol: float, rest_tol: float):
         # block's own length scale g tan(alpha)/p^2 = (4/3) R tan(alpha)
         prm[k.P_SC0 + 2] = prm[k.P_THR] / max(w, p) ** 2
         prm[k.P_SC0 + 3] = prm[k.P_THR] / max(w, p)
+    elif isinstance(foundation, (SingleConcaveSliding, LeadRubber, DoubleConcaveSliding)):
+        w = foundation.omega_b
+        prm[k.P_W] = w
+        prm[k.P_BWN] = foundation.n
+        prm[k.P_BWC] = foundation.gamma_bw - foundation.beta
+        if isinstance(foundation, DoubleConcaveSliding):
+            fkind = k.FOUNDATION_DCSS
+            prm[k.P_K1] = G / foundation.R1_eff
+            prm[k.P_K2] = G / foundation.R2_eff
+            prm[k.P_Q1] = foundation.mu1 * G
+            prm[k.P_Q2] = foundation.mu2 * G
+            prm[k.P_UY1] = prm[k.P_UY2] = 0.5 * foundation.u_y  # the bearing as a whole yields at u_y
+        else:
+            fkind = k.FOUNDATION_BILINEAR
+            prm[k.P_Q1] = foundation.strength_ratio * G
+            prm[k.P_UY1] = foundation.u_y
+        prm[k.P_SC0 + 2] = prm[k.P_THR] / max(w, p) ** 2
+        prm[k.P_SC0 + 3] = prm[k.P_THR] / max(w, p)
     else:
         raise RockcliInputError(f"unknown foundation {foundation!r}")
     return fkind, prm
+
+
+def bearing_force_path(foundation, u) -> dict[str, np.ndarray]:
+    """The bearings of ``foundation`` under an imposed base displacement history ``u`` [m].
+
+    Returns ``{"force": ..., "z": ..., "z2": ...}``: the bearings' restoring force per unit total
+    mass ``(k_b u + Q z)/(m + m_b)`` [m/s^2] (divide by g for force over weight) and the Bouc-Wen
+    variables (``z2`` for a double concave bearing only), from the same code the solver uses. The
+    path is taken as monotone between samples (exact for a piecewise-monotone path). Linear
+    bearings give their elastic force only (no velocity here).
+    """
+    if isinstance(foundation, Rigid):
+        raise RockcliInputError("a rigid foundation has no bearings")
+    u = np.ascontiguousarray(u, dtype=np.float64)
+    if u.ndim != 1 or not np.all(np.isfinite(u)):
+        raise RockcliInputError("the displacement path must be a 1-D array of finite values in m")
+    k = _kernel()
+    block = Block(1.0, 0.2)  # the bearing's parameters do not depend on the block
+    fkind, prm = _parameters(block, foundation, DEFAULT_RTOL, DEFAULT_REST_TOL)
+    out = np.zeros((u.size, 3))
+    if fkind == k.FOUNDATION_LINEAR:
+        out[:, 0] = -foundation.omega_b ** 2 * u
+    else:
+        k.force_along_path(fkind, tuple(float(v) for v in prm), u, out)
+    res = {"force": -out[:, 0], "z": out[:, 1] if fkind >= k.FOUNDATION_BILINEAR else None,
+           "z2": out[:, 2] if fkind == k.FOUNDATION_DCSS else None}
+    return res
 
 
 def _validate_options(rtol, tail, rest_tol, horizon=DEFAULT_HORIZON, max_steps=DEFAULT_MAX_STEPS):
@@ -411,7 +470,7 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float = DE
     ----------
     block : Block
         The rigid block.
-    foundation : Rigid or LinearIsolation, optional
+    foundation : Rigid, LinearIsolation, SingleConcaveSliding, LeadRubber or DoubleConcaveSliding, optional
         Default :class:`Rigid`.
     excitation : Record or pulse
         A :class:`rockcli.records.Record` (``acc`` [m/s^2], ``dt`` [s]) or an analytic pulse
@@ -457,10 +516,10 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float = DE
     H = k.simulate_core(fkind, tuple(float(v) for v in prm), ekind, tuple(float(v) for v in epar), acc, jtab, dt,
                         t_begin, t_exc_end, float(tail), float(horizon), int(max_steps), bool(history),
                         bool(early), out)
-    return _response(out, H if history else None, block)
+    return _response(out, H if history else None, block, fkind)
 
 
-def _response(out: np.ndarray, H, block) -> Response:
+def _response(out: np.ndarray, H, block, out_fkind: int = 0) -> Response:
     k = _kernel()
     alpha = block.alpha if isinstance(block, Block) else float(block)
     status = int(out[k.O_STATUS])
@@ -483,8 +542,13 @@ def _response(out: np.ndarray, H, block) -> Response:
                     f"or overturn (lightly damped base?); lengthen the horizon to follow it")
     hist = None
     if H is not None:
+        fkind = out_fkind
+        hyst = fkind in (k.FOUNDATION_BILINEAR, k.FOUNDATION_DCSS)
         hist = History(t=H[:, k.H_T].copy(), ag=H[:, k.H_AG].copy(), theta=H[:, k.H_TH].copy(),
-                       theta_dot=H[:, k.H_THD].copy(), u=H[:, k.H_U].copy(), u_dot=H[:, k.H_UD].copy())
+                       theta_dot=H[:, k.H_THD].copy(), u=H[:, k.H_U].copy(), u_dot=H[:, k.H_UD].copy(),
+                       z=H[:, k.H_Z].copy() if hyst else None,
+                       z2=H[:, k.H_Z2].copy() if fkind == k.FOUNDATION_DCSS else None,
+                       bearing_force=H[:, k.H_FB].copy() if fkind != k.FOUNDATION_RIGID else None)
     return Response(
         verdict=verdict, status=status, message=message,
         t_uplift_s=float(out[k.O_T_UPLIFT]), t_overturn_s=float(out[k.O_T_OVERTURN]),
@@ -496,7 +560,7 @@ def _response(out: np.ndarray, H, block) -> Response:
         rejected_steps=int(out[k.O_REJECTED]), nfev=int(out[k.O_NRHS]), settled=bool(out[k.O_SETTLED]),
         t_end_s=float(out[k.O_T_END]), peak_final=bool(out[k.O_PEAK_FINAL]),
         t_settled_s=float(out[k.O_T_SETTLED]) if out[k.O_SETTLED] and status != k.STATUS_OVERTURNED else math.nan,
-        history=hist,
+        n_base_reversals=int(out[k.O_N_REVERSALS]), history=hist,
     )
 
 

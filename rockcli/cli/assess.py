@@ -84,7 +84,9 @@ def _columns(names, R, alpha, height, width, name):
               help="Catalogue records: the file where found else its fitted Ricker pulse (auto), files only "
                    "(record), or the pulses only (pulse).")
 @click.option("--isolation", "isolation", multiple=True, metavar="SPEC",
-              help="Foundation (repeatable): 'none' or 'linear:Tb=2.5,xi=0.1,gamma=0.01'. Default: the paper's "
+              help="Foundation (repeatable): 'none', 'linear:Tb=2.5,xi=0.1,gamma=0.01', 'scss:Tb=2,mu=0.05', "
+                   "'lrb:Tb=2.5,Q=0.06,uy=0.015' or 'dcss:R1=1.1,R2=1.1,mu1=0.03,mu2=0.07' (see 'rockcli simulate "
+                   "--help'). Default: the paper's "
                    "Table III set: none and linear Tb = 2, 2.5, 3 s with xi = 0.1 (gamma = 0.01).")
 @click.option("--margin/--no-margin", default=True, show_default=True,
               help="Find the smallest scale factor of each record that overturns (0.1x..4x scan, then bisection).")
@@ -208,7 +210,8 @@ def _write_histories(result, hist_dir, plot_dir):
                    "A file that cannot be read becomes an error row; the others carry on.")
 @_headerless_options
 @click.option("--isolation", "isolation", multiple=True, metavar="SPEC",
-              help="Foundation (repeatable): 'none' or 'linear:Tb=2.5,xi=0.1,gamma=0.01'. Default: none and "
+              help="Foundation (repeatable): 'none', 'linear:Tb=2.5,xi=0.1,gamma=0.01', 'scss:Tb=2,mu=0.05', "
+                   "'lrb:...' or 'dcss:...' (see 'rockcli simulate --help'). Default: none and "
                    "linear Tb = 2, 2.5, 3 s with xi = 0.1 (gamma = 0.01), as in the paper's Table III.")
 @click.option("--im", type=click.Choice(["pga", "pgv", "ap"]), default="pga", show_default=True,
               help="Intensity measure: pga [g]; pgv [m/s] (trapezoid rule from rest, as 'records show'); "

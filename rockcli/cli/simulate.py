@@ -11,7 +11,11 @@ from rockcli.cli.options import block_from_options, block_options, check_outputs
 @click.command(context_settings={"show_default": True})
 @block_options
 @click.option("--isolation", default="none", metavar="SPEC",
-              help="Foundation: 'none' (rigid) or 'linear:Tb=2.5,xi=0.1,gamma=0.01' (gamma = m/(m+m_b)).")
+              help="Foundation: 'none' (rigid); 'linear:Tb=2.5,xi=0.1,gamma=0.01'; single concave sliding "
+                   "'scss:Tb=3,mu=0.05[,uy=0.00025,gamma=0.01]'; lead-rubber 'lrb:Tb=2.5,Q=0.06,uy=0.015' "
+                   "(Q = strength/weight); double concave 'dcss:R1=1.1,R2=1.1,mu1=0.03,mu2=0.07[,uy=..,gamma=..]' "
+                   "(effective radii R-h in m) or 'dcss:Tb=3,mu1=0.03,mu2=0.07[,r=R2/R1]'. gamma = m/(m+m_b); "
+                   "uy = yield displacement [m].")
 @click.option("--record", "record_source", default=None, metavar="SOURCE",
               help="Ground motion: a record file or a catalogue id (see 'rockcli records list').")
 @record_options(column_flag="--record-column")
@@ -27,9 +31,11 @@ from rockcli.cli.options import block_from_options, block_options, check_outputs
               help="Longest free motion followed after the excitation to prove the verdict [s].")
 @click.option("--json", "as_json", is_flag=True, help="Print the results as one JSON object.")
 @click.option("--history", "history_path", type=click.Path(), default=None,
-              help="Write the time history (t, ground acceleration, theta, theta_dot, u, u_dot) as CSV.")
+              help="Write the time history (t, ground acceleration, theta, theta_dot, u, u_dot; on sliding and "
+                   "lead-rubber bearings also z and the bearing force over the weight) as CSV.")
 @click.option("--plot", "plot_path", type=click.Path(), default=None,
-              help="Draw ground acceleration, theta/alpha, theta_dot/p (and base displacement) to an image.")
+              help="Draw ground acceleration, theta/alpha, theta_dot/p (and base displacement u(t); on sliding "
+                   "and lead-rubber bearings also their force-displacement loop) to an image.")
 @user_errors
 def simulate(column_name, R, alpha, height, width, name, isolation, record_source, units, dt, fmt, column,
              pulse, scale, flip, rtol, tail, horizon, as_json, history_path, plot_path):
@@ -39,6 +45,7 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     Examples:
       rockcli simulate --height 2 --width 0.5 --pulse sine:ap=0.29,Tp=2
       rockcli simulate --column nemea --record northridge-1994-jensen-022 --isolation linear:Tb=3
+      rockcli simulate --R 1 --alpha 16 --pulse ricker-sym:ap=0.5,Tp=0.6 --isolation scss:Tb=1.8,mu=0.05 --plot f.png
     """
     import json
     import math
