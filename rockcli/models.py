@@ -332,8 +332,12 @@ class LinearIsolation:
         return f"linear:Tb={self.T_b:g},xi={self.xi:g},gamma={self.gamma:g}"
 
 
-def _check_period(T_b):
-    _check(_finite(T_b) and T_b > 0, f"isolation period Tb must be positive (s), got {T_b!r}")
+def _check_period(T_b, what="isolation period Tb"):
+    _check(_finite(T_b) and T_b > 0, f"{what} must be positive (s), got {_num(T_b)}")
+    lo, hi = TB_RANGE_S
+    _check(lo <= float(T_b) <= hi,
+           f"{what} = {_num(T_b)} s lies outside the supported {lo:g} s to {hi:g} s (stiffer bearings are a "
+           f"rigid foundation for any record: use 'none'; at {hi:g} s the base is already free)")
 
 
 def _check_gamma(gamma):
@@ -345,9 +349,17 @@ def _check_friction(name, mu):
     _check(_finite(mu) and 0 < mu < 1, f"friction coefficient {name} must lie strictly between 0 and 1, got {mu!r}")
 
 
+#: Yield displacements of hysteretic bearings [m]: sliding bearings have 0.05-0.5 mm, lead-rubber
+#: bearings tens of mm. Below 1 micrometre the elastic branch (stiffness Q/u_y) is stiffer than any
+#: bearing and only slows the run down (the verdicts are those of u_y -> 0 well before that).
+UY_RANGE_M = (1e-6, 0.1)
+
+
 def _check_yield(u_y):
-    _check(_finite(u_y) and 0 < u_y <= 0.1,
-           f"yield displacement uy must be a positive length in m (at most 0.1 m), got {u_y!r}")
+    lo, hi = UY_RANGE_M
+    _check(_finite(u_y) and lo <= u_y <= hi,
+           f"yield displacement uy must lie between {lo:g} m and {hi:g} m (sliding bearings have 0.05-0.5 mm), "
+           f"got {_num(u_y)}")
 
 
 def _check_bouc_wen(n, beta, gamma_bw):
@@ -536,6 +548,8 @@ class DoubleConcaveSliding:
         for name in ("R1_eff", "R2_eff"):
             v = getattr(self, name)
             _check(_finite(v) and v > 0, f"effective radius {name[:2]} must be a positive length in m, got {v!r}")
+            _check_period(2.0 * math.pi * math.sqrt(float(v) / G), f"the period of surface {name[:2]} alone")
+        _check_period(2.0 * math.pi * math.sqrt((float(self.R1_eff) + float(self.R2_eff)) / G))
         _check_friction("mu1", self.mu1)
         _check_friction("mu2", self.mu2)
         _check_yield(self.u_y)

@@ -540,3 +540,34 @@ def test_preflight_reports_unwritable_folders(work, monkeypatch, code, words):
     assert_one_sentence(res, ["--plot adir/x.png: cannot write there", words])
     assert snapshot(work) == before
 
+
+
+# ------------------------------------------------------------------------------------------
+# Sliding and lead-rubber bearings: the same period limits as linear bearings, and u_y >= 1 micrometre
+# ------------------------------------------------------------------------------------------
+@pytest.mark.parametrize("spec, words", [
+    ("scss:Tb=1e-6,mu=0.05", "outside the supported 0.005 s"),
+    ("scss:Tb=2,mu=0.05,uy=1e-12", "between 1e-06 m and 0.1 m"),
+    ("lrb:Tb=1e7,Q=0.1,uy=0.01", "outside the supported"),
+    ("dcss:Tb=2,mu1=0.03,mu2=0.07,r=1e9", "surface R1 alone"),
+    ("dcss:R1=1e-9,R2=1,mu1=0.03,mu2=0.07", "surface R1 alone"),
+])
+def test_sliding_bearing_limits(spec, words):
+    from rockcli.models import parse_isolation_spec
+
+    with pytest.raises(RockcliInputError, match=words) as err:
+        parse_isolation_spec(spec)
+    assert "\n" not in str(err.value)
+
+
+@pytest.mark.parametrize("spec", ["scss:Tb=0.005,mu=0.9,uy=1e-6", "scss:Tb=2,mu=0.9,uy=1e-6",
+                                  "dcss:Tb=0.01,mu1=0.03,mu2=0.9,r=1,uy=1e-6"])
+def test_sliding_bearing_corners_stay_far_below_the_step_cap(spec):
+    from rockcli.models import Block, parse_isolation_spec
+    from rockcli.pulses import make_pulse
+    from rockcli.solve import simulate
+    from rockcli.units import G
+
+    for pulse in (make_pulse("ricker-sym", 0.5 * G, 0.5), make_pulse("ricker-sym", 5 * G, 0.05)):
+        res = simulate(Block.from_degrees(1.0, 10.0), parse_isolation_spec(spec), pulse)
+        assert res.status >= 0 and res.steps + res.rejected_steps < 200_000
