@@ -224,9 +224,12 @@ def _write_histories(result, hist_dir, plot_dir):
                    "with the fit of its column and configuration.")
 @click.option("--plot", "plot_path", type=click.Path(), default=None,
               help="Write the fragility curves (one panel per column, every configuration) to this image, e.g. FILE.png.")
+@click.option("--scheduler", default=None, metavar="tcp://HOST:PORT|local",
+              help="Run the margin searches on a Dask cluster (pip install -e \".[dask]\"): the address of an "
+                   "existing scheduler, or 'local' for a LocalCluster on this machine. Same results.")
 @user_errors
 def fragility(names, R, alpha, height, width, name, records, units, dt, isolation, im, n_boot, seed, csv_path,
-              plot_path):
+              plot_path, scheduler):
     """Fragility curves of overturning: P(the column overturns | IM) from a suite of records.
 
     Each record is scaled (0.1x..4x, then bisection) to the smallest factor that overturns the
@@ -249,15 +252,25 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
         raise InputError("give the record suite with --records DIR|ID|FILE (repeatable)")
     configurations = parse_configurations(isolation)
     check_outputs((csv_path, "--csv", False), (plot_path, "--plot", True))
+    if scheduler is not None:
+        from rockcli.distributed import check_scheduler
+
+        check_scheduler(scheduler)
     excitations, unavailable = resolve_excitations(records, "record", units=units, dt=dt)
     _refuse_if_none_can_run(excitations)
 
-    total = count_fragility_runs(columns, excitations, configurations)
-    with _progress(total) as bar:
-        result = run_fragility(columns, excitations, configurations, im=im, n_boot=n_boot, seed=seed,
-                               unavailable=unavailable, progress=bar.update if bar else None)
-        if bar:
-            bar.update(total)
+    if scheduler is not None:
+        from rockcli.assess.fragility import run_fragility_distributed
+
+        result = run_fragility_distributed(scheduler, columns, excitations, configurations, im=im, n_boot=n_boot,
+                                           seed=seed, unavailable=unavailable)
+    else:
+        total = count_fragility_runs(columns, excitations, configurations)
+        with _progress(total) as bar:
+            result = run_fragility(columns, excitations, configurations, im=im, n_boot=n_boot, seed=seed,
+                                   unavailable=unavailable, progress=bar.update if bar else None)
+            if bar:
+                bar.update(total)
 
     from rockcli.report.fragility import format_fragility, format_fragility_notes
 
