@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 from pathlib import Path
 from typing import Any
 
@@ -193,7 +194,9 @@ def _claims_at2(path: Path, head_lines: list[str]) -> bool:
         return True
     if lines and "PEER" in lines[0].upper():
         return True
-    return len(lines) >= 4 and "NPTS" in lines[3].upper()
+    # line 4 opens with NPTS or DT, or is the old "n  dt  NPTS, DT" layout (a CSV that merely mentions
+    # NPTS in a note is not an AT2)
+    return len(lines) >= 4 and re.match(r"\s*(NPTS\b|DT\b|\d+\s+\S+\s+NPTS)", lines[3].upper()) is not None
 
 
 def _detect(path: Path, head_lines: list[str], is_text: bool) -> str:
