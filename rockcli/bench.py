@@ -656,7 +656,7 @@ class StabilityScene:
     expect: str | None = None  # the verdict physics demands, when it is known
     unproven_ok: bool = False  # NOT PROVEN at the horizon is the stated behaviour
     wall_budget_s: float = 30.0
-    step_budget: int = 3_000_000
+    step_budget: int = 5_000_000  # the solver's default step cap
     tail: float = 10.0
 
 
@@ -932,8 +932,8 @@ def run_stability(scenes, *, rtols=STABILITY_RTOLS, progress: Callable[[str], No
         try:
             # load (or compile) the kernels outside the timed runs: the budget is for the run
             key = (type(foundation).__name__, hasattr(exc, "acc"))
-            if key not in warmed:
-                simulate(block, foundation, exc, rtol=rtols[0], history=True, tail=0.0, max_steps=1000)
+            if key not in warmed:  # the first timed run, once untimed
+                simulate(block, foundation, exc, rtol=rt, history=True, tail=sc.tail, max_steps=sc.step_budget)
                 warmed.add(key)
             for rt in rtols:
                 t0 = time.perf_counter()

@@ -60,6 +60,8 @@ __all__ = [
     "make_pulse",
     "parse_pulse_spec",
     "gaussian_derivative_peak_period",
+    "T_P_RANGE_S",
+    "A_P_MAX_G",
 ]
 
 #: ``x`` where ``(x^2 - 3) x exp(-x^2/2)`` reaches its largest value: ``-sqrt(3 - sqrt 6)``
@@ -74,6 +76,14 @@ RICKER_ANTI_BETA = math.sqrt(6.0) * math.sqrt(3.0 - math.sqrt(6.0)) * math.exp(-
 #: Rickers are truncated at ``t0 +- RICKER_HALF_WIDTH * T_p`` (the acceleration there is below
 #: ``1e-36 a_p``).
 RICKER_HALF_WIDTH = 3.0
+
+
+#: Supported pulse periods T_p [s]: from 1 ms (no accelerogram, sampled at >= 5 ms, carries a
+#: shorter pulse) to 1000 s (longer than any earthquake's strong motion).
+T_P_RANGE_S = (1e-3, 1e3)
+#: Largest pulse amplitude |a_p| [g]: the strongest accelerations ever recorded are about 4 g, so
+#: only a unit mistake (cm/s^2 read as g multiplies by 981) gets past 100 g.
+A_P_MAX_G = 100.0
 
 
 def gaussian_derivative_peak_period(order: int, sigma: float) -> float:
@@ -103,7 +113,7 @@ def _check_param(name: str, value) -> float:
     except (TypeError, ValueError):
         raise RockcliInputError(f"pulse parameter {name} must be a number, got {value!r}") from None
     if not math.isfinite(v):
-        raise RockcliInputError(f"pulse parameter {name} must be finite, got {value!r}")
+        raise RockcliInputError(f"pulse parameter {name} must be finite, got {v:g}")
     return v
 
 
@@ -130,7 +140,15 @@ class Pulse:
         a_p = _check_param("a_p", self.a_p)
         T_p = _check_param("T_p", self.T_p)
         if T_p <= 0.0:
-            raise RockcliInputError(f"pulse period T_p must be > 0 s, got {self.T_p!r}")
+            raise RockcliInputError(f"pulse period T_p must be > 0 s, got {T_p:g}")
+        lo, hi = T_P_RANGE_S
+        if not lo <= T_p <= hi:
+            raise RockcliInputError(f"pulse period T_p = {T_p:g} s lies outside the supported {lo:g} s to {hi:g} s "
+                                    f"(no earthquake pulse is shorter or longer)")
+        if abs(a_p) > A_P_MAX_G * G:
+            raise RockcliInputError(f"pulse amplitude a_p = {a_p / G:g} g is beyond the supported {A_P_MAX_G:g} g "
+                                    f"(recorded peaks reach about 4 g; check the units: a_p is in g on the "
+                                    f"command line, in m/s^2 in Python)")
         t0 = self._default_t0 * T_p if self.t0 is None else _check_param("t0", self.t0)
         object.__setattr__(self, "a_p", a_p)
         object.__setattr__(self, "T_p", T_p)
@@ -443,4 +461,7 @@ def parse_pulse_spec(text: str) -> PulseLike:
         )
     if values["Tp"] <= 0.0:
         raise RockcliInputError(f"pulse spec {raw!r}: Tp must be > 0 s")
-    return cls(values["ap"] * G, values["Tp"], values.get("t0"))
+    try:
+        return cls(values["ap"] * G, values["Tp"], values.get("t0"))
+    except RockcliInputError as exc:
+        raise RockcliInputError(f"pulse spec {raw!r}: {exc}") from None

@@ -148,7 +148,8 @@ class PulseFit:
     record_name : str
         ``Record.name``.
     periods : (float, float)
-        Period range actually searched [s] (the lower end is raised to 4 samples if needed).
+        Period range actually searched [s] (the lower end is raised to 4 samples, the upper end
+        lowered to the record's duration, if needed).
     at_period_bound : bool
         True when the fitted period sits on an end of ``periods`` (widen the range to check).
     cwt_a_p_g, cwt_T_p_s, cwt_t0_s : float
@@ -226,6 +227,45 @@ def _check_record(record):
     if not np.any(acc != 0.0):
         raise RockcliInputError(f"record {name!r} is all zeros: there is no pulse to fit")
     return acc, dt
+
+
+#: Largest coarse CWT the fitter computes (periods x samples, float64: 240 MB).
+_MAX_CWT_COEFFICIENTS = 30_000_000
+
+
+def _effective_periods(lo, hi, acc, dt, name, scales_per_octave):
+    """The period range searched: ``lo`` raised to 4 time steps (and 1 ms), ``hi`` lowered to the
+    record's duration (a longer pulse cannot be fitted: its lobes would lie outside the record; and
+    the CWT of ever longer periods grows without bound, ``--periods 0.1:1e6`` ate GBs) and to 1000 s.
+
+    Raises one sentence when nothing is left to search or the CWT would be too large.
+    """
+    from rockcli.pulses import T_P_RANGE_S
+
+    duration = (acc.size - 1) * dt
+    lo_eff = max(lo, _MIN_SAMPLES_PER_PERIOD * dt, T_P_RANGE_S[0])
+    hi_eff = min(hi, duration, T_P_RANGE_S[1])
+    if lo_eff >= duration:
+        raise RockcliInputError(
+            f"record {name!r} lasts {duration:g} s, not longer than the shortest period searched {lo_eff:g} s: "
+            f"a pulse longer than the record cannot be fitted (lower the periods)")
+    if hi_eff <= lo_eff * 1.01:
+        if lo_eff > lo:
+            raise RockcliInputError(
+                f"record {name!r}: the period range {lo:g}:{hi:g} s is too short for its time step {dt:g} s "
+                f"(periods must be at least {lo_eff:g} s)")
+        raise RockcliInputError(
+            f"record {name!r}: the period range {lo:g}:{hi:g} s leaves nothing to search (periods above "
+            f"{hi_eff:g} s, the record's duration or 1000 s, cannot be fitted)")
+    q = max(int(math.floor(lo_eff / (_COARSE_SAMPLES_PER_PERIOD * dt))), 1)
+    n_per = max(int(math.ceil(math.log2(hi_eff / lo_eff) * scales_per_octave)) + 1, 3)
+    size = n_per * int(math.ceil(acc.size / q))
+    if size > _MAX_CWT_COEFFICIENTS:
+        raise RockcliInputError(
+            f"record {name!r}: the wavelet transform over {lo_eff:g}:{hi_eff:g} s would hold {size:.3g} "
+            f"coefficients, more than the {_MAX_CWT_COEFFICIENTS:.0e} allowed: narrow the periods or raise "
+            f"their lower end")
+    return lo_eff, hi_eff
 
 
 def _parabola_offset(y0, y1, y2):
@@ -370,7 +410,8 @@ def fit_pulse(record, wavelet: str = "best", *, periods=DEFAULT_PERIODS, scales_
         ``gaus3``), or ``"best"``: the one that explains the larger fraction of the record's energy.
     periods : (float, float)
         Range of pulse periods searched [s], default :data:`DEFAULT_PERIODS` (0.1, 6.0). The lower
-        end is raised to 4 time steps when the record is too coarse for it.
+        end is raised to 4 time steps when the record is too coarse for it; the upper end is lowered
+        to the record's duration (``PulseFit.periods`` is the range searched).
     scales_per_octave : int
         Density of the coarse CWT grid (the result is refined off the grid).
 
@@ -413,18 +454,13 @@ def _prepare(record, wavelet, periods, scales_per_octave):
         raise RockcliInputError(f"unknown wavelet {wavelet!r} (expected symmetric, antisymmetric or best)")
     lo, hi = _check_periods(periods)
     acc, dt = _check_record(record)
-    lo_eff = max(lo, _MIN_SAMPLES_PER_PERIOD * dt)
     name = getattr(record, "name", "record")
-    if hi <= lo_eff * 1.01:
-        raise RockcliInputError(
-            f"record {name!r}: the period range {lo:g}:{hi:g} s is too short for its time step {dt:g} s "
-            f"(periods must be at least {lo_eff:g} s)"
-        )
     if int(scales_per_octave) < 2:
         raise RockcliInputError("scales_per_octave must be at least 2")
+    lo_eff, hi_eff = _effective_periods(lo, hi, acc, dt, name, int(scales_per_octave))
     t_start = float(getattr(record, "t_start", 0.0))
     kinds = list(WAVELETS) if key == "best" else [key]
-    return acc, dt, t_start, name, kinds, (lo_eff, hi), int(scales_per_octave)
+    return acc, dt, t_start, name, kinds, (lo_eff, hi_eff), int(scales_per_octave)
 
 
 #: Two pulses are the same pulse when their centres are closer than this share of the longer period

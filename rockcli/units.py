@@ -14,6 +14,10 @@ ACCEL_UNITS = {
 }
 
 
+#: The unit words listed in messages (every spelling in :data:`ACCEL_UNITS` is accepted).
+KNOWN_UNITS = "g, g/10, m/s^2, cm/s^2 (gal), mm/s^2"
+
+
 def accel_factor(unit: str) -> float:
     """Factor that converts an acceleration in ``unit`` to m/s^2.
 
@@ -26,6 +30,5 @@ def accel_factor(unit: str) -> float:
 
     key = str(unit).strip().lower().replace(" ", "")
     if key not in ACCEL_UNITS:
-        known = ", ".join(sorted({"g", "m/s^2", "cm/s^2", "gal", "mm/s^2", "g/10"}))
-        raise RockcliInputError(f"unknown acceleration unit {unit!r} (known: {known})")
+        raise RockcliInputError(f"unknown acceleration unit {unit!r} (known: {KNOWN_UNITS})")
     return ACCEL_UNITS[key]

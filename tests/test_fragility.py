@@ -219,6 +219,29 @@ def test_chunked_margin_search_equals_one_batch_through_any_runner(suite):
         map_chunks(lambda c: c[:1], [1, 2, 3])
 
 
+def test_fragility_on_a_dask_cluster_equals_the_local_run(suite):
+    """--scheduler: the margin searches run as Dask tasks on two workers; identical capacities and fits."""
+    distributed = pytest.importorskip("distributed")
+    from rockcli.assess.fragility import run_fragility, run_fragility_distributed
+
+    block = Block.from_degrees(0.6, 12, "small")
+    xs, unavailable = resolve_excitations([str(suite)], "record")
+    configs = parse_configurations(["none", "linear:Tb=2"])
+    local = run_fragility([block], xs, configs, n_boot=50, unavailable=unavailable)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None) as cl, \
+            distributed.Client(cl) as client:
+        remote = run_fragility_distributed(client, [block], xs, configs, n_boot=50, unavailable=unavailable)
+    key = [(r.record, r.configuration, r.capacity, r.censored, r.error) for r in local.rows]
+    assert [(r.record, r.configuration, r.capacity, r.censored, r.error) for r in remote.rows] == key
+    assert [(c.median, c.beta) for c in remote.curves] == [(c.median, c.beta) for c in local.curves]
+
+
+def test_fragility_scheduler_option_is_checked_before_any_work(suite, tmp_path):
+    out = _invoke("bassae", "--records", suite, "--scheduler", "ftp://nowhere", "--csv", tmp_path / "f.csv")
+    assert out.exit_code == 2 and "--scheduler" in out.output and "Traceback" not in out.output
+    assert not (tmp_path / "f.csv").exists()
+
+
 # --------------------------------------------------------------------------------------------------
 # per-scene errors in simulate_many
 # --------------------------------------------------------------------------------------------------

@@ -554,3 +554,21 @@ def empirical_points(rows) -> list[tuple[float, float, str]]:
             S = S_new
         at_risk -= 1
     return out
+
+
+def run_fragility_distributed(scheduler, columns, excitations, configurations, *, chunks_per_worker: int = 2,
+                              **kwargs) -> Fragility:
+    """:func:`run_fragility` with the margin searches on a Dask cluster (:mod:`rockcli.distributed`).
+
+    ``scheduler`` is ``"local"`` (a LocalCluster here), ``"tcp://HOST:PORT"`` or a ``distributed.Client``.
+    The scenes are split into about ``chunks_per_worker`` chunks per worker; each chunk's search
+    depends on its scenes only, so the results are those of :func:`run_fragility`.
+    """
+    from rockcli.distributed import map_chunks as dask_map, open_client
+
+    n_scenes = max(1, len(columns) * len(excitations) * len(configurations))
+    with open_client(scheduler) as client:
+        workers = max(1, len(client.scheduler_info().get("workers", {})))
+        size = max(1, -(-n_scenes // (workers * chunks_per_worker)))
+        return run_fragility(columns, excitations, configurations, chunk_size=size,
+                             runner=lambda func, chunks: dask_map(client, func, chunks), **kwargs)

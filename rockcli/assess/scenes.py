@@ -117,7 +117,10 @@ def _short_header(foundation, spec: str) -> str:
     if isinstance(foundation, Rigid):
         return "none"
     T_b = getattr(foundation, "T_b", None)
-    return f"Tb={T_b:g}s" if T_b is not None else spec
+    if T_b is None:
+        return spec
+    family = foundation.label.partition(":")[0]
+    return f"Tb={T_b:g}s" if family == "linear" else f"{family} Tb={T_b:.3g}s"
 
 
 def parse_configurations(specs: Sequence[str] | None = None) -> list[Configuration]:

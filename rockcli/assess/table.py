@@ -150,9 +150,11 @@ def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
     chunk_progress = None
     if progress is not None:
         chunk_progress = _Advance(progress)
-    from rockcli.solve import VERDICT_ERROR, simulate_many
+    from rockcli.solve import VERDICT_ERROR, JobError, simulate_many
 
     responses = simulate_many([_scaled_job(*s, 1.0) for s in scenes], progress=chunk_progress, **solver)
+    # a run stopped by the step cap is a numerical failure, not a result: an error row like a refused job
+    responses = [JobError(r.message) if r.verdict != VERDICT_ERROR and r.status < 0 else r for r in responses]
     timings["runs_s"] = time.perf_counter() - t0
     for row, r in zip(run_rows, responses):
         if r.verdict == VERDICT_ERROR:  # the solver refused this scene; the others ran

@@ -8,6 +8,7 @@ import sys
 import click
 
 from rockcli.cli.errors import InputError, user_errors
+from rockcli.cli.options import check_outputs
 
 
 @click.group(name="assess")
@@ -39,6 +40,14 @@ def _warn_failed(failed, n_total: int):
         click.echo(f"Warning: {len(failed)} of {n_total} records could not be read or run; they have "
                    f"error rows: {', '.join(x.label for x in failed[:5])}{' ...' if len(failed) > 5 else ''}",
                    err=True)
+
+
+def _refuse_if_none_can_run(excitations):
+    """Nothing to report when no record can be run: exit 2 with one sentence per record, nothing written."""
+    if excitations and all(x.motion is None for x in excitations):
+        failed = [x.error or f"{x.label}: cannot be run" for x in excitations]
+        raise InputError(failed[0] if len(failed) == 1 else
+                         f"none of the {len(failed)} records can be run:\n" + "\n".join(failed))
 
 
 def _columns(names, R, alpha, height, width, name):
@@ -75,17 +84,19 @@ def _columns(names, R, alpha, height, width, name):
               help="Catalogue records: the file where found else its fitted Ricker pulse (auto), files only "
                    "(record), or the pulses only (pulse).")
 @click.option("--isolation", "isolation", multiple=True, metavar="SPEC",
-              help="Foundation (repeatable): 'none' or 'linear:Tb=2.5,xi=0.1,gamma=0.01'. Default: the paper's "
+              help="Foundation (repeatable): 'none', 'linear:Tb=2.5,xi=0.1,gamma=0.01', 'scss:Tb=2,mu=0.05', "
+                   "'lrb:Tb=2.5,Q=0.06,uy=0.015' or 'dcss:R1=1.1,R2=1.1,mu1=0.03,mu2=0.07' (see 'rockcli simulate "
+                   "--help'). Default: the paper's "
                    "Table III set: none and linear Tb = 2, 2.5, 3 s with xi = 0.1 (gamma = 0.01).")
 @click.option("--margin/--no-margin", default=True, show_default=True,
               help="Find the smallest scale factor of each record that overturns (0.1x..4x scan, then bisection).")
 @click.option("--neighbourhood", is_flag=True,
               help="Also run 0.90x..1.10x of each record (21 factors) and report the share that overturns.")
-@click.option("--csv", "csv_path", type=click.Path(dir_okay=False), default=None,
+@click.option("--csv", "csv_path", type=click.Path(), default=None,
               help="Write the report: one row per column x record x configuration.")
-@click.option("--histories", "hist_dir", type=click.Path(file_okay=False), default=None,
+@click.option("--histories", "hist_dir", type=click.Path(), default=None,
               help="Write one time-history CSV per run into this folder.")
-@click.option("--plot", "plot_dir", type=click.Path(file_okay=False), default=None,
+@click.option("--plot", "plot_dir", type=click.Path(), default=None,
               help="Write one figure per run (like the paper's Figure 12) into this folder.")
 @click.option("--check-tolerance", is_flag=True,
               help="Rerun every scene at a 100x tighter rtol (1e-10) and flag any verdict that changes.")
@@ -106,20 +117,15 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
       rockcli assess column statue:R=1.2,alpha=14 --records kobe-1995-takarazuka-000 --isolation none
       rockcli assess column nemea --records RSN983_NORTHR_JGB022.AT2 --isolation linear:Tb=3 --plot figs
     """
-    from pathlib import Path
-
     from rockcli.assess import count_runs, parse_configurations, resolve_excitations, run_assessment
 
     columns = _columns(names, R, alpha, height, width, name)
     configurations = parse_configurations(isolation)
-    for folder, opt in ((hist_dir, "--histories"), (plot_dir, "--plot")):
-        if folder is not None and Path(folder).exists() and not Path(folder).is_dir():
-            raise InputError(f"{opt} {folder}: exists and is not a folder")
-    if csv_path is not None and not Path(csv_path).resolve().parent.is_dir():
-        raise InputError(f"--csv {csv_path}: folder {Path(csv_path).resolve().parent} does not exist")
+    check_outputs((csv_path, "--csv", False), folders=((hist_dir, "--histories"), (plot_dir, "--plot")))
     excitations, unavailable = resolve_excitations(records, excitation, units=units, dt=dt)
     if not excitations:
         raise InputError("no record to run: " + "; ".join(f"{u.label}: {u.reason}" for u in unavailable))
+    _refuse_if_none_can_run(excitations)
 
     total = count_runs(columns, excitations, configurations, margin, neighbourhood)
     with _progress(total) as bar:
@@ -134,6 +140,11 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
     click.echo("")
     click.echo(format_notes(result))
     _warn_failed(result.failed, len(result.excitations))
+    failed_runs = [r for r in result.rows if r.error and not any(x.label == r.record for x in result.failed)]
+    if failed_runs:
+        r = failed_runs[0]
+        click.echo(f"Warning: {len(failed_runs)} run(s) failed; their rows carry the error (first: {r.column} / "
+                   f"{r.record} / {r.configuration}: {r.error})", err=True)
     if check_tolerance:
         _echo_tolerance_check(result)
 
@@ -164,20 +175,41 @@ def _write_histories(result, hist_dir, plot_dir):
     from pathlib import Path
 
     from rockcli.assess import history_runs, safe_name
+    from rockcli.errors import RockcliInputError
+    from rockcli.files import describe_os_error
     from rockcli.report.response import plot_response, write_history_csv
+
     n = 0
-    for folder in (hist_dir, plot_dir):
-        if folder:
-            Path(folder).mkdir(parents=True, exist_ok=True)
-    for row, block, conf, x, resp in history_runs(result):
-        stem = safe_name(row.column, row.record, row.configuration)
-        label = x.label + (" (catalogued pulse)" if x.kind == "pulse" else "")
-        if hist_dir:
-            write_history_csv(resp, block, Path(hist_dir) / f"{stem}.csv")
-        if plot_dir:
-            plot_response(resp, block, conf.foundation, f"{block.name}, {label}, {conf.label}",
-                          Path(plot_dir) / f"{stem}.png")
-        n += 1
+    created, written = [], []  # removed again if a write fails: nothing is left half-done
+    try:
+        for folder in (hist_dir, plot_dir):
+            if folder:
+                missing = [p for p in (Path(folder), *Path(folder).parents) if not p.exists()]
+                try:
+                    Path(folder).mkdir(parents=True, exist_ok=True)
+                except OSError as exc:
+                    raise describe_os_error(exc, folder) from None
+                created += reversed(missing)
+        for row, block, conf, x, resp in history_runs(result):
+            if resp.status < 0:  # the step cap: no history to show as if it were valid
+                continue
+            stem = safe_name(row.column, row.record, row.configuration)
+            label = x.label + (" (catalogued pulse)" if x.kind == "pulse" else "")
+            if hist_dir:
+                written.append(write_history_csv(resp, block, Path(hist_dir) / f"{stem}.csv"))
+            if plot_dir:
+                written.append(plot_response(resp, block, conf.foundation, f"{block.name}, {label}, {conf.label}",
+                                             Path(plot_dir) / f"{stem}.png"))
+            n += 1
+    except RockcliInputError:
+        for p in written:
+            p.unlink(missing_ok=True)
+        for d in reversed(created):
+            try:
+                d.rmdir()
+            except OSError:
+                pass
+        raise
     what = " and ".join(f"{k} in {d}" for k, d in (("histories", hist_dir), ("figures", plot_dir)) if d)
     click.echo(f"wrote {what} ({n} runs)")
 
@@ -196,7 +228,8 @@ def _write_histories(result, hist_dir, plot_dir):
                    "A file that cannot be read becomes an error row; the others carry on.")
 @_headerless_options
 @click.option("--isolation", "isolation", multiple=True, metavar="SPEC",
-              help="Foundation (repeatable): 'none' or 'linear:Tb=2.5,xi=0.1,gamma=0.01'. Default: none and "
+              help="Foundation (repeatable): 'none', 'linear:Tb=2.5,xi=0.1,gamma=0.01', 'scss:Tb=2,mu=0.05', "
+                   "'lrb:...' or 'dcss:...' (see 'rockcli simulate --help'). Default: none and "
                    "linear Tb = 2, 2.5, 3 s with xi = 0.1 (gamma = 0.01), as in the paper's Table III.")
 @click.option("--im", type=click.Choice(["pga", "pgv", "ap"]), default="pga", show_default=True,
               help="Intensity measure: pga [g]; pgv [m/s] (trapezoid rule from rest, as 'records show'); "
@@ -204,14 +237,17 @@ def _write_histories(result, hist_dir, plot_dir):
 @click.option("--bootstrap", "n_boot", type=click.IntRange(0, 100000), default=1000, show_default=True,
               help="Bootstrap resamples over records for the confidence intervals (0: none).")
 @click.option("--seed", type=int, default=13, show_default=True, help="Seed of the bootstrap resamples.")
-@click.option("--csv", "csv_path", type=click.Path(dir_okay=False), default=None,
+@click.option("--csv", "csv_path", type=click.Path(), default=None,
               help="Write one row per column x record x configuration (IM, scale, capacity, censoring, error) "
                    "with the fit of its column and configuration.")
-@click.option("--plot", "plot_path", type=click.Path(dir_okay=False), default=None,
+@click.option("--plot", "plot_path", type=click.Path(), default=None,
               help="Write the fragility curves (one panel per column, every configuration) to this image, e.g. FILE.png.")
+@click.option("--scheduler", default=None, metavar="tcp://HOST:PORT|local",
+              help="Run the margin searches on a Dask cluster (pip install -e \".[dask]\"): the address of an "
+                   "existing scheduler, or 'local' for a LocalCluster on this machine. Same results.")
 @user_errors
 def fragility(names, R, alpha, height, width, name, records, units, dt, isolation, im, n_boot, seed, csv_path,
-              plot_path):
+              plot_path, scheduler):
     """Fragility curves of overturning: P(the column overturns | IM) from a suite of records.
 
     Each record is scaled (0.1x..4x, then bisection) to the smallest factor that overturns the
@@ -226,8 +262,6 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
           --csv fragility.csv --plot fragility.png
       rockcli assess fragility nemea --records my/suite --units g --dt 0.01 --im pgv --isolation none
     """
-    from pathlib import Path
-
     from rockcli.assess import parse_configurations, resolve_excitations
     from rockcli.assess.fragility import count_fragility_runs, run_fragility
 
@@ -235,21 +269,26 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
     if not records:
         raise InputError("give the record suite with --records DIR|ID|FILE (repeatable)")
     configurations = parse_configurations(isolation)
-    for path, opt in ((csv_path, "--csv"), (plot_path, "--plot")):
-        if path is not None and not Path(path).resolve().parent.is_dir():
-            raise InputError(f"{opt} {path}: folder {Path(path).resolve().parent} does not exist")
-    if plot_path is not None and not Path(plot_path).suffix:
-        raise InputError(f"--plot {plot_path}: give the file a suffix such as .png or .pdf")
-    excitations, unavailable = resolve_excitations(records, "record", units=units, dt=dt)
-    if not any(x.motion is not None for x in excitations):
-        raise InputError("no record of the suite could be read: " + "; ".join(x.error for x in excitations[:3]))
+    check_outputs((csv_path, "--csv", False), (plot_path, "--plot", True))
+    if scheduler is not None:
+        from rockcli.distributed import check_scheduler
 
-    total = count_fragility_runs(columns, excitations, configurations)
-    with _progress(total) as bar:
-        result = run_fragility(columns, excitations, configurations, im=im, n_boot=n_boot, seed=seed,
-                               unavailable=unavailable, progress=bar.update if bar else None)
-        if bar:
-            bar.update(total)
+        check_scheduler(scheduler)
+    excitations, unavailable = resolve_excitations(records, "record", units=units, dt=dt)
+    _refuse_if_none_can_run(excitations)
+
+    if scheduler is not None:
+        from rockcli.assess.fragility import run_fragility_distributed
+
+        result = run_fragility_distributed(scheduler, columns, excitations, configurations, im=im, n_boot=n_boot,
+                                           seed=seed, unavailable=unavailable)
+    else:
+        total = count_fragility_runs(columns, excitations, configurations)
+        with _progress(total) as bar:
+            result = run_fragility(columns, excitations, configurations, im=im, n_boot=n_boot, seed=seed,
+                                   unavailable=unavailable, progress=bar.update if bar else None)
+            if bar:
+                bar.update(total)
 
     from rockcli.report.fragility import format_fragility, format_fragility_notes
 

@@ -16,19 +16,14 @@ def bench():
     """Accuracy, cost and robustness of the solver: work-precision against SciPy, stiff and extreme scenes."""
 
 
-def _check_outputs(**paths):
-    from pathlib import Path
+def _check_outputs(csv=None, plot=None):
+    """Outputs checked before any run (rockcli.files): a long study never fails on its output."""
+    from rockcli.files import check_output
 
-    for opt, path in paths.items():
-        if path is None:
-            continue
-        folder = Path(path).resolve().parent
-        if not folder.is_dir():
-            raise InputError(f"--{opt} {path}: folder {folder} does not exist")
-        if Path(path).is_dir():
-            raise InputError(f"--{opt} {path}: is a folder")
-        if opt == "plot" and not Path(path).suffix:
-            raise InputError(f"--plot {path}: give the file a suffix such as .png or .pdf")
+    if csv is not None:
+        check_output(csv, "--csv")
+    if plot is not None:
+        check_output(plot, "--plot", image=True)
 
 
 def _rtols(text, opt):
@@ -71,8 +66,8 @@ def _scene_list(catalogue) -> str:
 @bench.command(name="work-precision")
 @click.option("--scene", "scenes", multiple=True, metavar="NAME", help="A scene to run (repeatable; default all; "
               "--list shows them).")
-@click.option("--csv", "csv_path", type=click.Path(dir_okay=False), default=None, help="Write one row per run.")
-@click.option("--plot", "plot_path", type=click.Path(dir_okay=False), default=None,
+@click.option("--csv", "csv_path", default=None, metavar="FILE", help="Write one row per run.")
+@click.option("--plot", "plot_path", default=None, metavar="FILE",
               help="Draw error against wall time, one panel per scene (.png, .pdf, .svg).")
 @click.option("--kernel-rtol", default=None, metavar="LIST",
               help="rockcli's tolerances, comma-separated (default 1e-4,1e-5,...,1e-12).")
@@ -149,7 +144,7 @@ def work_precision(scenes, csv_path, plot_path, kernel_rtol, scipy_rtol, methods
 @bench.command(name="stability")
 @click.option("--scene", "scenes", multiple=True, metavar="NAME", help="A scene to run (repeatable; default all; "
               "--list shows them).")
-@click.option("--csv", "csv_path", type=click.Path(dir_okay=False), default=None, help="Write one row per scene.")
+@click.option("--csv", "csv_path", default=None, metavar="FILE", help="Write one row per scene.")
 @click.option("--list", "list_only", is_flag=True, help="List the scenes and exit.")
 @click.option("--verbose", "-v", is_flag=True, help="Print every check of every scene.")
 @click.option("--random", "n_random", type=click.IntRange(0, 100000), default=0, metavar="N",

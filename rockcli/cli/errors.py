@@ -14,7 +14,8 @@ class InputError(click.ClickException):
 
 
 def user_errors(func):
-    """Decorator for command bodies: library input errors become :class:`InputError`."""
+    """Decorator for command bodies: library input errors become :class:`InputError` (exit 2), and an
+    arithmetic failure inside the library one sentence with exit code 1 instead of a traceback."""
 
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
@@ -24,5 +25,9 @@ def user_errors(func):
             return func(*args, **kwargs)
         except RockcliInputError as exc:
             raise InputError(str(exc)) from None
+        except ArithmeticError as exc:  # a numerical failure in the library: one sentence, exit 1
+            raise click.ClickException(
+                f"numerical failure ({type(exc).__name__}: {exc}); no result is given (please report the "
+                f"command line)") from None
 
     return wrapper

@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 
 from rockcli.cli.errors import InputError, user_errors
-from rockcli.cli.options import record_kwargs, record_options
+from rockcli.cli.options import check_outputs, record_kwargs, record_options
 
 #: Pulse columns of records/catalog.csv that ``--update-catalog`` fills, and their rounding.
 _CATALOG_DIGITS = {"a_p_g": 4, "T_p_s": 4, "t0_s": 3, "pulse_energy": 4}
@@ -99,10 +99,10 @@ def _update_catalog(fits):
                    "that explains more of the record's energy.")
 @click.option("--periods", default="0.1:6", show_default=True, metavar="MIN:MAX",
               help="Range of pulse periods T_p searched [s].")
-@click.option("--csv", "csv_path", type=click.Path(dir_okay=False), default=None,
+@click.option("--csv", "csv_path", type=click.Path(), default=None,
               help="Also write the fits to this CSV file.")
 @click.option("--json", "as_json", is_flag=True, help="Print the fits as JSON instead of a table.")
-@click.option("--plot", "plot_path", type=click.Path(dir_okay=False), default=None,
+@click.option("--plot", "plot_path", type=click.Path(), default=None,
               help="Overlay each fitted pulse on its record (one panel per record) in this image, e.g. FILE.png.")
 @click.option("--candidates", "n_candidates", type=click.IntRange(1, 20), default=None, metavar="N",
               help="List the N strongest distinct pulses of each record (local maxima of the wavelet transform, "
@@ -144,6 +144,11 @@ def fit_pulse(sources, units, dt, fmt, column, use_catalog, wavelet, periods, cs
         raise InputError("--update-catalog stores the fit only; leave out --candidates")
     if not sources and not use_catalog:
         raise InputError("give at least one SOURCE (a record file or catalogue id), or --catalog")
+    check_outputs((csv_path, "--csv", False), (plot_path, "--plot", True))
+    if update_catalog:
+        from rockcli.records.catalog import catalog_path
+
+        check_outputs((catalog_path(), "--update-catalog", False))
 
     warnings = []
     jobs = [(s, record_kwargs(units, dt, fmt, column)) for s in sources]
@@ -183,6 +188,13 @@ def fit_pulse(sources, units, dt, fmt, column, use_catalog, wavelet, periods, cs
         if any(f.at_period_bound for f in fits) or any(c.at_period_bound for cs in candidates for c in cs):
             click.echo(f"* T_p at an end of the searched range {period_range[0]:g}:{period_range[1]:g} s; "
                        f"widen --periods to check.")
+    for f in fits:
+        if f.periods[0] > period_range[0]:
+            warnings.append(f"{f.record_name}: periods searched from {f.periods[0]:g} s only (4 time steps), "
+                            f"not {period_range[0]:g} s")
+        if f.periods[1] < period_range[1]:
+            warnings.append(f"{f.record_name}: periods searched up to {f.periods[1]:g} s only, the record's "
+                            f"duration (a longer pulse cannot be fitted), not {period_range[1]:g} s")
     for w in warnings:
         click.echo(f"Warning: {w}", err=True)
 

@@ -72,3 +72,19 @@ def block_from_options(column_name=None, R=None, alpha=None, height=None, width=
 
     return build_block(preset=column_name, R=R, alpha_deg=alpha, height=height, width=width, name=name,
                        labels=BLOCK_FLAGS)
+
+
+def check_outputs(*files, folders=()):
+    """Check every output before any work: ``files`` are ``(path, option, is_image)``, ``folders`` ``(path, option)``.
+
+    Entries whose path is None (option not given) are skipped. Raises ``RockcliInputError`` with
+    one sentence naming the option and the path (see :mod:`rockcli.files`).
+    """
+    from rockcli.files import check_output, check_output_folder
+
+    for path, option, image in files:
+        if path is not None:
+            check_output(path, option, image=image)
+    for path, option in folders:
+        if path is not None:
+            check_output_folder(path, option)

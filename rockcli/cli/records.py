@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 
 from rockcli.cli.errors import user_errors
-from rockcli.cli.options import record_kwargs, record_options
+from rockcli.cli.options import check_outputs, record_kwargs, record_options
 
 
 @click.group(name="records")
@@ -32,7 +32,7 @@ def _fmt(value, spec: str) -> str:
 
 
 @records.command(name="list")
-@click.option("--csv", "csv_path", type=click.Path(dir_okay=False), default=None,
+@click.option("--csv", "csv_path", type=click.Path(), default=None,
               help="Also write the table to this CSV file.")
 @user_errors
 def list_records(csv_path):
@@ -43,6 +43,7 @@ def list_records(csv_path):
     """
     from rockcli.records.catalog import search_path
 
+    check_outputs((csv_path, "--csv", False))
     rows = _status_rows()
     table = [("id", "event", "PGA [g]", "PGV [m/s]", "status", "path")]
     for r in rows:
@@ -64,7 +65,7 @@ def list_records(csv_path):
 @records.command(name="show")
 @click.argument("source")
 @record_options
-@click.option("--plot", "plot_path", type=click.Path(dir_okay=False), default=None,
+@click.option("--plot", "plot_path", type=click.Path(), default=None,
               help="Plot acceleration, velocity and displacement to this image (e.g. FILE.png).")
 @user_errors
 def show(source, units, dt, fmt, column, plot_path):
@@ -76,6 +77,7 @@ def show(source, units, dt, fmt, column, plot_path):
     from rockcli.records import read_record
     from rockcli.records.motion import calc_peaks
 
+    check_outputs((plot_path, "--plot", True))
     rec = read_record(source, **record_kwargs(units, dt, fmt, column))
     peaks = calc_peaks(rec)
     meta = rec.meta

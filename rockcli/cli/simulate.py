@@ -5,13 +5,17 @@ from __future__ import annotations
 import click
 
 from rockcli.cli.errors import user_errors
-from rockcli.cli.options import block_from_options, block_options, record_kwargs, record_options
+from rockcli.cli.options import block_from_options, block_options, check_outputs, record_kwargs, record_options
 
 
 @click.command(context_settings={"show_default": True})
 @block_options
 @click.option("--isolation", default="none", metavar="SPEC",
-              help="Foundation: 'none' (rigid) or 'linear:Tb=2.5,xi=0.1,gamma=0.01' (gamma = m/(m+m_b)).")
+              help="Foundation: 'none' (rigid); 'linear:Tb=2.5,xi=0.1,gamma=0.01'; single concave sliding "
+                   "'scss:Tb=3,mu=0.05[,uy=0.00025,gamma=0.01]'; lead-rubber 'lrb:Tb=2.5,Q=0.06,uy=0.015' "
+                   "(Q = strength/weight); double concave 'dcss:R1=1.1,R2=1.1,mu1=0.03,mu2=0.07[,uy=..,gamma=..]' "
+                   "(effective radii R-h in m) or 'dcss:Tb=3,mu1=0.03,mu2=0.07[,r=R2/R1]'. gamma = m/(m+m_b); "
+                   "uy = yield displacement [m].")
 @click.option("--record", "record_source", default=None, metavar="SOURCE",
               help="Ground motion: a record file or a catalogue id (see 'rockcli records list').")
 @record_options(column_flag="--record-column")
@@ -26,10 +30,12 @@ from rockcli.cli.options import block_from_options, block_options, record_kwargs
 @click.option("--horizon", type=float, default=600.0,
               help="Longest free motion followed after the excitation to prove the verdict [s].")
 @click.option("--json", "as_json", is_flag=True, help="Print the results as one JSON object.")
-@click.option("--history", "history_path", type=click.Path(dir_okay=False), default=None,
-              help="Write the time history (t, ground acceleration, theta, theta_dot, u, u_dot) as CSV.")
-@click.option("--plot", "plot_path", type=click.Path(dir_okay=False), default=None,
-              help="Draw ground acceleration, theta/alpha, theta_dot/p (and base displacement) to an image.")
+@click.option("--history", "history_path", type=click.Path(), default=None,
+              help="Write the time history (t, ground acceleration, theta, theta_dot, u, u_dot; on sliding and "
+                   "lead-rubber bearings also z and the bearing force over the weight) as CSV.")
+@click.option("--plot", "plot_path", type=click.Path(), default=None,
+              help="Draw ground acceleration, theta/alpha, theta_dot/p (and base displacement u(t); on sliding "
+                   "and lead-rubber bearings also their force-displacement loop) to an image.")
 @user_errors
 def simulate(column_name, R, alpha, height, width, name, isolation, record_source, units, dt, fmt, column,
              pulse, scale, flip, rtol, tail, horizon, as_json, history_path, plot_path):
@@ -39,6 +45,7 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     Examples:
       rockcli simulate --height 2 --width 0.5 --pulse sine:ap=0.29,Tp=2
       rockcli simulate --column nemea --record northridge-1994-jensen-022 --isolation linear:Tb=3
+      rockcli simulate --R 1 --alpha 16 --pulse ricker-sym:ap=0.5,Tp=0.6 --isolation scss:Tb=1.8,mu=0.05 --plot f.png
     """
     import json
     import math
@@ -47,6 +54,7 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     from rockcli.models import parse_isolation_spec
     from rockcli.units import G
 
+    check_outputs((history_path, "--history", False), (plot_path, "--plot", True))
     block = block_from_options(column_name, R, alpha, height, width, name)
     foundation = parse_isolation_spec(isolation)
     if (record_source is None) == (pulse is None):
@@ -75,6 +83,10 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
 
     res = run(block, foundation, excitation, rtol=rtol, tail=tail, horizon=horizon,
               history=bool(history_path or plot_path))
+    if res.status < 0:  # a genuine numerical failure: no result is printed or written as if it were valid
+        raise click.ClickException(
+            f"the integrator stopped at its safety cap of {res.steps + res.rejected_steps:,} steps at "
+            f"t = {res.t_end_s:.3f} s, a numerical failure: no result is given (please report the command line)")
     if history_path:
         from rockcli.report.response import write_history_csv
 
@@ -114,8 +126,6 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     if not res.settled:
         click.echo(f"NOTE: the verdict is NOT PROVEN: at {res.t_end_s:.1f} s (the horizon) the base could still lift "
                    "the block; lengthen --horizon to follow it")
-    if res.status < 0:
-        raise click.ClickException(res.message)
 
 
 def _pga(excitation, G) -> str:

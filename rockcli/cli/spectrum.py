@@ -35,9 +35,9 @@ def _scene_options(isolation_help: str, isolation_default, multiple_isolation: b
                               "file; rockcli fit-pulse), repeatable."),
             click.option("--isolation", "isolations", multiple=multiple_isolation, default=isolation_default,
                          metavar="SPEC", help=isolation_help),
-            click.option("--csv", "csv_path", type=click.Path(dir_okay=False), default=None,
+            click.option("--csv", "csv_path", type=click.Path(), default=None,
                          help="Write the result as CSV."),
-            click.option("--plot", "plot_path", type=click.Path(dir_okay=False), default=None,
+            click.option("--plot", "plot_path", type=click.Path(), default=None,
                          help="Draw the figure (.png, .pdf, .svg)."),
             click.option("--scheduler", default=None, metavar="tcp://HOST:PORT|local",
                          help="Run the cells in chunks on a Dask cluster (pip install -e \".[dask]\"): an "
@@ -52,18 +52,9 @@ def _scene_options(isolation_help: str, isolation_default, multiple_isolation: b
 
 
 def _check_outputs(csv_path, plot_path):
-    from pathlib import Path
+    from rockcli.cli.options import check_outputs
 
-    for path, opt in ((csv_path, "--csv"), (plot_path, "--plot")):
-        if path is None:
-            continue
-        folder = Path(path).resolve().parent
-        if not folder.is_dir():
-            raise InputError(f"{opt} {path}: folder {folder} does not exist")
-        if Path(path).is_dir():
-            raise InputError(f"{opt} {path}: is a folder")
-    if plot_path is not None and not Path(plot_path).suffix:
-        raise InputError(f"--plot {plot_path}: give the file a suffix such as .png or .pdf")
+    check_outputs((csv_path, "--csv", False), (plot_path, "--plot", True))
 
 
 def _pulses(pulses, records, units, dt, fmt, column, default=("ricker-sym",)):
@@ -277,10 +268,10 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
               help="Largest a_p/(g tan alpha) tried (above it: no overturning).")
 @click.option("--step", type=float, default=0.01, show_default=True, help="Relative scan step (see min-overturning).")
 @click.option("--tol", type=float, default=0.001, show_default=True, help="Relative bisection tolerance.")
-@click.option("--csv", "csv_path", type=click.Path(dir_okay=False), default=None,
+@click.option("--csv", "csv_path", type=click.Path(), default=None,
               help="Write the table as CSV (source, pulse, T_p_s, alpha_deg, Tb_over_Tp, Tb_s, "
                    "wp_over_p_cross, R_critical_m).")
-@click.option("--plot", "plot_path", type=click.Path(dir_okay=False), default=None,
+@click.option("--plot", "plot_path", type=click.Path(), default=None,
               help="Draw the compared curves with the crossings marked.")
 @click.option("--scheduler", default=None, metavar="tcp://HOST:PORT|local",
               help="Run the cells on a Dask cluster (see overturning).")

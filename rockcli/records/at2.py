@@ -54,8 +54,42 @@ HEADER_LINES = 4
 
 
 def _split_lines(text: str) -> list[str]:
-    """Lines of ``text`` whatever the line endings (LF, CRLF or CR)."""
+    """Lines of ``text`` whatever the line endings (LF, CRLF, CR, or CR CR LF).
+
+    ``\r\r\n`` is a CRLF file converted once more as text (a Windows copy of a CRLF download):
+    one line break, not a blank line after every line.
+    """
+    if "\r\r\n" in text:
+        text = text.replace("\r\r\n", "\n")
     return text.splitlines()
+
+
+#: Line 4 as this reader expects it, for messages.
+_LINE4_EXAMPLES = "a layout such as 'NPTS=  4096, DT= .0100 SEC', 'DT= .01 SEC, NPTS= 4096' or '4096  .0100  NPTS, DT'"
+_LOOSE_NPTS = re.compile(r"\bNPTS\s*=\s*(?P<v>[^\s,;]*)", re.I)
+_LOOSE_DT = re.compile(r"\bDT\s*=\s*(?P<v>[^\s,;]*)", re.I)
+
+
+def _diagnose_line4(line: str, filename: str) -> RockcliInputError:
+    """One sentence on what is wrong with header line 4 (it matched none of the layouts)."""
+    npts = _LOOSE_NPTS.search(line)
+    dt = _LOOSE_DT.search(line)
+    if npts is not None and not re.fullmatch(r"\d+", npts.group("v")):
+        return RockcliInputError(f"{filename}, line 4: NPTS={npts.group('v')} is not a positive whole number "
+                                 f"of samples (expected {_LINE4_EXAMPLES})")
+    if dt is not None:
+        token = dt.group("v")
+        try:
+            value = float(token.replace("D", "E").replace("d", "e"))
+        except ValueError:
+            value = None
+        if value is None or not (value > 0 and value < float("inf")):
+            return RockcliInputError(f"{filename}, line 4: DT={token} is not a positive time step in seconds "
+                                     f"(expected {_LINE4_EXAMPLES})")
+    shown = line.strip()
+    shown = repr(shown[:60] + ("..." if len(shown) > 60 else "")) if shown else "an empty line"
+    return RockcliInputError(f"{filename}, line 4: {shown} does not state NPTS and DT in a known AT2 layout "
+                             f"(expected {_LINE4_EXAMPLES})")
 
 
 def _match_npts_dt(line: str) -> tuple[str, int, float] | None:
@@ -108,11 +142,12 @@ def parse_at2_header(lines: list[str], filename: str = "AT2 file") -> dict[str, 
         If there are fewer than four lines or line 4 matches none of the layouts.
     """
     if len(lines) < HEADER_LINES:
-        raise RockcliInputError(f"{filename}: not an AT2 file: it has {len(lines)} lines, fewer than the 4 header lines")
+        raise RockcliInputError(
+            f"{filename}: truncated AT2 header: the file has {len(lines)} line(s) where an AT2 file has 4 header "
+            f"lines before its samples (line 4 states NPTS and DT, e.g. 'NPTS=  4096, DT= .0100 SEC')")
     found = _match_npts_dt(lines[3])
     if found is None:
-        raise RockcliInputError(
-            f"{filename}: AT2 header line 4 {lines[3].strip()!r} states no NPTS and DT in a known layout")
+        raise _diagnose_line4(lines[3], filename)
     layout, npts, dt = found
     head = {"database": lines[0].strip(), "title": lines[1].strip(), "description": lines[2].strip(),
             "layout": layout, "npts": npts, "dt": dt, "units": None, "quantity": None}
@@ -172,7 +207,7 @@ def parse_numbers(lines: list[str], first_line: int, filename: str) -> np.ndarra
         i = int(np.argmax(bad))
         line = _line_of_value(lines, i)
         raise RockcliInputError(
-            f"{filename}, line {first_line + line}: sample {i + 1} is {values[i]!r}, not a finite number")
+            f"{filename}, line {first_line + line}: sample {i + 1} is {float(values[i])!r}, not a finite number")
     return values
 
 
@@ -185,8 +220,33 @@ def _line_of_value(lines: list[str], index: int) -> int:
     return len(lines) - 1
 
 
+def check_record_file(filename) -> int:
+    """Size in bytes of the record file ``filename``; one sentence when it is not a readable regular file.
+
+    Devices (``/dev/zero``), pipes and sockets are refused: reading them may never end.
+    """
+    import os
+    import stat
+
+    try:
+        st = os.stat(filename)
+    except FileNotFoundError:
+        raise RockcliInputError(f"{filename}: no such file") from None
+    except NotADirectoryError:
+        raise RockcliInputError(f"{filename}: no such file (a part of the path is a file, not a folder)") from None
+    except OSError as exc:
+        raise RockcliInputError(f"{filename}: cannot be read ({(exc.strerror or str(exc)).lower()})") from None
+    if stat.S_ISDIR(st.st_mode):
+        raise RockcliInputError(f"{filename}: is a folder, not a record file")
+    if not stat.S_ISREG(st.st_mode):
+        raise RockcliInputError(f"{filename}: is not a regular file (a device, pipe or socket); save the record "
+                                f"to a file first")
+    return st.st_size
+
+
 def read_text(filename) -> str:
     """The whole file as text (latin-1, so that any byte decodes); clear errors when unreadable."""
+    check_record_file(filename)
     try:
         with open(filename, "rb") as fh:
             raw = fh.read()
@@ -195,7 +255,7 @@ def read_text(filename) -> str:
     except IsADirectoryError:
         raise RockcliInputError(f"{filename}: is a folder, not a record file") from None
     except OSError as exc:
-        raise RockcliInputError(f"{filename}: cannot be read ({exc.strerror})") from None
+        raise RockcliInputError(f"{filename}: cannot be read ({(exc.strerror or str(exc)).lower()})") from None
     return raw.decode("latin-1")
 
 
@@ -224,13 +284,15 @@ def parse_at2(filename, headonly: bool = False) -> tuple[np.ndarray, dict[str, A
     """
     text = read_text(filename)
     if not text.strip():
-        raise RockcliInputError(f"{filename}: the file is empty")
+        raise RockcliInputError(f"{filename}: the file is empty" if not text else
+                                f"{filename}: the file holds only blank space")
     lines = _split_lines(text)
     header = parse_at2_header(lines, str(filename))
     if header["npts"] <= 0:
-        raise RockcliInputError(f"{filename}: AT2 header states NPTS={header['npts']}; it must be positive")
+        raise RockcliInputError(f"{filename}, line 4: the AT2 header states NPTS={header['npts']}; it must be positive")
     if not header["dt"] > 0:
-        raise RockcliInputError(f"{filename}: AT2 header states DT={header['dt']:g} s; the time step must be positive")
+        raise RockcliInputError(f"{filename}, line 4: the AT2 header states DT={header['dt']:g} s; "
+                                f"the time step must be positive")
     if headonly:
         return np.empty(0), header
     values = parse_numbers(lines[HEADER_LINES:], HEADER_LINES + 1, str(filename))

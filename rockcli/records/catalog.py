@@ -170,15 +170,10 @@ def write_catalog(entries, path: str | os.PathLike | None = None) -> Path:
     ``load_catalog(write_catalog(load_catalog()))`` gives the same entries, and the file is
     byte-identical when it was written by this function.
     """
+    from rockcli.files import write_text
+
     path = Path(path) if path is not None else catalog_path()
-    tmp = path.with_name(f".{path.name}.tmp{os.getpid()}")
-    try:
-        tmp.write_text(format_catalog(entries), encoding="utf-8")
-        os.replace(tmp, path)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
-    return path
+    return write_text(path, format_catalog(entries))
 
 
 def get_entry(record_id: str) -> CatalogEntry:

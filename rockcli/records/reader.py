@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 from pathlib import Path
 from typing import Any
 
@@ -36,7 +37,7 @@ def _check_dt(dt):
     except (TypeError, ValueError):
         raise RockcliInputError(f"time step dt={dt!r} is not a number") from None
     if not math.isfinite(value) or value <= 0:
-        raise RockcliInputError(f"time step dt={dt!r} s must be a positive finite number")
+        raise RockcliInputError(f"time step dt={value!r} s must be a positive finite number")
     return value
 
 
@@ -127,16 +128,17 @@ def read_record(source, *, format=None, units=None, dt=None, column=None) -> Rec
 
 
 def _read_path(path: Path, fmt, units, dt, column, given_by: str = "caller") -> Record:
+    from rockcli.records.at2 import check_record_file
+
     name = str(path)
-    if not path.exists():
-        raise RockcliInputError(f"{name}: no such file")
-    if path.is_dir():
-        raise RockcliInputError(f"{name}: is a folder, not a record file")
-    if path.stat().st_size == 0:
+    if check_record_file(path) == 0:
         raise RockcliInputError(f"{name}: the file is empty")
 
-    with open(path, "rb") as fh:
-        head = fh.read(_PROBE_BYTES)
+    try:
+        with open(path, "rb") as fh:
+            head = fh.read(_PROBE_BYTES)
+    except OSError as exc:
+        raise RockcliInputError(f"{name}: cannot be read ({(exc.strerror or str(exc)).lower()})") from None
     is_text = b"\x00" not in head
     head_lines = head.decode("latin-1").splitlines() if is_text else []
 
@@ -182,6 +184,21 @@ def _looks_like_text_table(lines: list[str]) -> bool:
     return False
 
 
+def _claims_at2(path: Path, head_lines: list[str]) -> bool:
+    """True when a text file that is not a valid AT2 says it is one: ``.AT2`` suffix, a first line
+    naming PEER, or NPTS on line 4."""
+    from rockcli.records.at2 import _split_lines
+
+    lines = _split_lines("\n".join(head_lines)) if head_lines else []
+    if path.suffix.lower() == ".at2":
+        return True
+    if lines and "PEER" in lines[0].upper():
+        return True
+    # line 4 opens with NPTS or DT, or is the old "n  dt  NPTS, DT" layout (a CSV that merely mentions
+    # NPTS in a note is not an AT2)
+    return len(lines) >= 4 and re.match(r"\s*(NPTS\b|DT\b|\d+\s+\S+\s+NPTS)", lines[3].upper()) is not None
+
+
 def _detect(path: Path, head_lines: list[str], is_text: bool) -> str:
     from rockcli.records.at2 import _is_at2
 
@@ -193,6 +210,8 @@ def _detect(path: Path, head_lines: list[str], is_text: bool) -> str:
         found = formats.probe(head_lines)
         if found:
             return found
+        if _claims_at2(path, head_lines):  # a broken AT2: its parser names the line and what it expected
+            return "PEER_AT2"
         if _looks_like_text_table(head_lines):
             return "TEXT"
     return "OBSPY"  # let ObsPy try its own detection
@@ -236,7 +255,8 @@ def _from_obspy(path: Path, fmt: str, column) -> dict[str, Any]:
         raise RockcliInputError(f"{path}: format not recognised ({_first_line(exc)}); "
                                 f"give it with --format, or convert the record to text") from None
     except Exception as exc:  # noqa: BLE001 -- ObsPy readers raise many kinds; one sentence for the user
-        raise RockcliInputError(f"{path}: ObsPy could not read the file ({_first_line(exc)})") from None
+        raise RockcliInputError(f"{path}: format not recognised, or a damaged file (ObsPy: {_first_line(exc)}); "
+                                f"give the format with --format, or convert the record to text") from None
     if len(st) == 0:
         raise RockcliInputError(f"{path}: the file holds no traces")
     if len(st) > 1 and column is None:
@@ -268,7 +288,7 @@ def _from_obspy(path: Path, fmt: str, column) -> dict[str, Any]:
         meta["calib"] = float(stats.calib)
     if values.size and not np.all(np.isfinite(values)):
         i = int(np.argmax(~np.isfinite(values)))
-        raise RockcliInputError(f"{path}: sample {i + 1} is {values[i]!r}, not a finite number")
+        raise RockcliInputError(f"{path}: sample {i + 1} is {float(values[i])!r}, not a finite number")
     return {"values": values, "dt": float(stats.delta), "dt_source": "header", "units": units,
             "t_start": 0.0, "meta": meta, "format": fmt_name}
 
@@ -288,7 +308,10 @@ def _finish(path: Path, out: dict[str, Any], units, dt, given_by: str) -> Record
         try:
             factor = accel_factor(stated_units)
         except RockcliInputError:
-            raise RockcliInputError(f"{name}: the file states units {stated_units!r}, which rockcli does not know") from None
+            from rockcli.units import KNOWN_UNITS
+
+            raise RockcliInputError(f"{name}: the file states units {stated_units!r}, which rockcli does not know "
+                                    f"(known: {KNOWN_UNITS}; give the file's units in one of these words)") from None
         if units is not None and not math.isclose(accel_factor(units), factor, rel_tol=1e-9):
             raise RockcliInputError(f"{name}: the file states units {stated_units!r} but {units!r} was given")
         used_units, units_source = stated_units, "file"

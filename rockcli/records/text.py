@@ -59,6 +59,24 @@ def parse_comments(comments: list[str]) -> dict[str, Any]:
     return {"dt": dt, "units": units}
 
 
+#: An explicit statement of units in a comment: ``units: furlongs``, ``unit = g``.
+_EXPLICIT_UNITS_RE = re.compile(r"\bunits?\s*[:=]\s*\(?\s*(?P<units>[A-Za-z][A-Za-z0-9/^*.]*)", re.I)
+
+
+def stated_unknown_units(comments: list[str]) -> str | None:
+    """A unit word stated explicitly (``units: furlongs``) that rockcli does not know, else None.
+
+    Only the explicit ``units:``/``units =`` form counts: looser phrases (``Acc. in ...``) are a
+    statement only when the word is a known unit.
+    """
+    for line in comments:
+        for m in _EXPLICIT_UNITS_RE.finditer(line):
+            word = m.group("units").rstrip(".")
+            if not _known_unit(word):
+                return word
+    return None
+
+
 def _is_number(token: str) -> bool:
     try:
         float(token)
@@ -118,7 +136,7 @@ def parse_text_table(text: str, filename: str = "text file") -> dict[str, Any]:
     if bad.any():
         r, c = np.argwhere(bad)[0]
         raise RockcliInputError(
-            f"{filename}, line {row_lines[r]}: value {table[r, c]!r} in column {c + 1} is not a finite number")
+            f"{filename}, line {row_lines[r]}: value {float(table[r, c])!r} in column {c + 1} is not a finite number")
     return {"table": table, "comments": comments, "names": names, "row_lines": row_lines}
 
 
@@ -181,6 +199,8 @@ def parse_text(text: str, filename: str = "text file", column: int | None = None
     table, row_lines = parsed["table"], parsed["row_lines"]
     nrow, ncol = table.shape
     stated = parse_comments(parsed["comments"])
+    if stated["units"] is None:  # "units: furlongs" is a statement too: reported, not ignored
+        stated["units"] = stated_unknown_units(parsed["comments"])
     time_col = ncol >= 2 and looks_like_time(table[:, 0])
     data_cols = list(range(2, ncol + 1)) if time_col else list(range(1, ncol + 1))
     if column is None:

@@ -11,7 +11,7 @@ import math
 from pathlib import Path
 
 from rockcli.errors import RockcliInputError
-from rockcli.report.files import atomic_path
+from rockcli.report.files import atomic_path, save_figure
 
 #: Columns of ``rockcli bench work-precision --csv``: one row per run (scene-level values repeated).
 WP_COLUMNS = ("scene", "method", "rtol", "verdict", "verdict_ok", "theta_max_over_alpha", "err_theta_max_over_alpha",
@@ -168,8 +168,6 @@ def plot_work_precision(scenes, path, dpi: int = 72) -> Path:
     the dotted line is the reference's check (its agreement with an independent SciPy solution).
     """
     path = Path(path)
-    if not path.suffix:
-        raise RockcliInputError(f"{path}: give the plot file a suffix such as .png or .pdf")
     done = [ws for ws in scenes if ws.available and ws.runs]
     if not done:
         raise RockcliInputError("no scene ran: nothing to plot")
@@ -214,15 +212,10 @@ def plot_work_precision(scenes, path, dpi: int = 72) -> Path:
                 labels.append(lab)
     fig.legend(handles, labels, loc="lower center", ncol=len(labels), fontsize=8, frameon=False)
     fig.tight_layout(rect=(0, 0.05, 1, 1))
-    fmt = path.suffix.lstrip(".").lower()
-    with atomic_path(path) as tmp:
-        try:
-            fig.savefig(tmp, dpi=dpi, format=fmt)
-        except ValueError as exc:
-            raise RockcliInputError(f"{path}: cannot write a {fmt!r} image ({exc})") from None
-        finally:
-            plt.close(fig)
-    return path
+    try:
+        return save_figure(fig, path, dpi=dpi)
+    finally:
+        plt.close(fig)
 
 
 # --------------------------------------------------------------------------------------------------

@@ -10,7 +10,7 @@ import os
 from pathlib import Path
 
 from rockcli.errors import RockcliInputError
-from rockcli.report.files import atomic_path
+from rockcli.report.files import check_output, save_figure, write_text
 
 
 def _fmt(v, spec=".3g") -> str:
@@ -114,9 +114,7 @@ def fragility_frame(fr):
 def write_fragility_csv(fr, path: str | os.PathLike) -> Path:
     """Write the fragility CSV (see :func:`fragility_columns`), atomically."""
     df = fragility_frame(fr)
-    with atomic_path(path) as tmp:
-        df.to_csv(tmp, index=False, float_format="%.6g", lineterminator="\n")
-    return Path(path)
+    return write_text(path, df.to_csv(index=False, float_format="%.6g", lineterminator="\n"))
 
 
 def plot_fragility(fr, path: str | os.PathLike, *, dpi: int = 90) -> Path:
@@ -133,9 +131,7 @@ def plot_fragility(fr, path: str | os.PathLike, *, dpi: int = 90) -> Path:
 
     from rockcli.assess.fragility import CENSORED_RIGHT, empirical_points, fragility_probability
 
-    path = Path(path)
-    if not path.suffix:
-        raise RockcliInputError(f"{path}: give the plot file a suffix such as .png or .pdf")
+    path = check_output(path, image=True)
     im = fr.im
     # the axis spans the exact capacities and the fitted curves from 1 % to 99 %; censored records
     # outside it (weak records censored at a tiny IM say little) are not drawn
@@ -190,12 +186,7 @@ def plot_fragility(fr, path: str | os.PathLike, *, dpi: int = 90) -> Path:
                              f"dots: records (Kaplan-Meier positions); open triangles: no overturning up to "
                              f"{fr.grid[1]:g}x (drawn where inside the axis)", ha="right", va="bottom", fontsize=7, color="0.3")
         fig.tight_layout(rect=(0, 0.03, 1, 1))
-        fmt = path.suffix.lstrip(".").lower()
-        with atomic_path(path) as tmp:
-            try:
-                fig.savefig(tmp, dpi=dpi, format=fmt)
-            except ValueError as exc:
-                raise RockcliInputError(f"{path}: cannot write a {fmt!r} image ({exc})") from None
+        save_figure(fig, path, dpi=dpi)
     finally:
         plt.close(fig)
     return path

@@ -7,10 +7,10 @@ to a temporary file in the target folder and are renamed into place.
 from __future__ import annotations
 
 import csv
+import io
 from pathlib import Path
 
-from rockcli.errors import RockcliInputError
-from rockcli.report.files import atomic_path
+from rockcli.report.files import check_output, save_figure, write_text
 from rockcli.units import G
 
 #: Columns of ``rockcli fit-pulse --csv``.
@@ -30,13 +30,12 @@ def fit_rows(fits) -> list[dict]:
 
 def write_fit_csv(fits, path) -> Path:
     """Write the fitted pulses as CSV (columns :data:`FIT_COLUMNS`), atomically."""
-    with atomic_path(path) as tmp:
-        with open(tmp, "w", newline="", encoding="utf-8") as fh:
-            writer = csv.DictWriter(fh, fieldnames=FIT_COLUMNS, lineterminator="\n")
-            writer.writeheader()
-            for row in fit_rows(fits):
-                writer.writerow({k: (repr(v) if isinstance(v, float) else v) for k, v in row.items()})
-    return Path(path)
+    fh = io.StringIO()
+    writer = csv.DictWriter(fh, fieldnames=FIT_COLUMNS, lineterminator="\n")
+    writer.writeheader()
+    for row in fit_rows(fits):
+        writer.writerow({k: (repr(float(v)) if isinstance(v, float) else v) for k, v in row.items()})
+    return write_text(path, fh.getvalue())
 
 
 #: Columns of ``rockcli fit-pulse --candidates N --csv``: one row per candidate pulse.
@@ -49,18 +48,17 @@ def write_candidates_csv(fits, candidates, path) -> Path:
 
     ``fit`` is True on the candidate that is the record's fit; ``rank`` orders by explained energy.
     """
-    with atomic_path(path) as tmp:
-        with open(tmp, "w", newline="", encoding="utf-8") as fh:
-            writer = csv.DictWriter(fh, fieldnames=CANDIDATE_COLUMNS, lineterminator="\n")
-            writer.writeheader()
-            for f, cands in zip(fits, candidates):
-                for rank, c in enumerate(cands, 1):
-                    row = c.as_row()
-                    row["rank"], row["fit"] = rank, c.pulse == f.pulse
-                    row["period_min_s"], row["period_max_s"] = c.periods
-                    writer.writerow({k: (repr(row[k]) if isinstance(row[k], float) else row[k])
-                                     for k in CANDIDATE_COLUMNS})
-    return Path(path)
+    fh = io.StringIO()
+    writer = csv.DictWriter(fh, fieldnames=CANDIDATE_COLUMNS, lineterminator="\n")
+    writer.writeheader()
+    for f, cands in zip(fits, candidates):
+        for rank, c in enumerate(cands, 1):
+            row = c.as_row()
+            row["rank"], row["fit"] = rank, c.pulse == f.pulse
+            row["period_min_s"], row["period_max_s"] = c.periods
+            writer.writerow({k: (repr(float(row[k])) if isinstance(row[k], float) else row[k])
+                             for k in CANDIDATE_COLUMNS})
+    return write_text(path, fh.getvalue())
 
 
 def plot_pulse_fits(records, fits, path, *, candidates=None, dpi: int = 120) -> Path:
@@ -84,9 +82,7 @@ def plot_pulse_fits(records, fits, path, *, candidates=None, dpi: int = 120) -> 
     import matplotlib.pyplot as plt
     import numpy as np
 
-    path = Path(path)
-    if not path.suffix:
-        raise RockcliInputError(f"{path}: give the plot file a suffix such as .png or .pdf")
+    path = check_output(path, image=True)
     n = len(fits)
     fig, axes = plt.subplots(n, 1, figsize=(8.0, 2.3 * n + 0.4), squeeze=False)
     colors = ("tab:red", "tab:blue", "tab:green", "tab:orange", "tab:purple", "tab:brown", "tab:pink", "tab:olive")
@@ -114,12 +110,7 @@ def plot_pulse_fits(records, fits, path, *, candidates=None, dpi: int = 120) -> 
             ax.set_xlim(t[0], t[-1])
         axes[-1, 0].set_xlabel("time [s]")
         fig.tight_layout()
-        fmt = path.suffix.lstrip(".").lower()
-        with atomic_path(path) as tmp:
-            try:
-                fig.savefig(tmp, dpi=dpi, format=fmt)
-            except ValueError as exc:
-                raise RockcliInputError(f"{path}: cannot write a {fmt!r} image ({exc})") from None
+        save_figure(fig, path, dpi=dpi)
     finally:
         plt.close(fig)
     return path

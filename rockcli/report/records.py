@@ -7,11 +7,11 @@ to a temporary file in the target folder and are renamed into place.
 from __future__ import annotations
 
 import csv
+import io
 import os
 from pathlib import Path
 
-from rockcli.errors import RockcliInputError
-from rockcli.report.files import atomic_path
+from rockcli.report.files import check_output, save_figure, write_text
 
 #: Columns of the ``rockcli records list --csv`` table.
 LIST_COLUMNS = ("id", "event", "year", "station", "component", "mw", "distance_km", "pga_published_g",
@@ -20,13 +20,12 @@ LIST_COLUMNS = ("id", "event", "year", "station", "component", "mw", "distance_k
 
 def write_list_csv(rows: list[dict], path: str | os.PathLike) -> Path:
     """Write the catalogue status rows (dicts keyed by :data:`LIST_COLUMNS`) as CSV, atomically."""
-    with atomic_path(path) as tmp:
-        with open(tmp, "w", newline="", encoding="utf-8") as fh:
-            writer = csv.DictWriter(fh, fieldnames=LIST_COLUMNS, lineterminator="\n")
-            writer.writeheader()
-            for row in rows:
-                writer.writerow({k: ("" if row.get(k) is None else row.get(k)) for k in LIST_COLUMNS})
-    return Path(path)
+    fh = io.StringIO()
+    writer = csv.DictWriter(fh, fieldnames=LIST_COLUMNS, lineterminator="\n")
+    writer.writeheader()
+    for row in rows:
+        writer.writerow({k: ("" if row.get(k) is None else row.get(k)) for k in LIST_COLUMNS})
+    return write_text(path, fh.getvalue())
 
 
 def plot_record(record, path: str | os.PathLike, baseline: str = "linear") -> Path:
@@ -49,6 +48,7 @@ def plot_record(record, path: str | os.PathLike, baseline: str = "linear") -> Pa
     from rockcli.records.motion import integrate
     from rockcli.units import G
 
+    check_output(path, image=True)
     vel, disp = integrate(record, baseline)
     t = record.times
     fig, axes = plt.subplots(3, 1, sharex=True, figsize=(8, 7), constrained_layout=True)
@@ -62,12 +62,7 @@ def plot_record(record, path: str | os.PathLike, baseline: str = "linear") -> Pa
     treatment = ("trapezoidal integration, linear baseline removed from velocity" if baseline == "linear"
                  else "trapezoidal integration of the record as given")
     axes[0].set_title(f"{record.name}  (PGA {record.pga_g:.3f} g; {treatment})", fontsize=9)
-    suffix = Path(path).suffix.lstrip(".") or "png"
     try:
-        with atomic_path(path) as tmp:
-            fig.savefig(tmp, dpi=120, format=suffix)
-    except ValueError as exc:
-        raise RockcliInputError(f"{path}: cannot write a figure in this format ({exc})") from None
+        return save_figure(fig, path, dpi=120)
     finally:
         plt.close(fig)
-    return Path(path)

@@ -5,43 +5,62 @@ matplotlib is imported inside the plotting function (Agg backend); files are wri
 
 from __future__ import annotations
 
+import io
 import math
 import os
 from pathlib import Path
 
 import numpy as np
 
-from rockcli.report.files import atomic_path
+from rockcli.report.files import check_output, save_figure, write_text
 from rockcli.units import G
 
 #: Columns of a history CSV (SI units, g only where labelled).
 HISTORY_COLUMNS = ("t_s", "ag_mps2", "ag_g", "theta_rad", "theta_over_alpha", "theta_dot_radps", "u_m", "u_dot_mps")
+#: Columns added for hysteretic bearings (sliding, lead-rubber): the Bouc-Wen variable(s) and the
+#: bearings' restoring force over the weight of block + base, ``(k_b u + Q z)/((m + m_b) g)``.
+BEARING_COLUMNS = ("z", "bearing_force_over_W")
+DCSS_COLUMNS = ("z1", "z2", "bearing_force_over_W")
+
+
+def history_columns(response) -> tuple[str, ...]:
+    """The CSV columns of ``response``'s history (:data:`HISTORY_COLUMNS`, then the bearing's)."""
+    H = response.history
+    if H is None or H.z is None:
+        return HISTORY_COLUMNS
+    return HISTORY_COLUMNS + (DCSS_COLUMNS if H.z2 is not None else BEARING_COLUMNS)
 
 
 def history_table(response, block) -> np.ndarray:
-    """The history of ``response`` as an (n, 8) array in the order of :data:`HISTORY_COLUMNS`."""
+    """The history of ``response`` as an array in the order of :func:`history_columns`."""
     H = response.history
     if H is None:
         raise ValueError("this response was computed without history (simulate(..., history=True))")
-    return np.column_stack([H.t, H.ag, H.ag / G, H.theta, H.theta / block.alpha, H.theta_dot, H.u, H.u_dot])
+    cols = [H.t, H.ag, H.ag / G, H.theta, H.theta / block.alpha, H.theta_dot, H.u, H.u_dot]
+    if H.z is not None:
+        cols += [H.z] + ([H.z2] if H.z2 is not None else []) + [H.bearing_force / G]
+    return np.column_stack(cols)
 
 
 def write_history_csv(response, block, path: str | os.PathLike) -> Path:
-    """Write ``t, ground acceleration, theta, theta_dot, u, u_dot`` of a run as CSV, atomically.
+    """Write ``t, ground acceleration, theta, theta_dot, u, u_dot`` of a run as CSV, atomically
+    (hysteretic bearings add ``z`` (``z1, z2``) and the bearing force over the weight).
 
     Rows are every integrator step end and event; an impact appears as two rows at the same time
     (just before and just after it).
     """
     table = history_table(response, block)
-    with atomic_path(path) as tmp:
-        np.savetxt(tmp, table, delimiter=",", header=",".join(HISTORY_COLUMNS), comments="", fmt="%.10g")
-    return Path(path)
+    buf = io.StringIO()
+    np.savetxt(buf, table, delimiter=",", header=",".join(history_columns(response)), comments="", fmt="%.10g")
+    return write_text(path, buf.getvalue())
 
 
 def plot_response(response, block, foundation, title: str, path: str | os.PathLike, *, dpi: int = 120) -> Path:
     """Ground acceleration [g], theta/alpha, theta_dot/p and (isolated) base displacement [m] vs time.
 
-    The layout of the paper's Figures 1 and 12; the overturning instant is marked.
+    The layout of the paper's Figures 1 and 12; the overturning instant is marked. On hysteretic
+    bearings (sliding, lead-rubber) a last panel draws the bearing's force-displacement loop
+    (force over the weight of block + base against u).
     """
     import matplotlib
 
@@ -51,9 +70,18 @@ def plot_response(response, block, foundation, title: str, path: str | os.PathLi
     H = response.history
     if H is None:
         raise ValueError("this response was computed without history (simulate(..., history=True))")
+    check_output(path, image=True)
     isolated = getattr(foundation, "kind", 0) != 0
+    loop = H.z is not None and H.bearing_force is not None
     n = 4 if isolated else 3
-    fig, axes = plt.subplots(n, 1, sharex=True, figsize=(8.0, 1.9 * n + 0.8))
+    fig = plt.figure(figsize=(8.0, 1.9 * n + 0.8 + (3.0 if loop else 0.0)))
+    heights = [1.0] * n + ([1.7] if loop else [])
+    grid = fig.add_gridspec(len(heights), 1, height_ratios=heights)
+    axes = [fig.add_subplot(grid[0])]
+    for i in range(1, n):
+        axes.append(fig.add_subplot(grid[i], sharex=axes[0]))
+    for ax in axes[:-1]:
+        ax.tick_params(labelbottom=False)
     axes[0].plot(H.t, H.ag / G, lw=0.8, color="0.2")
     axes[0].set_ylabel("ground acc. [g]")
     axes[1].plot(H.t, H.theta / block.alpha, lw=1.0, color="tab:blue")
@@ -72,12 +100,21 @@ def plot_response(response, block, foundation, title: str, path: str | os.PathLi
     for ax in axes:
         ax.grid(True, lw=0.3)
     axes[-1].set_xlabel("time [s]")
+    if loop:
+        ax = fig.add_subplot(grid[n])
+        ax.plot(H.u, H.bearing_force / G, lw=0.8, color="tab:purple")
+        ax.set_xlabel("base displacement u [m]")
+        ax.set_ylabel("bearing force / W")
+        ax.set_title("force-displacement loop of the bearings (W = (m + m_b) g)", fontsize=8)
+        ax.grid(True, lw=0.3)
     verdict = {"overturned": f"OVERTURNS at {response.t_overturn_s:.2f} s",
                "rocked": f"survives, peak |theta|/alpha = {response.theta_max_over_alpha:.2f}",
                "no_uplift": "no uplift"}[response.verdict]
-    axes[0].set_title(f"{title}\n{verdict}", fontsize=9)
+    import textwrap
+
+    axes[0].set_title(textwrap.fill(title, 95) + f"\n{verdict}", fontsize=9)
     fig.tight_layout()
-    with atomic_path(path) as tmp:
-        fig.savefig(tmp, dpi=dpi, format=Path(path).suffix.lstrip(".") or "png")
-    plt.close(fig)
-    return Path(path)
+    try:
+        return save_figure(fig, path, dpi=dpi)
+    finally:
+        plt.close(fig)

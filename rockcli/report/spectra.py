@@ -8,11 +8,11 @@ Accelerations are in units of ``g tan(alpha)`` (column names say so), periods in
 from __future__ import annotations
 
 import csv
+import io
 import math
 from pathlib import Path
 
-from rockcli.errors import RockcliInputError
-from rockcli.report.files import atomic_path
+from rockcli.report.files import check_output, save_figure, write_text
 from rockcli.units import G
 
 #: Columns of ``rockcli spectrum overturning --csv`` (one row per cell of every map).
@@ -41,35 +41,25 @@ def _fmt(v):
     if isinstance(v, bool):
         return "1" if v else "0"
     if isinstance(v, float):
-        return "" if math.isnan(v) else repr(v)
+        return "" if math.isnan(v) else repr(float(v))
     return v
 
 
 def _write_rows(path, columns, rows) -> Path:
-    with atomic_path(path) as tmp:
-        with open(tmp, "w", newline="", encoding="utf-8") as fh:
-            w = csv.writer(fh, lineterminator="\n")
-            w.writerow(columns)
-            for row in rows:
-                w.writerow([_fmt(row[c]) for c in columns])
-    return Path(path)
+    fh = io.StringIO()
+    w = csv.writer(fh, lineterminator="\n")
+    w.writerow(columns)
+    for row in rows:
+        w.writerow([_fmt(row[c]) for c in columns])
+    return write_text(path, fh.getvalue())
 
 
-def _check_image_path(path) -> tuple[Path, str]:
-    path = Path(path)
-    if not path.suffix:
-        raise RockcliInputError(f"{path}: give the plot file a suffix such as .png or .pdf")
-    return path, path.suffix.lstrip(".").lower()
+def _check_image_path(path) -> Path:
+    return check_output(path, image=True)
 
 
 def _save(fig, path, dpi):
-    path, fmt = _check_image_path(path)
-    with atomic_path(path) as tmp:
-        try:
-            fig.savefig(tmp, dpi=dpi, format=fmt)
-        except ValueError as exc:
-            raise RockcliInputError(f"{path}: cannot write a {fmt!r} image ({exc})") from None
-    return path
+    return save_figure(fig, path, dpi=dpi)
 
 
 def _pyplot():

@@ -13,7 +13,7 @@ import os
 from pathlib import Path
 
 
-from rockcli.report.files import atomic_path
+from rockcli.report.files import write_text
 
 #: Columns of the CSV report, in order (units in the names; see rockcli.assess.AssessmentRow).
 CSV_COLUMNS = ("column", "R_m", "alpha_deg", "height_m", "width_m", "record", "excitation", "source", "pga_g",
@@ -127,9 +127,7 @@ def assessment_frame(assessment):
 def write_assessment_csv(assessment, path: str | os.PathLike) -> Path:
     """Write the CSV report (one row per column x record x configuration), atomically."""
     df = assessment_frame(assessment)
-    with atomic_path(path) as tmp:
-        df.to_csv(tmp, index=False, float_format="%.6g", lineterminator="\n")
-    return Path(path)
+    return write_text(path, df.to_csv(index=False, float_format="%.6g", lineterminator="\n"))
 
 
 def read_assessment_csv(path: str | os.PathLike):

@@ -1,0 +1,38 @@
+"""Compiled kernels (numba): the only package of rockcli that imports numba.
+
+Files (data flows down this list):
+
+========================  ======================================================================
+``layout``                codes and array layouts shared with :mod:`rockcli.solve` (plain Python)
+``cache``                 numba's disk cache keyed on the sources of this whole package
+``ground``                ground motion: pulses, segments, the rigid-foundation uplift scan, the
+                          remaining ground impulse
+``polynomials``           the dense-output quartics: evaluation, first crossings and excursions
+``bearings``              the bearings' force per foundation family; the Bouc-Wen element solved
+                          exactly along the path of u (the stiff treatment); the DCSS slider
+``rhs``                   right-hand sides (rigid, isolated: stuck and rocking)
+``dopri``                 the Dormand-Prince 5(4) step, its error norm and dense output
+``events``                impact map, rest rule, uplift on a hysteretic base, reversals, history rows
+``driver``                :func:`simulate_core`: the scene as a loop over phases; the end-of-run
+                          rule (proofs P1-P4, P3s in its docstring)
+``batch``                 :func:`simulate_batch`: many verdict-only scenes in parallel
+========================  ======================================================================
+
+Every physical constant reaches the kernels as an argument (the ``prm`` tuple); module-level
+names are codes, indices and the fixed coefficients of the integration method.
+"""
+
+from rockcli.kernels import cache as _cache
+
+_cache.install()  # before any @njit(cache=True) of this package is applied
+
+from rockcli.kernels.layout import *  # noqa: E402,F401,F403
+from rockcli.kernels.layout import N_PRM  # noqa: E402,F401
+from rockcli.kernels.ground import _impulse_left, _pulse_segment, _rigid_uplift, pulse_acc  # noqa: E402,F401
+from rockcli.kernels.polynomials import (_first_down, _first_exceed, _golden_max, _poly,  # noqa: E402,F401
+                                         _refine_root)
+from rockcli.kernels.bearings import (base_force, bw_phi, bw_phi_inv, bw_slope, dcss_split,  # noqa: E402,F401
+                                      force_along_path, free_force_bound, reanchor)
+from rockcli.kernels.dopri import _dense, _dp5_step, _state_at  # noqa: E402,F401
+from rockcli.kernels.driver import simulate_core  # noqa: E402,F401
+from rockcli.kernels.batch import simulate_batch  # noqa: E402,F401
