@@ -72,34 +72,40 @@ def _scene_list(catalogue) -> str:
 @click.option("--kernel-rtol", default=None, metavar="LIST",
               help="rockcli's tolerances, comma-separated (default 1e-4,1e-5,...,1e-12).")
 @click.option("--scipy-rtol", default=None, metavar="LIST",
-              help="SciPy tolerances for every method (default: RK45 1e-4..1e-10, DOP853 1e-4..1e-12, the implicit "
-                   "methods 1e-4..1e-8).")
+              help="SciPy tolerances for every method (default: RK45 1e-6,1e-8,1e-10, DOP853 1e-8,1e-12, Radau "
+                   "1e-6,1e-8, LSODA 1e-8, BDF 1e-6, RK45-free 1e-8).")
 @click.option("--methods", default=",".join(_METHODS), show_default=True, metavar="LIST",
               help="SciPy methods, comma-separated, or 'none'. Steps are aligned to a record's samples, as "
                    "rockcli's; RK45-free (records only) lets RK45 step across them (max_step = dt).")
-@click.option("--repeat", type=click.IntRange(1, 50), default=3, show_default=True,
-              help="Timing repeats of a SciPy run (median; runs over 2 s are timed once).")
+@click.option("--repeat", type=click.IntRange(1, 50), default=None,
+              help="Timing repeats of a SciPy run (median; runs over 2 s are timed once). Default 1, --full 3.")
+@click.option("--full", is_flag=True,
+              help="Longer SciPy ladders (RK45 1e-4..1e-10, DOP853 1e-4..1e-12, the implicit methods 1e-4..1e-8, "
+                   "RK45-free 1e-6..1e-10) and 3 timing repeats: the docs/ figures; about 12 min.")
 @click.option("--no-check", is_flag=True, help="Do not verify the reference solution with SciPy.")
 @click.option("--list", "list_only", is_flag=True, help="List the scenes and exit.")
 @user_errors
-def work_precision(scenes, csv_path, plot_path, kernel_rtol, scipy_rtol, methods, repeat, no_check, list_only):
+def work_precision(scenes, csv_path, plot_path, kernel_rtol, scipy_rtol, methods, repeat, full, no_check, list_only):
     """Error against run time: rockcli's kernel and SciPy's solve_ivp methods on named scenes.
 
     Each scene is solved by rockcli at a ladder of rtol (full histories, and verdict-only runs
     as the sweeps use them) and by the SciPy reference (rockcli.reference: the equations typed
     again) with RK45, DOP853, Radau, LSODA and BDF at a ladder of rtol, all against a reference
-    solution: rockcli at rtol 1e-13, checked against DOP853 at 1e-13 (Radau for sliding bearings).
+    solution: rockcli at rtol 1e-13, checked against DOP853 at 1e-13.
     Prints per run the error in theta_max/alpha, in the overturning time (or the time the block
     comes to rest), whether the verdict agrees, steps, right-hand sides and the median wall time;
     then rockcli at its default rtol 1e-8 against RK45 at rtol 1e-8 (Radau for sliding bearings).
+    Each SciPy run has a wall budget (20 s; 120 s with --full): a slower run is reported "over budget".
     Timings depend on the machine and its load.
 
     \b
     Examples:
       ROCKCLI_RECORDS=../shared/records rockcli bench work-precision --csv wp.csv --plot wp.png
+      ROCKCLI_RECORDS=../shared/records rockcli bench work-precision --full --csv docs/bench-work-precision.csv
       rockcli bench work-precision --scene rigid-ricker --kernel-rtol 1e-4,1e-8 --methods RK45 --scipy-rtol 1e-6
     """
-    from rockcli.bench import SCIPY_RTOLS, WP_SCENES, run_work_precision, select_scenes, summarise
+    from rockcli.bench import (SCIPY_BUDGET_FULL_S, SCIPY_BUDGET_S, SCIPY_RTOLS, SCIPY_RTOLS_FULL, WP_SCENES,
+                               run_work_precision, select_scenes, summarise)
 
     if list_only:
         click.echo(_scene_list(WP_SCENES))
@@ -119,7 +125,10 @@ def work_precision(scenes, csv_path, plot_path, kernel_rtol, scipy_rtol, methods
     kw = {}
     if kernel_rtols is not None:
         kw["kernel_rtols"] = kernel_rtols
-    result = run_work_precision(chosen, scipy_rtols=scipy_rtols or SCIPY_RTOLS, methods=names, repeats=repeat,
+    ladders = scipy_rtols or (SCIPY_RTOLS_FULL if full else SCIPY_RTOLS)
+    repeats = repeat if repeat is not None else (3 if full else 1)
+    result = run_work_precision(chosen, scipy_rtols=ladders, methods=names, repeats=repeats,
+                                scipy_budget_s=SCIPY_BUDGET_FULL_S if full else SCIPY_BUDGET_S,
                                 check=not no_check, progress=_progress(), **kw)
     from rockcli.report.bench import format_work_precision, format_wp_summary
 
