@@ -303,8 +303,10 @@ def _parameters(block: Block, foundation, rtol: float, rest_tol: float):
     prm[k.P_COSA] = math.cos(alpha)
     prm[k.P_H] = block.h
     prm[k.P_ETA] = impact_coefficient(alpha, gamma)
-    cot2 = (math.cos(alpha) / math.sin(alpha)) ** 2
-    prm[k.P_DU] = 6.0 * gamma * block.h / ((4.0 - 3.0 * gamma) * cot2 + 4.0)
+    # base velocity jump at an impact, u_dot+ = u_dot- + P_DU theta_dot-: the total horizontal momentum
+    # u_dot + gamma h theta_dot is kept, so P_DU = gamma h (1 - eta) (= 6 gamma h/(k + 4) when eta is not
+    # clamped; a block too squat to rock, eta clamped to 0, hands all its momentum to the base)
+    prm[k.P_DU] = gamma * block.h * (1.0 - prm[k.P_ETA])
     prm[k.P_REST] = rest_tol
     prm[k.P_RTOL] = rtol
     # error scales: the tolerance on a state is rtol * max(|y|, scale)

@@ -387,12 +387,12 @@ def test_random_scenes_are_reproducible_and_checked():
 
 
 # ------------------------------------------------------------------------------------------
-# what the stability study found in the solver (kernels/solve are not this branch's to change)
+# what the stability study found in the solver (both fixed)
 # ------------------------------------------------------------------------------------------
-@pytest.mark.xfail(reason="solve._parameters: P_DU = 6 gamma h/(k + 4) from the unclamped eta; when "
-                          "impact_coefficient clamps eta to 0 (squat block, heavy block on a light base) the base "
-                          "should take gamma h theta_dot (P_DU = gamma h (1 - eta))", strict=False)
 def test_momentum_kept_at_plastic_impacts_of_squat_blocks_on_light_bases():
+    """Found by the stability study: with eta clamped to 0 (squat block on a light base) the base's velocity
+    jump came from the unclamped ratio and lost 5 % of the horizontal momentum per impact; now
+    P_DU = gamma h (1 - eta)."""
     from rockcli.solve import simulate
 
     block, f, exc = bench.STABILITY_SCENES[[s.name for s in bench.STABILITY_SCENES].index("alpha-45deg-gamma-0.9")].build()

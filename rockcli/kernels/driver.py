@@ -170,7 +170,7 @@ def _end_of_run(fkind, prm, ekind, epar, jtab, dt, t_exc_end, early, want_histor
                         rs[RS_THMAX] = pk
                         out[O_T_THETA_MAX] = np.nan
                     settled = True
-            if not settled and fkind >= FOUNDATION_BILINEAR and rs[RS_THMAX] > 0.0:
+            if not settled and isolated and rs[RS_THMAX] > 0.0:
                 level = min(rs[RS_THMAX], alpha)
                 if abs(W[W_Y, 0]) < level and _free_energy(fkind, prm, rs, W) < _barrier(prm, level):
                     settled = True  # P5
@@ -583,7 +583,7 @@ def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, ta
        displacement is final once ``sqrt(2 E)/w`` is below it (``E = v^2/2 + sum (k_i u_i^2 + q_i u_yi
        z_i^2)/2`` never grows: ``dE/dt = -sum q_i |z_i|^n (gamma_bw |u_i' z_i| + beta u_i' z_i) <= 0``
        for ``gamma_bw >= |beta|``), or one period ``2 pi/w`` later.
-    P5 (hysteretic base, ground still, after an uplift, any phase). Per unit total mass the energy
+    P5 (isolated base, linear or hysteretic, ground still, after an uplift, any phase). Per unit total mass the energy
        of block + base, ``E = u'^2/2 + gamma R cos(A) u' theta' + (2/3) gamma R^2 theta'^2 + gamma g R (cos A
        - cos alpha) + E_b`` (kinetic energy of base and block, ``I_cm = m R^2/3``; the block's height
        above rest; ``E_b`` the energy stored in the bearings, :func:`rockcli.kernels.bearings.bearing_energy`),
@@ -595,7 +595,8 @@ def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, ta
        can never reach ``|theta| = L``: it survives and ``theta_max`` is final. Past alpha the same
        energy means the block falls away (issue 9): the condition ``|theta| < L`` is essential. (It ends the long free rocking of slender
        blocks on heavy-ish bases, ``gamma`` not small; for ``gamma -> 0`` the bearings' energy dominates
-       and it never applies. It holds for a linear base too; rockcli applies it to hysteretic bases.)
+       and it never applies. It holds for linear bearings too (viscous damping only dissipates, ``-c u'^2``), and
+       is applied to every isolated base.)
     P4 (rigid foundation, ``early`` only, during the excitation, after the first uplift, block
        stuck or ``|theta| < alpha``). ``dE/dt = -p^2 (ag/g) cos(A) theta_dot`` and, while
        ``|theta| <= alpha``, ``theta_dot^2/2 <= E - p^2 cos(alpha) = X^2``, so
