@@ -3,12 +3,11 @@
 
 from __future__ import annotations
 
-import sys
 
 import click
 
 from rockcli.cli.errors import InputError, user_errors
-from rockcli.cli.options import check_outputs
+from rockcli.cli.options import check_outputs, progress_bar
 
 
 @click.group(name="assess")
@@ -24,15 +23,6 @@ def _headerless_options(func):
     return click.option("--units", default=None, metavar="UNITS",
                         help="Units of the record files that do not state them (g, m/s^2, cm/s^2, gal, "
                              "mm/s^2, g/10); a file that states other units is an error row.")(func)
-
-
-def _progress(total: int):
-    """A progress bar with an ETA on stderr when it is a terminal, else nothing (a context manager)."""
-    import contextlib
-
-    if not sys.stderr.isatty():
-        return contextlib.nullcontext(None)
-    return click.progressbar(length=total, label="runs", file=sys.stderr, show_eta=True)
 
 
 def _warn_failed(failed, n_total: int):
@@ -128,7 +118,7 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
     _refuse_if_none_can_run(excitations)
 
     total = count_runs(columns, excitations, configurations, margin, neighbourhood)
-    with _progress(total) as bar:
+    with progress_bar(total) as bar:
         result = run_assessment(columns, excitations, configurations, margin=margin, neighbourhood=neighbourhood,
                                 unavailable=unavailable, progress=bar.update if bar else None)
         if bar:
@@ -284,7 +274,7 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
                                            seed=seed, unavailable=unavailable)
     else:
         total = count_fragility_runs(columns, excitations, configurations)
-        with _progress(total) as bar:
+        with progress_bar(total) as bar:
             result = run_fragility(columns, excitations, configurations, im=im, n_boot=n_boot, seed=seed,
                                    unavailable=unavailable, progress=bar.update if bar else None)
             if bar:

@@ -88,3 +88,14 @@ def check_outputs(*files, folders=()):
     for path, option in folders:
         if path is not None:
             check_output_folder(path, option)
+
+
+def progress_bar(total: int, label: str = "runs", *, eta: bool = True):
+    """A progress bar on stderr when it is a terminal, else nothing: a context manager yielding the
+    bar (call ``bar.update(n)``) or ``None`` (piped output stays quiet)."""
+    import contextlib
+    import sys
+
+    if not sys.stderr.isatty() or total <= 0:
+        return contextlib.nullcontext(None)
+    return click.progressbar(length=total, label=label, file=sys.stderr, show_eta=eta)

@@ -2,12 +2,11 @@
 
 from __future__ import annotations
 
-import sys
 
 import click
 
 from rockcli.cli.errors import InputError, user_errors
-from rockcli.cli.options import record_kwargs, record_options
+from rockcli.cli.options import progress_bar, record_kwargs, record_options
 
 _SHAPES = "ricker-sym|ricker-anti|sine|cosine"
 
@@ -74,16 +73,6 @@ def _pulses(pulses, records, units, dt, fmt, column, default=("ricker-sym",)):
     return out
 
 
-def _progress(total, label):
-    """(context manager, update) for a progress bar on stderr, only on a terminal."""
-    import contextlib
-
-    if not sys.stderr.isatty() or total <= 0:
-        return contextlib.nullcontext(), None
-    bar = click.progressbar(length=total, label=label, file=sys.stderr)
-    return bar, bar.update
-
-
 def _runner(scheduler):
     from rockcli.spectra import Runner
 
@@ -144,8 +133,8 @@ def overturning(alpha, pulses, records, isolations, csv_path, plot_path, schedul
     pcs = _pulses(pulses, records, units, dt, fmt, column)
     n = len(alphas) * len(pcs) * len(isos) * wp_grid.count * ap_grid.count
     t0 = time.perf_counter()
-    bar, update = _progress(n, "cells")
-    with runner, bar:
+    with runner, progress_bar(n, "cells") as bar:
+        update = bar.update if bar else None
         maps = overturning_maps(alphas, pcs, isos, wp_grid, ap_grid, runner=runner, progress=update, early=early)
     elapsed = time.perf_counter() - t0
     _echo_notes(pcs)
@@ -218,8 +207,8 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
     pcs = _pulses(pulses, records, units, dt, fmt, column)
     n = len(alphas) * len(pcs) * len(isos) * xs.size
     t0 = time.perf_counter()
-    bar, update = _progress(n, "columns")
-    with runner, bar:
+    with runner, progress_bar(n, "columns") as bar:
+        update = bar.update if bar else None
         curves = min_overturning_curves(alphas, pcs, isos, xs, ap_max=ap_max, step=step, tol=tol, runner=runner,
                                         progress=update)
     elapsed = time.perf_counter() - t0
@@ -320,8 +309,8 @@ def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, 
     shapes = list(dict.fromkeys(pc.shape for pc in pcs))
     n = len(shapes) * len(alphas) * (1 + len(isos)) * grid.count
     t0 = time.perf_counter()
-    bar, update = _progress(n, "columns")
-    with runner, bar:
+    with runner, progress_bar(n, "columns") as bar:
+        update = bar.update if bar else None
         result = critical_sizes(pcs, alphas, isos, wp_grid=grid, xtol=xtol, ap_max=ap_max, step=step, tol=tol,
                                 runner=runner, progress=update)
     elapsed = time.perf_counter() - t0
