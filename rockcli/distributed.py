@@ -1,7 +1,7 @@
 """Running sweeps on a Dask cluster (optional: ``pip install -e ".[dask]"``).
 
 Only this module imports dask, and only when a scheduler is asked for. A sweep is split into
-chunks; each chunk is one task that runs the compiled kernel on a worker (numba ``prange`` on the
+chunks; each chunk is one task that runs the compiled kernel on a worker (on a thread per core of the
 worker's cores) and returns small arrays. The workers need rockcli installed in the same version.
 Results are gathered in the order of the chunks, so a sweep gives the same answer on any cluster
 as on this machine (every scene is deterministic and independent of the others).

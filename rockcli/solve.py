@@ -194,6 +194,18 @@ def _kernel():
     return kernels
 
 
+def _threads() -> int:
+    """Threads a sweep runs on: the cores this process may use (``NUMBA_NUM_THREADS`` caps them)."""
+    import os
+
+    try:
+        cores = len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):
+        cores = os.cpu_count() or 1
+    cap = os.environ.get("NUMBA_NUM_THREADS", "")
+    return max(1, min(cores, int(cap))) if cap.isdigit() and int(cap) > 0 else max(1, cores)
+
+
 def record_impulse_table(acc: np.ndarray, dt: float) -> np.ndarray:
     """Suffix integrals ``int_{t_j}^{t_end} |ag| dt`` [m/s] of a piecewise-linear record, one per sample.
 
@@ -515,9 +527,9 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float = DE
     _check_work(block, foundation, prepared, float(rtol), float(tail), float(rest_tol), float(horizon),
                 int(max_steps), bool(history))
     out = np.zeros(k.N_OUT)
-    H = k.simulate_core(fkind, tuple(float(v) for v in prm), ekind, tuple(float(v) for v in epar), acc, jtab, dt,
-                        t_begin, t_exc_end, float(tail), float(horizon), int(max_steps), bool(history),
-                        bool(early), out)
+    kernel = k.simulate_rigid if fkind == k.FOUNDATION_RIGID else k.simulate_core
+    H = kernel(fkind, tuple(float(v) for v in prm), ekind, tuple(float(v) for v in epar), acc, jtab, dt,
+               t_begin, t_exc_end, float(tail), float(horizon), int(max_steps), bool(history), bool(early), out)
     return _response(out, H if history else None, block, fkind)
 
 
@@ -586,7 +598,8 @@ def simulate_many(jobs, *, rtol: float = DEFAULT_RTOL, tail=DEFAULT_TAIL,
     progress : callable, optional
         Called as ``progress(n_done)`` after each chunk of scenes.
     chunk : int, optional
-        Scenes per parallel batch (default: all at once without ``progress``, else ~1/50 of them).
+        Scenes per batch handed to a thread (default: about 1/8 of a thread's share, and at most
+        1/50 of all scenes with ``progress``).
 
     Returns
     -------
@@ -748,15 +761,45 @@ def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress
     acc_all = np.concatenate(pieces) if pieces else np.zeros(2)
     jtab_all = np.concatenate(jpieces) if jpieces else np.zeros(2)
     outs = np.zeros((m, k.N_OUT))
-    if chunk is None:
-        chunk = max(m, 1) if progress is None else max(1, m // 50)
-    for lo in range(0, m, chunk):
-        hi = min(m, lo + chunk)
-        k.simulate_batch(fkinds[lo:hi], prms[lo:hi], ekinds[lo:hi], epars[lo:hi], acc_all, jtab_all,
-                         acc_off[lo:hi], acc_len[lo:hi], dts[lo:hi], t_begins[lo:hi], t_exc_ends[lo:hi],
-                         tails[lo:hi], float(horizon), int(max_steps), bool(early), outs[lo:hi])
+    threads = _threads()
+    if chunk is None:  # pieces small enough to balance the threads, and to report progress ~50 times
+        chunk = max(1, -(-m // (8 * threads)))
         if progress is not None:
-            progress(n if hi == m else hi)
+            chunk = min(chunk, max(1, m // 50))
+    tasks = []
+    # one batch kernel per driver (rigid foundation, isolated base): a sweep compiles only what it uses
+    rigid = fkinds == k.FOUNDATION_RIGID
+    for batch, sel in ((k.simulate_batch_rigid, np.flatnonzero(rigid)), (k.simulate_batch, np.flatnonzero(~rigid))):
+        whole = sel.size == m  # every job runs on this driver: pass views, the kernel writes into outs
+        for lo in range(0, sel.size, chunk):
+            hi = min(sel.size, lo + chunk)
+            tasks.append((batch, slice(lo, hi) if whole else sel[lo:hi]))
+    common = (acc_all, jtab_all)
+    tail_args = (float(horizon), int(max_steps), bool(early))
+
+    def run(task):
+        batch, part = task
+        o = outs[part] if isinstance(part, slice) else np.zeros((part.size, k.N_OUT))
+        batch(fkinds[part], prms[part], ekinds[part], epars[part], *common, acc_off[part], acc_len[part],
+              dts[part], t_begins[part], t_exc_ends[part], tails[part], *tail_args, o)
+        if not isinstance(part, slice):
+            outs[part] = o
+        return o.shape[0]
+
+    done = 0
+    if threads == 1 or len(tasks) == 1:
+        for task in tasks:
+            done += run(task)
+            if progress is not None:
+                progress(n if done == m else done)
+    else:
+        from concurrent.futures import ThreadPoolExecutor, as_completed
+
+        with ThreadPoolExecutor(max_workers=threads) as pool:  # the kernels run without the GIL
+            for fut in as_completed([pool.submit(run, task) for task in tasks]):
+                done += fut.result()
+                if progress is not None:
+                    progress(n if done == m else done)
     if progress is not None and m == 0:
         progress(n)
     return outs, alphas, failed

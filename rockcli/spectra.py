@@ -370,9 +370,9 @@ def run_cells_local(families: Sequence[Family], fam: np.ndarray, x: np.ndarray, 
         progress(k - done[0])
         done[0] = k
 
-    # The kernel's prange splits the scenes into one contiguous block per thread, and a map's cost
-    # grows with a_p (rows): run the cells in a fixed shuffled order so that every thread gets a
-    # fair share, and put the results back. Cells are independent: the order changes no result.
+    # The scenes run in contiguous pieces, one thread each, and a map's cost grows with a_p (rows):
+    # run the cells in a fixed shuffled order so that every piece carries a fair share, and put the
+    # results back. Cells are independent: the order changes no result.
     order = np.random.default_rng(0).permutation(n)
     v = simulate_verdicts([jobs[i] for i in order], early=early, progress=step if progress else None)
     back = np.empty(n, np.int64)

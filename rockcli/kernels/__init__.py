@@ -13,9 +13,14 @@ Files (data flows down this list):
 ``rhs``                   right-hand sides (rigid, isolated: stuck and rocking)
 ``dopri``                 the Dormand-Prince 5(4) step, its error norm and dense output
 ``events``                impact map, rest rule, uplift on a hysteretic base, reversals, history rows
-``driver``                :func:`simulate_core`: the scene as a loop over phases; the end-of-run
-                          rule (proofs P1-P4, P3s in its docstring)
-``batch``                 :func:`simulate_batch`: many verdict-only scenes in parallel
+``steps``                 what both drivers share: run record, segments, step-size control, the
+                          events of a rocking step in theta, impact bookkeeping
+``rigid``                 :func:`simulate_rigid`: a block on a rigid foundation (two states; the
+                          end-of-run proofs P1, P2, P4, P6 in its notes)
+``driver``                :func:`simulate_core`: a block on an isolated base as a loop over phases
+                          (proofs P3, P3s, P5 in its docstring)
+``batch``                 :func:`simulate_batch_rigid`, :func:`simulate_batch`: many verdict-only
+                          scenes in parallel, one entry per driver
 ========================  ======================================================================
 
 Every physical constant reaches the kernels as an argument (the ``prm`` tuple); module-level
@@ -34,5 +39,6 @@ from rockcli.kernels.polynomials import (_first_down, _first_exceed, _golden_max
 from rockcli.kernels.bearings import (base_force, bw_phi, bw_phi_inv, bw_slope, dcss_split,  # noqa: E402,F401
                                       force_along_path, free_force_bound, reanchor)
 from rockcli.kernels.dopri import _dense, _dp5_step, _state_at  # noqa: E402,F401
+from rockcli.kernels.rigid import simulate_rigid  # noqa: E402,F401
 from rockcli.kernels.driver import simulate_core  # noqa: E402,F401
-from rockcli.kernels.batch import simulate_batch  # noqa: E402,F401
+from rockcli.kernels.batch import simulate_batch, simulate_batch_rigid  # noqa: E402,F401

@@ -19,20 +19,21 @@ from numba import njit
 
 from rockcli.kernels.layout import FOUNDATION_BILINEAR, P_RTOL, P_SC0, W_TMP, W_Y, W_YNEW
 from rockcli.kernels.polynomials import _poly
-from rockcli.kernels.rhs import _rhs_into
 
 # Tableau and dense-output coefficients. Module-level tuples: mathematical constants of the method,
 # which numba compiles in as literals (they never change, so freezing them in the cache is safe).
-_C = (0.0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1.0)
+_C = (0.0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1.0, 1.0)
+# rows 1-5: the stages; row 6: the weights of the 5th-order solution (first same as last: its
+# derivative is stage 7, the next step's first)
 _A = (
-    (0.0, 0.0, 0.0, 0.0, 0.0),
-    (1 / 5, 0.0, 0.0, 0.0, 0.0),
-    (3 / 40, 9 / 40, 0.0, 0.0, 0.0),
-    (44 / 45, -56 / 15, 32 / 9, 0.0, 0.0),
-    (19372 / 6561, -25360 / 2187, 64448 / 6561, -212 / 729, 0.0),
-    (9017 / 3168, -355 / 33, 46732 / 5247, 49 / 176, -5103 / 18656),
+    (0.0, 0.0, 0.0, 0.0, 0.0, 0.0),
+    (1 / 5, 0.0, 0.0, 0.0, 0.0, 0.0),
+    (3 / 40, 9 / 40, 0.0, 0.0, 0.0, 0.0),
+    (44 / 45, -56 / 15, 32 / 9, 0.0, 0.0, 0.0),
+    (19372 / 6561, -25360 / 2187, 64448 / 6561, -212 / 729, 0.0, 0.0),
+    (9017 / 3168, -355 / 33, 46732 / 5247, 49 / 176, -5103 / 18656, 0.0),
+    (35 / 384, 0.0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84),
 )
-_B = (35 / 384, 0.0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84)
 _E = (-71 / 57600, 0.0, 71 / 16695, -71 / 1920, 17253 / 339200, -22 / 525, 1 / 40)
 _P = (
     (1.0, -8048581381 / 2820520608, 8663915743 / 2820520608, -12715105075 / 11282082432),
@@ -45,9 +46,12 @@ _P = (
 )
 
 
-@njit(cache=True)
-def _dp5_step(fkind, phase, s, prm, seg, epar, hy, gz, t, h, W, i0, i1):
+@njit(cache=True, inline='always')
+def _dp5_step(rhs_into, fkind, phase, s, prm, seg, epar, hy, gz, t, h, W, i0, i1):
     """One Dormand-Prince step of the active states ``i0:i1`` from ``(t, W[W_Y])``.
+
+    ``rhs_into`` is the driver's right-hand side (:mod:`rockcli.kernels.rhs`), passed as a
+    function so that each driver compiles only its own.
 
     Expects ``W[0] = f(t, y)``; fills the stage derivatives ``W[1:7]`` (``W[6] = f(t + h, ynew)``,
     first-same-as-last) and ``W[W_YNEW]``. Returns the RMS of the local error over the active
@@ -56,21 +60,15 @@ def _dp5_step(fkind, phase, s, prm, seg, epar, hy, gz, t, h, W, i0, i1):
     """
     for i in range(4):
         W[W_TMP, i] = W[W_Y, i]
-    for st in range(1, 6):
+        W[W_YNEW, i] = W[W_Y, i]
+    for st in range(1, 7):  # one call site of the right-hand side (it is inlined once)
+        row = W_TMP if st < 6 else W_YNEW
         for i in range(i0, i1):
             acc = 0.0
             for j in range(st):
                 acc += _A[st][j] * W[j, i]
-            W[W_TMP, i] = W[W_Y, i] + h * acc
-        _rhs_into(fkind, phase, s, prm, seg, epar, hy, t + _C[st] * h, W, W_TMP, st)
-    for i in range(4):
-        W[W_YNEW, i] = W[W_Y, i]
-    for i in range(i0, i1):
-        acc = 0.0
-        for j in range(6):
-            acc += _B[j] * W[j, i]
-        W[W_YNEW, i] = W[W_Y, i] + h * acc
-    _rhs_into(fkind, phase, s, prm, seg, epar, hy, t + h, W, W_YNEW, 6)
+            W[row, i] = W[W_Y, i] + h * acc
+        rhs_into(fkind, phase, s, prm, seg, epar, hy, t + _C[st] * h, W, row, st)
     rtol = prm[P_RTOL]
     tot = 0.0
     for i in range(i0, i1):

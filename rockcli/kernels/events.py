@@ -139,7 +139,9 @@ def _hist_push(H, n, t, ag, W, row, z1, z2, fb):
     """Append the row ``t, ag, theta, theta_dot, u, u_dot, z1, z2, bearing force`` (grows ``H``)."""
     if n >= H.shape[0]:
         H2 = np.empty((2 * H.shape[0], N_HIST))
-        H2[:n] = H[:n]
+        for i in range(n):  # an explicit copy: a slice assignment compiles numba's generic broadcasting
+            for j in range(N_HIST):
+                H2[i, j] = H[i, j]
         H = H2
     H[n, H_T] = t
     H[n, H_AG] = ag

@@ -48,6 +48,13 @@ def _ground(t, seg, epar):
     return pulse_acc(mode, epar, t)
 
 
+@njit(cache=True)
+def ground_at(t, seg, epar):
+    """:func:`_ground` as a called function: for the places off the integrator's hot path (uplift
+    scans, rest checks, history rows), where one compiled copy serves every call site."""
+    return _ground(t, seg, epar)
+
+
 
 
 @njit(cache=True)
@@ -69,13 +76,13 @@ def _rigid_uplift(seg, epar, thr, t, t_end):
     segments are scanned on a grid of T_p/512 with every sampled local maximum of |ag| near the
     threshold refined by golden-section search, then the crossing refined by bisection.
     """
-    a0 = _ground(t, seg, epar)
+    a0 = ground_at(t, seg, epar)
     if abs(a0) > thr:
         return t, -1.0 if a0 > 0 else 1.0
     if int(seg[0]) == SEG_LINEAR:
         if seg[2] == 0.0:
             return -1.0, 0.0
-        a1 = _ground(t_end, seg, epar)
+        a1 = ground_at(t_end, seg, epar)
         if a1 > thr:
             return t + (thr - a0) / (a1 - a0) * (t_end - t), -1.0
         if a1 < -thr:
@@ -94,7 +101,7 @@ def _rigid_uplift(seg, epar, thr, t, t_end):
     fm1 = fm2
     for k in range(1, npts + 1):
         tk = t + k * hg
-        fk = abs(_ground(tk, seg, epar)) - thr
+        fk = abs(_ground(tk, seg, epar)) - thr  # the hot loop: inlined
         found = False
         lo = tk - hg
         hi = tk
@@ -107,22 +114,22 @@ def _rigid_uplift(seg, epar, thr, t, t_end):
             for _ in range(60):
                 x1 = xb - 0.6180339887498949 * (xb - xa)
                 x2 = xa + 0.6180339887498949 * (xb - xa)
-                if abs(_ground(x1, seg, epar)) > abs(_ground(x2, seg, epar)):
+                if abs(ground_at(x1, seg, epar)) > abs(ground_at(x2, seg, epar)):
                     xb = x2
                 else:
                     xa = x1
             xm = 0.5 * (xa + xb)
-            if abs(_ground(xm, seg, epar)) > thr:
+            if abs(ground_at(xm, seg, epar)) > thr:
                 found = True
                 lo = tk - 2.0 * hg
                 hi = xm
         if found:
-            sgn = 1.0 if _ground(hi, seg, epar) > 0.0 else -1.0
+            sgn = 1.0 if ground_at(hi, seg, epar) > 0.0 else -1.0
             for _ in range(200):
                 mid = 0.5 * (lo + hi)
                 if mid <= lo or mid >= hi:
                     break
-                if sgn * _ground(mid, seg, epar) > thr:
+                if sgn * ground_at(mid, seg, epar) > thr:
                     hi = mid
                 else:
                     lo = mid

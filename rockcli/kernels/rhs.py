@@ -1,4 +1,4 @@
-"""Right-hand sides: one per foundation family, scalars in, scalars out (no arrays in the hot path).
+"""Right-hand sides: one per driver, scalars in, scalars out (no arrays in the hot path).
 
 * Rigid foundation, Eq (3): ``theta_ddot = -p^2 (sin A + ag/g cos A)``, ``A = s alpha - theta``.
 * Isolated base (linear, single concave / lead-rubber, double concave: only the bearing force
@@ -21,16 +21,29 @@ from numba import njit
 
 from rockcli.kernels.bearings import base_force
 from rockcli.kernels.ground import _ground
-from rockcli.kernels.layout import FOUNDATION_RIGID, P_ALPHA, P_G, P_GAMMA, P_P2, P_R, PHASE_STUCK
+from rockcli.kernels.layout import P_ALPHA, P_G, P_GAMMA, P_P2, P_R, PHASE_STUCK
+
+
+@njit(cache=True, inline='always')
+def _rhs_rigid(s, prm, seg, epar, t, th, thd):
+    """Rigid foundation: ``(theta_dot, theta_ddot)`` at ``t`` (Eq 3)."""
+    ag = _ground(t, seg, epar)
+    A = s * prm[P_ALPHA] - th
+    return thd, -prm[P_P2] * (math.sin(A) + ag / prm[P_G] * math.cos(A))
+
+
+@njit(cache=True)
+def _rhs_rigid_into(fkind, phase, s, prm, seg, epar, hy, t, W, src, dst):
+    """:func:`_rhs_rigid` from row ``src`` into row ``dst`` of ``W`` (the signature of :func:`_rhs_into`)."""
+    d0, d1 = _rhs_rigid(s, prm, seg, epar, t, W[src, 0], W[src, 1])
+    W[dst, 0] = d0
+    W[dst, 1] = d1
 
 
 @njit(cache=True, inline='always')
 def _rhs(fkind, phase, s, prm, seg, epar, hy, t, th, thd, u, ud):
-    """Derivatives ``(theta_dot, theta_ddot, u_dot, u_ddot)`` of the scene's states at ``t``."""
+    """Isolated base: derivatives ``(theta_dot, theta_ddot, u_dot, u_ddot)`` of the scene's states at ``t``."""
     ag = _ground(t, seg, epar)
-    if fkind == FOUNDATION_RIGID:
-        A = s * prm[P_ALPHA] - th
-        return thd, -prm[P_P2] * (math.sin(A) + ag / prm[P_G] * math.cos(A)), 0.0, 0.0
     F = base_force(fkind, prm, u, ud, hy)
     if phase == PHASE_STUCK:
         return 0.0, 0.0, ud, F - ag

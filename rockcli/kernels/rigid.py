@@ -1,0 +1,240 @@
+"""The rigid-foundation driver: :func:`simulate_rigid` runs a block on the ground.
+
+Two states are integrated (theta, theta_dot) and only while the block rocks; while it is stuck the
+ground acceleration is scanned for the uplift condition and nothing is integrated
+(:func:`_stuck_rigid`). No bearing code is compiled into this kernel: a command that only needs
+the rigid foundation compiles only this (and :mod:`rockcli.kernels.steps`, ``dopri``, ``events``,
+``ground``, ``polynomials``). The isolated bases have their own driver, :mod:`rockcli.kernels.driver`.
+
+End of the run: the proofs P1, P2, P4, P6 (the general rule, and P3, P3s, P5 for isolated bases, are
+stated in :func:`rockcli.kernels.driver.simulate_core`):
+
+P1 (ground still, block stuck). With ``ag = 0`` and theta = 0 the uplift condition
+   ``|ag| > g tan(alpha)`` can never hold again.
+P2 (ground still, rocking, ``|theta| < alpha``). Between impacts
+   ``E = theta_dot^2/2 + p^2 cos(alpha - |theta|)`` is conserved (Eq 3 with ``ag = 0``); an impact
+   keeps theta = 0 and multiplies theta_dot by ``|eta| <= 1``, so E never grows; a rest sets
+   ``E = p^2 cos(alpha)``. The potential ``p^2 cos(alpha - |theta|)`` is largest, ``p^2``, at
+   ``|theta| = alpha``. Hence if ``E < p^2`` while ``|theta| < alpha`` the block never reaches
+   alpha, so never pi/2, and each later peak ``alpha - acos(E/p^2)`` is at most the next one,
+   which is added to ``theta_max`` (so the peak is final too). If the block is heading for the
+   pivot (``theta theta_dot < 0``) with ``|theta| < alpha``, the potential falls all the way to
+   theta = 0, so the impact is certain and ``E`` after it, ``p^2 cos(alpha) + eta^2 (E - p^2
+   cos(alpha))``, may be used. Past alpha (``|theta| >= alpha``) no such conclusion holds: the
+   same energy means the block falls away from the barrier (issue 9), and the run goes on.
+P4 (``early`` only, during the excitation, after the first uplift, block stuck or
+   ``|theta| < alpha``). ``dE/dt = -p^2 (ag/g) cos(A) theta_dot`` and, while
+   ``|theta| <= alpha``, ``theta_dot^2/2 <= E - p^2 cos(alpha) = X^2``, so
+   ``dX/dt <= p^2 |ag| / (sqrt(2) g)`` (impacts and rests only lower X). Hence
+   ``X(t') <= X(t) + p^2/(sqrt(2) g) int_t^t' |ag|``. If that bound with the whole remaining
+   impulse (:func:`rockcli.kernels.ground._impulse_left`) is below ``p sqrt(1 - cos(alpha))``
+   (``E < p^2``), the block cannot reach alpha before the ground stops (a first arrival at alpha
+   needs ``E >= p^2``), and P2 holds from then on: it survives. ``theta_max`` is then only the
+   peak so far (``O_PEAK_FINAL = 0``).
+P6 (``early`` only, after the first uplift, ``|theta| >= alpha``). Beyond alpha the potential is
+   at least ``p^2 sin(alpha)`` (its value at pi/2), so with ``Z^2 = E - p^2 sin(alpha)`` the
+   argument of P4 gives ``Z(t') <= Z(t) + p^2/(sqrt(2) g) int_t^t' |ag|``. Coming back inside
+   needs ``|theta| = alpha`` again, so ``E >= p^2``, ``Z >= p sqrt(1 - sin(alpha))``; if the bound
+   with the whole remaining impulse stays below that, the block can never come back, and once
+   the ground is still it falls (between alpha and pi/2 the potential falls outward; below the
+   barrier a block moving inward turns back). With the ground already still, a block beyond
+   alpha moving outward falls as well. The run ends as overturned with ``t_overturn`` unknown (NaN).
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from rockcli.kernels.dopri import _dp5_step
+from rockcli.kernels.events import _count_uplift, _hist_push, impact_map
+from rockcli.kernels.ground import _impulse_left, _rigid_uplift, ground_at
+from rockcli.kernels.layout import (O_T_SETTLED, O_T_THETA_MAX, O_UPLIFTED, P_ALPHA, P_COSA, P_ETA, P_G, P_P2,
+                                    P_SINA, P_THR, PHASE_ROCKING, PHASE_STUCK, RS_FRESH, RS_H, RS_NRHS,
+                                    RS_PEAK_FINAL, RS_PHASE, RS_REJ, RS_S, RS_SEG_END, RS_SETTLED, RS_STATUS,
+                                    RS_STEPS, RS_T, RS_THMAX, STATUS_MAX_STEPS, STATUS_OVERTURNED, W_Y)
+from rockcli.kernels.rhs import _rhs_rigid_into
+from rockcli.kernels.steps import (EV_FAILED, EV_IMPACT, EV_OVERTURN, _advance_segment, _bounce, _finish, _grow,
+                                   _out_of_time, _rocking_events, _seg, _shrink, _start, _step_start, _to_impact,
+                                   _to_overturn, _to_step_end)
+
+_NO_HY = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)  # no hysteretic elements
+
+
+@njit(cache=True)
+def _end_of_run_rigid(prm, ekind, epar, jtab, dt, t_exc_end, early, want_history, t_show_end, t_horizon,
+                      max_steps, rs, W, out):
+    """The end-of-run rule on the ground (P1, P2, P4, P6 in the module notes): True when the run ends now."""
+    t = rs[RS_T]
+    alpha = prm[P_ALPHA]
+    p2 = prm[P_P2]
+    if rs[RS_SETTLED] == 0.0:
+        settled = False
+        if t >= t_exc_end:
+            if rs[RS_PHASE] == PHASE_STUCK:
+                settled = True  # P1
+            elif abs(W[W_Y, 0]) < alpha:
+                th = W[W_Y, 0]
+                thd = W[W_Y, 1]
+                En = 0.5 * thd * thd + p2 * math.cos(alpha - abs(th))
+                if th * thd < 0.0:  # heading for the pivot: the impact is certain
+                    c_a = p2 * prm[P_COSA]
+                    En = c_a + prm[P_ETA] ** 2 * (En - c_a)
+                if En < p2:  # P2
+                    pk = alpha - math.acos(En / p2)
+                    if pk > rs[RS_THMAX]:
+                        rs[RS_THMAX] = pk
+                        out[O_T_THETA_MAX] = math.nan
+                    settled = True
+        if not settled and early and out[O_UPLIFTED] != 0.0:
+            c_imp = p2 / (math.sqrt(2.0) * prm[P_G])  # P4, P6: dX/dt <= c_imp |ag|
+            imp = c_imp * _impulse_left(ekind, jtab, epar, dt, t)
+            x_bar = math.sqrt(p2 * (1.0 - prm[P_COSA]))  # P4: E < p^2  <=>  X < x_bar
+            if rs[RS_PHASE] == PHASE_STUCK:
+                if imp < x_bar:
+                    settled = True  # P4
+                    rs[RS_PEAK_FINAL] = 0.0
+            else:
+                ath = abs(W[W_Y, 0])
+                En = 0.5 * W[W_Y, 1] ** 2 + p2 * math.cos(alpha - ath)
+                if ath < alpha:
+                    if math.sqrt(max(0.0, En - p2 * prm[P_COSA])) + imp < x_bar:
+                        settled = True  # P4
+                        rs[RS_PEAK_FINAL] = 0.0
+                elif (math.sqrt(max(0.0, En - p2 * prm[P_SINA])) + imp < math.sqrt(p2 * (1.0 - prm[P_SINA]))
+                      or (imp == 0.0 and rs[RS_S] * W[W_Y, 1] >= 0.0)):
+                    # P6: it falls; the time it lands is not computed
+                    rs[RS_STATUS] = STATUS_OVERTURNED
+                    rs[RS_THMAX] = 0.5 * math.pi
+                    rs[RS_PEAK_FINAL] = 0.0
+                    out[O_T_SETTLED] = t
+                    return True
+        if settled:
+            rs[RS_SETTLED] = 1.0
+            out[O_T_SETTLED] = t
+    if rs[RS_SETTLED] != 0.0 and (not want_history or t >= t_show_end):
+        return True
+    return _out_of_time(rs, t_horizon, max_steps)
+
+
+@njit(cache=True)
+def _stuck_rigid(prm, rs, epar, t_stop, out):
+    """Stuck on a rigid foundation: scan the ground motion up to ``t_stop``, integrate nothing."""
+    tu, su = _rigid_uplift(_seg(rs), epar, prm[P_THR], rs[RS_T], t_stop)
+    if tu < 0.0:
+        rs[RS_T] = t_stop
+    else:
+        rs[RS_T] = tu
+        rs[RS_S] = su
+        rs[RS_PHASE] = PHASE_ROCKING
+        _count_uplift(out, tu)
+        rs[RS_FRESH] = 1.0
+
+
+@njit(cache=True)
+def _take_step_rigid(prm, ekind, epar, max_steps, rs, W, t_stop):
+    """One accepted Dormand-Prince step of theta, theta_dot inside ``[t, t_stop]``:
+    ``(ok, hs, last)`` (``ok`` False when the step cap is reached first)."""
+    h = _step_start(_rhs_rigid_into, 0, prm, ekind, epar, rs, W, _NO_HY)
+    t = rs[RS_T]
+    s = rs[RS_S]
+    seg = _seg(rs)
+    last = False
+    hs = h
+    err = 2.0
+    steps = rs[RS_STEPS]
+    rej = rs[RS_REJ]
+    nrhs = rs[RS_NRHS]
+    while steps + rej < max_steps:
+        hs = h
+        last = hs >= t_stop - t
+        if last:
+            hs = t_stop - t
+        err = _dp5_step(_rhs_rigid_into, 0, PHASE_ROCKING, s, prm, seg, epar, _NO_HY, 0.0, t, hs, W, 0, 2)
+        nrhs += 6
+        if err <= 1.0:
+            fac = _grow(err)
+            if not last or fac < 1.0:
+                h = hs * fac
+            break
+        rej += 1
+        h = hs * _shrink(err)
+    rs[RS_H] = h
+    rs[RS_REJ] = rej
+    rs[RS_NRHS] = nrhs
+    if err > 1.0:
+        return False, hs, last
+    rs[RS_STEPS] = steps + 1
+    return True, hs, last
+
+
+@njit(cache=True, inline='always')
+def _history_rigid(H, nh, rs, epar, W):
+    t = rs[RS_T]
+    return _hist_push(H, nh, t, ground_at(t, _seg(rs), epar), W, W_Y, 0.0, 0.0, 0.0)
+
+
+@njit(cache=True)
+def simulate_rigid(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, tail, horizon, max_steps,
+                   want_history, early, out):
+    """Integrate one scene on a rigid foundation; the arguments, outputs and the general end-of-run
+    rule are those of :func:`rockcli.kernels.driver.simulate_core` (``fkind`` is ignored)."""
+    W, rs, H = _start(ekind, epar, acc, dt, t_begin, want_history, out)
+    nh = 0
+    t_show_end = t_exc_end + tail
+    t_horizon = t_exc_end + max(horizon, tail)
+    if want_history:
+        H, nh = _history_rigid(H, nh, rs, epar, W)
+
+    while True:
+        _advance_segment(rs, ekind, epar, acc, dt, t_begin)
+        t_stop = min(rs[RS_SEG_END], t_horizon)
+        if rs[RS_SETTLED] != 0.0 and rs[RS_T] < t_show_end:
+            t_stop = min(t_stop, t_show_end)  # a history run shows the free motion up to exactly here
+
+        if _end_of_run_rigid(prm, ekind, epar, jtab, dt, t_exc_end, early, want_history, t_show_end, t_horizon,
+                             max_steps, rs, W, out):
+            break
+
+        if rs[RS_PHASE] == PHASE_STUCK:
+            _stuck_rigid(prm, rs, epar, t_stop, out)
+            if want_history:
+                H, nh = _history_rigid(H, nh, rs, epar, W)
+            continue
+
+        ok, hs, last = _take_step_rigid(prm, ekind, epar, max_steps, rs, W, t_stop)
+        if not ok:
+            rs[RS_STATUS] = STATUS_MAX_STEPS
+            break
+        t_new = t_stop if last else rs[RS_T] + hs
+
+        code, sig = _rocking_events(prm, rs, W, out, hs, t_new, 1.0)
+        if code == EV_OVERTURN:
+            _to_overturn(rs, W, out, hs, sig, 2)
+        elif code == EV_FAILED:
+            # the block never left theta = 0: back to the stuck phase at the end of the step (the
+            # uplift still counts: the uplift condition held; the rotation is below resolution)
+            rs[RS_T] = t_new
+            W[W_Y, 0] = 0.0
+            W[W_Y, 1] = 0.0
+            rs[RS_PHASE] = PHASE_STUCK
+            rs[RS_S] = 0.0
+            rs[RS_FRESH] = 1.0
+        elif code == EV_IMPACT:
+            _to_impact(rs, W, hs, sig, 2)
+            if want_history:  # the state just before the impact, then (below) just after
+                H, nh = _history_rigid(H, nh, rs, epar, W)
+            thd1 = W[W_Y, 1]
+            thd2, _ = impact_map(prm, thd1)
+            rs[RS_S] = -rs[RS_S]
+            _bounce(prm, rs, W, out, thd1, t_exc_end, ground_at(rs[RS_T], _seg(rs), epar), thd2)
+        else:
+            _to_step_end(rs, W, t_new, 2)
+        if want_history:
+            H, nh = _history_rigid(H, nh, rs, epar, W)
+        if code == EV_OVERTURN:
+            break
+
+    _finish(rs, W, out)
+    return H[:nh]

@@ -1,0 +1,269 @@
+"""What both drivers share: the run record's accessors, the excitation segments, the step-size
+controller, the events of a rocking step in theta, the impact bookkeeping and the run's outputs.
+
+Nothing here depends on the foundation: the rigid-foundation driver (:mod:`rockcli.kernels.rigid`)
+and the isolated-base driver (:mod:`rockcli.kernels.driver`) call these with their own right-hand
+side (a function argument where one is needed), so each compiles only its own foundation's code.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from rockcli.kernels.dopri import _dense, _state_at
+from rockcli.kernels.events import comes_to_rest
+from rockcli.kernels.ground import _pulse_segment
+from rockcli.kernels.layout import (E_AP, E_TP, EXC_RECORD, N_HIST, N_OUT, N_RS, N_W, O_N_IMPACTS, O_N_IMPACTS_ALL,
+                                    O_N_RESTS, O_N_REVERSALS, O_NRHS, O_PEAK_FINAL, O_REJECTED, O_SETTLED, O_STATUS,
+                                    O_STEPS, O_T_END, O_T_EXCEED, O_T_OVERTURN, O_T_THETA_MAX, O_T_UPLIFT,
+                                    O_THETA_END, O_THETA_MAX, O_U_END, O_U_MAX, P_ALPHA, P_P2, P_THR, PHASE_ROCKING,
+                                    PHASE_STUCK, RS_FRESH, RS_H, RS_J, RS_NREV, RS_NRHS, RS_PEAK_FINAL, RS_PHASE,
+                                    RS_REJ, RS_S, RS_SEG, RS_SEG_END, RS_SETTLED, RS_STATUS, RS_STEPS, RS_T,
+                                    RS_THMAX, RS_UMAX, SEG_LINEAR, STATUS_DONE, STATUS_MAX_STEPS, STATUS_OVERTURNED,
+                                    W_TMP, W_Y, W_YNEW)
+from rockcli.kernels.polynomials import _first_down, _poly
+
+
+# ---------------------------------------------------------------------------------------------
+# The run record
+# ---------------------------------------------------------------------------------------------
+@njit(cache=True, inline='always')
+def _seg(rs):
+    return (rs[RS_SEG], rs[RS_SEG + 1], rs[RS_SEG + 2], rs[RS_SEG + 3])
+
+
+@njit(cache=True, inline='always')
+def _set_seg(rs, seg, seg_end):
+    rs[RS_SEG] = seg[0]
+    rs[RS_SEG + 1] = seg[1]
+    rs[RS_SEG + 2] = seg[2]
+    rs[RS_SEG + 3] = seg[3]
+    rs[RS_SEG_END] = seg_end
+
+
+@njit(cache=True)
+def _start(ekind, epar, acc, dt, t_begin, want_history, out):
+    """A new run: cleared outputs, the work array ``W``, the run record ``rs`` at ``t_begin`` on
+    the first excitation segment, and an empty history ``H`` (room for the run when wanted)."""
+    for k in range(N_OUT):
+        out[k] = 0.0
+    out[O_T_UPLIFT] = np.nan
+    out[O_T_OVERTURN] = np.nan
+    out[O_T_EXCEED] = np.nan
+    out[O_T_THETA_MAX] = np.nan
+    W = np.zeros((N_W, 4))
+    rs = np.zeros(N_RS)
+    rs[RS_T] = t_begin
+    rs[RS_PHASE] = PHASE_STUCK
+    rs[RS_FRESH] = 1.0  # W[0] = f(t, y) must be (re)computed
+    rs[RS_PEAK_FINAL] = 1.0
+    rs[RS_STATUS] = STATUS_DONE
+    rs[RS_J] = 0.0
+    if ekind == EXC_RECORD:
+        rscale = epar[E_AP]  # records: the factor the record is scaled by
+        _set_seg(rs, (float(SEG_LINEAR), rscale * acc[0], rscale * (acc[1] - acc[0]) / dt, 0.0), dt)
+    else:
+        seg0, seg_end0 = _pulse_segment(0, ekind, epar, t_begin)
+        _set_seg(rs, seg0, seg_end0)
+    if want_history:
+        H = np.empty((2 * acc.shape[0] + 1024 if ekind == EXC_RECORD else 4096, N_HIST))
+    else:
+        H = np.empty((0, N_HIST))
+    return W, rs, H
+
+
+@njit(cache=True)
+def _finish(rs, W, out):
+    """Copy the run record's results into ``out`` (``O_*`` layout)."""
+    out[O_STATUS] = rs[RS_STATUS]
+    out[O_THETA_MAX] = rs[RS_THMAX]
+    out[O_U_MAX] = rs[RS_UMAX]
+    out[O_STEPS] = rs[RS_STEPS]
+    out[O_REJECTED] = rs[RS_REJ]
+    out[O_NRHS] = rs[RS_NRHS]
+    out[O_T_END] = rs[RS_T]
+    out[O_SETTLED] = 1.0 if (rs[RS_SETTLED] != 0.0 or rs[RS_STATUS] == STATUS_OVERTURNED) else 0.0
+    out[O_PEAK_FINAL] = rs[RS_PEAK_FINAL]
+    out[O_THETA_END] = W[W_Y, 0]
+    out[O_U_END] = W[W_Y, 2]
+    out[O_N_REVERSALS] = rs[RS_NREV]
+
+
+@njit(cache=True, inline='always')
+def _advance_segment(rs, ekind, epar, acc, dt, t_begin):
+    """Move to the excitation segment that contains t (records: one per sample interval)."""
+    nrec = acc.shape[0]
+    while rs[RS_T] >= rs[RS_SEG_END]:
+        j = int(rs[RS_J]) + 1
+        rs[RS_J] = j
+        if ekind == EXC_RECORD:
+            rscale = epar[E_AP]
+            if j < nrec - 1:
+                _set_seg(rs, (float(SEG_LINEAR), rscale * acc[j], rscale * (acc[j + 1] - acc[j]) / dt, j * dt),
+                         (j + 1) * dt)
+                # a record is continuous across samples: the FSAL derivative stays valid
+            else:
+                _set_seg(rs, (float(SEG_LINEAR), 0.0, 0.0, (nrec - 1) * dt), np.inf)
+                rs[RS_FRESH] = 1.0
+        else:
+            seg, seg_end = _pulse_segment(j, ekind, epar, t_begin)
+            _set_seg(rs, seg, seg_end)
+            rs[RS_FRESH] = 1.0
+
+
+@njit(cache=True, inline='always')
+def _out_of_time(rs, t_horizon, max_steps):
+    """The horizon or the step cap is reached (the latter sets ``STATUS_MAX_STEPS``)."""
+    if rs[RS_T] >= t_horizon:
+        return True
+    if rs[RS_STEPS] + rs[RS_REJ] >= max_steps:
+        rs[RS_STATUS] = STATUS_MAX_STEPS
+        return True
+    return False
+
+
+# ---------------------------------------------------------------------------------------------
+# Step-size control (Dormand-Prince 5(4), the controller SciPy's RK45 uses)
+# ---------------------------------------------------------------------------------------------
+@njit(cache=True, inline='always')
+def _step_start(rhs_into, fkind, prm, ekind, epar, rs, W, hy):
+    """The step size to try from ``rs[RS_T]``; (re)computes ``W[0] = f(t, y)`` when stale.
+
+    A first step is ``0.02/p`` (and at most ``T_p/50`` on a pulse). Just after an impact the step
+    must not swallow a short flight that the angular acceleration turns back (flight ~ 2 thd/|thdd|).
+    """
+    h = rs[RS_H]
+    if h <= 0.0:
+        h = 0.02 / math.sqrt(prm[P_P2])
+        if ekind != EXC_RECORD:
+            h = min(h, epar[E_TP] / 50.0)
+    if rs[RS_FRESH] != 0.0:
+        s = rs[RS_S]
+        phase = rs[RS_PHASE]
+        rhs_into(fkind, phase, s, prm, _seg(rs), epar, hy, rs[RS_T], W, W_Y, 0)
+        rs[RS_NRHS] += 1
+        rs[RS_FRESH] = 0.0
+        if phase == PHASE_ROCKING and W[W_Y, 0] == 0.0:
+            vel = s * W[W_Y, 1]
+            back = -s * W[0, 1]
+            if vel > 0.0 and back > 0.0:
+                h = min(h, 0.5 * vel / back)
+    return h
+
+
+@njit(cache=True, inline='always')
+def _grow(err):
+    """Factor of the next step after an accepted one with scaled error ``err <= 1``."""
+    return 5.0 if err == 0.0 else min(5.0, 0.9 * err ** -0.2)
+
+
+@njit(cache=True, inline='always')
+def _shrink(err):
+    """Factor of the retry after a rejected step with scaled error ``err > 1``."""
+    return max(0.2, 0.9 * err ** -0.2)
+
+
+# ---------------------------------------------------------------------------------------------
+# Events of a rocking step in theta
+# ---------------------------------------------------------------------------------------------
+EV_NONE = 0  # no event: the step stands to sig_lim
+EV_OVERTURN = 1  # s theta reaches pi/2 at sigma
+EV_FAILED = 2  # the block never rose above theta = 0: the uplift did not take
+EV_IMPACT = 3  # s theta falls to 0 at sigma
+
+
+@njit(cache=True)
+def _rocking_events(prm, rs, W, out, hs, t_new, sig_lim):
+    """Events in theta of a rocking step about corner ``s`` over ``[0, sig_lim]`` of the step:
+    ``(code, sigma)`` (``EV_*``; sigma of the event, or ``sig_lim``). Updates the peak
+    ``theta_max`` (its time) and the time alpha is first exceeded; changes no state."""
+    s = rs[RS_S]
+    t = rs[RS_T]
+    alpha = prm[P_ALPHA]
+    halfpi = 0.5 * math.pi
+    sth1 = s * W[W_YNEW, 0]
+    sd0 = s * W[W_Y, 1]
+    sd1 = s * W[W_YNEW, 1]
+    sig_end = sig_lim
+    impact = False
+    if sth1 <= 0.0 or (sd0 < 0.0 and sd1 > 0.0):
+        sig = _first_down(_dense(W, hs, 0, s), 0.0, 0.0, sig_lim)
+        if sig >= 0.0:
+            impact = True
+            sig_end = sig
+        elif sth1 <= 0.0:
+            return EV_FAILED, sig_lim
+    if sd0 >= 0.0 and (sd1 <= 0.0 or impact):  # sd0 = 0 right after an uplift
+        sp = _first_down(_dense(W, hs, 1, s), 0.0, 0.0, sig_end)
+        if sp >= 0.0:
+            thp = _poly(_dense(W, hs, 0, s), sp)
+            if thp > rs[RS_THMAX]:
+                rs[RS_THMAX] = thp
+                out[O_T_THETA_MAX] = t + sp * hs
+    if not impact and sth1 > rs[RS_THMAX]:
+        rs[RS_THMAX] = sth1
+        out[O_T_THETA_MAX] = t_new
+    if math.isnan(out[O_T_EXCEED]) and rs[RS_THMAX] >= alpha:
+        sa = _first_down(_dense(W, hs, 0, -s), -alpha, 0.0, sig_end)
+        out[O_T_EXCEED] = t + (sa if sa >= 0.0 else sig_end) * hs
+    if not impact and sth1 >= halfpi:
+        so = _first_down(_dense(W, hs, 0, -s), -halfpi, 0.0, sig_lim)
+        return EV_OVERTURN, (so if so >= 0.0 else sig_lim)
+    if impact:
+        return EV_IMPACT, sig_end
+    return EV_NONE, sig_lim
+
+
+@njit(cache=True)
+def _to_overturn(rs, W, out, hs, so, nst):
+    """The state at ``s theta = pi/2`` (fraction ``so`` of the step) ends the run: overturned."""
+    _state_at(W, hs, so, nst)
+    for i in range(nst):
+        W[W_Y, i] = W[W_TMP, i]
+    rs[RS_UMAX] = max(rs[RS_UMAX], abs(W[W_Y, 2]))
+    rs[RS_T] = rs[RS_T] + so * hs
+    rs[RS_THMAX] = 0.5 * math.pi
+    out[O_T_THETA_MAX] = rs[RS_T]
+    out[O_T_OVERTURN] = rs[RS_T]
+    rs[RS_STATUS] = STATUS_OVERTURNED
+
+
+@njit(cache=True)
+def _to_impact(rs, W, hs, sig, nst):
+    """The state just before the impact (fraction ``sig`` of the step), theta set to exactly 0."""
+    _state_at(W, hs, sig, nst)
+    for i in range(nst):
+        W[W_Y, i] = W[W_TMP, i]
+    rs[RS_T] = rs[RS_T] + sig * hs
+    W[W_Y, 0] = 0.0
+
+
+@njit(cache=True, inline='always')
+def _to_step_end(rs, W, t_new, nst):
+    """Accept the whole step: its end state and (first same as last) its end derivative."""
+    rs[RS_T] = t_new
+    for i in range(nst):
+        W[W_Y, i] = W[W_YNEW, i]
+        W[0, i] = W[6, i]
+
+
+@njit(cache=True)
+def _bounce(prm, rs, W, out, thd1, t_exc_end, a_rest, thd2):
+    """After the impact map (``theta_dot`` ``thd1`` before, ``thd2`` after, the pivot switched):
+    count the impact and apply the rest rule under the base acceleration ``a_rest``.
+    Returns True when the block comes to rest (theta_dot = 0, stuck)."""
+    out[O_N_IMPACTS_ALL] += 1
+    if rs[RS_T] <= t_exc_end:
+        out[O_N_IMPACTS] += 1
+    rs[RS_FRESH] = 1.0
+    if comes_to_rest(prm, a_rest, thd2, prm[P_THR], prm[P_ALPHA]):
+        W[W_Y, 1] = 0.0
+        rs[RS_PHASE] = PHASE_STUCK
+        rs[RS_S] = 0.0
+        out[O_N_RESTS] += 1
+        return True
+    W[W_Y, 1] = thd2
+    return False
