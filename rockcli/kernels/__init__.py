@@ -16,7 +16,7 @@ Files (data flows down this list):
 ``steps``                 what both drivers share: run record, segments, step-size control, the
                           events of a rocking step in theta, impact bookkeeping
 ``rigid``                 :func:`simulate_rigid`: a block on a rigid foundation (two states; the
-                          end-of-run proofs P1, P2, P4, P6 in its notes)
+                          end-of-run proofs P1, P2, P4, P6, P7 in its notes)
 ``driver``                :func:`simulate_core`: a block on an isolated base as a loop over phases
                           (proofs P3, P3s, P5 in its docstring)
 ``batch``                 :func:`simulate_batch_rigid`, :func:`simulate_batch`: many verdict-only

@@ -341,7 +341,7 @@ def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, ta
     """Integrate one scene on an isolated base. Fills ``out`` (see the ``O_*`` layout) and returns the history.
 
     Scenes on a rigid foundation run in :func:`rockcli.kernels.rigid.simulate_rigid` (same
-    arguments and outputs; its proofs P1, P2, P4, P6 are stated there).
+    arguments and outputs; its proofs P1, P2, P4, P6, P7 are stated there).
 
     End of the run (one rule for every mode)
     ----------------------------------------

@@ -6,7 +6,7 @@ ground acceleration is scanned for the uplift condition and nothing is integrate
 the rigid foundation compiles only this (and :mod:`rockcli.kernels.steps`, ``dopri``, ``events``,
 ``ground``, ``polynomials``). The isolated bases have their own driver, :mod:`rockcli.kernels.driver`.
 
-End of the run: the proofs P1, P2, P4, P6 (the general rule, and P3, P3s, P5 for isolated bases, are
+End of the run: the proofs P1, P2, P4, P6, P7 (the general rule, and P3, P3s, P5 for isolated bases, are
 stated in :func:`rockcli.kernels.driver.simulate_core`):
 
 P1 (ground still, block stuck). With ``ag = 0`` and theta = 0 the uplift condition
@@ -39,6 +39,14 @@ P6 (``early`` only, after the first uplift, ``|theta| >= alpha``). Beyond alpha 
    the ground is still it falls (between alpha and pi/2 the potential falls outward; below the
    barrier a block moving inward turns back). With the ground already still, a block beyond
    alpha moving outward falls as well. The run ends as overturned with ``t_overturn`` unknown (NaN).
+P7 (``early`` only, ``|theta| >= alpha``, moving outward). With ``v = s theta_dot`` (outward
+   positive) Eq (3) reads ``dv/dt = -p^2 sin(A) - p^2 (s ag/g) cos(A)``, ``A = s alpha - theta``. Beyond
+   alpha ``-sin(A) > 0`` (gravity pulls outward) and ``0 < cos(A) <= 1``, so ``dv/dt >= -p^2 |ag|/g`` and
+   ``v(t') >= v(t) - (p^2/g) int_t^t' |ag|``. If ``v > (p^2/g)`` times the whole remaining impulse, v
+   stays positive: theta keeps moving outward (so stays beyond alpha, where the bound holds) until
+   the ground is still, and then falls (P6's last case). The run ends as overturned, ``t_overturn``
+   unknown (NaN). (P6 bounds the energy, P7 the outward velocity: a block that crossed the barrier
+   slowly is caught by P6, one thrown over it by P7.)
 """
 
 from __future__ import annotations
@@ -65,7 +73,7 @@ _NO_HY = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)  # no hysteretic elements
 @njit(cache=True)
 def _end_of_run_rigid(prm, ekind, epar, jtab, dt, t_exc_end, early, want_history, t_show_end, t_horizon,
                       max_steps, rs, W, out):
-    """The end-of-run rule on the ground (P1, P2, P4, P6 in the module notes): True when the run ends now."""
+    """The end-of-run rule on the ground (P1, P2, P4, P6, P7 in the module notes): True when the run ends now."""
     t = rs[RS_T]
     alpha = prm[P_ALPHA]
     p2 = prm[P_P2]
@@ -88,7 +96,7 @@ def _end_of_run_rigid(prm, ekind, epar, jtab, dt, t_exc_end, early, want_history
                         out[O_T_THETA_MAX] = math.nan
                     settled = True
         if not settled and early and out[O_UPLIFTED] != 0.0:
-            c_imp = p2 / (math.sqrt(2.0) * prm[P_G])  # P4, P6: dX/dt <= c_imp |ag|
+            c_imp = p2 / (math.sqrt(2.0) * prm[P_G])  # P4, P6: dX/dt <= c_imp |ag|; P7: dv/dt >= -sqrt(2) c_imp |ag|
             imp = c_imp * _impulse_left(ekind, jtab, epar, dt, t)
             x_bar = math.sqrt(p2 * (1.0 - prm[P_COSA]))  # P4: E < p^2  <=>  X < x_bar
             if rs[RS_PHASE] == PHASE_STUCK:
@@ -103,8 +111,9 @@ def _end_of_run_rigid(prm, ekind, epar, jtab, dt, t_exc_end, early, want_history
                         settled = True  # P4
                         rs[RS_PEAK_FINAL] = 0.0
                 elif (math.sqrt(max(0.0, En - p2 * prm[P_SINA])) + imp < math.sqrt(p2 * (1.0 - prm[P_SINA]))
+                      or rs[RS_S] * W[W_Y, 1] > math.sqrt(2.0) * imp
                       or (imp == 0.0 and rs[RS_S] * W[W_Y, 1] >= 0.0)):
-                    # P6: it falls; the time it lands is not computed
+                    # P6, P7: it falls; the time it lands is not computed
                     rs[RS_STATUS] = STATUS_OVERTURNED
                     rs[RS_THMAX] = 0.5 * math.pi
                     rs[RS_PEAK_FINAL] = 0.0
