@@ -17,7 +17,7 @@ import math
 
 from numba import njit
 
-from rockcli.kernels.layout import FOUNDATION_BILINEAR, P_RTOL, P_SC0, W_TMP, W_Y, W_YNEW
+from rockcli.kernels.layout import FOUNDATION_BILINEAR, P_RTOL, P_SC0, W_EV, W_FEV, W_RE, W_TMP, W_Y, W_YNEW
 from rockcli.kernels.polynomials import _poly
 
 # Tableau and dense-output coefficients. Module-level tuples: mathematical constants of the method,
@@ -47,38 +47,43 @@ _P = (
 
 
 @njit(cache=True, inline='always')
-def _dp5_step(rhs_into, fkind, phase, s, prm, seg, epar, hy, gz, t, h, W, i0, i1):
-    """One Dormand-Prince step of the active states ``i0:i1`` from ``(t, W[W_Y])``.
+def _dp5_step(rhs_into, fkind, phase, s, prm, seg, epar, hy, gz, t, h, W, i0, i1, r0):
+    """One Dormand-Prince step of the active states ``i0:i1`` from ``(t, W[r0 + W_Y])``.
 
     ``rhs_into`` is the driver's right-hand side (:mod:`rockcli.kernels.rhs`), passed as a
-    function so that each driver compiles only its own.
+    function so that each driver compiles only its own; each driver compiles this once, in one
+    function of its own that takes the step and retakes it to events (:func:`_restep_rows`).
 
-    Expects ``W[0] = f(t, y)``; fills the stage derivatives ``W[1:7]`` (``W[6] = f(t + h, ynew)``,
-    first-same-as-last) and ``W[W_YNEW]``. Returns the RMS of the local error over the active
-    states, each scaled by its tolerance (see the module notes; accept the step when <= 1).
-    ``hy`` is the anchor of the hysteretic elements, ``gz`` their largest ``|dz/du|`` on the step.
+    Works in rows ``r0 .. r0 + 9`` of ``W`` (``r0 = 0`` for a step, ``W_RE`` for a retaken one).
+    Expects ``W[r0] = f(t, y)``; fills the stage derivatives ``W[r0 + 1 : r0 + 7]``
+    (``W[r0 + 6] = f(t + h, ynew)``, first-same-as-last) and ``W[r0 + W_YNEW]``. Returns the RMS
+    of the local error over the active states, each scaled by its tolerance (see the module notes;
+    accept the step when <= 1). ``hy`` is the anchor of the hysteretic elements, ``gz`` their
+    largest ``|dz/du|`` on the step.
     """
+    ry = r0 + W_Y
+    rn = r0 + W_YNEW
     for i in range(4):
-        W[W_TMP, i] = W[W_Y, i]
-        W[W_YNEW, i] = W[W_Y, i]
+        W[r0 + W_TMP, i] = W[ry, i]
+        W[rn, i] = W[ry, i]
     for st in range(1, 7):  # one call site of the right-hand side (it is inlined once)
-        row = W_TMP if st < 6 else W_YNEW
+        row = r0 + W_TMP if st < 6 else rn
         for i in range(i0, i1):
             acc = 0.0
             for j in range(st):
-                acc += _A[st][j] * W[j, i]
-            W[row, i] = W[W_Y, i] + h * acc
-        rhs_into(fkind, phase, s, prm, seg, epar, hy, t + _C[st] * h, W, row, st)
+                acc += _A[st][j] * W[r0 + j, i]
+            W[row, i] = W[ry, i] + h * acc
+        rhs_into(fkind, phase, s, prm, seg, epar, hy, t + _C[st] * h, W, row, r0 + st)
     rtol = prm[P_RTOL]
     tot = 0.0
     for i in range(i0, i1):
         err = 0.0
         for j in range(7):
-            err += _E[j] * W[j, i]
+            err += _E[j] * W[r0 + j, i]
         if i == 2 and fkind >= FOUNDATION_BILINEAR:
-            sc = rtol / (1.0 / max(abs(W[W_Y, i]), abs(W[W_YNEW, i]), prm[P_SC0 + i]) + gz)
+            sc = rtol / (1.0 / max(abs(W[ry, i]), abs(W[rn, i]), prm[P_SC0 + i]) + gz)
         else:
-            sc = max(abs(W[W_Y, i]), abs(W[W_YNEW, i]), prm[P_SC0 + i]) * rtol
+            sc = max(abs(W[ry, i]), abs(W[rn, i]), prm[P_SC0 + i]) * rtol
         tot += (h * err / sc) ** 2
     return math.sqrt(tot / (i1 - i0))
 
@@ -106,3 +111,29 @@ def _state_at(W, h, sig, nst):
     for i in range(nst):
         W[W_TMP, i] = _poly(_dense(W, h, i, 1.0), sig)
 
+
+@njit(cache=True, inline='always')
+def _restep_rows(W):
+    """Prepare a step retaken to an event inside the last one: its start state and derivative in
+    rows ``W_RE + 0`` and ``W_RE + W_Y``; the driver then takes it with ``r0 = W_RE``
+    (:func:`_dp5_step`), so the last step and its dense output are kept. The retaken state is
+    ``W[W_EV]``, with ``W[W_FEV] = f`` there.
+
+    Why: the quartic dense output that locates the event is of 4th order (local error O(h^5))
+    while the step itself is of 5th (O(h^6)), and with local extrapolation the step's actual error
+    is well below its estimate: a state read from the dense output carries an error up to about
+    the tolerance, one retaken step a small fraction of it. Its error estimate is not needed: it
+    is shorter than the accepted step (6 RHS).
+    """
+    for i in range(4):
+        W[W_RE, i] = W[0, i]
+        W[W_RE + W_Y, i] = W[W_Y, i]
+
+
+@njit(cache=True)
+def _shift_event(W, dt, i0, i1):
+    """Move the event state ``W[W_EV]`` by the small time ``dt`` along ``W[W_FEV] = f`` there: one
+    Taylor term, onto the event's root, whose location on the dense output is off by O(h^5) (the
+    neglected term is O(dt^2))."""
+    for i in range(i0, i1):
+        W[W_EV, i] += W[W_FEV, i] * dt

@@ -23,8 +23,8 @@ import math
 from numba import njit
 
 from rockcli.kernels.bearings import (base_force, bearing_energy, element_states, free_disp_bound, free_force_bound,
-                                      initial_anchor, reanchor, z_sensitivity)
-from rockcli.kernels.dopri import _dense, _dp5_step, _state_at
+                                      force_rate, initial_anchor, knee_ratio, knee_step, reanchor, z_sensitivity)
+from rockcli.kernels.dopri import _dense, _dp5_step, _restep_rows, _shift_event
 from rockcli.kernels.events import (REV_AT, REV_WRONG_START, _count_uplift, _hist_push, _u_extremum,
                                     hysteretic_uplift, impact_map, reversal_check)
 from rockcli.kernels.ground import ground_at
@@ -32,8 +32,8 @@ from rockcli.kernels.layout import (FOUNDATION_BILINEAR, O_T_SETTLED, P_ALPHA, P
                                     P_RTOL, P_SC0, P_THR, P_W, P_XI, PHASE_ROCKING, PHASE_STUCK, RS_DIR, RS_FRESH,
                                     RS_H, RS_NREV, RS_NRHS, RS_PHASE, RS_REJ, RS_S, RS_SEG_END, RS_SETTLED,
                                     RS_SPLIT, RS_STATUS, RS_STEPS, RS_T, RS_THMAX, RS_U1A, RS_UA, RS_UMAX, RS_XI1,
-                                    RS_XI2, STATUS_MAX_STEPS, W_TMP, W_Y, W_YNEW)
-from rockcli.kernels.polynomials import _first_exceed
+                                    RS_XI2, STATUS_MAX_STEPS, W_EV, W_FEV, W_RE, W_Y, W_YNEW)
+from rockcli.kernels.polynomials import _first_exceed, _poly
 from rockcli.kernels.rhs import _rhs_into
 from rockcli.kernels.steps import (EV_FAILED, EV_IMPACT, EV_OVERTURN, _advance_segment, _bounce, _finish, _grow,
                                    _out_of_time, _rocking_events, _seg, _shrink, _start, _step_start, _to_impact,
@@ -89,6 +89,19 @@ def _history_row(H, nh, fkind, prm, rs, epar, W, row):
     if fkind >= FOUNDATION_BILINEAR:
         z1, z2, _ = element_states(fkind, prm, hy, u)
     return _hist_push(H, nh, t, ag, W, row, z1, z2, fb)
+
+
+@njit(cache=True)
+def _dp5_iso(fkind, phase, s, prm, seg, epar, hy, gz, t, h, W, i0, i1, r0):
+    """The Dormand-Prince step on an isolated base (compiled once for this driver)."""
+    return _dp5_step(_rhs_into, fkind, phase, s, prm, seg, epar, hy, gz, t, h, W, i0, i1, r0)
+
+
+@njit(cache=True)
+def _restep_iso(fkind, phase, s, prm, seg, epar, hy, t, h, W, i0, i1):
+    """The last step retaken to an event at ``t + h`` (:func:`rockcli.kernels.dopri._restep_rows`)."""
+    _restep_rows(W)
+    _dp5_iso(fkind, phase, s, prm, seg, epar, hy, 0.0, t, h, W, i0, i1, W_RE)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -180,6 +193,8 @@ def _take_step(fkind, prm, ekind, epar, max_steps, rs, W, t_stop, nst):
         gz = z_sensitivity(fkind, prm, _hy(rs))
         uu = abs(W[W_Y, 2])
         tol_u = prm[P_RTOL] / (1.0 / max(uu, prm[P_SC0 + 2]) + gz)
+        # resolve the knee of a bearing's loop (bearings.knee_step)
+        h = min(h, knee_step(fkind, prm, _hy(rs), W[W_Y, 3], W[0, 3]))
     flips = 0
     steps = rs[RS_STEPS]
     rej = rs[RS_REJ]
@@ -190,7 +205,7 @@ def _take_step(fkind, prm, ekind, epar, max_steps, rs, W, t_stop, nst):
         last = hs >= t_stop - t
         if last:
             hs = t_stop - t
-        err = _dp5_step(_rhs_into, fkind, phase, s, prm, seg, epar, hy, gz, t, hs, W, i0, nst)
+        err = _dp5_iso(fkind, phase, s, prm, seg, epar, hy, gz, t, hs, W, i0, nst, 0)
         nrhs += 6
         if err <= 1.0 and hyst:
             code, sr = reversal_check(W, hs, rs[RS_DIR], tol_u)
@@ -211,6 +226,14 @@ def _take_step(fkind, prm, ekind, epar, max_steps, rs, W, t_stop, nst):
             if code == REV_AT:
                 sig_lim = sr
                 last = False
+            kr = knee_ratio(fkind, prm, hy, W[W_YNEW, 2] if code != REV_AT else _poly(_dense(W, hs, 2, 1.0), sr),
+                            hs, W[W_Y, 3])
+            if kr > 1.0:
+                # the step ran through a knee of the bearing's loop unresolved: retake it shorter
+                rej += 1
+                h = hs * max(0.2, 0.9 / kr)
+                sig_lim = 1.0
+                continue
         if err <= 1.0:
             fac = _grow(err)
             if not last or fac < 1.0:
@@ -225,16 +248,18 @@ def _take_step(fkind, prm, ekind, epar, max_steps, rs, W, t_stop, nst):
         return False, hs, last, sig_lim
     rs[RS_STEPS] = steps + 1
     if sig_lim < 1.0:
-        # the step stands up to the reversal of u: its end state is the dense state there
-        _state_at(W, hs, sig_lim, nst)
+        # the step stands up to the reversal of u: its end state is the state there, retaken as a
+        # step (the dense output keeps describing the whole step for the events inside it)
+        _restep_iso(fkind, phase, s, prm, seg, epar, hy, t, sig_lim * hs, W, i0, nst)
+        rs[RS_NRHS] += 6
         for i in range(nst):
-            W[W_YNEW, i] = W[W_TMP, i]
+            W[W_YNEW, i] = W[W_EV, i]
         rs[RS_NREV] += 1
     return True, hs, last, sig_lim
 
 
 @njit(cache=True, inline='always')
-def _after_stuck_step(fkind, prm, rs, W, out, hs, t_new, sig_lim):
+def _after_stuck_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, epar):
     """Stuck on an isolated base, after a step of the base: uplift when |a| crosses g tan(alpha)."""
     thr = prm[P_THR]
     if fkind >= FOUNDATION_BILINEAR:
@@ -254,10 +279,19 @@ def _after_stuck_step(fkind, prm, rs, W, out, hs, t_new, sig_lim):
     if (W[W_Y, 3] > 0.0) != (W[W_YNEW, 3] > 0.0):
         rs[RS_UMAX] = max(rs[RS_UMAX], _u_extremum(W, hs, sig_lim if sig < 0.0 else sig))
     if sig >= 0.0:
-        _state_at(W, hs, sig, 4)
-        W[W_Y, 2] = W[W_TMP, 2]
-        W[W_Y, 3] = W[W_TMP, 3]
-        rs[RS_T] = rs[RS_T] + sig * hs
+        # the state at the uplift with the accuracy of a step: retake the step to it, then onto the
+        # root of |a| = g tan(alpha) (a = F: the block rides on the base)
+        t = rs[RS_T]
+        hy = _hy(rs)
+        _restep_iso(fkind, PHASE_STUCK, 0.0, prm, _seg(rs), epar, hy, t, sig * hs, W, 2, 4)
+        rs[RS_NRHS] += 6
+        F, Fd = force_rate(fkind, prm, hy, W[W_EV, 2], W[W_EV, 3], W[W_FEV, 3])
+        dt_e = (-su * thr - F) / Fd if Fd != 0.0 else 0.0
+        dt_e = min(max(dt_e, -sig * hs), (1.0 - sig) * hs)
+        _shift_event(W, dt_e, 2, 4)
+        W[W_Y, 2] = W[W_EV, 2]
+        W[W_Y, 3] = W[W_EV, 3]
+        rs[RS_T] = t + sig * hs + dt_e
         rs[RS_S] = su
         rs[RS_PHASE] = PHASE_ROCKING
         _count_uplift(out, rs[RS_T])
@@ -277,7 +311,7 @@ def _after_stuck_step(fkind, prm, rs, W, out, hs, t_new, sig_lim):
 
 
 @njit(cache=True, inline='always')
-def _after_rocking_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, nst):
+def _after_rocking_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, nst, epar):
     """Rocking on an isolated base, after a step: the events in theta
     (:func:`rockcli.kernels.steps._rocking_events`) and the base's part of each. Returns the event
     code (``EV_*``); at an impact the state is left just before it (see :func:`_impact`)."""
@@ -302,7 +336,7 @@ def _after_rocking_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, nst):
         rs[RS_UMAX] = max(rs[RS_UMAX], abs(W[W_Y, 2]))
         _reanchor(fkind, prm, rs, W[W_Y, 2], _direction(rs, W[W_Y, 3]))
     elif code == EV_IMPACT:
-        _to_impact(rs, W, hs, sig, nst)
+        _to_impact(_restep_iso, fkind, prm, rs, W, epar, _hy(rs), hs, sig, nst)
         # the bearings reach the impact point on the step's branch (u does not jump)
         _reanchor(fkind, prm, rs, W[W_Y, 2], rs[RS_DIR])
     else:
@@ -465,12 +499,12 @@ def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, ta
         t_new = t_stop if last else rs[RS_T] + sig_lim * hs
 
         if rs[RS_PHASE] == PHASE_STUCK:
-            _after_stuck_step(fkind, prm, rs, W, out, hs, t_new, sig_lim)
+            _after_stuck_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, epar)
             if want_history:
                 H, nh = _history_row(H, nh, fkind, prm, rs, epar, W, W_Y)
             continue
 
-        code = _after_rocking_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, nst)
+        code = _after_rocking_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, nst, epar)
         if code == EV_IMPACT:
             if want_history:  # the state just before the impact, then (below) just after
                 H, nh = _history_row(H, nh, fkind, prm, rs, epar, W, W_Y)

@@ -55,13 +55,13 @@ import math
 
 from numba import njit
 
-from rockcli.kernels.dopri import _dp5_step
+from rockcli.kernels.dopri import _dp5_step, _restep_rows
 from rockcli.kernels.events import _count_uplift, _hist_push, impact_map
 from rockcli.kernels.ground import _impulse_left, _rigid_uplift, ground_at
 from rockcli.kernels.layout import (O_T_SETTLED, O_T_THETA_MAX, O_UPLIFTED, P_ALPHA, P_COSA, P_ETA, P_G, P_P2,
                                     P_SINA, P_THR, PHASE_ROCKING, PHASE_STUCK, RS_FRESH, RS_H, RS_NRHS,
                                     RS_PEAK_FINAL, RS_PHASE, RS_REJ, RS_S, RS_SEG_END, RS_SETTLED, RS_STATUS,
-                                    RS_STEPS, RS_T, RS_THMAX, STATUS_MAX_STEPS, STATUS_OVERTURNED, W_Y)
+                                    RS_STEPS, RS_T, RS_THMAX, STATUS_MAX_STEPS, STATUS_OVERTURNED, W_RE, W_Y)
 from rockcli.kernels.rhs import _rhs_rigid_into
 from rockcli.kernels.steps import (EV_FAILED, EV_IMPACT, EV_OVERTURN, _advance_segment, _bounce, _finish, _grow,
                                    _out_of_time, _rocking_events, _seg, _shrink, _start, _step_start, _to_impact,
@@ -160,7 +160,7 @@ def _take_step_rigid(prm, ekind, epar, max_steps, rs, W, t_stop):
         last = hs >= t_stop - t
         if last:
             hs = t_stop - t
-        err = _dp5_step(_rhs_rigid_into, 0, PHASE_ROCKING, s, prm, seg, epar, _NO_HY, 0.0, t, hs, W, 0, 2)
+        err = _dp5_rigid(s, prm, seg, epar, t, hs, W, 0)
         nrhs += 6
         if err <= 1.0:
             fac = _grow(err)
@@ -176,6 +176,19 @@ def _take_step_rigid(prm, ekind, epar, max_steps, rs, W, t_stop):
         return False, hs, last
     rs[RS_STEPS] = steps + 1
     return True, hs, last
+
+
+@njit(cache=True)
+def _dp5_rigid(s, prm, seg, epar, t, h, W, r0):
+    """The Dormand-Prince step of theta, theta_dot (compiled once for this driver)."""
+    return _dp5_step(_rhs_rigid_into, 0, PHASE_ROCKING, s, prm, seg, epar, _NO_HY, 0.0, t, h, W, 0, 2, r0)
+
+
+@njit(cache=True)
+def _restep_rigid(fkind, phase, s, prm, seg, epar, hy, t, h, W, i0, i1):
+    """The last step retaken to an event at ``t + h`` (:func:`rockcli.kernels.dopri._restep_rows`)."""
+    _restep_rows(W)
+    _dp5_rigid(s, prm, seg, epar, t, h, W, W_RE)
 
 
 @njit(cache=True, inline='always')
@@ -231,7 +244,7 @@ def simulate_rigid(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, t
             rs[RS_S] = 0.0
             rs[RS_FRESH] = 1.0
         elif code == EV_IMPACT:
-            _to_impact(rs, W, hs, sig, 2)
+            _to_impact(_restep_rigid, 0, prm, rs, W, epar, _NO_HY, hs, sig, 2)
             if want_history:  # the state just before the impact, then (below) just after
                 H, nh = _history_rigid(H, nh, rs, epar, W)
             thd1 = W[W_Y, 1]

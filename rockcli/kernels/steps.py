@@ -13,7 +13,7 @@ import math
 import numpy as np
 from numba import njit
 
-from rockcli.kernels.dopri import _dense, _state_at
+from rockcli.kernels.dopri import _dense, _shift_event, _state_at
 from rockcli.kernels.events import comes_to_rest
 from rockcli.kernels.ground import _pulse_segment
 from rockcli.kernels.layout import (E_AP, E_TP, EXC_RECORD, N_HIST, N_OUT, N_RS, N_W, O_N_IMPACTS, O_N_IMPACTS_ALL,
@@ -23,7 +23,7 @@ from rockcli.kernels.layout import (E_AP, E_TP, EXC_RECORD, N_HIST, N_OUT, N_RS,
                                     PHASE_STUCK, RS_FRESH, RS_H, RS_J, RS_NREV, RS_NRHS, RS_PEAK_FINAL, RS_PHASE,
                                     RS_REJ, RS_S, RS_SEG, RS_SEG_END, RS_SETTLED, RS_STATUS, RS_STEPS, RS_T,
                                     RS_THMAX, RS_UMAX, SEG_LINEAR, STATUS_DONE, STATUS_MAX_STEPS, STATUS_OVERTURNED,
-                                    W_TMP, W_Y, W_YNEW)
+                                    W_EV, W_FEV, W_TMP, W_Y, W_YNEW)
 from rockcli.kernels.polynomials import _first_down, _poly
 
 
@@ -231,13 +231,20 @@ def _to_overturn(rs, W, out, hs, so, nst):
     rs[RS_STATUS] = STATUS_OVERTURNED
 
 
-@njit(cache=True)
-def _to_impact(rs, W, hs, sig, nst):
-    """The state just before the impact (fraction ``sig`` of the step), theta set to exactly 0."""
-    _state_at(W, hs, sig, nst)
+@njit(cache=True, inline='always')
+def _to_impact(restep, fkind, prm, rs, W, epar, hy, hs, sig, nst):
+    """The state at the impact, fraction ``sig`` of the step: the step retaken to it (``restep``,
+    the driver's :func:`rockcli.kernels.dopri._restep_rows`), moved onto the root theta = 0 by one
+    Taylor term, theta then set to exactly 0."""
+    t = rs[RS_T]
+    restep(fkind, PHASE_ROCKING, rs[RS_S], prm, _seg(rs), epar, hy, t, sig * hs, W, 0, nst)
+    rs[RS_NRHS] += 6
+    dt_e = -W[W_EV, 0] / W[W_FEV, 0] if W[W_FEV, 0] != 0.0 else 0.0
+    dt_e = min(max(dt_e, -sig * hs), (1.0 - sig) * hs)
+    _shift_event(W, dt_e, 0, nst)
     for i in range(nst):
-        W[W_Y, i] = W[W_TMP, i]
-    rs[RS_T] = rs[RS_T] + sig * hs
+        W[W_Y, i] = W[W_EV, i]
+    rs[RS_T] = t + sig * hs + dt_e
     W[W_Y, 0] = 0.0
 
 
