@@ -208,6 +208,17 @@ def force_slope(fkind, prm, hy, u):
 
 
 @njit(cache=True)
+def force_rate(fkind, prm, hy, u, ud, udd):
+    """``(F, dF/dt)`` of the bearings at ``(u, u', u'')`` (on the step's branch for a hysteretic one)."""
+    if fkind == FOUNDATION_LINEAR:
+        w = prm[P_W]
+        c = 2.0 * prm[P_XI] * w
+        return -w * w * u - c * ud, -w * w * ud - c * udd
+    F, dF = force_slope(fkind, prm, hy, u)
+    return F, dF * ud
+
+
+@njit(cache=True)
 def element_states(fkind, prm, hy, u):
     """``(z1, z2, u1)`` at ``u`` on the step's branch (``z2 = u1 = 0`` for a single element)."""
     if fkind == FOUNDATION_BILINEAR:

@@ -17,7 +17,7 @@ import math
 
 from numba import njit
 
-from rockcli.kernels.layout import FOUNDATION_BILINEAR, P_RTOL, P_SC0, W_TMP, W_Y, W_YNEW
+from rockcli.kernels.layout import FOUNDATION_BILINEAR, P_RTOL, P_SC0, W_EV, W_FEV, W_RE, W_TMP, W_Y, W_YNEW
 from rockcli.kernels.polynomials import _poly
 from rockcli.kernels.rhs import _rhs_into
 
@@ -108,3 +108,31 @@ def _state_at(W, h, sig, nst):
     for i in range(nst):
         W[W_TMP, i] = _poly(_dense(W, h, i, 1.0), sig)
 
+
+
+@njit(cache=True)
+def _restep(fkind, phase, s, prm, seg, epar, hy, t, h, W, i0, i1):
+    """The state at ``t + h``, an event inside the last step (``0 < h <=`` its size), retaken as a
+    Dormand-Prince step from the same start: ``W[W_EV]``, with ``W[W_FEV] = f`` there.
+
+    The quartic dense output that locates the event is of 4th order (local error O(h^5)) while the
+    step itself is of 5th (O(h^6)), and with local extrapolation the step's actual error is well
+    below its estimate: a state read from the dense output carries an error up to about the
+    tolerance, one retaken step a small fraction of it. The retaken step uses rows
+    ``W[W_RE:W_RE + 10]`` the way a step uses ``W[0:10]``, so the last step and its dense output
+    are kept. Its error estimate is not needed: it is shorter than the accepted step (6 RHS).
+    """
+    S = W[W_RE:W_RE + W_TMP + 1, :]
+    for i in range(4):
+        S[0, i] = W[0, i]
+        S[W_Y, i] = W[W_Y, i]
+    _dp5_step(fkind, phase, s, prm, seg, epar, hy, 0.0, t, h, S, i0, i1)
+
+
+@njit(cache=True)
+def _shift_event(W, dt, i0, i1):
+    """Move the event state ``W[W_EV]`` by the small time ``dt`` along ``W[W_FEV] = f`` there: one
+    Taylor term, onto the event's root, whose location on the dense output is off by O(h^5) (the
+    neglected term is O(dt^2))."""
+    for i in range(i0, i1):
+        W[W_EV, i] += W[W_FEV, i] * dt

@@ -24,8 +24,8 @@ import numpy as np
 from numba import njit
 
 from rockcli.kernels.bearings import (base_force, bearing_energy, element_states, free_disp_bound, free_force_bound,
-                                      initial_anchor, reanchor, z_sensitivity)
-from rockcli.kernels.dopri import _dense, _dp5_step, _state_at
+                                      force_rate, initial_anchor, reanchor, z_sensitivity)
+from rockcli.kernels.dopri import _dense, _dp5_step, _restep, _shift_event, _state_at
 from rockcli.kernels.events import (REV_AT, REV_WRONG_START, _count_uplift, _hist_push, _u_extremum,
                                     comes_to_rest, hysteretic_uplift, impact_map, reversal_check)
 from rockcli.kernels.ground import _ground, _impulse_left, _pulse_segment, _rigid_uplift
@@ -40,7 +40,7 @@ from rockcli.kernels.layout import (E_AP, E_TP, EXC_RECORD, FOUNDATION_BILINEAR,
                                     RS_FRESH, RS_H, RS_J, RS_NREV, RS_NRHS, RS_PEAK_FINAL, RS_PHASE,
                                     RS_REJ, RS_S, RS_SEG, RS_SEG_END, RS_SETTLED, RS_SPLIT, RS_STATUS, RS_STEPS,
                                     RS_T, RS_THMAX, RS_U1A, RS_UA, RS_UMAX, RS_XI1, RS_XI2, SEG_LINEAR,
-                                    STATUS_DONE, STATUS_MAX_STEPS, STATUS_OVERTURNED, W_TMP, W_Y, W_YNEW)
+                                    STATUS_DONE, STATUS_MAX_STEPS, STATUS_OVERTURNED, W_EV, W_FEV, W_TMP, W_Y, W_YNEW)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -342,16 +342,18 @@ def _take_step(fkind, prm, ekind, epar, max_steps, rs, W, t_stop, nst):
         return False, hs, last, sig_lim
     rs[RS_STEPS] = steps + 1
     if sig_lim < 1.0:
-        # the step stands up to the reversal of u: its end state is the dense state there
-        _state_at(W, hs, sig_lim, nst)
+        # the step stands up to the reversal of u: its end state is the state there, retaken as a
+        # step (the dense output keeps describing the whole step for the events inside it)
+        _restep(fkind, phase, s, prm, seg, epar, hy, t, sig_lim * hs, W, i0, nst)
+        rs[RS_NRHS] += 6
         for i in range(nst):
-            W[W_YNEW, i] = W[W_TMP, i]
+            W[W_YNEW, i] = W[W_EV, i]
         rs[RS_NREV] += 1
     return True, hs, last, sig_lim
 
 
 @njit(cache=True, inline='always')
-def _after_stuck_step(fkind, prm, rs, W, out, hs, t_new, sig_lim):
+def _after_stuck_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, epar):
     """Stuck on an isolated base, after a step of the base: uplift when |a| crosses g tan(alpha)."""
     thr = prm[P_THR]
     if fkind >= FOUNDATION_BILINEAR:
@@ -371,10 +373,19 @@ def _after_stuck_step(fkind, prm, rs, W, out, hs, t_new, sig_lim):
     if (W[W_Y, 3] > 0.0) != (W[W_YNEW, 3] > 0.0):
         rs[RS_UMAX] = max(rs[RS_UMAX], _u_extremum(W, hs, sig_lim if sig < 0.0 else sig))
     if sig >= 0.0:
-        _state_at(W, hs, sig, 4)
-        W[W_Y, 2] = W[W_TMP, 2]
-        W[W_Y, 3] = W[W_TMP, 3]
-        rs[RS_T] = rs[RS_T] + sig * hs
+        # the state at the uplift with the accuracy of a step: retake the step to it, then onto the
+        # root of |a| = g tan(alpha) (a = F: the block rides on the base)
+        t = rs[RS_T]
+        hy = _hy(rs)
+        _restep(fkind, PHASE_STUCK, 0.0, prm, _seg(rs), epar, hy, t, sig * hs, W, 2, 4)
+        rs[RS_NRHS] += 6
+        F, Fd = force_rate(fkind, prm, hy, W[W_EV, 2], W[W_EV, 3], W[W_FEV, 3])
+        dt_e = (-su * thr - F) / Fd if Fd != 0.0 else 0.0
+        dt_e = min(max(dt_e, -sig * hs), (1.0 - sig) * hs)
+        _shift_event(W, dt_e, 2, 4)
+        W[W_Y, 2] = W[W_EV, 2]
+        W[W_Y, 3] = W[W_EV, 3]
+        rs[RS_T] = t + sig * hs + dt_e
         rs[RS_S] = su
         rs[RS_PHASE] = PHASE_ROCKING
         _count_uplift(out, rs[RS_T])
@@ -394,7 +405,7 @@ def _after_stuck_step(fkind, prm, rs, W, out, hs, t_new, sig_lim):
 
 
 @njit(cache=True, inline='always')
-def _after_rocking_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, t_exc_end, nst):
+def _after_rocking_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, t_exc_end, nst, epar):
     """Rocking, after a step: impact (s theta falls to 0), peak, alpha, overturning (s theta = pi/2).
 
     Returns 0 (go on), 1 (overturned: the run ends), 2 (the uplift did not take: back to stuck).
@@ -469,10 +480,15 @@ def _after_rocking_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, t_exc_end, n
         return 2
 
     if impact:
-        _state_at(W, hs, sig_end, nst)
+        # the state at the impact with the accuracy of a step, then onto the root theta = 0
+        _restep(fkind, PHASE_ROCKING, s, prm, _seg(rs), epar, _hy(rs), t, sig_end * hs, W, 0, nst)
+        rs[RS_NRHS] += 6
+        dt_e = -W[W_EV, 0] / W[W_FEV, 0] if W[W_FEV, 0] != 0.0 else 0.0
+        dt_e = min(max(dt_e, -sig_end * hs), (1.0 - sig_end) * hs)
+        _shift_event(W, dt_e, 0, nst)
         for i in range(nst):
-            W[W_Y, i] = W[W_TMP, i]
-        rs[RS_T] = t + sig_end * hs
+            W[W_Y, i] = W[W_EV, i]
+        rs[RS_T] = t + sig_end * hs + dt_e
         W[W_Y, 0] = 0.0
         # the bearings reach the impact point on the step's branch (u does not jump)
         _reanchor(fkind, prm, rs, W[W_Y, 2], rs[RS_DIR])
@@ -721,12 +737,12 @@ def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, ta
         t_new = t_stop if last else rs[RS_T] + sig_lim * hs
 
         if rs[RS_PHASE] == PHASE_STUCK:
-            _after_stuck_step(fkind, prm, rs, W, out, hs, t_new, sig_lim)
+            _after_stuck_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, epar)
             if want_history:
                 H, nh = _history_row(H, nh, fkind, prm, rs, epar, W, W_Y)
             continue
 
-        code = _after_rocking_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, t_exc_end, nst)
+        code = _after_rocking_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, t_exc_end, nst, epar)
         if code == 3:
             if want_history:  # the state just before the impact, then (below) just after
                 H, nh = _history_row(H, nh, fkind, prm, rs, epar, W, W_Y)

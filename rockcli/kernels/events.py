@@ -1,7 +1,9 @@
 """Events of a step and what happens at them: the impact map and the rest rule, uplift of a block on
 a hysteretic base, reversals of the base, peaks, and the history rows.
 
-Every event is located on the step's quartic dense output (:mod:`rockcli.kernels.polynomials`).
+Every event is located on the step's quartic dense output (:mod:`rockcli.kernels.polynomials`);
+the state the run goes on from at an impact, an uplift or a reversal is the step retaken to it
+(:func:`rockcli.kernels.dopri._restep`), which is more accurate than the dense output.
 """
 
 from __future__ import annotations

@@ -73,7 +73,12 @@ PHASE_ROCKING = 1
 W_Y = 7  # state at the start of the step (rows 0..6: stage derivatives, row 6 = f(t + h, ynew))
 W_YNEW = 8  # state at the end of the step
 W_TMP = 9  # stage state / dense-output state
-N_W = 10
+# a step retaken to an event inside the last one (rockcli.kernels.dopri._restep) uses rows
+# W_RE + 0..9 the way a step uses rows 0..9, leaving the last step (and its dense output) intact
+W_RE = 10
+W_EV = W_RE + W_YNEW  # the state at the event
+W_FEV = W_RE + 6  # f there
+N_W = 20
 
 # ---------------------------------------------------------------------------------------------
 # The run record ``rs`` (float array) that the phase functions of the driver share
