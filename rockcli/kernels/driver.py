@@ -24,7 +24,7 @@ import numpy as np
 from numba import njit
 
 from rockcli.kernels.bearings import (base_force, bearing_energy, element_states, free_disp_bound, free_force_bound,
-                                      force_rate, initial_anchor, reanchor, z_sensitivity)
+                                      force_rate, initial_anchor, knee_ratio, knee_step, reanchor, z_sensitivity)
 from rockcli.kernels.dopri import _dense, _dp5_step, _restep, _shift_event, _state_at
 from rockcli.kernels.events import (REV_AT, REV_WRONG_START, _count_uplift, _hist_push, _u_extremum,
                                     comes_to_rest, hysteretic_uplift, impact_map, reversal_check)
@@ -297,6 +297,8 @@ def _take_step(fkind, prm, ekind, epar, max_steps, rs, W, t_stop, nst):
         gz = z_sensitivity(fkind, prm, _hy(rs))
         uu = abs(W[W_Y, 2])
         tol_u = prm[P_RTOL] / (1.0 / max(uu, prm[P_SC0 + 2]) + gz)
+        # resolve the knee of a bearing's loop (bearings.knee_step)
+        h = min(h, knee_step(fkind, prm, _hy(rs), W[W_Y, 3], W[0, 3]))
     flips = 0
     steps = rs[RS_STEPS]
     rej = rs[RS_REJ]
@@ -328,6 +330,14 @@ def _take_step(fkind, prm, ekind, epar, max_steps, rs, W, t_stop, nst):
             if code == REV_AT:
                 sig_lim = sr
                 last = False
+            kr = knee_ratio(fkind, prm, hy, W[W_YNEW, 2] if code != REV_AT else _poly(_dense(W, hs, 2, 1.0), sr),
+                            hs, W[W_Y, 3])
+            if kr > 1.0:
+                # the step ran through a knee of the bearing's loop unresolved: retake it shorter
+                rej += 1
+                h = hs * max(0.2, 0.9 / kr)
+                sig_lim = 1.0
+                continue
         if err <= 1.0:
             fac = 5.0 if err == 0.0 else min(5.0, 0.9 * err ** -0.2)
             if not last or fac < 1.0:
