@@ -3,13 +3,15 @@
 Prints (no assertions):
 
 1. wall time of the whole process (median and min of ``--repeat`` runs, warm kernel cache):
-   ``spectrum overturning --alpha 10`` (200 x 200 rigid map), the same with
-   ``--isolation linear:TbTp=2,xi=0.05,gamma=0.01``, each also with ``--early``,
+   ``spectrum overturning --alpha 10`` (200 x 200 rigid map; early stops, the default), the same
+   with ``--isolation linear:TbTp=2,xi=0.05,gamma=0.01`` and with ``--isolation scss:TbTp=2,mu=0.05``,
+   the rigid and linear ones also with ``--full-peaks``,
    ``spectrum critical-size`` with its defaults (Table I, one run), and ``rockcli --help``;
 2. the split of the rigid and linear maps inside one process: imports, loading the compiled
    kernels, building the 40,000 scenes, the kernel (wall and CPU), with cells/s and right-hand sides;
 3. with ``--cold``: the first run with an empty numba cache (``NUMBA_CACHE_DIR`` pointed at a new
-   folder, so the real cache is left alone): time until the kernels are ready, and in all.
+   folder, so the real cache is left alone): time until the kernels are ready for the rigid map,
+   for the linear one, and the whole rigid map command.
 
 The machine may be shared with other jobs: CPU time shows the work, wall time the wait too.
 
@@ -33,6 +35,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 LIN = "linear:TbTp=2,xi=0.05,gamma=0.01"
+SCSS = "scss:TbTp=2,mu=0.05"
 
 SPLIT = r"""
 import time, json, sys
@@ -103,15 +106,17 @@ def main():
     base = [sys.executable, "-m", "rockcli"]
     rigid = base + ["spectrum", "overturning", "--alpha", "10"]
     linear = rigid + ["--isolation", LIN]
-    run(base + ["spectrum", "overturning", "--alpha", "10", "--wp-p", "1:2:2", "--ap", "1:2:2", "--isolation",
-                LIN], env)  # warm the kernel cache
+    for iso in (LIN, SCSS):  # warm the kernel cache (both drivers)
+        run(base + ["spectrum", "overturning", "--alpha", "10", "--wp-p", "1:2:2", "--ap", "1:2:2", "--isolation", iso],
+            env)
     print(f"whole process, median (min) of {opts.repeat} runs, {os.cpu_count()} cores, warm cache "
           f"(machine shared with other jobs: noisy):")
     for label, args, n in (("rockcli --help (start-up floor)", base + ["--help"], opts.repeat),
                            ("overturning --alpha 10 (200 x 200, rigid)", rigid, opts.repeat),
-                           ("  ... --early", rigid + ["--early"], opts.repeat),
+                           ("  ... --full-peaks", rigid + ["--full-peaks"], opts.repeat),
                            ("  ... --isolation " + LIN, linear, opts.repeat),
-                           ("  ... --isolation " + LIN + " --early", linear + ["--early"], opts.repeat),
+                           ("  ... --isolation " + LIN + " --full-peaks", linear + ["--full-peaks"], opts.repeat),
+                           ("  ... --isolation " + SCSS, rigid + ["--isolation", SCSS], 1),
                            ("critical-size (Table I defaults)", base + ["spectrum", "critical-size"],
                             0 if opts.skip_table else 1)):
         if n == 0:
@@ -119,7 +124,7 @@ def main():
         med, best = whole(args, n, env)
         print(f"  {label:60s} {med:6.2f} s ({best:.2f} s)")
 
-    for iso, early in (("none", False), ("none", True), (LIN, False)):
+    for iso, early in (("none", True), ("none", False), (LIN, True)):
         rows, nfev, kw = split(iso, early, env)
         print(f"\nsplit of one 200 x 200 map in a fresh process, isolation {iso}{', early' if early else ''} "
               f"(wall / CPU):")
@@ -128,20 +133,26 @@ def main():
         print(f"  {40000 / kw:,.0f} cells/s, {nfev:,} right-hand sides ({nfev / 40000:,.0f} per cell)")
 
     if opts.cold:
-        cache = tempfile.mkdtemp(prefix="numba-cold-")
-        cold_env = dict(env, NUMBA_CACHE_DIR=cache)
-        code = ("import time; t = time.perf_counter()\n"
-                "from rockcli import spectra as S\n"
-                "S.overturning_map(10, 'ricker-sym', 'none', S.Grid(1, 2, 2), S.Grid(1, 2, 2))\n"
-                "print(time.perf_counter() - t)")
-        t = time.perf_counter()
-        out = subprocess.run([sys.executable, "-c", code], env=cold_env, cwd=ROOT, check=True, capture_output=True,
-                             text=True).stdout
-        total = time.perf_counter() - t
-        print(f"\ncold numba cache (NUMBA_CACHE_DIR={cache}): kernels ready after {float(out.strip()):.1f} s "
-              f"(process {total:.1f} s); a second run with that cache:")
-        print(f"  overturning --alpha 10 (200 x 200, rigid), whole process {run(rigid, cold_env):.2f} s")
-        shutil.rmtree(cache, ignore_errors=True)
+        for label, iso in (("rigid", "none"), ("linear", LIN)):
+            cache = tempfile.mkdtemp(prefix="numba-cold-")
+            cold_env = dict(env, NUMBA_CACHE_DIR=cache)
+            code = ("import time; t = time.perf_counter()\n"
+                    "from rockcli import spectra as S\n"
+                    f"S.overturning_map(10, 'ricker-sym', {iso!r}, S.Grid(1, 2, 2), S.Grid(1, 2, 2))\n"
+                    "print(time.perf_counter() - t)")
+            t = time.perf_counter()
+            out = subprocess.run([sys.executable, "-c", code], env=cold_env, cwd=ROOT, check=True,
+                                 capture_output=True, text=True).stdout
+            total = time.perf_counter() - t
+            print(f"\ncold numba cache, {label} map: kernels ready after {float(out.strip()):.1f} s "
+                  f"(process {total:.1f} s)")
+            if iso == "none":
+                shutil.rmtree(cache, ignore_errors=True)
+                cold_env = dict(env, NUMBA_CACHE_DIR=tempfile.mkdtemp(prefix="numba-cold-"))
+                print(f"  overturning --alpha 10 (200 x 200, rigid) with an empty cache, whole process "
+                      f"{run(rigid, cold_env):.2f} s")
+                shutil.rmtree(cold_env["NUMBA_CACHE_DIR"], ignore_errors=True)
+            shutil.rmtree(cache, ignore_errors=True)
 
 
 if __name__ == "__main__":

@@ -249,8 +249,22 @@ def test_cli_overturning_csv_one_row_per_cell(tmp_path):
     for row in rows:
         assert (row["uplift"] == "1") == (float(row["ap_over_g_tan_alpha"]) > 1.0)
         assert float(row["R_m"]) == pytest.approx(critical_R(0.9, float(row["wp_over_p"])))
-        assert row["peak_final"] == "1" and row["proven"] == "1"
+        assert row["proven"] == "1"
     assert png.stat().st_size > 1000
+    # early stops are the default: --full-peaks gives the same map with every peak final, and an
+    # early peak is never above the final one
+    full = tmp_path / "full.csv"
+    r = CliRunner().invoke(main, ["spectrum", "overturning", "--alpha", "20", "--pulse", "ricker-anti:Tp=0.9",
+                                  "--wp-p", "1:6:6", "--ap", "0:3:5", "--csv", str(full), "--full-peaks"])
+    assert r.exit_code == 0, r.output
+    frows = list(csv.DictReader(full.open()))
+    assert any(row["peak_final"] == "0" for row in rows)
+    for a, b in zip(rows, frows):
+        assert (a["overturned"], a["uplift"]) == (b["overturned"], b["uplift"])
+        assert b["peak_final"] == "1"
+        assert float(a["theta_max_over_alpha"]) <= float(b["theta_max_over_alpha"]) * (1 + 1e-7) + 1e-12
+        if a["peak_final"] == "1":
+            assert float(a["theta_max_over_alpha"]) == pytest.approx(float(b["theta_max_over_alpha"]), rel=1e-7)
 
 
 def test_cli_critical_size_table_i_columns(tmp_path):

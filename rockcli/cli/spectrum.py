@@ -102,9 +102,10 @@ def _echo_notes(pcs):
               help="omega_p/p grid, both ends included.")
 @click.option("--ap", "ap", default="0:10:200", show_default=True, metavar="START:STOP:COUNT",
               help="a_p/(g tan alpha) grid, both ends included.")
-@click.option("--early", is_flag=True,
-              help="Stop each run as soon as its verdict is proven, even during the pulse: the same map, "
-                   "faster; theta_max_over_alpha is then only a lower bound where peak_final is 0.")
+@click.option("--early/--full-peaks", default=True, show_default=True,
+              help="--early (the default) stops each run as soon as its verdict is proven, even during the "
+                   "pulse: theta_max_over_alpha is then only a lower bound where peak_final is 0. --full-peaks "
+                   "follows every run until its peak is final (the same map, slower).")
 @user_errors
 def overturning(alpha, pulses, records, isolations, csv_path, plot_path, scheduler, units, dt, fmt, column, wp_p, ap,
                 early):

@@ -105,7 +105,7 @@ def _dense(W, h, i, sign):
 
 
 
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def _state_at(W, h, sig, nst):
     """Dense-output state at fraction ``sig`` of the last step, written into ``W[W_TMP]``."""
     for i in range(nst):
@@ -130,7 +130,7 @@ def _restep_rows(W):
         W[W_RE + W_Y, i] = W[W_Y, i]
 
 
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def _shift_event(W, dt, i0, i1):
     """Move the event state ``W[W_EV]`` by the small time ``dt`` along ``W[W_FEV] = f`` there: one
     Taylor term, onto the event's root, whose location on the dense output is off by O(h^5) (the

@@ -21,7 +21,7 @@ from rockcli.kernels.polynomials import _first_down, _first_exceed, _poly
 # ---------------------------------------------------------------------------------------------
 # Impact and rest
 # ---------------------------------------------------------------------------------------------
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def impact_map(prm, thd1):
     """Velocities just after an impact at theta = 0: ``(theta_dot+, jump of u_dot)``.
 
@@ -33,7 +33,7 @@ def impact_map(prm, thd1):
     return prm[P_ETA] * thd1, prm[P_DU] * thd1
 
 
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def comes_to_rest(prm, a_rest, thd2, thr, alpha):
     """Rest rule after an impact: the block could not lift off under the current base acceleration
     ``a_rest``, and the rotation it could still reach against the restoring
@@ -128,7 +128,7 @@ def _u_extremum(W, hs, sig_end):
     return abs(_poly(_dense(W, hs, 2, 1.0), sx))
 
 
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def _count_uplift(out, t):
     out[O_N_UPLIFTS] += 1
     if out[O_UPLIFTED] == 0.0:

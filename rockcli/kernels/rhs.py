@@ -32,7 +32,7 @@ def _rhs_rigid(s, prm, seg, epar, t, th, thd):
     return thd, -prm[P_P2] * (math.sin(A) + ag / prm[P_G] * math.cos(A))
 
 
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def _rhs_rigid_into(fkind, phase, s, prm, seg, epar, hy, t, W, src, dst):
     """:func:`_rhs_rigid` from row ``src`` into row ``dst`` of ``W`` (the signature of :func:`_rhs_into`)."""
     d0, d1 = _rhs_rigid(s, prm, seg, epar, t, W[src, 0], W[src, 1])

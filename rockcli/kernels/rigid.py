@@ -145,7 +145,7 @@ def _stuck_rigid(prm, rs, epar, t_stop, out):
 def _take_step_rigid(prm, ekind, epar, max_steps, rs, W, t_stop):
     """One accepted Dormand-Prince step of theta, theta_dot inside ``[t, t_stop]``:
     ``(ok, hs, last)`` (``ok`` False when the step cap is reached first)."""
-    h = _step_start(_rhs_rigid_into, 0, prm, ekind, epar, rs, W, _NO_HY)
+    h = _step_start(_rhs_rigid_once, 0, prm, ekind, epar, rs, W, _NO_HY)
     t = rs[RS_T]
     s = rs[RS_S]
     seg = _seg(rs)
@@ -176,6 +176,13 @@ def _take_step_rigid(prm, ekind, epar, max_steps, rs, W, t_stop):
         return False, hs, last
     rs[RS_STEPS] = steps + 1
     return True, hs, last
+
+
+@njit(cache=True)
+def _rhs_rigid_once(fkind, phase, s, prm, seg, epar, hy, t, W, src, dst):
+    """:func:`rockcli.kernels.rhs._rhs_rigid_into` as a call: for the derivative at a step's start
+    after an event (rare), so that the step's own copy is the only inlined one."""
+    _rhs_rigid_into(fkind, phase, s, prm, seg, epar, hy, t, W, src, dst)
 
 
 @njit(cache=True)

@@ -75,7 +75,7 @@ def _start(ekind, epar, acc, dt, t_begin, want_history, out):
     return W, rs, H
 
 
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def _finish(rs, W, out):
     """Copy the run record's results into ``out`` (``O_*`` layout)."""
     out[O_STATUS] = rs[RS_STATUS]
@@ -217,7 +217,7 @@ def _rocking_events(prm, rs, W, out, hs, t_new, sig_lim):
     return EV_NONE, sig_lim
 
 
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def _to_overturn(rs, W, out, hs, so, nst):
     """The state at ``s theta = pi/2`` (fraction ``so`` of the step) ends the run: overturned."""
     _state_at(W, hs, so, nst)
@@ -257,7 +257,7 @@ def _to_step_end(rs, W, t_new, nst):
         W[0, i] = W[6, i]
 
 
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def _bounce(prm, rs, W, out, thd1, t_exc_end, a_rest, thd2):
     """After the impact map (``theta_dot`` ``thd1`` before, ``thd2`` after, the pivot switched):
     count the impact and apply the rest rule under the base acceleration ``a_rest``.
