@@ -45,8 +45,8 @@ import numpy as np
 from rockcli.errors import RockcliInputError
 from rockcli.units import G
 
-#: rtol ladder of the kernel (the default 1e-8 is in it).
-KERNEL_RTOLS = (1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12)
+#: rtol ladder of the kernel (the defaults, 1e-8 and 2e-9 on sliding bearings, are in it).
+KERNEL_RTOLS = (1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 2e-9, 1e-9, 1e-10, 1e-11, 1e-12)
 #: rtol ladders of the SciPy methods for ``--full`` (implicit methods stop earlier: seconds per run).
 SCIPY_RTOLS_FULL = {"RK45": (1e-4, 1e-6, 1e-8, 1e-10), "DOP853": (1e-4, 1e-6, 1e-8, 1e-10, 1e-12),
                     "Radau": (1e-4, 1e-6, 1e-8), "LSODA": (1e-4, 1e-6, 1e-8), "BDF": (1e-4, 1e-6, 1e-8),
@@ -60,8 +60,10 @@ SCIPY_RTOLS = {"RK45": (1e-6, 1e-8, 1e-10), "DOP853": (1e-8, 1e-12), "Radau": (1
 REFERENCE_RTOL = 1e-13
 CHECK_METHOD = "DOP853"
 CHECK_RTOL = 1e-13
-#: The kernel's default tolerance, and the SciPy tolerance the summary compares it with.
+#: The kernel's default tolerances (rockcli.solve.default_rtol: 1e-8; 2e-9 on sliding and lead-rubber
+#: bearings), and the SciPy tolerance the summary compares them with.
 DEFAULT_RTOL = 1e-8
+DEFAULT_RTOL_SLIDING = 2e-9
 COMPARE_RTOL = 1e-8
 #: Wall-time budget of one SciPy run [s] (default study; ``--full``): slower runs are reported as "over budget".
 SCIPY_BUDGET_S = 20.0
@@ -455,8 +457,9 @@ def run_work_precision(scenes, *, kernel_rtols=KERNEL_RTOLS, scipy_rtols=None, m
 
 @dataclass(frozen=True)
 class WPSummary:
-    """rockcli at its default tolerance against the comparator (RK45, or Radau for sliding bearings)
-    at ``rtol = 1e-8``: errors, wall times and their ratio (kernel / SciPy)."""
+    """rockcli at its default tolerance (1e-8; 2e-9 on sliding bearings) against the comparator
+    (RK45, or Radau for sliding bearings) at ``rtol = 1e-8``: errors, wall times and their ratio
+    (kernel / SciPy)."""
 
     scene: str
     comparator: str
@@ -470,12 +473,19 @@ class WPSummary:
     verdicts_agree: bool
     err_free: float = math.nan
     wall_free_s: float = math.nan
+    rtol_kernel: float = DEFAULT_RTOL
+
+
+def scene_default_rtol(scene) -> float:
+    """rockcli's default rtol for the scene's foundation (:func:`rockcli.solve.default_rtol`)."""
+    return DEFAULT_RTOL_SLIDING if scene.sliding else DEFAULT_RTOL
 
 
 def summarise(ws: WPScene) -> WPSummary | None:
     """The default-tolerance comparison of one scene (None when a run is missing)."""
-    k = next((r for r in ws.runs if r.method == KERNEL and r.rtol == DEFAULT_RTOL), None)
-    kv = next((r for r in ws.runs if r.method == KERNEL_VERDICT and r.rtol == DEFAULT_RTOL), None)
+    d = scene_default_rtol(ws.scene)
+    k = next((r for r in ws.runs if r.method == KERNEL and r.rtol == d), None)
+    kv = next((r for r in ws.runs if r.method == KERNEL_VERDICT and r.rtol == d), None)
     s = next((r for r in ws.runs if r.method == ws.comparator and r.rtol == COMPARE_RTOL and not r.note), None)
     if k is None or s is None:
         return None
@@ -483,7 +493,7 @@ def summarise(ws: WPScene) -> WPSummary | None:
               and not r.note), None)
     return WPSummary(ws.scene.name, ws.comparator, k.error, s.error, k.wall_s, kv.wall_s if kv else math.nan,
                      s.wall_s, k.error <= s.error, k.wall_s / s.wall_s, bool(k.verdict_ok and s.verdict_ok),
-                     f.error if f else math.nan, f.wall_s if f else math.nan)
+                     f.error if f else math.nan, f.wall_s if f else math.nan, d)
 
 
 # --------------------------------------------------------------------------------------------------

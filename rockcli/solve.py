@@ -51,7 +51,12 @@ VERDICT_OVERTURNED = "overturned"
 #: Verdict of a :func:`simulate_many` job that could not be run (see :class:`JobError`).
 VERDICT_ERROR = "error"
 
+#: Default rtol on a rigid foundation and on linear bearings.
 DEFAULT_RTOL = 1e-8
+#: Default rtol on sliding and lead-rubber bearings (Bouc-Wen): their runs meet, at this rtol, at least
+#: the accuracy of SciPy's Radau at rtol 1e-8 (the stiff reference solver a user would otherwise reach
+#: for; measured in docs/bench-work-precision.txt), for about a quarter more work than at 1e-8.
+DEFAULT_RTOL_HYSTERETIC = 2e-9
 DEFAULT_TAIL = 10.0
 DEFAULT_REST_TOL = 1e-8
 DEFAULT_HORIZON = 600.0
@@ -298,9 +303,24 @@ def _excitation_arrays(excitation):
     raise RockcliInputError(f"cannot simulate excitation of type {type(excitation).__name__}")
 
 
-def _parameters(block: Block, foundation, rtol: float, rest_tol: float):
-    """``(fkind, prm)``: the kernel's foundation code and parameter vector (``rockcli.kernels.layout``)."""
+def default_rtol(foundation) -> float:
+    """The default rtol of a foundation: :data:`DEFAULT_RTOL` (rigid, linear bearings) or
+    :data:`DEFAULT_RTOL_HYSTERETIC` (sliding and lead-rubber bearings)."""
+    if isinstance(foundation, (SingleConcaveSliding, DoubleConcaveSliding, LeadRubber)):
+        return DEFAULT_RTOL_HYSTERETIC
+    return DEFAULT_RTOL
+
+
+def _rtol(foundation, rtol) -> float:
+    """``rtol`` as given, or the foundation's default when None."""
+    return default_rtol(foundation) if rtol is None else float(rtol)
+
+
+def _parameters(block: Block, foundation, rtol, rest_tol: float):
+    """``(fkind, prm)``: the kernel's foundation code and parameter vector (``rockcli.kernels.layout``);
+    ``rtol`` None takes the foundation's default."""
     k = _kernel()
+    rtol = _rtol(foundation, rtol)
     prm = np.zeros(k.N_PRM)
     p = block.p
     alpha = block.alpha
@@ -388,7 +408,8 @@ def bearing_force_path(foundation, u) -> dict[str, np.ndarray]:
 
 def _validate_options(rtol, tail, rest_tol, horizon=DEFAULT_HORIZON, max_steps=DEFAULT_MAX_STEPS):
     try:
-        rtol, tail, rest_tol, horizon = float(rtol), float(tail), float(rest_tol), float(horizon)
+        rtol = DEFAULT_RTOL if rtol is None else float(rtol)  # None: each foundation's default
+        tail, rest_tol, horizon = float(tail), float(rest_tol), float(horizon)
     except (TypeError, ValueError):
         raise RockcliInputError("rtol, tail, rest_tol and horizon must be numbers") from None
     if not (math.isfinite(rtol) and 1e-14 <= rtol <= 1e-2):
@@ -412,12 +433,13 @@ def _estimate_steps(block: Block, foundation, prepared, rtol: float, tail: float
     """``(estimate, samples, run)``: an upper estimate of the integrator steps a scene needs, its
     record samples and its longest run [s]; see :func:`_check_work`."""
     k = _kernel()
+    rtol = _rtol(foundation, rtol)
     ekind, epar, acc, jtab, dt, t_begin, t_exc_end = prepared
     if ekind == k.EXC_RECORD:
         samples, active = acc.size, t_exc_end
     else:
         samples, active = 0, epar[k.E_TE] - epar[k.E_TS]
-    f = max((DEFAULT_RTOL / rtol) ** 0.2, 1.0)  # a looser rtol saves little where events and stiffness rule
+    f = max((default_rtol(foundation) / rtol) ** 0.2, 1.0)  # a looser rtol saves little where events and stiffness rule
     rate = 2.0 * block.p * f
     settle = (2.0 / block.p) * math.sqrt(2.0) / (1.5 * math.sin(block.alpha) ** 2)  # a rocking cascade
     stiff = 0.0
@@ -450,7 +472,8 @@ def _check_work(block: Block, foundation, prepared, rtol: float, tail: float, re
     ``omega_b (xi + sqrt(xi^2 + 1))/3`` for a stiff base (explicit Dormand-Prince is stable to
     ``h lambda ~ 3.3``), ``B omega_b f`` for its oscillation at the accuracy rtol asks (``B = 3``
     steps per radian when damped, 20 when xi < 0.05: an undamped base keeps every kick of the
-    record and of each impact) and ``2 p f`` for the block, with ``f = max((1e-8/rtol)^(1/5), 1)``
+    record and of each impact) and ``2 p f`` for the block, with ``f = max((rtol_0/rtol)^(1/5), 1)``,
+    ``rtol_0`` the foundation's default rtol
     (fifth-order accuracy; no credit for a looser rtol), and for an undamped base ``0.03 gamma^8
     p/sqrt(rest_tol)`` (a light base, gamma near 1, keeps lifting the block, whose impacts then
     chatter near the rest threshold, up to ``p/(2 sqrt(2 rest_tol))`` a second; an empirical term,
@@ -460,6 +483,7 @@ def _check_work(block: Block, foundation, prepared, rtol: float, tail: float, re
     random scenes over every supported range, where the steps taken stayed within a few times this
     estimate; then checked on 60,000 others (README, Bad input): no accepted scene reached the cap.
     """
+    rtol = _rtol(foundation, rtol)
     estimate, samples, run = _estimate_steps(block, foundation, prepared, rtol, tail, rest_tol, horizon, history)
     limit = max_steps // 5
     if estimate > limit:
@@ -467,7 +491,7 @@ def _check_work(block: Block, foundation, prepared, rtol: float, tail: float, re
         if isinstance(foundation, LinearIsolation):
             what.append(f"a base oscillating at {foundation.omega_b:.3g} rad/s with xi = {foundation.xi:g} "
                         f"({foundation.label})")
-        if rtol < DEFAULT_RTOL:
+        if rtol < default_rtol(foundation):
             what.append(f"rtol = {rtol:g}")
         raise RockcliInputError(
             f"this scene would need about {estimate:.2g} integrator steps, more than the {limit:,} allowed (a fifth "
@@ -475,7 +499,7 @@ def _check_work(block: Block, foundation, prepared, rtol: float, tail: float, re
             f"or the tail, loosen rtol, or damp the base (xi)")
 
 
-def simulate(block: Block, foundation=None, excitation=None, *, rtol: float = DEFAULT_RTOL,
+def simulate(block: Block, foundation=None, excitation=None, *, rtol: float | None = None,
              history: bool = False, tail: float = DEFAULT_TAIL, rest_tol: float = DEFAULT_REST_TOL,
              horizon: float = DEFAULT_HORIZON, max_steps: int = DEFAULT_MAX_STEPS, early: bool = False) -> Response:
     """Rocking response of ``block`` on ``foundation`` under ``excitation``.
@@ -489,9 +513,11 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float = DE
     excitation : Record or pulse
         A :class:`rockcli.records.Record` (``acc`` [m/s^2], ``dt`` [s]) or an analytic pulse
         (``shape``, ``a_p`` [m/s^2], ``T_p`` [s], ``t0`` [s], ``support()``).
-    rtol : float
+    rtol : float, optional
         Relative tolerance of the integrator; the error on each state is kept below
         ``rtol * max(|y|, scale)`` with scales alpha, p alpha, g tan(alpha)/omega_b^2, g tan(alpha)/omega_b.
+        Default (None): :func:`default_rtol` of the foundation, 1e-8 on a rigid foundation and on
+        linear bearings, 2e-9 on sliding and lead-rubber bearings.
     history : bool
         Return the time history (every step end and event). Without it the run stores nothing
         and stops as soon as the verdict is proven.
@@ -523,8 +549,8 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float = DE
     k = _kernel()
     prepared = _excitation_arrays(excitation)
     ekind, epar, acc, jtab, dt, t_begin, t_exc_end = prepared
-    fkind, prm = _parameters(block, foundation, float(rtol), float(rest_tol))
-    _check_work(block, foundation, prepared, float(rtol), float(tail), float(rest_tol), float(horizon),
+    fkind, prm = _parameters(block, foundation, rtol, float(rest_tol))
+    _check_work(block, foundation, prepared, rtol, float(tail), float(rest_tol), float(horizon),
                 int(max_steps), bool(history))
     out = np.zeros(k.N_OUT)
     kernel = k.simulate_rigid if fkind == k.FOUNDATION_RIGID else k.simulate_core
@@ -578,7 +604,7 @@ def _response(out: np.ndarray, H, block, out_fkind: int = 0) -> Response:
     )
 
 
-def simulate_many(jobs, *, rtol: float = DEFAULT_RTOL, tail=DEFAULT_TAIL,
+def simulate_many(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL,
                   rest_tol: float = DEFAULT_REST_TOL, horizon: float = DEFAULT_HORIZON,
                   max_steps: int = DEFAULT_MAX_STEPS, early: bool = False,
                   progress=None, chunk: int | None = None) -> list:
@@ -636,7 +662,7 @@ class Verdicts:
         return int(self.overturned.size)
 
 
-def simulate_verdicts(jobs, *, rtol: float = DEFAULT_RTOL, tail=DEFAULT_TAIL, rest_tol: float = DEFAULT_REST_TOL,
+def simulate_verdicts(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL, rest_tol: float = DEFAULT_REST_TOL,
                       horizon: float = DEFAULT_HORIZON, max_steps: int = DEFAULT_MAX_STEPS, early: bool = False,
                       progress=None, chunk: int | None = None) -> Verdicts:
     """:func:`simulate_many` returning arrays (no :class:`Response` per scene): for large sweeps.
@@ -715,9 +741,9 @@ def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress
             try:
                 cached = params.get((block, foundation))
             except TypeError:  # an unhashable foundation: built for each job
-                cached = _parameters(block, foundation, float(rtol), float(rest_tol))
+                cached = _parameters(block, foundation, rtol, float(rest_tol))
             if cached is None:
-                cached = params[(block, foundation)] = _parameters(block, foundation, float(rtol), float(rest_tol))
+                cached = params[(block, foundation)] = _parameters(block, foundation, rtol, float(rest_tol))
             fkind, prm = cached
             # the work estimate depends only on these (not on the amplitude): checked once per distinct set
             tail_i = float(tails_in if tails_in.ndim == 0 else tails_in[i])
@@ -727,7 +753,7 @@ def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress
             except TypeError:
                 known = False
             if not known:
-                _check_work(block, foundation, prepared[key], float(rtol), tail_i, float(rest_tol), float(horizon),
+                _check_work(block, foundation, prepared[key], rtol, tail_i, float(rest_tol), float(horizon),
                             int(max_steps))
                 try:
                     checked.add(wkey)

@@ -237,24 +237,32 @@ class ToleranceCheck:
     n_runs: int
     changed: list
     max_peak_change: float
+    #: every base rtol used (each foundation's default when none was given), loosest first
+    base_rtols: tuple = ()
 
 
 def check_tolerance(assessment: Assessment, *, factor: float = 100.0, base_rtol: float | None = None) -> ToleranceCheck:
     """Rerun every scene of ``assessment`` that ran at a ``factor`` times tighter rtol (verdict
-    only, all cores) and report the verdicts that change (they were decided by the numerics)."""
-    from rockcli.solve import DEFAULT_RTOL, simulate_many
+    only, all cores) and report the verdicts that change (they were decided by the numerics).
+    ``base_rtol`` None: each foundation's default (:func:`rockcli.solve.default_rtol`)."""
+    from rockcli.solve import DEFAULT_RTOL, default_rtol, simulate_many
 
-    base = DEFAULT_RTOL if base_rtol is None else float(base_rtol)
     blocks = {b.name: b for b in assessment.columns}
     confs = {c.header: c for c in assessment.configurations}
     xs = {x.label: x for x in assessment.excitations}
     rows = [r for r in assessment.rows if not r.error and r.verdict and xs[r.record].motion is not None]
     jobs = [(blocks[r.column], confs[r.configuration].foundation, xs[r.record].motion) for r in rows]
-    tight = simulate_many(jobs, rtol=base / factor)
+    bases = [default_rtol(j[1]) if base_rtol is None else float(base_rtol) for j in jobs]
+    tight = [None] * len(jobs)
+    for base in sorted(set(bases)):  # one sweep per base tolerance
+        idx = [i for i, b in enumerate(bases) if b == base]
+        for i, r in zip(idx, simulate_many([jobs[i] for i in idx], rtol=base / factor)):
+            tight[i] = r
     changed, peak = [], 0.0
     for row, r in zip(rows, tight):
         if r.verdict != row.verdict:
             changed.append((row, r.verdict))
         elif r.verdict == "rocked":
             peak = max(peak, abs(r.theta_max_over_alpha - row.theta_max_over_alpha))
-    return ToleranceCheck(base / factor, base, len(rows), changed, peak)
+    base = max(bases) if bases else (DEFAULT_RTOL if base_rtol is None else float(base_rtol))
+    return ToleranceCheck(base / factor, base, len(rows), changed, peak, tuple(sorted(set(bases), reverse=True)))
