@@ -578,8 +578,11 @@ def _response(out: np.ndarray, H, block, out_fkind: int = 0) -> Response:
     if status == k.STATUS_MAX_STEPS:
         message = f"stopped after {int(out[k.O_STEPS])} steps at t = {out[k.O_T_END]:.3f} s (step cap reached): " + message
     elif not out[k.O_SETTLED]:
-        message += (f"; NOT PROVEN: at t = {out[k.O_T_END]:.1f} s (the horizon) the block could still be lifted "
-                    f"or overturn (lightly damped base?); lengthen the horizon to follow it")
+        why = ("the block was still rocking (a very slender block loses little energy per impact)"
+               if out[k.O_THETA_END] != 0.0 else
+               "the block was at rest but its base could still lift it (lightly damped base)")
+        message += (f"; NOT PROVEN: at t = {out[k.O_T_END]:.1f} s (the horizon) {why}, so it could still be lifted "
+                    f"or overturn; lengthen the horizon to follow it")
     hist = None
     if H is not None:
         fkind = out_fkind
