@@ -45,3 +45,26 @@ def test_double_concave_error_follows_rtol_through_the_knees(rtol):
     r = simulate(block, f, pulse, rtol=rtol)
     assert r.verdict == verdict == "rocked"
     assert abs(r.theta_max_over_alpha - ref) < 2.0 * rtol
+
+
+def test_bassae_under_chichi_chy101_on_the_ground_overturns_as_the_references_say(find_record):
+    """A wrong "survives" the event fix removed. Bassae on a rigid foundation under Chi-Chi CHY101
+    (x1) sits on a knife edge (x0.995 overturns, x1.005 survives). With impact states read from the
+    quartic dense output the kernel made the same O(h^5) error at every impact, at every rtol (one
+    step per sample already met it), and called the column safe (peak 0.548 alpha, after a rest);
+    DOP853 and RK45 at rtol 1e-10 and 1e-12 all overturn it. With the impact states retaken as steps
+    the kernel overturns it at every rtol from 1e-6 to 1e-12, with the references' peak."""
+    from rockcli.records import read_record
+
+    rec = read_record(find_record("RSN1244_CHICHI_CHY101-E.AT2"))
+    block = column("bassae")
+    ref = reference_simulate(block, Rigid(), rec, rtol=1e-10, atol=None, method="DOP853", align=True)
+    assert ref.verdict == "overturned"
+    for rtol in (1e-6, 1e-8, 1e-10):
+        r = simulate(block, Rigid(), rec, rtol=rtol)
+        assert r.verdict == "overturned", rtol
+        # the landing time is ill-conditioned here (a long excursion near balance): the references
+        # themselves spread over 42.45-42.62 s (RK45 1e-10; DOP853 1e-10, 1e-12, 1e-13); the kernel: 42.46 s
+        assert r.t_overturn_s == pytest.approx(ref.t_overturn, abs=0.25)
+    for early in (False, True):  # the verdict-only paths agree
+        assert simulate(block, Rigid(), rec, early=early).verdict == "overturned"
