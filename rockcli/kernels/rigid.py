@@ -40,8 +40,9 @@ P6 (``early`` only, after the first uplift, ``|theta| >= alpha``). Beyond alpha 
    barrier a block moving inward turns back). With the ground already still, a block beyond
    alpha moving outward falls as well. The run ends as overturned with ``t_overturn`` unknown (NaN).
 P7 (``early`` only, ``|theta| >= alpha``, moving outward). With ``v = s theta_dot`` (outward
-   positive) Eq (3) reads ``dv/dt = -p^2 sin(A) - p^2 (s ag/g) cos(A)``, ``A = s alpha - theta``. Beyond
-   alpha ``-sin(A) > 0`` (gravity pulls outward) and ``0 < cos(A) <= 1``, so ``dv/dt >= -p^2 |ag|/g`` and
+   positive) Eq (3) reads ``dv/dt = -s p^2 sin(A) - s p^2 (ag/g) cos(A)``, ``A = s alpha - theta``.
+   Beyond alpha (``s theta`` between alpha and pi/2) ``-s sin(A) >= 0`` (gravity pulls outward) and
+   ``sin(alpha) <= cos(A) <= 1``, so ``dv/dt >= -p^2 |ag|/g`` and
    ``v(t') >= v(t) - (p^2/g) int_t^t' |ag|``. If ``v > (p^2/g)`` times the whole remaining impulse, v
    stays positive: theta keeps moving outward (so stays beyond alpha, where the bound holds) until
    the ground is still, and then falls (P6's last case). The run ends as overturned, ``t_overturn``
