@@ -825,10 +825,16 @@ def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress
         from concurrent.futures import ThreadPoolExecutor, as_completed
 
         with ThreadPoolExecutor(max_workers=threads) as pool:  # the kernels run without the GIL
-            for fut in as_completed([pool.submit(run, task) for task in tasks]):
-                done += fut.result()
-                if progress is not None:
-                    progress(n if done == m else done)
+            futures = [pool.submit(run, task) for task in tasks]
+            try:
+                for fut in as_completed(futures):
+                    done += fut.result()
+                    if progress is not None:
+                        progress(n if done == m else done)
+            except BaseException:  # an error or Ctrl-C: drop the pieces not started, then re-raise
+                for fut in futures:
+                    fut.cancel()
+                raise
     if progress is not None and m == 0:
         progress(n)
     return outs, alphas, failed
