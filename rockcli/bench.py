@@ -60,10 +60,7 @@ SCIPY_RTOLS = {"RK45": (1e-6, 1e-8, 1e-10), "DOP853": (1e-8, 1e-12), "Radau": (1
 REFERENCE_RTOL = 1e-13
 CHECK_METHOD = "DOP853"
 CHECK_RTOL = 1e-13
-#: The kernel's default tolerances (rockcli.solve.default_rtol: 1e-8; 2e-9 on sliding and lead-rubber
-#: bearings), and the SciPy tolerance the summary compares them with.
-DEFAULT_RTOL = 1e-8
-DEFAULT_RTOL_SLIDING = 2e-9
+#: The SciPy tolerance the summary compares the kernel at its default (rockcli.solve.default_rtol) with.
 COMPARE_RTOL = 1e-8
 #: Wall-time budget of one SciPy run [s] (default study; ``--full``): slower runs are reported as "over budget".
 SCIPY_BUDGET_S = 20.0
@@ -473,12 +470,14 @@ class WPSummary:
     verdicts_agree: bool
     err_free: float = math.nan
     wall_free_s: float = math.nan
-    rtol_kernel: float = DEFAULT_RTOL
+    rtol_kernel: float = 1e-8
 
 
 def scene_default_rtol(scene) -> float:
     """rockcli's default rtol for the scene's foundation (:func:`rockcli.solve.default_rtol`)."""
-    return DEFAULT_RTOL_SLIDING if scene.sliding else DEFAULT_RTOL
+    from rockcli.solve import default_rtol
+
+    return default_rtol(parse_foundation(scene.isolation))
 
 
 def summarise(ws: WPScene) -> WPSummary | None:
