@@ -30,14 +30,14 @@ from rockcli.kernels.events import (REV_AT, REV_WRONG_START, _count_uplift, _his
 from rockcli.kernels.ground import ground_at
 from rockcli.kernels.layout import (FOUNDATION_BILINEAR, O_T_SETTLED, P_ALPHA, P_COSA, P_G, P_GAMMA, P_H, P_R,
                                     P_RTOL, P_SC0, P_THR, P_W, P_XI, PHASE_ROCKING, PHASE_STUCK, RS_DIR, RS_FRESH,
-                                    RS_H, RS_NREV, RS_NRHS, RS_PHASE, RS_REJ, RS_S, RS_SEG_END, RS_SETTLED,
+                                    RS_NREV, RS_NRHS, RS_PHASE, RS_REJ, RS_S, RS_SEG_END, RS_SETTLED,
                                     RS_SPLIT, RS_STATUS, RS_STEPS, RS_T, RS_THMAX, RS_U1A, RS_UA, RS_UMAX, RS_XI1,
                                     RS_XI2, STATUS_MAX_STEPS, W_EV, W_FEV, W_RE, W_Y, W_YNEW)
 from rockcli.kernels.polynomials import _first_exceed, _poly
 from rockcli.kernels.rhs import _rhs_into
-from rockcli.kernels.steps import (EV_FAILED, EV_IMPACT, EV_OVERTURN, _advance_segment, _bounce, _finish, _grow,
-                                   _out_of_time, _rocking_events, _seg, _shrink, _start, _step_start, _to_impact,
-                                   _to_overturn, _to_step_end)
+from rockcli.kernels.steps import (EV_FAILED, EV_IMPACT, EV_OVERTURN, _advance_segment, _bounce, _close_step,
+                                   _finish, _grown, _out_of_time, _rocking_events, _seg, _shrink, _start,
+                                   _step_start, _to_impact, _to_overturn, _to_step_end)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -235,18 +235,12 @@ def _take_step(fkind, prm, ekind, epar, max_steps, rs, W, t_stop, nst):
                 sig_lim = 1.0
                 continue
         if err <= 1.0:
-            fac = _grow(err)
-            if not last or fac < 1.0:
-                h = hs * fac
+            h = _grown(h, hs, err, last)
             break
         rej += 1
         h = hs * _shrink(err)
-    rs[RS_H] = h
-    rs[RS_REJ] = rej
-    rs[RS_NRHS] = nrhs
-    if err > 1.0:
+    if not _close_step(rs, h, rej, nrhs, steps, err):
         return False, hs, last, sig_lim
-    rs[RS_STEPS] = steps + 1
     if sig_lim < 1.0:
         # the step stands up to the reversal of u: its end state is the state there, retaken as a
         # step (the dense output keeps describing the whole step for the events inside it)

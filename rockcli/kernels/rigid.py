@@ -60,13 +60,13 @@ from rockcli.kernels.dopri import _dp5_step, _restep_rows
 from rockcli.kernels.events import _count_uplift, _hist_push, impact_map
 from rockcli.kernels.ground import _impulse_left, _rigid_uplift, ground_at
 from rockcli.kernels.layout import (O_T_SETTLED, O_T_THETA_MAX, O_UPLIFTED, P_ALPHA, P_COSA, P_ETA, P_G, P_P2,
-                                    P_SINA, P_THR, PHASE_ROCKING, PHASE_STUCK, RS_FRESH, RS_H, RS_NRHS,
+                                    P_SINA, P_THR, PHASE_ROCKING, PHASE_STUCK, RS_FRESH, RS_NRHS,
                                     RS_PEAK_FINAL, RS_PHASE, RS_REJ, RS_S, RS_SEG_END, RS_SETTLED, RS_STATUS,
                                     RS_STEPS, RS_T, RS_THMAX, STATUS_MAX_STEPS, STATUS_OVERTURNED, W_RE, W_Y)
 from rockcli.kernels.rhs import _rhs_rigid_into
-from rockcli.kernels.steps import (EV_FAILED, EV_IMPACT, EV_OVERTURN, _advance_segment, _bounce, _finish, _grow,
-                                   _out_of_time, _rocking_events, _seg, _shrink, _start, _step_start, _to_impact,
-                                   _to_overturn, _to_step_end)
+from rockcli.kernels.steps import (EV_FAILED, EV_IMPACT, EV_OVERTURN, _advance_segment, _bounce, _close_step,
+                                   _finish, _grown, _out_of_time, _rocking_events, _seg, _shrink, _start,
+                                   _step_start, _to_impact, _to_overturn, _to_step_end)
 
 _NO_HY = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)  # no hysteretic elements
 
@@ -164,19 +164,11 @@ def _take_step_rigid(prm, ekind, epar, max_steps, rs, W, t_stop):
         err = _dp5_rigid(s, prm, seg, epar, t, hs, W, 0)
         nrhs += 6
         if err <= 1.0:
-            fac = _grow(err)
-            if not last or fac < 1.0:
-                h = hs * fac
+            h = _grown(h, hs, err, last)
             break
         rej += 1
         h = hs * _shrink(err)
-    rs[RS_H] = h
-    rs[RS_REJ] = rej
-    rs[RS_NRHS] = nrhs
-    if err > 1.0:
-        return False, hs, last
-    rs[RS_STEPS] = steps + 1
-    return True, hs, last
+    return _close_step(rs, h, rej, nrhs, steps, err), hs, last
 
 
 @njit(cache=True)

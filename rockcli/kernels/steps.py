@@ -155,15 +155,30 @@ def _step_start(rhs_into, fkind, prm, ekind, epar, rs, W, hy):
 
 
 @njit(cache=True, inline='always')
-def _grow(err):
-    """Factor of the next step after an accepted one with scaled error ``err <= 1``."""
-    return 5.0 if err == 0.0 else min(5.0, 0.9 * err ** -0.2)
+def _grown(h, hs, err, last):
+    """Step size to try after an accepted step of size ``hs`` with scaled error ``err <= 1``: grown
+    by the controller, unless the step was cut short to land on ``t_stop`` and would grow (then the
+    proposal ``h`` it was cut from stands)."""
+    fac = 5.0 if err == 0.0 else min(5.0, 0.9 * err ** -0.2)
+    return hs * fac if (not last or fac < 1.0) else h
 
 
 @njit(cache=True, inline='always')
 def _shrink(err):
     """Factor of the retry after a rejected step with scaled error ``err > 1``."""
     return max(0.2, 0.9 * err ** -0.2)
+
+
+@njit(cache=True, inline='always')
+def _close_step(rs, h, rej, nrhs, steps, err):
+    """Write a step's bookkeeping back to the run record; True when the step was accepted."""
+    rs[RS_H] = h
+    rs[RS_REJ] = rej
+    rs[RS_NRHS] = nrhs
+    if err > 1.0:
+        return False
+    rs[RS_STEPS] = steps + 1
+    return True
 
 
 # ---------------------------------------------------------------------------------------------
