@@ -68,13 +68,42 @@ def _pulse_segment(j, ekind, epar, t_begin):
 
 
 @njit(cache=True)
+def _pulse_turns(mode):
+    """The times ``tau / T_p`` (from ``t0``) where a pulse's acceleration turns (``ag' = 0``) inside
+    its support, ascending, padded with +inf: between two of them (or a turn and an end of the
+    support) the acceleration is monotone.
+
+    Symmetric Ricker: ``d/dr [(1 - 2 r) exp(-r)] = (2 r - 3) exp(-r)`` with ``r = (pi tau / T_p)^2``,
+    so ``r = 3/2``, and ``tau = 0``. Antisymmetric Ricker: ``d/dx [(x^2 - 3) x exp(-x^2/2)] =
+    -(x^4 - 6 x^2 + 3) exp(-x^2/2)``, so ``x^2 = 3 -+ sqrt 6`` with ``x = 2 pi tau / (sqrt 3 T_p)``.
+    Sine: ``tau = T_p/4, 3 T_p/4``. Cosine: ``tau = T_p/2``.
+    """
+    inf = math.inf
+    if mode == EXC_RICKER_SYM:
+        c = math.sqrt(1.5) / math.pi
+        return (-c, 0.0, c, inf)
+    if mode == EXC_RICKER_ANTI:
+        k = math.sqrt(3.0) / (2.0 * math.pi)
+        a = math.sqrt(3.0 - math.sqrt(6.0)) * k
+        b = math.sqrt(3.0 + math.sqrt(6.0)) * k
+        return (-b, -a, a, b)
+    if mode == EXC_SINE:
+        return (0.25, 0.75, inf, inf)
+    if mode == EXC_COSINE:
+        return (0.5, inf, inf, inf)
+    return (inf, inf, inf, inf)
+
+
+@njit(cache=True)
 def _rigid_uplift(seg, epar, thr, t, t_end):
     """First time in [t, t_end] at which |ag| exceeds ``thr`` (rigid foundation, stuck phase).
 
     Returns ``(t_uplift, s)`` with ``s = -sign(ag)`` (the corner the block pivots on), or
-    ``(-1, 0)`` when the block stays stuck through ``t_end``. Linear segments are exact; pulse
-    segments are scanned on a grid of T_p/512 with every sampled local maximum of |ag| near the
-    threshold refined by golden-section search, then the crossing refined by bisection.
+    ``(-1, 0)`` when the block stays stuck through ``t_end``. Linear segments are exact. A pulse
+    segment is cut at the pulse's turns (:func:`_pulse_turns`) into pieces on which ag is monotone:
+    on a piece ``[a, b]`` with ``|ag(a)| <= thr`` every value lies between ``ag(a)`` and ``ag(b)``,
+    so |ag| exceeds ``thr`` in it if and only if ``|ag(b)|`` does, and then ``ag = sign(ag(b)) thr``
+    is crossed exactly once: found by bisection to the last bit.
     """
     a0 = ground_at(t, seg, epar)
     if abs(a0) > thr:
@@ -88,43 +117,19 @@ def _rigid_uplift(seg, epar, thr, t, t_end):
         if a1 < -thr:
             return t + (-thr - a0) / (a1 - a0) * (t_end - t), 1.0
         return -1.0, 0.0
-    hg = epar[E_TP] / 512.0
-    npts = max(1, int(math.ceil((t_end - t) / hg)))
-    hg = (t_end - t) / npts
-    # A maximum of |ag| lies within hg of a sample, so it exceeds that sample by at most
-    # max|ag''| hg^2 / 2, and max|ag''| <= 1.5 |a_p| omega_p^2 for every pulse shape (sine and cosine:
-    # 1; symmetric Ricker: 6/4; antisymmetric Ricker: 5.8/(3 beta) = 1.4). Every sampled local
-    # maximum within that margin (or within 5% of the threshold) is refined.
-    wp = 2.0 * math.pi / epar[E_TP]
-    margin = max(0.05 * thr, 1.5 * abs(epar[E_AP]) * wp * wp * hg * hg)
-    fm2 = abs(a0) - thr
-    fm1 = fm2
-    for k in range(1, npts + 1):
-        tk = t + k * hg
-        fk = abs(_ground(tk, seg, epar)) - thr  # the hot loop: inlined
-        found = False
-        lo = tk - hg
-        hi = tk
-        if fk > 0.0:
-            found = True
-        elif k >= 2 and fm1 >= fm2 and fm1 >= fk and fm1 > -margin:
-            # a sampled local maximum of |ag| close to the threshold: look between the samples
-            xa = tk - 2.0 * hg
-            xb = tk
-            for _ in range(60):
-                x1 = xb - 0.6180339887498949 * (xb - xa)
-                x2 = xa + 0.6180339887498949 * (xb - xa)
-                if abs(ground_at(x1, seg, epar)) > abs(ground_at(x2, seg, epar)):
-                    xb = x2
-                else:
-                    xa = x1
-            xm = 0.5 * (xa + xb)
-            if abs(ground_at(xm, seg, epar)) > thr:
-                found = True
-                lo = tk - 2.0 * hg
-                hi = xm
-        if found:
-            sgn = 1.0 if ground_at(hi, seg, epar) > 0.0 else -1.0
+    turns = _pulse_turns(int(seg[0]))
+    lo = t
+    for k in range(5):
+        hi = t_end
+        if k < 4:
+            tk = epar[E_T0] + turns[k] * epar[E_TP]
+            if tk <= lo:
+                continue
+            if tk < t_end:
+                hi = tk
+        f_hi = ground_at(hi, seg, epar)
+        if abs(f_hi) > thr:
+            sgn = 1.0 if f_hi > 0.0 else -1.0
             for _ in range(200):
                 mid = 0.5 * (lo + hi)
                 if mid <= lo or mid >= hi:
@@ -134,8 +139,9 @@ def _rigid_uplift(seg, epar, thr, t, t_end):
                 else:
                     lo = mid
             return hi, -sgn
-        fm2 = fm1
-        fm1 = fk
+        if hi >= t_end:
+            break
+        lo = hi
     return -1.0, 0.0
 
 
