@@ -685,6 +685,46 @@ def simulate_verdicts(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL, res
         nfev=outs[:, k.O_NRHS].astype(np.int64), peak_final=outs[:, k.O_PEAK_FINAL] != 0.0)
 
 
+def _scene_arrays(block, foundation, excitation, tail, rtol, rest_tol, horizon, max_steps, prepared, params,
+                  checked):
+    """The kernel inputs of one (block, foundation, excitation, tail) of a sweep, validated and its work
+    checked: ``(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end)`` (``epar`` a copy).
+
+    ``prepared``, ``params`` and ``checked`` are the sweep's caches: an excitation's arrays by id, the
+    parameters by (block, foundation) and the work estimates that passed.
+    """
+    k = _kernel()
+    key = id(excitation)
+    if key not in prepared:
+        try:
+            prepared[key] = _excitation_arrays(excitation)
+        except RockcliInputError as exc:
+            prepared[key] = exc
+    if isinstance(prepared[key], RockcliInputError):
+        raise prepared[key]
+    ekind, epar, acc, jtab, dt, t_begin, t_exc_end = prepared[key]
+    try:
+        cached = params.get((block, foundation))
+    except TypeError:  # an unhashable foundation: built for each scene
+        cached = _parameters(block, foundation, rtol, float(rest_tol))
+    if cached is None:
+        cached = params[(block, foundation)] = _parameters(block, foundation, rtol, float(rest_tol))
+    fkind, prm = cached
+    # the work estimate depends only on these (not on the amplitude): checked once per distinct set
+    wkey = (block, foundation, ekind, acc.size, epar[k.E_TE] - epar[k.E_TS], t_exc_end, tail)
+    try:
+        known = wkey in checked
+    except TypeError:
+        known = False
+    if not known:
+        _check_work(block, foundation, prepared[key], rtol, tail, float(rest_tol), float(horizon), int(max_steps))
+        try:
+            checked.add(wkey)
+        except TypeError:
+            pass
+    return fkind, prm, ekind, epar.copy(), acc, jtab, dt, t_begin, t_exc_end
+
+
 def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress, chunk):
     """Kernel outputs (``O_*`` rows) of the valid jobs, each job's slenderness, and the failed jobs.
 
@@ -705,87 +745,74 @@ def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress
     n = len(jobs)
     if n == 0:
         return np.zeros((0, k.N_OUT)), [], {}
-    fkinds = np.zeros(n, np.int64)
-    ekinds = np.zeros(n, np.int64)
-    prms = np.zeros((n, k.N_PRM))
-    epars = np.zeros((n, 8))
-    dts = np.ones(n)
-    t_begins = np.zeros(n)
-    t_exc_ends = np.zeros(n)
-    acc_off = np.zeros(n, np.int64)
-    acc_len = np.zeros(n, np.int64)
     pieces, jpieces, where, total = [], [], {}, 0
-    alphas = []
     prepared = {}  # id(excitation) -> validated kernel arrays (or the error): a shared record is checked once
     params = {}  # (block, foundation) -> kernel parameters: built once per distinct pair
     checked = set()  # work estimates that passed (see _check_work)
+    groups = {}  # (id(block), id(foundation), id(excitation), tail) -> index into G, or the error
+    G = []  # per distinct scene: (fkind, prm, ekind, epar, offset, length, dt, t_begin, t_exc_end, alpha)
     failed = {}  # job index -> JobError; those jobs are not run
+    gidx = np.full(n, -1, np.int64)
+    scales = np.ones(n)
+    ground = Rigid()
     for i, job in enumerate(jobs):
         try:
             block, foundation, excitation = job[:3]
             scale = float(job[3]) if len(job) > 3 else 1.0
             if not isinstance(block, Block):
                 raise RockcliInputError(f"job {i}: block must be a rockcli.models.Block")
-            foundation = foundation if foundation is not None else Rigid()
+            foundation = foundation if foundation is not None else ground
             if not hasattr(foundation, "gamma"):
                 raise RockcliInputError(f"job {i}: unknown foundation {foundation!r}")
             if not math.isfinite(scale):
                 raise RockcliInputError(f"job {i}: the scale factor must be finite, got {scale!r}")
-            key = id(excitation)
-            if key not in prepared:
-                try:
-                    prepared[key] = _excitation_arrays(excitation)
-                except RockcliInputError as exc:
-                    prepared[key] = exc
-            if isinstance(prepared[key], RockcliInputError):
-                raise prepared[key]
-            ekind, epar, acc, jtab, dt, t_begin, t_exc_end = prepared[key]
-            epar = epar.copy()
-            try:
-                cached = params.get((block, foundation))
-            except TypeError:  # an unhashable foundation: built for each job
-                cached = _parameters(block, foundation, rtol, float(rest_tol))
-            if cached is None:
-                cached = params[(block, foundation)] = _parameters(block, foundation, rtol, float(rest_tol))
-            fkind, prm = cached
-            # the work estimate depends only on these (not on the amplitude): checked once per distinct set
             tail_i = float(tails_in if tails_in.ndim == 0 else tails_in[i])
-            wkey = (block, foundation, ekind, acc.size, epar[k.E_TE] - epar[k.E_TS], t_exc_end, tail_i)
-            try:
-                known = wkey in checked
-            except TypeError:
-                known = False
-            if not known:
-                _check_work(block, foundation, prepared[key], rtol, tail_i, float(rest_tol), float(horizon),
-                            int(max_steps))
+            # the jobs hold these objects, so their ids stay theirs for the whole loop
+            gkey = (id(block), id(foundation), id(excitation), tail_i)
+            g = groups.get(gkey)
+            if g is None:
                 try:
-                    checked.add(wkey)
-                except TypeError:
-                    pass
+                    sc = _scene_arrays(block, foundation, excitation, tail_i, rtol, rest_tol, horizon, max_steps,
+                                       prepared, params, checked)
+                except (RockcliInputError, TypeError, ValueError) as exc:
+                    sc = RockcliInputError(str(exc))
+                if isinstance(sc, RockcliInputError):
+                    g = sc
+                else:
+                    fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end = sc
+                    akey = id(acc)  # a record's samples, or the table shared by all pulses of one shape
+                    if akey not in where:
+                        where[akey] = total
+                        pieces.append(acc)
+                        jpieces.append(jtab)
+                        total += acc.size
+                    g = len(G)
+                    G.append((fkind, prm, ekind, epar, where[akey], acc.size, dt, t_begin, t_exc_end, block.alpha))
+                groups[gkey] = g
+            if isinstance(g, RockcliInputError):
+                raise g
         except (RockcliInputError, TypeError, ValueError) as exc:
             failed[i] = JobError(str(exc))
-            alphas.append(math.nan)
             continue
-        if ekind == k.EXC_RECORD:
-            epar[k.E_AP] = scale
-        else:  # a pulse: the kernel reads its amplitude from epar[E_AP]
-            epar[k.E_AP] *= scale
-        akey = id(acc)  # a record's samples, or the table shared by all pulses of one shape
-        if akey not in where:
-            where[akey] = total
-            pieces.append(acc)
-            jpieces.append(jtab)
-            total += acc.size
-        acc_off[i], acc_len[i] = where[akey], acc.size
-        fkinds[i], ekinds[i], prms[i], epars[i] = fkind, ekind, prm, epar
-        dts[i], t_begins[i], t_exc_ends[i] = dt, t_begin, t_exc_end
-        alphas.append(block.alpha)
-    tails = np.full(n, float(tails_in)) if tails_in.ndim == 0 else tails_in.copy()
-    if failed:
-        ok = np.array([i for i in range(n) if i not in failed], dtype=np.int64)
-        fkinds, ekinds, prms, epars = fkinds[ok], ekinds[ok], prms[ok], epars[ok]
-        dts, t_begins, t_exc_ends, acc_off, acc_len = dts[ok], t_begins[ok], t_exc_ends[ok], acc_off[ok], acc_len[ok]
-        tails = tails[ok]
+        gidx[i] = g
+        scales[i] = scale
+    ok = np.flatnonzero(gidx >= 0)
+    sel = gidx[ok]
+    alphas = np.full(n, math.nan)
+    if G:
+        fkinds, prms, ekinds, epars, acc_off, acc_len, dts, t_begins, t_exc_ends, g_alpha = (
+            np.array(col, dtype=np.int64 if j in (0, 2, 4, 5) else float)[sel] for j, col in enumerate(zip(*G)))
+        alphas[ok] = g_alpha
+    else:
+        fkinds = ekinds = acc_off = acc_len = np.zeros(0, np.int64)
+        prms, epars = np.zeros((0, k.N_PRM)), np.zeros((0, 8))
+        dts = t_begins = t_exc_ends = np.zeros(0)
+    alphas = alphas.tolist()
+    record = ekinds == k.EXC_RECORD
+    scale_ok = scales[ok]
+    epars[record, k.E_AP] = scale_ok[record]  # a record: E_AP carries the scale factor
+    epars[~record, k.E_AP] *= scale_ok[~record]  # a pulse: the kernel reads its amplitude from E_AP
+    tails = np.full(ok.size, float(tails_in)) if tails_in.ndim == 0 else tails_in[ok].copy()
     m = fkinds.size
     acc_all = np.concatenate(pieces) if pieces else np.zeros(2)
     jtab_all = np.concatenate(jpieces) if jpieces else np.zeros(2)
