@@ -74,25 +74,49 @@ def _pyplot():
 # --------------------------------------------------------------------------------------------------
 # Overturning maps
 # --------------------------------------------------------------------------------------------------
-def map_rows(maps):
-    """One dict per cell of every map, keyed by :data:`MAP_COLUMNS`."""
-    for m in maps:
-        tan_a = math.tan(math.radians(m.alpha_deg))
-        T_p = m.pulse.T_p
-        for i, y in enumerate(m.ap_over_g_tan_alpha):
-            for j, x in enumerate(m.wp_over_p):
-                yield {"alpha_deg": m.alpha_deg, "pulse": m.pulse.shape, "isolation": m.isolation.label,
-                       "T_p_s": float("nan") if T_p is None else T_p, "R_m": _size(T_p, float(x)),
-                       "wp_over_p": float(x), "ap_over_g_tan_alpha": float(y), "ap_g": float(y) * tan_a,
-                       "overturned": bool(m.overturned[i, j]),
-                       "theta_max_over_alpha": float(m.theta_max_over_alpha[i, j]),
-                       "uplift": bool(m.uplifted[i, j]), "peak_final": bool(m.peak_final[i, j]),
-                       "proven": bool(m.settled[i, j] or m.overturned[i, j])}
+def _column_text(values) -> list:
+    """One CSV field per value, as :func:`_fmt` writes it, for a whole column at once."""
+    import numpy as np
+
+    v = np.asarray(values)
+    if v.dtype == bool:
+        return np.where(v, "1", "0").tolist()
+    if v.dtype.kind == "f":
+        return ["" if x != x else repr(x) for x in v.tolist()]  # x != x: NaN
+    return [str(x) for x in v.tolist()]
+
+
+def map_columns(m) -> dict:
+    """The cells of one map (:class:`rockcli.spectra.OverturningMap`) as columns keyed by
+    :data:`MAP_COLUMNS`, row by row (a_p outer, omega_p/p inner)."""
+    import numpy as np
+
+    x = np.asarray(m.wp_over_p, dtype=float)
+    y = np.asarray(m.ap_over_g_tan_alpha, dtype=float)
+    X, Y = np.meshgrid(x, y)
+    T_p = m.pulse.T_p
+    n = X.size
+    return {"alpha_deg": np.full(n, m.alpha_deg), "pulse": np.full(n, m.pulse.shape, dtype=object),
+            "isolation": np.full(n, m.isolation.label, dtype=object),
+            "T_p_s": np.full(n, math.nan if T_p is None else float(T_p)),
+            "R_m": np.array([_size(T_p, v) for v in x] * y.size),
+            "wp_over_p": X.ravel(), "ap_over_g_tan_alpha": Y.ravel(),
+            "ap_g": Y.ravel() * math.tan(math.radians(m.alpha_deg)),
+            "overturned": np.asarray(m.overturned, dtype=bool).ravel(),
+            "theta_max_over_alpha": np.asarray(m.theta_max_over_alpha, dtype=float).ravel(),
+            "uplift": np.asarray(m.uplifted, dtype=bool).ravel(), "peak_final": np.asarray(m.peak_final, dtype=bool).ravel(),
+            "proven": (np.asarray(m.settled, dtype=bool) | np.asarray(m.overturned, dtype=bool)).ravel()}
 
 
 def write_map_csv(maps, path) -> Path:
     """Write every cell of ``maps`` (:class:`rockcli.spectra.OverturningMap`) as CSV, atomically."""
-    return _write_rows(path, MAP_COLUMNS, map_rows(maps))
+    fh = io.StringIO()
+    w = csv.writer(fh, lineterminator="\n")
+    w.writerow(MAP_COLUMNS)
+    for m in maps:
+        cols = map_columns(m)
+        w.writerows(zip(*(_column_text(cols[c]) for c in MAP_COLUMNS)))
+    return write_text(path, fh.getvalue())
 
 
 def _panel_grid(n_rows, n_cols, plt, width=3.4, height=3.0):
