@@ -571,3 +571,30 @@ def test_sliding_bearing_corners_stay_far_below_the_step_cap(spec):
     for pulse in (make_pulse("ricker-sym", 0.5 * G, 0.5), make_pulse("ricker-sym", 5 * G, 0.05)):
         res = simulate(Block.from_degrees(1.0, 10.0), parse_isolation_spec(spec), pulse)
         assert res.status >= 0 and res.steps + res.rejected_steps < 200_000
+
+
+def _console(args, cwd, stdin=None):
+    """The installed console script's entry point (rockcli.cli:run) in a fresh interpreter."""
+    import subprocess
+    import sys
+
+    code = "import sys; from rockcli.cli import run; sys.argv = ['rockcli'] + sys.argv[1:]; run()"
+    return subprocess.run([sys.executable, "-c", code, *args], capture_output=True, text=True, cwd=cwd,
+                          input=stdin)
+
+
+def test_console_script_exit_codes_output_and_files(work):
+    """The console script ends the process with os._exit after flushing and the exit handlers:
+    the exit code is main()'s (0, 2 for bad input), everything printed arrives, files are whole."""
+    ok = _console(["spectrum", "overturning", "--alpha", "10", "--wp-p", "1:4:7", "--ap", "0.5:5:9",
+                   "--csv", "map.csv"], work)
+    assert ok.returncode == 0, ok.stderr
+    rows = (work / "map.csv").read_text().splitlines()
+    assert len(rows) == 1 + 7 * 9 and rows[0].startswith("alpha_deg,")
+    assert ok.stdout.strip()  # the summary reached the pipe
+    bad = _console(["spectrum", "overturning", "--alpha", "-3"], work)
+    assert bad.returncode == 2 and "Traceback" not in bad.stderr and "--alpha" in bad.stderr
+    helped = _console(["--help"], work)
+    assert helped.returncode == 0 and "Usage: rockcli" in helped.stdout and helped.stdout.endswith("\n")
+    missing = _console(["simulate", "--column", "bassae", "--record", str(work / "nope.AT2")], work)
+    assert missing.returncode == 2 and "Traceback" not in missing.stderr and "nope.AT2" in missing.stderr

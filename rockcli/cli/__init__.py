@@ -54,3 +54,37 @@ def main():
 
     Implements Vassiliou & Makris (2012), Earthquake Engng Struct Dyn 41:177-196.
     """
+
+
+def run():
+    """The console script ``rockcli``: :func:`main`, then the process ends without the interpreter's
+    teardown.
+
+    A finished command has written its files (atomically, closed) and its output; what Python does
+    after the exit handlers is free every module and object, and with numba's compiled kernels loaded
+    that takes about 0.3 s, a fifth of a whole 200 x 200 map. So the standard streams are flushed, the
+    exit handlers run (:mod:`atexit`: logging, numba, multiprocessing) and the process ends with
+    :func:`os._exit` and the exit code :func:`main` gave. ``python -m rockcli`` and click's test
+    runner call :func:`main` itself and exit the ordinary way.
+    """
+    import atexit
+    import os
+    import sys
+
+    try:
+        main()
+        code = 0
+    except SystemExit as exc:
+        code = exc.code
+    if code is None:
+        code = 0
+    elif not isinstance(code, int):  # sys.exit("message"): Python prints it and exits with 1
+        print(code, file=sys.stderr)
+        code = 1
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (OSError, ValueError):  # a closed pipe or stream: nothing more can be shown
+            pass
+    atexit._run_exitfuncs()
+    os._exit(code)
