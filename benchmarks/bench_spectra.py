@@ -11,7 +11,8 @@ Prints (no assertions):
    kernels, building the 40,000 scenes, the kernel (wall and CPU), with cells/s and right-hand sides;
 3. with ``--cold``: the first run with an empty numba cache (``NUMBA_CACHE_DIR`` pointed at a new
    folder, so the real cache is left alone): time until the kernels are ready for the rigid map,
-   for the linear one, and the whole rigid map command.
+   for the linear one (and which kernel functions were compiled more than once), and the whole
+   rigid map command.
 
 The machine may be shared with other jobs: CPU time shows the work, wall time the wait too.
 
@@ -36,6 +37,18 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 LIN = "linear:TbTp=2,xi=0.05,gamma=0.01"
 SCSS = "scss:TbTp=2,mu=0.05"
+
+# printed after a cold run: each kernel function numba compiled for more than one set of argument
+# types (a literal int argument is a type of its own, so one more copy of the function to compile)
+SPECIALISATIONS = r"""
+import importlib, pkgutil
+import rockcli.kernels as K
+for m in pkgutil.iter_modules(K.__path__):
+    mod = importlib.import_module("rockcli.kernels." + m.name)
+    for name, f in vars(mod).items():
+        if hasattr(f, "signatures") and f.py_func.__module__ == mod.__name__ and len(f.signatures) > 1:
+            print(f"{m.name}.{name} x{len(f.signatures)}")
+"""
 
 SPLIT = r"""
 import time, json, sys
@@ -103,7 +116,8 @@ def main():
     opts = parser.parse_args()
     env = dict(os.environ)
     env["PYTHONPATH"] = str(ROOT) + (os.pathsep + env["PYTHONPATH"] if env.get("PYTHONPATH") else "")
-    base = [sys.executable, "-m", "rockcli"]
+    # the console script a user runs (rockcli.cli:run), in this interpreter
+    base = [sys.executable, "-c", "import sys; from rockcli.cli import run; sys.argv[0] = 'rockcli'; run()"]
     rigid = base + ["spectrum", "overturning", "--alpha", "10"]
     linear = rigid + ["--isolation", LIN]
     for iso in (LIN, SCSS):  # warm the kernel cache (both drivers)
@@ -139,13 +153,15 @@ def main():
             code = ("import time; t = time.perf_counter()\n"
                     "from rockcli import spectra as S\n"
                     f"S.overturning_map(10, 'ricker-sym', {iso!r}, S.Grid(1, 2, 2), S.Grid(1, 2, 2))\n"
-                    "print(time.perf_counter() - t)")
+                    "print(time.perf_counter() - t)\n" + SPECIALISATIONS)
             t = time.perf_counter()
             out = subprocess.run([sys.executable, "-c", code], env=cold_env, cwd=ROOT, check=True,
-                                 capture_output=True, text=True).stdout
+                                 capture_output=True, text=True).stdout.splitlines()
             total = time.perf_counter() - t
-            print(f"\ncold numba cache, {label} map: kernels ready after {float(out.strip()):.1f} s "
+            print(f"\ncold numba cache, {label} map: kernels ready after {float(out[0]):.1f} s "
                   f"(process {total:.1f} s)")
+            print("  kernel functions compiled more than once (one per distinct argument types): "
+                  + (", ".join(out[1:]) or "none"))
             if iso == "none":
                 shutil.rmtree(cache, ignore_errors=True)
                 cold_env = dict(env, NUMBA_CACHE_DIR=tempfile.mkdtemp(prefix="numba-cold-"))

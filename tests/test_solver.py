@@ -497,3 +497,4 @@ def test_a_sweep_stops_on_an_error_in_progress_and_the_next_one_runs():
     once = simulate_many(jobs)
     assert [r.verdict for r in again] == [r.verdict for r in once]
     assert [r.theta_max for r in again] == [r.theta_max for r in once]  # the pieces change no result
+

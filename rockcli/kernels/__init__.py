@@ -33,7 +33,8 @@ _cache.install()  # before any @njit(cache=True) of this package is applied
 
 from rockcli.kernels.layout import *  # noqa: E402,F401,F403
 from rockcli.kernels.layout import N_PRM  # noqa: E402,F401
-from rockcli.kernels.ground import _impulse_left, _pulse_segment, _pulse_turns, _rigid_uplift, pulse_acc  # noqa: E402,F401,E501
+from rockcli.kernels.ground import (_impulse_left, _pulse_segment, _pulse_turns, _rigid_uplift,  # noqa: E402,F401
+                                    pulse_acc)
 from rockcli.kernels.polynomials import (_first_down, _first_exceed, _golden_max, _poly,  # noqa: E402,F401
                                          _refine_root)
 from rockcli.kernels.bearings import (base_force, bw_phi, bw_phi_inv, bw_slope, dcss_split,  # noqa: E402,F401

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 from numba import njit
 
 from rockcli.kernels.bearings import (base_force, bearing_energy, element_states, free_disp_bound, free_force_bound,
@@ -101,7 +102,7 @@ def _dp5_iso(fkind, phase, s, prm, seg, epar, hy, gz, t, h, W, i0, i1, r0):
 def _restep_iso(fkind, phase, s, prm, seg, epar, hy, t, h, W, i0, i1):
     """The last step retaken to an event at ``t + h`` (:func:`rockcli.kernels.dopri._restep_rows`)."""
     _restep_rows(W)
-    _dp5_iso(fkind, phase, s, prm, seg, epar, hy, 0.0, t, h, W, i0, i1, W_RE)
+    _dp5_iso(fkind, phase, s, prm, seg, epar, hy, 0.0, t, h, W, i0, i1, np.int64(W_RE))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -176,7 +177,7 @@ def _take_step(fkind, prm, ekind, epar, max_steps, rs, W, t_stop, nst):
     the fraction of it that stands (1, or on a hysteretic base the reversal of u where it ends).
     ``ok`` is False when the step cap is reached first.
     """
-    phase = rs[RS_PHASE]
+    phase = int(rs[RS_PHASE])
     s = rs[RS_S]
     t = rs[RS_T]
     seg = _seg(rs)
@@ -205,7 +206,7 @@ def _take_step(fkind, prm, ekind, epar, max_steps, rs, W, t_stop, nst):
         last = hs >= t_stop - t
         if last:
             hs = t_stop - t
-        err = _dp5_iso(fkind, phase, s, prm, seg, epar, hy, gz, t, hs, W, i0, nst, 0)
+        err = _dp5_iso(fkind, phase, s, prm, seg, epar, hy, gz, t, hs, W, i0, nst, np.int64(0))
         nrhs += 6
         if err <= 1.0 and hyst:
             code, sr = reversal_check(W, hs, rs[RS_DIR], tol_u)
@@ -226,8 +227,8 @@ def _take_step(fkind, prm, ekind, epar, max_steps, rs, W, t_stop, nst):
             if code == REV_AT:
                 sig_lim = sr
                 last = False
-            kr = knee_ratio(fkind, prm, hy, W[W_YNEW, 2] if code != REV_AT else _poly(_dense(W, hs, 2, 1.0), sr),
-                            hs, W[W_Y, 3])
+            u_end = W[W_YNEW, 2] if code != REV_AT else _poly(_dense(W, hs, np.int64(2), 1.0), sr)
+            kr = knee_ratio(fkind, prm, hy, u_end, hs, W[W_Y, 3])
             if kr > 1.0:
                 # the step ran through a knee of the bearing's loop unresolved: retake it shorter
                 rej += 1
@@ -257,14 +258,14 @@ def _after_stuck_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, epar):
     """Stuck on an isolated base, after a step of the base: uplift when |a| crosses g tan(alpha)."""
     thr = prm[P_THR]
     if fkind >= FOUNDATION_BILINEAR:
-        sig, su = hysteretic_uplift(fkind, prm, _hy(rs), _dense(W, hs, 2, 1.0), sig_lim, thr)
+        sig, su = hysteretic_uplift(fkind, prm, _hy(rs), _dense(W, hs, np.int64(2), 1.0), sig_lim, thr)
     else:
         # a(sigma) is linear in the states, so a quartic in sigma like them; every step is
         # checked (no pre-filter on the step ends)
         w = prm[P_W]
         xi = prm[P_XI]
-        cu = _dense(W, hs, 2, 1.0)
-        cv = _dense(W, hs, 3, 1.0)
+        cu = _dense(W, hs, np.int64(2), 1.0)
+        cv = _dense(W, hs, np.int64(3), 1.0)
         ca = (-w * w * cu[0] - 2.0 * xi * w * cv[0], -w * w * cu[1] - 2.0 * xi * w * cv[1],
               -w * w * cu[2] - 2.0 * xi * w * cv[2], -w * w * cu[3] - 2.0 * xi * w * cv[3],
               -w * w * cu[4] - 2.0 * xi * w * cv[4])
@@ -277,7 +278,8 @@ def _after_stuck_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, epar):
         # root of |a| = g tan(alpha) (a = F: the block rides on the base)
         t = rs[RS_T]
         hy = _hy(rs)
-        _restep_iso(fkind, PHASE_STUCK, 0.0, prm, _seg(rs), epar, hy, t, sig * hs, W, 2, 4)
+        _restep_iso(fkind, np.int64(PHASE_STUCK), 0.0, prm, _seg(rs), epar, hy, t, sig * hs, W, np.int64(2),
+                    np.int64(4))
         rs[RS_NRHS] += 6
         F, Fd = force_rate(fkind, prm, hy, W[W_EV, 2], W[W_EV, 3], W[W_FEV, 3])
         dt_e = (-su * thr - F) / Fd if Fd != 0.0 else 0.0
@@ -457,9 +459,9 @@ def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, ta
         History rows ``t, ag, theta, theta_dot, u, u_dot, z1, z2, bearing force`` (empty when not
         wanted).
     """
-    nst = 4
+    nst = np.int64(4)  # (not a literal 4: one compiled specialization of each callee, see steps.py)
     W, rs, H = _start(ekind, epar, acc, dt, t_begin, want_history, out)
-    nh = 0
+    nh = np.int64(0)
     if fkind >= FOUNDATION_BILINEAR:
         _set_hy(rs, initial_anchor(fkind, prm))
     t_show_end = t_exc_end + tail

@@ -63,8 +63,8 @@ def reversal_check(W, hs, d, tol):
     guessed wrong). A back-and-forth within ``tol`` is accepted (the z error it makes is below the
     error the tolerance allows).
     """
-    cv = _dense(W, hs, 3, d)
-    cu = _dense(W, hs, 2, d)
+    cv = _dense(W, hs, np.int64(3), d)
+    cu = _dense(W, hs, np.int64(2), d)
     sr = _first_down(cv, 0.0, 0.0, 1.0)
     if sr >= 0.0 and _poly(cu, sr) - cu[0] > tol:
         return REV_AT, sr
@@ -121,11 +121,11 @@ def hysteretic_uplift(fkind, prm, hy, cu, sig_lim, thr):
 @njit(cache=True)
 def _u_extremum(W, hs, sig_end):
     """|u| at an extremum of u inside [0, sig_end] of the last step (u_dot changes sign), else -1."""
-    c = _dense(W, hs, 3, 1.0 if W[W_Y, 3] > 0.0 else -1.0)
+    c = _dense(W, hs, np.int64(3), 1.0 if W[W_Y, 3] > 0.0 else -1.0)
     sx = _first_down(c, 0.0, 0.0, sig_end)
     if sx < 0.0:
         return -1.0
-    return abs(_poly(_dense(W, hs, 2, 1.0), sx))
+    return abs(_poly(_dense(W, hs, np.int64(2), 1.0), sx))
 
 
 @njit(cache=True, inline='always')

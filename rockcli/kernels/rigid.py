@@ -54,6 +54,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 from numba import njit
 
 from rockcli.kernels.dopri import _dp5_step, _restep_rows
@@ -161,7 +162,7 @@ def _take_step_rigid(prm, ekind, epar, max_steps, rs, W, t_stop):
         last = hs >= t_stop - t
         if last:
             hs = t_stop - t
-        err = _dp5_rigid(s, prm, seg, epar, t, hs, W, 0)
+        err = _dp5_rigid(s, prm, seg, epar, t, hs, W, np.int64(0))
         nrhs += 6
         if err <= 1.0:
             h = _grown(h, hs, err, last)
@@ -188,7 +189,7 @@ def _dp5_rigid(s, prm, seg, epar, t, h, W, r0):
 def _restep_rigid(fkind, phase, s, prm, seg, epar, hy, t, h, W, i0, i1):
     """The last step retaken to an event at ``t + h`` (:func:`rockcli.kernels.dopri._restep_rows`)."""
     _restep_rows(W)
-    _dp5_rigid(s, prm, seg, epar, t, h, W, W_RE)
+    _dp5_rigid(s, prm, seg, epar, t, h, W, np.int64(W_RE))
 
 
 @njit(cache=True, inline='always')
@@ -203,7 +204,7 @@ def simulate_rigid(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, t
     """Integrate one scene on a rigid foundation; the arguments, outputs and the general end-of-run
     rule are those of :func:`rockcli.kernels.driver.simulate_core` (``fkind`` is ignored)."""
     W, rs, H = _start(ekind, epar, acc, dt, t_begin, want_history, out)
-    nh = 0
+    nh = np.int64(0)
     t_show_end = t_exc_end + tail
     t_horizon = t_exc_end + max(horizon, tail)
     if want_history:

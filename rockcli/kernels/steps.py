@@ -4,6 +4,14 @@ controller, the events of a rocking step in theta, the impact bookkeeping and th
 Nothing here depends on the foundation: the rigid-foundation driver (:mod:`rockcli.kernels.rigid`)
 and the isolated-base driver (:mod:`rockcli.kernels.driver`) call these with their own right-hand
 side (a function argument where one is needed), so each compiles only its own foundation's code.
+
+Integer arguments of compiled calls (row offsets, state counts, state indices, phase codes) are
+passed as ``np.int64(...)``, never as bare literals: numba types a literal ``0`` as
+``Literal[int](0)``, a type of its own, and compiles the callee once more for each literal value.
+One extra copy of a step function costs about 0.7 s on a cold cache (the rigid map's cold start
+went from 9.4-9.8 s to 7.7-8.5 s, the linear one from 28-31 s to 19-21 s when they were removed).
+``benchmarks/bench_spectra.py --cold`` lists any function compiled more than once. (The batch
+drivers pass ``want_history=False`` as a literal on purpose: a verdict-only specialisation.)
 """
 
 from __future__ import annotations
@@ -66,7 +74,7 @@ def _start(ekind, epar, acc, dt, t_begin, want_history, out):
         rscale = epar[E_AP]  # records: the factor the record is scaled by
         _set_seg(rs, (float(SEG_LINEAR), rscale * acc[0], rscale * (acc[1] - acc[0]) / dt, 0.0), dt)
     else:
-        seg0, seg_end0 = _pulse_segment(0, ekind, epar, t_begin)
+        seg0, seg_end0 = _pulse_segment(np.int64(0), ekind, epar, t_begin)
         _set_seg(rs, seg0, seg_end0)
     if want_history:
         H = np.empty((2 * acc.shape[0] + 1024 if ekind == EXC_RECORD else 4096, N_HIST))
@@ -205,16 +213,16 @@ def _rocking_events(prm, rs, W, out, hs, t_new, sig_lim):
     sig_end = sig_lim
     impact = False
     if sth1 <= 0.0 or (sd0 < 0.0 and sd1 > 0.0):
-        sig = _first_down(_dense(W, hs, 0, s), 0.0, 0.0, sig_lim)
+        sig = _first_down(_dense(W, hs, np.int64(0), s), 0.0, 0.0, sig_lim)
         if sig >= 0.0:
             impact = True
             sig_end = sig
         elif sth1 <= 0.0:
             return EV_FAILED, sig_lim
     if sd0 >= 0.0 and (sd1 <= 0.0 or impact):  # sd0 = 0 right after an uplift
-        sp = _first_down(_dense(W, hs, 1, s), 0.0, 0.0, sig_end)
+        sp = _first_down(_dense(W, hs, np.int64(1), s), 0.0, 0.0, sig_end)
         if sp >= 0.0:
-            thp = _poly(_dense(W, hs, 0, s), sp)
+            thp = _poly(_dense(W, hs, np.int64(0), s), sp)
             if thp > rs[RS_THMAX]:
                 rs[RS_THMAX] = thp
                 out[O_T_THETA_MAX] = t + sp * hs
@@ -222,10 +230,10 @@ def _rocking_events(prm, rs, W, out, hs, t_new, sig_lim):
         rs[RS_THMAX] = sth1
         out[O_T_THETA_MAX] = t_new
     if math.isnan(out[O_T_EXCEED]) and rs[RS_THMAX] >= alpha:
-        sa = _first_down(_dense(W, hs, 0, -s), -alpha, 0.0, sig_end)
+        sa = _first_down(_dense(W, hs, np.int64(0), -s), -alpha, 0.0, sig_end)
         out[O_T_EXCEED] = t + (sa if sa >= 0.0 else sig_end) * hs
     if not impact and sth1 >= halfpi:
-        so = _first_down(_dense(W, hs, 0, -s), -halfpi, 0.0, sig_lim)
+        so = _first_down(_dense(W, hs, np.int64(0), -s), -halfpi, 0.0, sig_lim)
         return EV_OVERTURN, (so if so >= 0.0 else sig_lim)
     if impact:
         return EV_IMPACT, sig_end
@@ -252,7 +260,7 @@ def _to_impact(restep, fkind, prm, rs, W, epar, hy, hs, sig, nst):
     the driver's :func:`rockcli.kernels.dopri._restep_rows`), moved onto the root theta = 0 by one
     Taylor term, theta then set to exactly 0."""
     t = rs[RS_T]
-    restep(fkind, PHASE_ROCKING, rs[RS_S], prm, _seg(rs), epar, hy, t, sig * hs, W, 0, nst)
+    restep(fkind, np.int64(PHASE_ROCKING), rs[RS_S], prm, _seg(rs), epar, hy, t, sig * hs, W, np.int64(0), nst)
     rs[RS_NRHS] += 6
     dt_e = -W[W_EV, 0] / W[W_FEV, 0] if W[W_FEV, 0] != 0.0 else 0.0
     dt_e = min(max(dt_e, -sig * hs), (1.0 - sig) * hs)
