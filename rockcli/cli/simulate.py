@@ -25,7 +25,7 @@ from rockcli.cli.options import block_from_options, block_options, check_outputs
 @click.option("--scale", type=float, default=1.0, help="Multiply the record's acceleration by this factor.")
 @click.option("--flip", is_flag=True, help="Reverse the sign of the ground motion.")
 @click.option("--rtol", type=float, default=None,
-              help="Relative tolerance of the integrator [default: 1e-8; 2e-9 on sliding and lead-rubber bearings].")
+              help="Relative tolerance of the integrator [default: 5e-9; 2e-9 on sliding and lead-rubber bearings].")
 @click.option("--tail", type=float, default=10.0,
               help="Free motion shown after the excitation in --history/--plot [s]; never changes the verdict.")
 @click.option("--horizon", type=float, default=600.0,

@@ -135,7 +135,7 @@ def format_work_precision(scenes) -> str:
 
 
 def format_wp_summary(summaries) -> str:
-    """rockcli at its default rtol (1e-8; 2e-9 on sliding bearings) against RK45 (Radau for sliding bearings) at rtol 1e-8."""
+    """rockcli at its default rtol (5e-9; 2e-9 on sliding bearings) against RK45 (Radau for sliding bearings) at rtol 1e-8."""
     rows = []
     for s in summaries:
         if s is None:
