@@ -89,7 +89,7 @@ def _columns(names, R, alpha, height, width, name):
 @click.option("--plot", "plot_dir", type=click.Path(), default=None,
               help="Write one figure per run (like the paper's Figure 12) into this folder.")
 @click.option("--check-tolerance", is_flag=True,
-              help="Rerun every scene at a 100x tighter rtol (1e-10; 2e-11 on sliding bearings) and flag any "
+              help="Rerun every scene at a 100x tighter rtol (5e-11; 2e-11 on sliding bearings) and flag any "
                    "verdict that changes.")
 @user_errors
 def column(names, R, alpha, height, width, name, records, units, dt, excitation, isolation, margin, neighbourhood,
