@@ -11,6 +11,7 @@ wide); records are slices ``acc_all[acc_off[i]:acc_off[i] + acc_len[i]]`` (scene
 
 from __future__ import annotations
 
+import numpy as np
 from numba import njit
 
 from rockcli.kernels.driver import simulate_core
@@ -31,19 +32,21 @@ def _scene(i, prms, epars):
 def simulate_batch_rigid(fkinds, prms, ekinds, epars, acc_all, jtab_all, acc_off, acc_len, dts, t_begins,
                          t_exc_ends, tails, horizon, max_steps, early, outs):
     """Scenes on a rigid foundation (:func:`rockcli.kernels.rigid.simulate_rigid`)."""
+    no_history = np.bool_(False)  # not a literal: the same compiled driver as a single run's
     for i in range(fkinds.shape[0]):
         prm, epar = _scene(i, prms, epars)
         a, b = acc_off[i], acc_off[i] + acc_len[i]
         simulate_rigid(fkinds[i], prm, ekinds[i], epar, acc_all[a:b], jtab_all[a:b], dts[i], t_begins[i],
-                       t_exc_ends[i], tails[i], horizon, max_steps, False, early, outs[i])
+                       t_exc_ends[i], tails[i], horizon, max_steps, no_history, early, outs[i])
 
 
 @njit(cache=True, nogil=True)
 def simulate_batch(fkinds, prms, ekinds, epars, acc_all, jtab_all, acc_off, acc_len, dts, t_begins, t_exc_ends,
                    tails, horizon, max_steps, early, outs):
     """Scenes on isolated bases (:func:`rockcli.kernels.driver.simulate_core`)."""
+    no_history = np.bool_(False)  # not a literal: the same compiled driver as a single run's
     for i in range(fkinds.shape[0]):
         prm, epar = _scene(i, prms, epars)
         a, b = acc_off[i], acc_off[i] + acc_len[i]
         simulate_core(fkinds[i], prm, ekinds[i], epar, acc_all[a:b], jtab_all[a:b], dts[i], t_begins[i],
-                      t_exc_ends[i], tails[i], horizon, max_steps, False, early, outs[i])
+                      t_exc_ends[i], tails[i], horizon, max_steps, no_history, early, outs[i])

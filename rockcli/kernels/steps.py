@@ -10,8 +10,10 @@ passed as ``np.int64(...)``, never as bare literals: numba types a literal ``0``
 ``Literal[int](0)``, a type of its own, and compiles the callee once more for each literal value.
 One extra copy of a step function costs about 0.7 s on a cold cache (the rigid map's cold start
 went from 9.4-9.8 s to 7.7-8.5 s, the linear one from 28-31 s to 19-21 s when they were removed).
-``benchmarks/bench_spectra.py --cold`` lists any function compiled more than once. (The batch
-drivers pass ``want_history=False`` as a literal on purpose: a verdict-only specialisation.)
+``benchmarks/bench_spectra.py --cold`` lists any function compiled more than once. The batch loops
+pass ``want_history`` as ``np.bool_(False)`` for the same reason: numba does not prune the history
+branches for a literal ``False`` (it still compiles them), so a literal only compiled the whole driver
+a second time in a process that also runs single scenes (1.5-4 s more on a cold cache).
 """
 
 from __future__ import annotations
