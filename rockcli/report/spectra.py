@@ -104,7 +104,8 @@ def map_columns(m) -> dict:
             "ap_g": Y.ravel() * math.tan(math.radians(m.alpha_deg)),
             "overturned": np.asarray(m.overturned, dtype=bool).ravel(),
             "theta_max_over_alpha": np.asarray(m.theta_max_over_alpha, dtype=float).ravel(),
-            "uplift": np.asarray(m.uplifted, dtype=bool).ravel(), "peak_final": np.asarray(m.peak_final, dtype=bool).ravel(),
+            "uplift": np.asarray(m.uplifted, dtype=bool).ravel(),
+            "peak_final": np.asarray(m.peak_final, dtype=bool).ravel(),
             "proven": (np.asarray(m.settled, dtype=bool) | np.asarray(m.overturned, dtype=bool)).ravel()}
 
 
