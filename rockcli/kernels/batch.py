@@ -28,25 +28,29 @@ def _scene(i, prms, epars):
     return prm, (e[0], e[1], e[2], e[3], e[4], e[5], e[6], e[7])
 
 
-@njit(cache=True, nogil=True)
-def simulate_batch_rigid(fkinds, prms, ekinds, epars, acc_all, jtab_all, acc_off, acc_len, dts, t_begins,
-                         t_exc_ends, tails, horizon, max_steps, early, outs):
-    """Scenes on a rigid foundation (:func:`rockcli.kernels.rigid.simulate_rigid`)."""
+@njit(cache=True, inline='always')
+def _run_scenes(simulate, fkinds, prms, ekinds, epars, acc_all, jtab_all, acc_off, acc_len, dts, t_begins,
+                t_exc_ends, tails, horizon, max_steps, early, outs):
+    """Scene ``i`` of the rows through the driver ``simulate``, verdict only, into ``outs[i]``."""
     no_history = np.bool_(False)  # not a literal: the same compiled driver as a single run's
     for i in range(fkinds.shape[0]):
         prm, epar = _scene(i, prms, epars)
         a, b = acc_off[i], acc_off[i] + acc_len[i]
-        simulate_rigid(fkinds[i], prm, ekinds[i], epar, acc_all[a:b], jtab_all[a:b], dts[i], t_begins[i],
-                       t_exc_ends[i], tails[i], horizon, max_steps, no_history, early, outs[i])
+        simulate(fkinds[i], prm, ekinds[i], epar, acc_all[a:b], jtab_all[a:b], dts[i], t_begins[i],
+                 t_exc_ends[i], tails[i], horizon, max_steps, no_history, early, outs[i])
+
+
+@njit(cache=True, nogil=True)
+def simulate_batch_rigid(fkinds, prms, ekinds, epars, acc_all, jtab_all, acc_off, acc_len, dts, t_begins,
+                         t_exc_ends, tails, horizon, max_steps, early, outs):
+    """Scenes on a rigid foundation (:func:`rockcli.kernels.rigid.simulate_rigid`)."""
+    _run_scenes(simulate_rigid, fkinds, prms, ekinds, epars, acc_all, jtab_all, acc_off, acc_len, dts, t_begins,
+                t_exc_ends, tails, horizon, max_steps, early, outs)
 
 
 @njit(cache=True, nogil=True)
 def simulate_batch(fkinds, prms, ekinds, epars, acc_all, jtab_all, acc_off, acc_len, dts, t_begins, t_exc_ends,
                    tails, horizon, max_steps, early, outs):
     """Scenes on isolated bases (:func:`rockcli.kernels.driver.simulate_core`)."""
-    no_history = np.bool_(False)  # not a literal: the same compiled driver as a single run's
-    for i in range(fkinds.shape[0]):
-        prm, epar = _scene(i, prms, epars)
-        a, b = acc_off[i], acc_off[i] + acc_len[i]
-        simulate_core(fkinds[i], prm, ekinds[i], epar, acc_all[a:b], jtab_all[a:b], dts[i], t_begins[i],
-                      t_exc_ends[i], tails[i], horizon, max_steps, no_history, early, outs[i])
+    _run_scenes(simulate_core, fkinds, prms, ekinds, epars, acc_all, jtab_all, acc_off, acc_len, dts, t_begins,
+                t_exc_ends, tails, horizon, max_steps, early, outs)
