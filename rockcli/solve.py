@@ -774,14 +774,12 @@ def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress
             g = groups.get(gkey)
             if g is None:
                 try:
-                    sc = _scene_arrays(block, foundation, excitation, tail_i, rtol, rest_tol, horizon, max_steps,
-                                       prepared, params, checked)
+                    fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end = _scene_arrays(
+                        block, foundation, excitation, tail_i, rtol, rest_tol, horizon, max_steps, prepared, params,
+                        checked)
                 except (RockcliInputError, TypeError, ValueError) as exc:
-                    sc = RockcliInputError(str(exc))
-                if isinstance(sc, RockcliInputError):
-                    g = sc
+                    g = RockcliInputError(str(exc))
                 else:
-                    fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end = sc
                     akey = id(acc)  # a record's samples, or the table shared by all pulses of one shape
                     if akey not in where:
                         where[akey] = total
@@ -798,17 +796,22 @@ def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress
             continue
         gidx[i] = g
         scales[i] = scale
+    if not G:  # every job failed
+        if progress is not None:
+            progress(n)
+        return np.zeros((0, k.N_OUT)), [math.nan] * n, failed
     ok = np.flatnonzero(gidx >= 0)
     sel = gidx[ok]
+    cols = list(zip(*G))
+
+    def per_job(j, dtype=float):  # column j of G, one row per job that runs
+        return np.array(cols[j], dtype=dtype)[sel]
+
+    fkinds, prms, ekinds, epars = per_job(0, np.int64), per_job(1), per_job(2, np.int64), per_job(3)
+    acc_off, acc_len = per_job(4, np.int64), per_job(5, np.int64)
+    dts, t_begins, t_exc_ends = per_job(6), per_job(7), per_job(8)
     alphas = np.full(n, math.nan)
-    if G:
-        fkinds, prms, ekinds, epars, acc_off, acc_len, dts, t_begins, t_exc_ends, g_alpha = (
-            np.array(col, dtype=np.int64 if j in (0, 2, 4, 5) else float)[sel] for j, col in enumerate(zip(*G)))
-        alphas[ok] = g_alpha
-    else:
-        fkinds = ekinds = acc_off = acc_len = np.zeros(0, np.int64)
-        prms, epars = np.zeros((0, k.N_PRM)), np.zeros((0, 8))
-        dts = t_begins = t_exc_ends = np.zeros(0)
+    alphas[ok] = per_job(9)
     alphas = alphas.tolist()
     record = ekinds == k.EXC_RECORD
     scale_ok = scales[ok]
@@ -864,6 +867,4 @@ def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress
                 for fut in futures:
                     fut.cancel()
                 raise
-    if progress is not None and m == 0:
-        progress(n)
     return outs, alphas, failed
