@@ -29,7 +29,7 @@ from rockcli.kernels.dopri import _dense, _dp5_step, _restep_rows, _shift_event
 from rockcli.kernels.events import (REV_AT, REV_WRONG_START, _count_uplift, _hist_push, _u_extremum,
                                     hysteretic_uplift, impact_map, reversal_check)
 from rockcli.kernels.ground import ground_at
-from rockcli.kernels.layout import (FOUNDATION_BILINEAR, O_T_SETTLED, P_ALPHA, P_COSA, P_G, P_GAMMA, P_H, P_R,
+from rockcli.kernels.layout import (FOUNDATION_BILINEAR, FOUNDATION_LINEAR, O_T_SETTLED, P_ALPHA, P_COSA, P_G, P_GAMMA, P_H, P_R,
                                     P_RTOL, P_SC0, P_THR, P_W, P_XI, PHASE_ROCKING, PHASE_STUCK, RS_DIR, RS_FRESH,
                                     RS_NREV, RS_NRHS, RS_PHASE, RS_REJ, RS_S, RS_SEG_END, RS_SETTLED,
                                     RS_SPLIT, RS_STATUS, RS_STEPS, RS_T, RS_THMAX, RS_U1A, RS_UA, RS_UMAX, RS_XI1,
@@ -110,7 +110,7 @@ def _restep_iso(fkind, phase, s, prm, seg, epar, hy, t, h, W, i0, i1):
 # ---------------------------------------------------------------------------------------------
 @njit(cache=True, inline='always')
 def _end_of_run(fkind, prm, t_exc_end, want_history, t_show_end, t_horizon, max_steps, rs, W, out):
-    """The end-of-run rule on an isolated base (P3, P3s, P5 in :func:`simulate_core`): True when
+    """The end-of-run rule on an isolated base (P3, P3s, P5, P8 in :func:`simulate_core`): True when
     the run ends now."""
     t = rs[RS_T]
     phase = rs[RS_PHASE]
@@ -127,8 +127,12 @@ def _end_of_run(fkind, prm, t_exc_end, want_history, t_show_end, t_horizon, max_
                 settled = True  # P3
         if not settled and rs[RS_THMAX] > 0.0:
             level = min(rs[RS_THMAX], alpha)
-            if abs(W[W_Y, 0]) < level and _free_energy(fkind, prm, rs, W) < _barrier(prm, level):
-                settled = True  # P5
+            if abs(W[W_Y, 0]) < level:
+                if _free_energy(fkind, prm, rs, W) < _barrier(prm, level):
+                    settled = True  # P5
+                elif (fkind == FOUNDATION_LINEAR and prm[P_GAMMA] == 0.0
+                      and _decoupled_energy_bound(prm, rs, W) < prm[P_R] * prm[P_G] * (math.cos(alpha - level) - prm[P_COSA])):
+                    settled = True  # P8
         if settled:
             rs[RS_SETTLED] = 1.0
             out[O_T_SETTLED] = t
@@ -161,6 +165,36 @@ def _free_energy(fkind, prm, rs, W):
     kin = 0.5 * ud * ud + gR * math.cos(A) * ud * thd + (2.0 / 3.0) * gR * prm[P_R] * thd * thd
     pot = gR * prm[P_G] * (math.cos(A) - prm[P_COSA])
     return kin + pot + bearing_energy(fkind, prm, _hy(rs), W[W_Y, 2])
+
+
+@njit(cache=True)
+def _decoupled_energy_bound(prm, rs, W):
+    """P8 (gamma = 0, linear bearings, ground still): a bound on the block's energy per unit block mass
+    [J/kg] at every later time, ``(sqrt(E0) + sqrt(3/2)/2 J)^2`` with ``E0 = (2/3) R^2 theta'^2 + g R
+    (cos A - cos alpha)`` now and ``J >= integral of |u''|`` over all later times of the free base
+    (see P8 in :func:`simulate_core`); ``inf`` for an undamped base."""
+    xi = prm[P_XI]
+    if not xi > 0.0:
+        return math.inf
+    w = prm[P_W]
+    c = xi if xi <= 0.5 else xi / (1.0 + xi * xi)
+    q11 = 4.0 * xi - 2.0 * c
+    q12 = 2.0 * c * xi
+    q22 = 2.0 * c
+    bq = q11 + q22 - 2.0 * c * q12
+    det = q11 * q22 - q12 * q12
+    lam = 2.0 * det / (bq + math.sqrt(max(bq * bq - 4.0 * (1.0 - c * c) * det, 0.0)))
+    u = W[W_Y, 2]
+    ud = W[W_Y, 3]
+    l0 = ud * ud + 2.0 * c * w * u * ud + (w * u) ** 2
+    J = math.sqrt(1.0 + 4.0 * xi * xi) * math.sqrt(max(l0, 0.0) / (1.0 - c)) * 2.0 / lam
+    R = prm[P_R]
+    e0 = 0.0
+    if rs[RS_PHASE] == PHASE_ROCKING:
+        A = rs[RS_S] * prm[P_ALPHA] - W[W_Y, 0]
+        e0 = (2.0 / 3.0) * R * R * W[W_Y, 1] ** 2 + R * prm[P_G] * (math.cos(A) - prm[P_COSA])
+    root = math.sqrt(max(e0, 0.0)) + 0.5 * math.sqrt(1.5) * J
+    return root * root
 
 
 @njit(cache=True)
@@ -425,6 +459,25 @@ def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, ta
        blocks on heavy-ish bases, ``gamma`` not small; for ``gamma -> 0`` the bearings' energy dominates
        and it never applies. It holds for linear bearings too (viscous damping only dissipates, ``-c u'^2``), and
        is applied to every isolated base.)
+    P8 (linear bearings, gamma = 0, xi > 0, ground still, after an uplift, any phase): P5 for the decoupled
+       block, whose weight in P5's energy is zero. The base is then a free oscillator that the block
+       does not act on: ``u'' = -w^2 u - 2 xi w u'``, which is also its absolute acceleration ``a``.
+       (i) With ``x = u'``, ``y = w u`` and ``Lc = x^2 + 2 c x y + y^2`` (``0 < c < 1``),
+       ``dLc/dt = -w Q`` with ``Q = (4 xi - 2 c) x^2 + 4 c xi x y + 2 c y^2``; with ``c = xi`` for
+       ``xi <= 1/2`` (then ``Q = 2 xi Lc``) and ``c = xi/(1 + xi^2)`` above (``Q`` positive definite),
+       ``Q >= lam Lc`` with ``lam`` the smaller generalised eigenvalue of the two forms, so
+       ``Lc(t) <= Lc(0) exp(-lam w t)``. As ``|a| <= w sqrt(1 + 4 xi^2) sqrt(x^2 + y^2)`` and
+       ``x^2 + y^2 <= Lc/(1 - c)``, every later ``integral |a| dt <= J = sqrt(1 + 4 xi^2) sqrt(Lc/(1 -
+       c)) 2/lam``. (ii) Per unit block mass the block's energy ``E = (2/3) R^2 theta'^2 + g R (cos A -
+       cos alpha)`` obeys ``(4/3) R^2 theta'' = -g R sin A - R cos(A) a``, so ``dE/dt = -R cos(A) a theta'``;
+       while ``|theta| <= 2 alpha`` the height term is >= 0, so ``theta'^2 <= 3 E/(2 R^2)`` and
+       ``d sqrt(E)/dt <= sqrt(3/2) |a|/2``; impacts only lose kinetic energy (gamma = 0 is Eq 4's
+       impact) and a rest or an uplift sets or starts it at 0. Hence ``E <= (sqrt(E0) + sqrt(3/2) J/2)^2``
+       for all later times (:func:`_decoupled_energy_bound`), and if ``|theta| < L = min(theta_max,
+       alpha)`` and this bound is below ``g R (cos(alpha - L) - cos alpha)``, the block's height at
+       ``L``, the block never reaches ``L`` (the bound keeps ``|theta| < L <= 2 alpha`` throughout): it
+       survives and ``theta_max`` is final. (It ends the minutes of free rocking of very slender blocks,
+       alpha 1-2 deg, which with gamma = 0 otherwise ran to the horizon NOT PROVEN.)
 
     Parameters
     ----------

@@ -6,7 +6,7 @@ ground acceleration is scanned for the uplift condition and nothing is integrate
 the rigid foundation compiles only this (and :mod:`rockcli.kernels.steps`, ``dopri``, ``events``,
 ``ground``, ``polynomials``). The isolated bases have their own driver, :mod:`rockcli.kernels.driver`.
 
-End of the run: the proofs P1, P2, P4, P6, P7 (the general rule, and P3, P3s, P5 for isolated bases, are
+End of the run: the proofs P1, P2, P4, P6, P7 (the general rule, and P3, P3s, P5, P8 for isolated bases, are
 stated in :func:`rockcli.kernels.driver.simulate_core`):
 
 P1 (ground still, block stuck). With ``ag = 0`` and theta = 0 the uplift condition
