@@ -408,7 +408,9 @@ def bearing_force_path(foundation, u) -> dict[str, np.ndarray]:
     return res
 
 
-def _validate_options(rtol, tail, rest_tol, horizon=DEFAULT_HORIZON, max_steps=DEFAULT_MAX_STEPS):
+def validate_options(rtol=None, tail=DEFAULT_TAIL, rest_tol=DEFAULT_REST_TOL, horizon=DEFAULT_HORIZON,
+                     max_steps=DEFAULT_MAX_STEPS):
+    """Refuse solver options out of their limits (:class:`RockcliInputError`, one sentence)."""
     try:
         rtol = DEFAULT_RTOL if rtol is None else float(rtol)  # None: each foundation's default
         tail, rest_tol, horizon = float(tail), float(rest_tol), float(horizon)
@@ -545,7 +547,7 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float | No
         raise RockcliInputError(f"block must be a rockcli.models.Block, got {type(block).__name__}")
     if excitation is None:
         raise RockcliInputError("simulate needs an excitation (a record or a pulse)")
-    _validate_options(rtol, tail, rest_tol, horizon, max_steps)
+    validate_options(rtol, tail, rest_tol, horizon, max_steps)
     if early and history:
         raise RockcliInputError("early stopping is for verdict-only runs; it cannot be combined with history")
     k = _kernel()
@@ -736,13 +738,13 @@ def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress
     jobs = list(jobs)
     tails_in = np.asarray(tail, dtype=float)
     if tails_in.ndim == 0:
-        _validate_options(rtol, float(tails_in), rest_tol, horizon, max_steps)
+        validate_options(rtol, float(tails_in), rest_tol, horizon, max_steps)
     else:
         if tails_in.shape != (len(jobs),):
             raise RockcliInputError(f"tail must be one value or one per job ({len(jobs)}), got {tails_in.shape}")
         if not np.all(np.isfinite(tails_in) & (tails_in >= 0) & (tails_in <= TAIL_MAX)):
             raise RockcliInputError(f"tail must be a time between 0 and {TAIL_MAX:g} s for every job")
-        _validate_options(rtol, 0.0, rest_tol, horizon, max_steps)
+        validate_options(rtol, 0.0, rest_tol, horizon, max_steps)
     k = _kernel()
     n = len(jobs)
     if n == 0:

@@ -10,6 +10,7 @@ import numpy as np
 import pandas as pd
 import pytest
 from click.testing import CliRunner
+from conftest import write_pulse_record
 
 from rockcli.cli import main
 from rockcli.models import column, parse_isolation_spec
@@ -106,6 +107,38 @@ def test_bad_input_exit_2_one_sentence(args, words, tmp_path):
     assert res.exit_code == 2, res.output
     assert words in res.output and "Traceback" not in res.output
     assert res.output.startswith("Error:") and len(res.output.strip().splitlines()) == 1
+
+
+def test_an_unproven_run_is_not_counted_as_surviving(tmp_path):
+    """A very slender block on sliding bearings still rocking at the solver's horizon: the table says
+    NOT PROVEN and counts it apart, the CSV's proven column is False, the margin says which scaled
+    runs were unproven; a longer horizon proves the same peak. (It used to read "survives 0.67".)"""
+    rec = write_pulse_record(tmp_path / "weak.txt", 6 * math.tan(math.radians(1.5)), 0.5, "ricker-sym", dt=0.005)
+    out = tmp_path / "t.csv"
+    args = ("stele:R=2,alpha=1.5", "--records", rec, "--isolation", "scss:Tb=3,mu=0.06", "--isolation", "none")
+    res = invoke(*args, "--no-margin", "--csv", out)
+    assert res.exit_code == 0, res.output
+    row = next(line for line in res.output.splitlines() if line.startswith("weak.txt"))
+    assert "NOT PROVEN 0.67" in row and "survives 0.68" in row
+    counts = next(line for line in res.output.splitlines() if line.startswith("survives "))
+    assert "0 of 1 (1 not proven)" in counts and counts.rstrip().endswith("1 of 1")
+    assert "NOT PROVEN r: still rocking 600 s after the record ended" in res.output
+    df = pd.read_csv(out)
+    assert list(df["proven"]) == [False, True] and list(df["overturned"]) == [False, False]
+    res = invoke(*args[:-2], "--csv", out)
+    assert res.exit_code == 0, res.output
+    assert "not proven at the solver's horizon, counted as surviving" in pd.read_csv(out)["margin_note"][0]
+    res = invoke(*args[:-2], "--no-margin", "--horizon", 3600, "--csv", out)
+    assert res.exit_code == 0, res.output
+    assert "survives 0.67" in res.output and "NOT PROVEN" not in res.output
+    df2 = pd.read_csv(out)
+    assert bool(df2["proven"][0]) and df2["theta_max_over_alpha"][0] == df["theta_max_over_alpha"][0]
+
+
+def test_horizon_out_of_range_is_refused(pulse_records):
+    res = invoke("bassae", "--records", pulse_records, "--horizon", 4000)
+    assert res.exit_code == 2 and res.output.startswith("Error: horizon must be a time between 0 and 3600 s")
+    assert len(res.output.strip().splitlines()) == 1
 
 
 def test_nothing_written_on_bad_input(pulse_records, tmp_path):

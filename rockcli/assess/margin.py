@@ -100,6 +100,11 @@ def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL,
     ones = np.flatnonzero(np.isclose(grid, 1.0))
     i1 = int(ones[0]) if ones.size else int(np.searchsorted(grid, 1.0))
     errors = {}
+    unproven = {}  # scene -> scaled runs that reached the solver's horizon unproven (counted as surviving)
+
+    def note_unproven(i, r):
+        if r.verdict != VERDICT_ERROR and not r.overturned and not r.settled:
+            unproven[i] = unproven.get(i, 0) + 1
 
     def code(r):
         if r.verdict == VERDICT_ERROR:
@@ -113,6 +118,7 @@ def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL,
         jobs = [_scaled_job(*scenes[i], float(grid[j])) for i, j in pairs]
         res = simulate_many(jobs, early=True, **solver)  # verdicts only
         for (i, j), r in zip(pairs, res):
+            note_unproven(i, r)
             state[i, j] = code(r)
             if state[i, j] == 4:
                 errors.setdefault(i, r.error)
@@ -172,6 +178,7 @@ def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL,
         mids = {i: math.sqrt(lo[i] * hi[i]) for i in active}
         res = simulate_many([_scaled_job(*scenes[i], mids[i]) for i in active], early=True, **solver)
         for i, r in zip(active, res):
+            note_unproven(i, r)
             if r.verdict == VERDICT_ERROR:  # cannot happen for a scene that ran at the grid factors
                 out[i], hi[i], lo[i] = (math.nan, math.nan, f"error: {r.error}"), 1.0, 1.0
             elif r.overturned:
@@ -182,6 +189,10 @@ def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL,
     for i in range(n):
         if out[i] is None:
             out[i] = (float(hi[i]), float(lo[i]), "")
+        if unproven.get(i):
+            hi_i, lo_i, note = out[i]
+            out[i] = (hi_i, lo_i, (note + "; " if note else "") + f"{unproven[i]} scaled run(s) not proven at the "
+                      "solver's horizon, counted as surviving")
     return out
 
 

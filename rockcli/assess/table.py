@@ -46,6 +46,9 @@ class AssessmentRow:
     gamma: float
     verdict: str = ""
     overturned: bool | None = None
+    #: the verdict is proven (it overturned, or the run ended by a theorem before the solver's horizon);
+    #: False: still moving at the horizon, counted neither as survived nor as overturned
+    proven: bool | None = None
     theta_max_over_alpha: float = math.nan
     t_overturn_s: float = math.nan
     t_uplift_s: float = math.nan
@@ -74,6 +77,13 @@ class Assessment:
     margin: bool = True
     timings: dict = field(default_factory=dict)
     neighbourhood: bool = False
+    #: the solver options the scenes ran with (``horizon``, ``rtol``, ...), for the reruns
+    solver: dict = field(default_factory=dict)
+
+    @property
+    def unproven(self) -> list:
+        """Rows whose run reached the solver's horizon with the verdict unproven."""
+        return [r for r in self.rows if r.proven is False]
 
     def row(self, column: str, record: str, configuration: str) -> AssessmentRow:
         """The row of one scene (by column name, record label, configuration header)."""
@@ -162,6 +172,7 @@ def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
             continue
         row.verdict = r.verdict
         row.overturned = r.overturned
+        row.proven = bool(r.overturned or r.settled)
         row.theta_max_over_alpha = r.theta_max_over_alpha
         row.t_overturn_s = r.t_overturn_s
         row.t_uplift_s = r.t_uplift_s
@@ -183,7 +194,7 @@ def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
             run_rows[i].overturn_share_pm10 = share
         timings["neighbourhood_s"] = time.perf_counter() - t0
     return Assessment(list(columns), list(excitations), list(configurations), rows, list(unavailable), margin,
-                      timings, neighbourhood)
+                      timings, neighbourhood, dict(solver))
 
 
 class _Advance:
@@ -215,7 +226,7 @@ def history_runs(assessment: Assessment, **solver):
         if x.motion is None or row.error:
             continue
         b, c = blocks[row.column], confs[row.configuration]
-        yield row, b, c, x, simulate(b, c.foundation, x.motion, history=True, **solver)
+        yield row, b, c, x, simulate(b, c.foundation, x.motion, history=True, **{**assessment.solver, **solver})
 
 
 def safe_name(*parts: str) -> str:
@@ -256,7 +267,8 @@ def check_tolerance(assessment: Assessment, *, factor: float = 100.0, base_rtol:
     tight = [None] * len(jobs)
     for base in sorted(set(bases)):  # one sweep per base tolerance
         idx = [i for i, b in enumerate(bases) if b == base]
-        for i, r in zip(idx, simulate_many([jobs[i] for i in idx], rtol=base / factor)):
+        other = {k: v for k, v in assessment.solver.items() if k != "rtol"}
+        for i, r in zip(idx, simulate_many([jobs[i] for i in idx], rtol=base / factor, **other)):
             tight[i] = r
     changed, peak = [], 0.0
     for row, r in zip(rows, tight):

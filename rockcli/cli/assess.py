@@ -91,9 +91,12 @@ def _columns(names, R, alpha, height, width, name):
 @click.option("--check-tolerance", is_flag=True,
               help="Rerun every scene at a 100x tighter rtol (5e-11; 2e-11 on sliding bearings) and flag any "
                    "verdict that changes.")
+@click.option("--horizon", type=float, default=600.0, show_default=True, metavar="S",
+              help="Longest free motion followed after a record to prove its verdict [s] (at most 3600); a run "
+                   "still moving then is reported NOT PROVEN.")
 @user_errors
 def column(names, R, alpha, height, width, name, records, units, dt, excitation, isolation, margin, neighbourhood,
-           csv_path, hist_dir, plot_dir, check_tolerance):
+           csv_path, hist_dir, plot_dir, check_tolerance, horizon):
     """Do the columns NAME... survive the records, on a rigid base and on isolators?
 
     NAME is a preset (bassae, nemea) or a custom block NAME:R=<m>,alpha=<deg> or
@@ -110,6 +113,9 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
     """
     from rockcli.assess import count_runs, parse_configurations, resolve_excitations, run_assessment
 
+    from rockcli.solve import validate_options
+
+    validate_options(horizon=horizon)
     columns = _columns(names, R, alpha, height, width, name)
     configurations = parse_configurations(isolation)
     check_outputs((csv_path, "--csv", False), folders=((hist_dir, "--histories"), (plot_dir, "--plot")))
@@ -121,7 +127,7 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
     total = count_runs(columns, excitations, configurations, margin, neighbourhood)
     with progress_bar(total) as bar:
         result = run_assessment(columns, excitations, configurations, margin=margin, neighbourhood=neighbourhood,
-                                unavailable=unavailable, progress=bar.update if bar else None)
+                                unavailable=unavailable, progress=bar.update if bar else None, horizon=horizon)
         if bar:
             bar.update(total)
 

@@ -18,7 +18,7 @@ from rockcli.report.files import write_text
 #: Columns of the CSV report, in order (units in the names; see rockcli.assess.AssessmentRow).
 CSV_COLUMNS = ("column", "R_m", "alpha_deg", "height_m", "width_m", "record", "excitation", "source", "pga_g",
                "a_p_g", "T_p_s", "isolation", "configuration", "Tb_s", "xi", "mu", "gamma", "verdict",
-               "overturned", "theta_max_over_alpha", "t_overturn_s", "t_uplift_s", "n_impacts",
+               "overturned", "proven", "theta_max_over_alpha", "t_overturn_s", "t_uplift_s", "n_impacts",
                "base_disp_max_m", "overturn_scale", "overturn_scale_survives", "margin_note", "overturn_share_pm10", "error")
 
 
@@ -34,6 +34,8 @@ def format_cell(row, margin: bool, neighbourhood: bool = False) -> str:
         text = "OVERTURNS"
     elif row.verdict == "no_uplift":
         text = "no uplift"
+    elif row.proven is False:
+        text = f"NOT PROVEN {row.theta_max_over_alpha:.2f}"
     else:
         text = f"survives {row.theta_max_over_alpha:.2f}"
     if margin:
@@ -64,7 +66,9 @@ def format_matrix(assessment) -> str:
         for c in confs:
             rows = [assessment.row(b.name, x.label, c.header) for x in xs]
             ran = [r for r in rows if not r.error]
-            counts.append(f"{sum(not r.overturned for r in ran)} of {len(ran)}")
+            unproven = sum(r.proven is False for r in ran)
+            counts.append(f"{sum(not r.overturned and r.proven is not False for r in ran)} of {len(ran)}"
+                          + (f" ({unproven} not proven)" if unproven else ""))
         widths = [max(len(r[i]) for r in table + [counts]) for i in range(len(head))]
         lines = [column_title(b)]
         for i, r in enumerate(table):
@@ -82,6 +86,12 @@ def format_notes(assessment) -> str:
     confs = assessment.configurations
     lines = ["survives r: the column rocks and survives, r = peak |theta|/alpha; no uplift: it never leaves its "
              "base; OVERTURNS: |theta| reaches 90 deg."]
+    if assessment.unproven:
+        horizon = assessment.solver.get("horizon", 600.0)
+        lines.append(f"NOT PROVEN r: still rocking {horizon:g} s after the record ended (the solver's horizon), "
+                     "peak so far r; it had not overturned, but its survival is not proven and it is not counted "
+                     "as surviving (very slender blocks on sliding bearings, see the README); --horizon "
+                     "(up to 3600 s) follows it longer.")
     if assessment.margin:
         lines.append("xS: smallest scale factor of the record that overturns the column in that configuration "
                      "(S > 1: survival margin; S < 1 on an overturn: it overturns already at S times the record; "
