@@ -202,6 +202,28 @@ def test_capacities_are_overturn_scale_times_im_and_bracket_the_boundary(suite):
     assert iso.ratio_to_rigid == pytest.approx(iso.median / rigid.median)
 
 
+def test_a_note_on_unproven_scaled_runs_keeps_the_censoring(suite, monkeypatch):
+    """The margin search appends a note when scaled runs ended NOT PROVEN; the capacity's censoring
+    must still be read from the note's start (it used to compare the whole note)."""
+    import rockcli.assess.fragility as fr_mod
+    from rockcli.assess.margin import NOTE_NO_OVERTURN, NOTE_OVERTURNS_AT_MIN
+
+    lo_f, hi_f = float(MARGIN_GRID[0]), float(MARGIN_GRID[-1])
+    extra = "; 2 scaled run(s) not proven at the solver's horizon, counted as surviving"
+    notes = [(math.nan, hi_f, NOTE_NO_OVERTURN.format(hi_f) + extra),
+             (lo_f, math.nan, NOTE_OVERTURNS_AT_MIN.format(lo_f) + extra), (1.5, 1.4, extra[2:]), (2.0, 1.9, "")]
+    monkeypatch.setattr(fr_mod, "overturn_scales_chunked", lambda scenes, **kw: notes[:len(scenes)])
+    block = parse_column_spec("small:R=0.6,alpha=12")
+    xs, _ = resolve_excitations([str(suite)], "record")
+    xs = [x for x in xs if not x.error][:4]
+    fr = run_fragility([block], xs, parse_configurations(["none"]), im="pga", n_boot=20)
+    rows = [r for r in fr.rows if not r.error]
+    assert [r.censored for r in rows] == [CENSORED_RIGHT, fr_mod.CENSORED_LEFT, "", ""]
+    assert rows[0].capacity == pytest.approx(hi_f * rows[0].im_value)
+    assert rows[1].capacity == pytest.approx(lo_f * rows[1].im_value)
+    assert rows[2].capacity == pytest.approx(1.5 * rows[2].im_value)
+
+
 def test_chunked_margin_search_equals_one_batch_through_any_runner(suite):
     block = Block.from_degrees(0.6, 12, "small")
     xs, _ = resolve_excitations([str(suite)], "record")

@@ -461,9 +461,9 @@ def run_fragility(columns: Sequence[Block], excitations: Sequence[Excitation],
         row.overturn_scale, row.overturn_scale_survives, row.margin_note = hi, lo, note
         if note.startswith("error"):
             row.error = note[len("error: "):]
-        elif note == NOTE_NO_OVERTURN.format(hi_f):
+        elif note.startswith(NOTE_NO_OVERTURN.format(hi_f)):  # (a note on unproven runs may follow)
             row.capacity, row.censored = hi_f * row.im_value, CENSORED_RIGHT
-        elif note == NOTE_OVERTURNS_AT_MIN.format(lo_f):
+        elif note.startswith(NOTE_OVERTURNS_AT_MIN.format(lo_f)):
             row.capacity, row.censored = lo_f * row.im_value, CENSORED_LEFT
         else:
             row.capacity = hi * row.im_value

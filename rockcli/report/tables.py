@@ -19,7 +19,8 @@ from rockcli.report.files import write_text
 CSV_COLUMNS = ("column", "R_m", "alpha_deg", "height_m", "width_m", "record", "excitation", "source", "pga_g",
                "a_p_g", "T_p_s", "isolation", "configuration", "Tb_s", "xi", "mu", "gamma", "verdict",
                "overturned", "proven", "theta_max_over_alpha", "t_overturn_s", "t_uplift_s", "n_impacts",
-               "base_disp_max_m", "overturn_scale", "overturn_scale_survives", "margin_note", "overturn_share_pm10", "error")
+               "base_disp_max_m", "overturn_scale", "overturn_scale_survives", "margin_note", "overturn_share_pm10",
+               "error")
 
 
 # --------------------------------------------------------------------------------------------------
