@@ -315,6 +315,21 @@ def test_cli_folder_with_one_corrupt_file_one_error_row_exit_0_and_a_warning(sui
     assert float(fields[7]) == pytest.approx(df.beta.iloc[0], abs=6e-3)
 
 
+def test_cli_says_when_capacities_rest_on_unproven_runs_and_horizon_follows_them(tmp_path):
+    """A 1.5 deg stele on SCSS: scaled runs still rocking at 600 s count as surviving, and the notes say
+    so; with --horizon 3600 they are proven and the note goes; a horizon out of range is refused."""
+    rec = write_pulse_record(tmp_path / "weak.txt", 6 * math.tan(math.radians(1.5)), 0.5, "ricker-sym", dt=0.005)
+    args = ("stele:R=2,alpha=1.5", "--records", rec, "--isolation", "scss:Tb=3,mu=0.06", "--bootstrap", 0)
+    res = _invoke(*args, "--csv", tmp_path / "f.csv")
+    assert res.exit_code == 0, res.output
+    assert "1 capacities include scaled runs still moving at the solver's horizon" in res.output
+    assert "not proven" in pd.read_csv(tmp_path / "f.csv").margin_note[0]
+    res = _invoke(*args, "--horizon", 3600)
+    assert res.exit_code == 0 and "still moving" not in res.output, res.output
+    res = _invoke(*args, "--horizon", 4000)
+    assert res.exit_code == 2 and res.output.startswith("Error: horizon must be a time between 0 and 3600 s")
+
+
 def test_cli_units_and_dt_for_headerless_files(suite, tmp_path):
     bare = tmp_path / "bare"
     bare.mkdir()

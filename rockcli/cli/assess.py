@@ -15,6 +15,29 @@ def assess():
     """Assess free-standing bodies against records and isolation configurations."""
 
 
+def _block_options(func):
+    """``--R``/``--alpha`` or ``--height``/``--width`` and ``--name``: one more (custom) block."""
+    for opt in reversed((
+            click.option("--R", "R", type=float, default=None, metavar="M",
+                         help="Custom block: semi-diagonal R [m] (with --alpha)."),
+            click.option("--alpha", type=float, default=None, metavar="DEG",
+                         help="Custom block: slenderness [deg] (with --R)."),
+            click.option("--height", type=float, default=None, metavar="M",
+                         help="Custom block: full height [m] (with --width)."),
+            click.option("--width", type=float, default=None, metavar="M",
+                         help="Custom block: base width or drum diameter [m] (with --height)."),
+            click.option("--name", default="custom", show_default=True, help="Name of the custom block."))):
+        func = opt(func)
+    return func
+
+
+def _horizon_option(func):
+    """``--horizon``: the solver's horizon [s], checked before any work (one sentence, exit 2)."""
+    return click.option("--horizon", type=float, default=600.0, show_default=True, metavar="S",
+                        help="Longest free motion followed after a record to prove its verdict [s] (at most "
+                             "3600); a run still moving then is reported NOT PROVEN.")(func)
+
+
 def _headerless_options(func):
     """``--units`` and ``--dt`` for record files that do not state them (headerless text, SAC, ...)."""
     func = click.option("--dt", type=float, default=None, metavar="SECONDS",
@@ -59,13 +82,7 @@ def _columns(names, R, alpha, height, width, name):
 
 @assess.command(name="column")
 @click.argument("names", nargs=-1, metavar="NAME...")
-@click.option("--R", "R", type=float, default=None, metavar="M",
-              help="Custom block: semi-diagonal R [m] (with --alpha).")
-@click.option("--alpha", type=float, default=None, metavar="DEG", help="Custom block: slenderness [deg] (with --R).")
-@click.option("--height", type=float, default=None, metavar="M", help="Custom block: full height [m] (with --width).")
-@click.option("--width", type=float, default=None, metavar="M",
-              help="Custom block: base width or drum diameter [m] (with --height).")
-@click.option("--name", default="custom", show_default=True, help="Name of the custom block.")
+@_block_options
 @click.option("--records", "records", multiple=True, metavar="ID|FILE|DIR",
               help="Records to run (repeatable): catalogue ids, files, folders. Default: the catalogue's "
                    "Table II records (file where found on ROCKCLI_RECORDS, else the catalogued pulse).")
@@ -91,9 +108,7 @@ def _columns(names, R, alpha, height, width, name):
 @click.option("--check-tolerance", is_flag=True,
               help="Rerun every scene at a 100x tighter rtol (5e-11; 2e-11 on sliding bearings) and flag any "
                    "verdict that changes.")
-@click.option("--horizon", type=float, default=600.0, show_default=True, metavar="S",
-              help="Longest free motion followed after a record to prove its verdict [s] (at most 3600); a run "
-                   "still moving then is reported NOT PROVEN.")
+@_horizon_option
 @user_errors
 def column(names, R, alpha, height, width, name, records, units, dt, excitation, isolation, margin, neighbourhood,
            csv_path, hist_dir, plot_dir, check_tolerance, horizon):
@@ -216,13 +231,7 @@ def _write_histories(result, hist_dir, plot_dir):
 
 @assess.command(name="fragility")
 @click.argument("names", nargs=-1, metavar="NAME...")
-@click.option("--R", "R", type=float, default=None, metavar="M",
-              help="Custom block: semi-diagonal R [m] (with --alpha).")
-@click.option("--alpha", type=float, default=None, metavar="DEG", help="Custom block: slenderness [deg] (with --R).")
-@click.option("--height", type=float, default=None, metavar="M", help="Custom block: full height [m] (with --width).")
-@click.option("--width", type=float, default=None, metavar="M",
-              help="Custom block: base width or drum diameter [m] (with --height).")
-@click.option("--name", default="custom", show_default=True, help="Name of the custom block.")
+@_block_options
 @click.option("--records", "records", multiple=True, metavar="DIR|ID|FILE",
               help="The suite (repeatable, required): folders (every non-hidden file), catalogue ids, files. "
                    "A file that cannot be read becomes an error row; the others carry on.")
@@ -245,9 +254,10 @@ def _write_histories(result, hist_dir, plot_dir):
 @click.option("--scheduler", default=None, metavar="tcp://HOST:PORT|local",
               help="Run the margin searches on a Dask cluster (pip install -e \".[dask]\"): the address of an "
                    "existing scheduler, or 'local' for a LocalCluster on this machine. Same results.")
+@_horizon_option
 @user_errors
 def fragility(names, R, alpha, height, width, name, records, units, dt, isolation, im, n_boot, seed, csv_path,
-              plot_path, scheduler):
+              plot_path, scheduler, horizon):
     """Fragility curves of overturning: P(the column overturns | IM) from a suite of records.
 
     Each record is scaled (0.1x..4x, then bisection) to the smallest factor that overturns the
@@ -264,7 +274,9 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
     """
     from rockcli.assess import parse_configurations, resolve_excitations
     from rockcli.assess.fragility import count_fragility_runs, run_fragility
+    from rockcli.solve import validate_options
 
+    validate_options(horizon=horizon)
     columns = _columns(names, R, alpha, height, width, name)
     if not records:
         raise InputError("give the record suite with --records DIR|ID|FILE (repeatable)")
@@ -281,12 +293,12 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
         from rockcli.assess.fragility import run_fragility_distributed
 
         result = run_fragility_distributed(scheduler, columns, excitations, configurations, im=im, n_boot=n_boot,
-                                           seed=seed, unavailable=unavailable)
+                                           seed=seed, unavailable=unavailable, horizon=horizon)
     else:
         total = count_fragility_runs(columns, excitations, configurations)
         with progress_bar(total) as bar:
             result = run_fragility(columns, excitations, configurations, im=im, n_boot=n_boot, seed=seed,
-                                   unavailable=unavailable, progress=bar.update if bar else None)
+                                   unavailable=unavailable, progress=bar.update if bar else None, horizon=horizon)
             if bar:
                 bar.update(total)
 

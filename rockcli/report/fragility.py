@@ -67,6 +67,11 @@ def format_fragility_notes(fr) -> str:
         elif fr.n_boot and c.n_boot_ok < fr.n_boot:
             lines.append(f"{c.column} / {c.configuration.header}: {fr.n_boot - c.n_boot_ok} resamples had no fit "
                          f"(fewer than two exact capacities) and were left out of the intervals.")
+    unproven = [r for r in fr.rows if "not proven" in r.margin_note]
+    if unproven:
+        lines.append(f"{len(unproven)} capacities include scaled runs still moving at the solver's horizon, counted "
+                     "as surviving (the capacity is then an upper estimate; margin_note in the CSV; --horizon "
+                     "follows them longer).")
     for u in fr.unavailable:
         lines.append(f"Not available: {u.label} ({u.reason}).")
     failed = fr.failed
