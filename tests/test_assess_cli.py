@@ -122,7 +122,7 @@ def test_an_unproven_run_is_not_counted_as_surviving(tmp_path):
     assert "NOT PROVEN 0.67" in row and "survives 0.68" in row
     counts = next(line for line in res.output.splitlines() if line.startswith("survives "))
     assert "0 of 1 (1 not proven)" in counts and counts.rstrip().endswith("1 of 1")
-    assert "NOT PROVEN r: still rocking 600 s after the record ended" in res.output
+    assert "NOT PROVEN r: still moving 600 s after the record ended" in res.output
     df = pd.read_csv(out)
     assert list(df["proven"]) == [False, True] and list(df["overturned"]) == [False, False]
     res = invoke(*args[:-2], "--csv", out)

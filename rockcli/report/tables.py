@@ -33,10 +33,10 @@ def format_cell(row, margin: bool, neighbourhood: bool = False) -> str:
         return "ERROR"
     if row.overturned:
         text = "OVERTURNS"
-    elif row.verdict == "no_uplift":
-        text = "no uplift"
     elif row.proven is False:
         text = f"NOT PROVEN {row.theta_max_over_alpha:.2f}"
+    elif row.verdict == "no_uplift":
+        text = "no uplift"
     else:
         text = f"survives {row.theta_max_over_alpha:.2f}"
     if margin:
@@ -88,8 +88,10 @@ def format_notes(assessment) -> str:
     lines = ["survives r: the column rocks and survives, r = peak |theta|/alpha; no uplift: it never leaves its "
              "base; OVERTURNS: |theta| reaches 90 deg."]
     if assessment.unproven:
-        horizon = assessment.solver.get("horizon", 600.0)
-        lines.append(f"NOT PROVEN r: still rocking {horizon:g} s after the record ended (the solver's horizon), "
+        from rockcli.solve import DEFAULT_HORIZON
+
+        horizon = assessment.solver.get("horizon", DEFAULT_HORIZON)
+        lines.append(f"NOT PROVEN r: still moving {horizon:g} s after the record ended (the solver's horizon), "
                      "peak so far r; it had not overturned, but its survival is not proven and it is not counted "
                      "as surviving (very slender blocks on sliding bearings, see the README); --horizon "
                      "(up to 3600 s) follows it longer.")
