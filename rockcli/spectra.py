@@ -344,13 +344,15 @@ class Cells:
 
 
 def run_cells_local(families: Sequence[Family], fam: np.ndarray, x: np.ndarray, y: np.ndarray,
-                    progress: Optional[Callable[[int], None]] = None, early: bool = False) -> Cells:
+                    progress: Optional[Callable[[int], None]] = None, early: bool = False,
+                    horizon: float | None = None) -> Cells:
     """Run cells ``(families[fam[i]], x[i], y[i])`` with :func:`rockcli.solve.simulate_verdicts` (all cores).
 
     ``progress(n)`` is called with the number of cells finished since the last call; ``early``: stop
-    each run once its verdict is proven (the same verdicts; peaks may be lower bounds).
+    each run once its verdict is proven (the same verdicts; peaks may be lower bounds); ``horizon``:
+    the solver's horizon [s] (None: its default, 600 s).
     """
-    from rockcli.solve import simulate_verdicts
+    from rockcli.solve import DEFAULT_HORIZON, simulate_verdicts
 
     n = len(x)
     if n == 0:
@@ -374,7 +376,8 @@ def run_cells_local(families: Sequence[Family], fam: np.ndarray, x: np.ndarray, 
     # run the cells in a fixed shuffled order so that every piece carries a fair share, and put the
     # results back. Cells are independent: the order changes no result.
     order = np.random.default_rng(0).permutation(n)
-    v = simulate_verdicts([jobs[i] for i in order], early=early, progress=step if progress else None)
+    v = simulate_verdicts([jobs[i] for i in order], early=early, progress=step if progress else None,
+                          horizon=DEFAULT_HORIZON if horizon is None else horizon)
     back = np.empty(n, np.int64)
     back[order] = np.arange(n)
     return Cells(v.overturned[back], v.uplifted[back], v.theta_max_over_alpha[back], v.settled[back],
@@ -383,8 +386,8 @@ def run_cells_local(families: Sequence[Family], fam: np.ndarray, x: np.ndarray, 
 
 def _run_cells_task(args) -> Cells:
     """One chunk on a Dask worker (module-level so that it pickles by reference)."""
-    families, fam, x, y, early = args
-    return run_cells_local(families, fam, x, y, early=early)
+    families, fam, x, y, early, horizon = args
+    return run_cells_local(families, fam, x, y, early=early, horizon=horizon)
 
 
 class Runner:
@@ -398,11 +401,14 @@ class Runner:
         ``Client``.
     chunk : int
         Cells per Dask task.
+    horizon : float, optional
+        The solver's horizon [s] for every run (None: its default, 600 s).
     """
 
-    def __init__(self, scheduler=None, *, chunk: int = 2000):
+    def __init__(self, scheduler=None, *, chunk: int = 2000, horizon: float | None = None):
         self.scheduler = scheduler
         self.chunk = int(chunk)
+        self.horizon = horizon
         self._client = None
         self._close = None
         self.cells_run = 0
@@ -428,7 +434,7 @@ class Runner:
         x = np.asarray(x, dtype=float)
         y = np.asarray(y, dtype=float)
         if self.scheduler is None:
-            out = run_cells_local(families, fam, x, y, progress, early)
+            out = run_cells_local(families, fam, x, y, progress, early, self.horizon)
         else:
             if self._client is None:
                 raise RuntimeError("use the Runner as a context manager to run on a scheduler")
@@ -436,7 +442,7 @@ class Runner:
 
             n = len(x)
             bounds = [(lo, min(n, lo + self.chunk)) for lo in range(0, n, self.chunk)]
-            tasks = [(tuple(families), fam[lo:hi], x[lo:hi], y[lo:hi], early) for lo, hi in bounds]
+            tasks = [(tuple(families), fam[lo:hi], x[lo:hi], y[lo:hi], early, self.horizon) for lo, hi in bounds]
             sizes = [hi - lo for lo, hi in bounds]
             parts = map_chunks(self._client, _run_cells_task, tasks,
                                progress=(lambda i: progress(sizes[i])) if progress else None)

@@ -227,6 +227,8 @@ def test_dask_map_equals_the_local_map():
     (["min-overturning", "--alpha", "10", "--step", "0"], "scan step"),
     (["critical-size", "--pulse", "ricker-sym"], "period"),
     (["critical-size", "--tb-tp", "2,-1"], "--tb-tp"),
+    (["overturning", "--alpha", "10", "--horizon", "4000"], "horizon must be a time between 0 and 3600 s"),
+    (["critical-size", "--horizon", "-1"], "horizon must be a time between 0 and 3600 s"),
 ])
 def test_cli_bad_input_one_sentence_exit_2_nothing_written(tmp_path, args, words):
     out = tmp_path / "out.csv"
@@ -265,6 +267,23 @@ def test_cli_overturning_csv_one_row_per_cell(tmp_path):
         assert float(a["theta_max_over_alpha"]) <= float(b["theta_max_over_alpha"]) * (1 + 1e-7) + 1e-12
         if a["peak_final"] == "1":
             assert float(a["theta_max_over_alpha"]) == pytest.approx(float(b["theta_max_over_alpha"]), rel=1e-7)
+
+
+def test_cli_horizon_follows_unproven_cells_longer(tmp_path):
+    """A 1.5 deg block on a gamma = 0 SCSS base: cells still rocking at a 30 s horizon count as surviving
+    (proven 0, and the count is printed); at 600 s those two are proven, with the same verdicts."""
+    args = ["spectrum", "overturning", "--alpha", "1.5", "--isolation", "scss:TbTp=2,mu=0.06,gamma=0",
+            "--wp-p", "4.5:5:2", "--ap", "1:1:1"]
+    rows = {}
+    for h in ("30", "600"):
+        out = tmp_path / f"h{h}.csv"
+        r = CliRunner().invoke(main, [*args, "--horizon", h, "--csv", str(out)])
+        assert r.exit_code == 0, r.output
+        rows[h] = list(csv.DictReader(out.open()))
+        assert ("2 NOT PROVEN" in r.output) == (h == "30"), r.output
+    assert [row["proven"] for row in rows["30"]] == ["0", "0"]
+    assert [row["proven"] for row in rows["600"]] == ["1", "1"]
+    assert [row["overturned"] for row in rows["30"]] == [row["overturned"] for row in rows["600"]] == ["0", "0"]
 
 
 def test_cli_critical_size_table_i_columns(tmp_path):

@@ -41,6 +41,7 @@ def _scene_options(isolation_help: str, isolation_default, multiple_isolation: b
             click.option("--scheduler", default=None, metavar="tcp://HOST:PORT|local",
                          help="Run the cells in chunks on a Dask cluster (pip install -e \".[dask]\"): an "
                               "existing scheduler, or 'local' for a LocalCluster on this machine."),
+            _HORIZON_OPTION,
         ]
         f = record_options(f, column_flag="--record-column")
         for option in reversed(options):
@@ -73,14 +74,22 @@ def _pulses(pulses, records, units, dt, fmt, column, default=("ricker-sym",)):
     return out
 
 
-def _runner(scheduler):
+_HORIZON_OPTION = click.option(
+    "--horizon", type=float, default=600.0, show_default=True, metavar="S",
+    help="Longest free motion followed after the pulse to prove a cell's verdict [s] (at most 3600); cells still "
+         "moving then count as surviving, and their number is printed.")
+
+
+def _runner(scheduler, horizon=600.0):
+    from rockcli.solve import validate_options
     from rockcli.spectra import Runner
 
+    validate_options(horizon=horizon)
     if scheduler is not None:
         from rockcli.distributed import check_scheduler
 
         check_scheduler(scheduler)
-    return Runner(scheduler)
+    return Runner(scheduler, horizon=horizon)
 
 
 def _echo_unproven(runner):
@@ -108,7 +117,7 @@ def _echo_notes(pcs):
                    "follows every run until its peak is final (the same map, slower).")
 @user_errors
 def overturning(alpha, pulses, records, isolations, csv_path, plot_path, scheduler, units, dt, fmt, column, wp_p, ap,
-                early):
+                early, horizon):
     """Overturning map over omega_p/p x a_p/(g tan alpha), like the paper's Figures 6 and 9.
 
     Light grey: the block rocks and survives; dark grey: it overturns; white: it never uplifts.
@@ -130,7 +139,7 @@ def overturning(alpha, pulses, records, isolations, csv_path, plot_path, schedul
     ap_grid = parse_grid(ap, "--ap")
     isos = [parse_isolation(s) for s in isolations]
     _check_outputs(csv_path, plot_path)
-    runner = _runner(scheduler)
+    runner = _runner(scheduler, horizon)
     pcs = _pulses(pulses, records, units, dt, fmt, column)
     n = len(alphas) * len(pcs) * len(isos) * wp_grid.count * ap_grid.count
     t0 = time.perf_counter()
@@ -176,7 +185,7 @@ def overturning(alpha, pulses, records, isolations, csv_path, plot_path, schedul
               help="Relative resolution of the bisection after the scan.")
 @user_errors
 def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, scheduler, units, dt, fmt, column,
-                    gammas, wp_p, ap_max, step, tol):
+                    gammas, wp_p, ap_max, step, tol, horizon):
     """Minimum overturning acceleration over omega_p/p, like the paper's Figures 7, 8, 9 and 11.
 
     For each omega_p/p: the smallest a_p that overturns, found by scanning up from the uplift
@@ -204,7 +213,7 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
             iso.foundation(1.0)
     isos = list(dict.fromkeys(isos))
     _check_outputs(csv_path, plot_path)
-    runner = _runner(scheduler)
+    runner = _runner(scheduler, horizon)
     pcs = _pulses(pulses, records, units, dt, fmt, column)
     n = len(alphas) * len(pcs) * len(isos) * xs.size
     t0 = time.perf_counter()
@@ -265,9 +274,10 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
               help="Draw the compared curves with the crossings marked.")
 @click.option("--scheduler", default=None, metavar="tcp://HOST:PORT|local",
               help="Run the cells on a Dask cluster (see overturning).")
+@_HORIZON_OPTION
 @user_errors
 def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, fmt, column, wp_p, xtol, ap_max,
-                  step, tol, csv_path, plot_path, scheduler):
+                  step, tol, csv_path, plot_path, scheduler, horizon):
     """Block size beyond which a block is safer without isolation, like the paper's Table I.
 
     Where the minimum overturning curves of the rigid foundation and of the isolated base cross
@@ -297,7 +307,7 @@ def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, 
         xi = 0.05
     isos = table_i_isolations(ratios, xi=xi, gamma=gamma, template=bearing)
     _check_outputs(csv_path, plot_path)
-    runner = _runner(scheduler)
+    runner = _runner(scheduler, horizon)
     if pulses or records:
         pcs = _pulses(pulses, records, units, dt, fmt, column, default=())
     else:
