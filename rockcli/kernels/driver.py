@@ -128,10 +128,10 @@ def _end_of_run(fkind, prm, t_exc_end, want_history, t_show_end, t_horizon, max_
         if not settled and rs[RS_THMAX] > 0.0:
             level = min(rs[RS_THMAX], alpha)
             if abs(W[W_Y, 0]) < level:
-                if _free_energy(fkind, prm, rs, W) < _barrier(prm, level):
+                if _free_energy(fkind, prm, rs, W) < _barrier(prm, level, prm[P_GAMMA]):
                     settled = True  # P5
                 elif (fkind == FOUNDATION_LINEAR and prm[P_GAMMA] == 0.0
-                      and _decoupled_energy_bound(prm, rs, W) < prm[P_R] * prm[P_G] * (math.cos(alpha - level) - prm[P_COSA])):
+                      and _decoupled_energy_bound(prm, rs, W) < _barrier(prm, level, 1.0)):
                     settled = True  # P8
         if settled:
             rs[RS_SETTLED] = 1.0
@@ -198,9 +198,10 @@ def _decoupled_energy_bound(prm, rs, W):
 
 
 @njit(cache=True)
-def _barrier(prm, level):
-    """Energy per unit total mass the block needs to reach ``|theta| = level <= alpha`` from rest [J/kg]."""
-    return prm[P_GAMMA] * prm[P_R] * prm[P_G] * (math.cos(prm[P_ALPHA] - level) - prm[P_COSA])
+def _barrier(prm, level, weight):
+    """Energy the block needs to reach ``|theta| = level <= alpha`` from rest: per unit total mass with
+    ``weight = gamma`` (P5), per unit block mass with ``weight = 1`` (P8) [J/kg]."""
+    return weight * prm[P_R] * prm[P_G] * (math.cos(prm[P_ALPHA] - level) - prm[P_COSA])
 
 
 @njit(cache=True)
