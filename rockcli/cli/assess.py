@@ -7,7 +7,7 @@ from __future__ import annotations
 import click
 
 from rockcli.cli.errors import InputError, user_errors
-from rockcli.cli.options import check_outputs, progress_bar
+from rockcli.cli.options import check_outputs, horizon_option, progress_bar
 
 
 @click.group(name="assess")
@@ -29,13 +29,6 @@ def _block_options(func):
             click.option("--name", default="custom", show_default=True, help="Name of the custom block."))):
         func = opt(func)
     return func
-
-
-def _horizon_option(func):
-    """``--horizon``: the solver's horizon [s], checked before any work (one sentence, exit 2)."""
-    return click.option("--horizon", type=float, default=600.0, show_default=True, metavar="S",
-                        help="Longest free motion followed after a record to prove its verdict [s] (at most "
-                             "3600); a run still moving then is reported NOT PROVEN.")(func)
 
 
 def _headerless_options(func):
@@ -108,7 +101,7 @@ def _columns(names, R, alpha, height, width, name):
 @click.option("--check-tolerance", is_flag=True,
               help="Rerun every scene at a 100x tighter rtol (5e-11; 2e-11 on sliding bearings) and flag any "
                    "verdict that changes.")
-@_horizon_option
+@horizon_option
 @user_errors
 def column(names, R, alpha, height, width, name, records, units, dt, excitation, isolation, margin, neighbourhood,
            csv_path, hist_dir, plot_dir, check_tolerance, horizon):
@@ -254,7 +247,7 @@ def _write_histories(result, hist_dir, plot_dir):
 @click.option("--scheduler", default=None, metavar="tcp://HOST:PORT|local",
               help="Run the margin searches on a Dask cluster (pip install -e \".[dask]\"): the address of an "
                    "existing scheduler, or 'local' for a LocalCluster on this machine. Same results.")
-@_horizon_option
+@horizon_option
 @user_errors
 def fragility(names, R, alpha, height, width, name, records, units, dt, isolation, im, n_boot, seed, csv_path,
               plot_path, scheduler, horizon):

@@ -62,6 +62,14 @@ def block_options(func):
     return func
 
 
+def horizon_option(func):
+    """``--horizon S``: the solver's horizon, the longest free motion followed after the excitation to
+    prove a verdict. The command checks it (:func:`rockcli.solve.validate_options`) before any work."""
+    return click.option("--horizon", type=float, default=600.0, show_default=True, metavar="S",
+                        help="Longest free motion followed after the excitation to prove a verdict [s] (at most "
+                             "3600); a run still moving then is reported NOT PROVEN.")(func)
+
+
 #: The block flags, as :func:`rockcli.models.build_block` names them in messages.
 BLOCK_FLAGS = {"preset": "--column NAME", "R": "--R", "alpha": "--alpha", "height": "--height", "width": "--width"}
 

@@ -5,7 +5,8 @@ from __future__ import annotations
 import click
 
 from rockcli.cli.errors import user_errors
-from rockcli.cli.options import block_from_options, block_options, check_outputs, record_kwargs, record_options
+from rockcli.cli.options import (block_from_options, block_options, check_outputs, horizon_option, record_kwargs,
+                                 record_options)
 
 
 @click.command(context_settings={"show_default": True})
@@ -28,8 +29,7 @@ from rockcli.cli.options import block_from_options, block_options, check_outputs
               help="Relative tolerance of the integrator [default: 5e-9; 2e-9 on sliding and lead-rubber bearings].")
 @click.option("--tail", type=float, default=10.0,
               help="Free motion shown after the excitation in --history/--plot [s]; never changes the verdict.")
-@click.option("--horizon", type=float, default=600.0,
-              help="Longest free motion followed after the excitation to prove the verdict [s].")
+@horizon_option
 @click.option("--json", "as_json", is_flag=True, help="Print the results as one JSON object.")
 @click.option("--history", "history_path", type=click.Path(), default=None,
               help="Write the time history (t, ground acceleration, theta, theta_dot, u, u_dot; on sliding and "

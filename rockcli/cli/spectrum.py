@@ -6,7 +6,7 @@ from __future__ import annotations
 import click
 
 from rockcli.cli.errors import InputError, user_errors
-from rockcli.cli.options import progress_bar, record_kwargs, record_options
+from rockcli.cli.options import horizon_option, progress_bar, record_kwargs, record_options
 
 _SHAPES = "ricker-sym|ricker-anti|sine|cosine"
 
@@ -41,7 +41,7 @@ def _scene_options(isolation_help: str, isolation_default, multiple_isolation: b
             click.option("--scheduler", default=None, metavar="tcp://HOST:PORT|local",
                          help="Run the cells in chunks on a Dask cluster (pip install -e \".[dask]\"): an "
                               "existing scheduler, or 'local' for a LocalCluster on this machine."),
-            _HORIZON_OPTION,
+            horizon_option,
         ]
         f = record_options(f, column_flag="--record-column")
         for option in reversed(options):
@@ -74,13 +74,7 @@ def _pulses(pulses, records, units, dt, fmt, column, default=("ricker-sym",)):
     return out
 
 
-_HORIZON_OPTION = click.option(
-    "--horizon", type=float, default=600.0, show_default=True, metavar="S",
-    help="Longest free motion followed after the pulse to prove a cell's verdict [s] (at most 3600); cells still "
-         "moving then count as surviving, and their number is printed.")
-
-
-def _runner(scheduler, horizon=600.0):
+def _runner(scheduler, horizon):
     from rockcli.solve import validate_options
     from rockcli.spectra import Runner
 
@@ -274,7 +268,7 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
               help="Draw the compared curves with the crossings marked.")
 @click.option("--scheduler", default=None, metavar="tcp://HOST:PORT|local",
               help="Run the cells on a Dask cluster (see overturning).")
-@_HORIZON_OPTION
+@horizon_option
 @user_errors
 def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, fmt, column, wp_p, xtol, ap_max,
                   step, tol, csv_path, plot_path, scheduler, horizon):
