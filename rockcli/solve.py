@@ -460,7 +460,8 @@ def _estimate_steps(block: Block, foundation, prepared, rtol: float, tail: float
         after = max(after, tail)
     impacts = math.log(1.0 / rest_tol) / (3.0 * math.sin(block.alpha) ** 2)  # one cascade down to rest
     cascade = 2.0 * impacts * (1.0 + stiff / (3.0 * block.p))  # a flight of ~1/p at the base's stable step
-    return samples + (active + after) * rate + cascade, samples, active + after
+    per_sample = k.RIGID_RECORD_SUBSTEPS if isinstance(foundation, Rigid) else 1  # steps per sample, at least
+    return samples * per_sample + (active + after) * rate + cascade, samples, active + after
 
 
 def _check_work(block: Block, foundation, prepared, rtol: float, tail: float, rest_tol: float, horizon: float,
@@ -469,7 +470,7 @@ def _check_work(block: Block, foundation, prepared, rtol: float, tail: float, re
 
     So that an accepted scene never reaches the step cap, which is then left for genuine numerical
     failures. The estimate (:func:`_estimate_steps`) is one step per record sample (no step crosses
-    one) plus a rate times the run: the active excitation (record length or pulse support) and,
+    one; two on a rigid foundation, whose steps span at most half a sample) plus a rate times the run: the active excitation (record length or pulse support) and,
     after it, the time the verdict may take to be proven, at most max(horizon, tail): the longer of
     a rocking cascade, ``(2/p) sqrt 2/(1.5 sin^2 alpha)``, and 40 decay times of the free base's
     slowest mode (infinite for an undamped base; a history run also shows ``tail``). The rate adds

@@ -274,14 +274,21 @@ def test_simulate_many_turns_a_bad_job_into_an_error_result():
     good_rec = Record(np.sin(np.linspace(0, 20, 500)) * 3.0, 0.01, "ok")
     nan_rec = Record(np.array([0.0, np.nan, 1.0]), 0.01, "nan")
     jobs = [(block, Rigid(), good_rec, 1.5), (block, Rigid(), nan_rec), (block, Rigid(), pulse, 2.0),
-            ("not a block", Rigid(), pulse), (block, "springs", pulse), (block, LinearIsolation(2.0), pulse)]
+            ("not a block", Rigid(), pulse), (block, "springs", pulse), (block, LinearIsolation(2.0), pulse),
+            (block, Rigid(), good_rec, 2.0)]
     res = simulate_many(jobs)
-    assert [r.verdict == VERDICT_ERROR for r in res] == [False, True, False, True, True, False]
+    assert [r.verdict == VERDICT_ERROR for r in res] == [False, True, False, True, True, False, False]
     assert isinstance(res[1], JobError) and "NaN" in res[1].error and not res[1].overturned
     assert "Block" in res[3].error
     # a scale factor multiplies a pulse's a_p (the same run as the scaled pulse)
     assert res[2].summary() == simulate(block, Rigid(), pulse.scaled(2.0)).summary()
-    assert res[0].summary() == simulate(block, Rigid(), good_rec.scaled(1.5)).summary()
+    # and a record's samples as it goes: the same run as the scaled record, bit for bit when the scaling
+    # is exact (a power of 2), else to rounding (1.5 x a sample is not always a double)
+    assert res[6].summary() == simulate(block, Rigid(), good_rec.scaled(2.0)).summary()
+    one, other = res[0].summary(), simulate(block, Rigid(), good_rec.scaled(1.5)).summary()
+    assert one.keys() == other.keys() and one["verdict"] == other["verdict"] == "overturned"
+    for key, v in one.items():
+        assert v == (pytest.approx(other[key], rel=1e-12) if isinstance(v, float) else other[key]), key
     assert res[5].summary() == simulate(block, LinearIsolation(2.0), pulse).summary()
     with pytest.raises(RockcliInputError, match="rtol"):
         simulate_many(jobs, rtol=-1.0)  # a bad option concerns every job

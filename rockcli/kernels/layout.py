@@ -20,6 +20,8 @@ EXC_RICKER_SYM = 1
 EXC_RICKER_ANTI = 2
 EXC_SINE = 3
 EXC_COSINE = 4
+#: Steps per sample interval of a record, at least, on a rigid foundation (see rockcli.kernels.rigid).
+RIGID_RECORD_SUBSTEPS = 2
 
 # layout of the excitation tuple ``epar`` (pulses; for a record E_AP is the scale factor)
 E_AP, E_TP, E_T0, E_TS, E_TE, E_BETA = 0, 1, 2, 3, 4, 5
