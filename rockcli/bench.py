@@ -62,6 +62,10 @@ CHECK_METHOD = "DOP853"
 CHECK_RTOL = 1e-13
 #: The SciPy tolerance the summary compares the kernel at its default (rockcli.solve.default_rtol) with.
 COMPARE_RTOL = 1e-8
+#: The reference's rounding noise: it is recomputed this many times with its input moved by one ulp
+#: (:func:`ulp_perturbed`), and the largest change is the scene's noise.
+NOISE_DRAWS = 4
+NOISE_SEED = 20121
 #: Wall-time budget of one SciPy run [s] (default study; ``--full``): slower runs are reported as "over budget".
 SCIPY_BUDGET_S = 20.0
 SCIPY_BUDGET_FULL_S = 120.0
@@ -200,6 +204,22 @@ def select_scenes(names, catalogue) -> list:
     return out
 
 
+def ulp_perturbed(excitation, rng):
+    """The excitation with its numbers moved by one ulp, each up or down at random (``rng``, a NumPy
+    Generator): every sample of a record; ``a_p`` of a pulse, and its ``t0`` later by one ulp or not
+    (never earlier: the pulse must not start before the run). The same ground motion to within
+    rounding: what changes in a solution is rounding noise."""
+    import dataclasses
+
+    if hasattr(excitation, "acc"):
+        acc = np.asarray(excitation.acc, dtype=float)
+        return dataclasses.replace(excitation, acc=np.nextafter(acc, np.where(rng.random(acc.size) < 0.5, -np.inf,
+                                                                              np.inf)))
+    a_p = float(np.nextafter(excitation.a_p, -np.inf if rng.random() < 0.5 else np.inf))
+    t0 = float(np.nextafter(excitation.t0, np.inf)) if rng.random() < 0.5 else float(excitation.t0)
+    return dataclasses.replace(excitation, a_p=a_p, t0=t0)
+
+
 def excitation_end(excitation) -> float:
     """End of the ground motion [s] (a record's last sample; a pulse's support end)."""
     if hasattr(excitation, "acc"):
@@ -287,9 +307,22 @@ class WPScene:
     check_rtol: float = math.nan
     check_d_theta: float = math.nan
     check_d_t_event_s: float = math.nan
+    noise_theta: float = math.nan
+    noise_t_event_s: float = math.nan
     order: float = math.nan
     tol_slope: float = math.nan
     runs: list = field(default_factory=list)
+
+    @property
+    def floor(self) -> float:
+        """The reference's resolution in the plotted error: the larger of its disagreement with the
+        check and its rounding noise (NaN when neither was measured). Errors below it cannot be ranked."""
+        if self.event == "overturn":
+            vals = (self.check_d_t_event_s, self.noise_t_event_s)
+        else:
+            vals = (self.check_d_theta, self.noise_theta)
+        vals = [v for v in vals if math.isfinite(v)]
+        return max(vals) if vals else math.nan
 
     @property
     def comparator(self) -> str:
@@ -311,6 +344,23 @@ def _kernel_event_time(r, event: str) -> float:
     if event == "overturn":
         return r.t_overturn_s
     return history_rest_time(r.history) if r.history is not None else math.nan
+
+
+def _measure_noise(ws: WPScene, block, foundation, exc):
+    """Set ``ws.noise_*``: the largest change of the reference solution over :data:`NOISE_DRAWS` runs
+    on :func:`ulp_perturbed` inputs. A verdict that flips leaves the noise unmeasured (NaN) and a note."""
+    rng = np.random.default_rng(NOISE_SEED)
+    d_theta = d_t = 0.0
+    for _ in range(NOISE_DRAWS):
+        r = _kernel_history(block, foundation, ulp_perturbed(exc, rng), REFERENCE_RTOL)
+        if r.verdict != ws.ref_verdict:
+            ws.note = f"one ulp of the input changes the reference's verdict to {r.verdict}"
+            return
+        d_theta = max(d_theta, abs(r.theta_max_over_alpha - ws.ref_theta_max_over_alpha))
+        e = abs(_kernel_event_time(r, ws.event) - ws.ref_t_event_s)
+        d_t = e if not e <= d_t else d_t  # NaN (no time of rest) stays NaN
+    ws.noise_theta = d_theta
+    ws.noise_t_event_s = d_t
 
 
 def _fill_errors(run: WPRun, ws: WPScene):
@@ -374,6 +424,9 @@ def run_work_precision(scenes, *, kernel_rtols=KERNEL_RTOLS, scipy_rtols=None, m
         ws.ref_theta_max_over_alpha = ref.theta_max_over_alpha
         ws.event = _event_of(ref.verdict)
         ws.ref_t_event_s = _kernel_event_time(ref, ws.event)
+        if progress:
+            progress(f"{scene.name}: the reference's rounding noise ({NOISE_DRAWS} inputs moved by one ulp)")
+        _measure_noise(ws, block, foundation, exc)
         # history runs show the free motion until 5 s after the block rests (the SciPy reference stops
         # there), not a fixed long tail
         tail = WP_TAIL
@@ -413,8 +466,7 @@ def run_work_precision(scenes, *, kernel_rtols=KERNEL_RTOLS, scipy_rtols=None, m
         # observed order from the verdict-only runs (they stop once the verdict is proven, so their
         # right-hand sides are those spent reaching the peak or the overturn), above the reference's noise
         kr = [x for x in ws.runs if x.method == KERNEL_VERDICT]
-        chk = ws.check_d_t_event_s if ws.event == "overturn" else ws.check_d_theta
-        floor = 10.0 * max(chk if math.isfinite(chk) else 0.0, 1e-13)
+        floor = 10.0 * max(ws.floor if math.isfinite(ws.floor) else 0.0, 1e-13)
         good = [x for x in kr if x.error > floor]
         ws.tol_slope = _fit_slope([x.rtol for x in good], [x.error for x in good])
         if ws.tol_slope > 0.3:  # else the error does not follow rtol (steps capped by a record's samples)
@@ -456,7 +508,11 @@ def run_work_precision(scenes, *, kernel_rtols=KERNEL_RTOLS, scipy_rtols=None, m
 class WPSummary:
     """rockcli at its default tolerance (5e-9; 2e-9 on sliding bearings) against the comparator
     (RK45, or Radau for sliding bearings) at ``rtol = 1e-8``: errors, wall times and their ratio
-    (kernel / SciPy)."""
+    (kernel / SciPy).
+
+    ``as_accurate``: rockcli's error is at most SciPy's, or at most the reference's resolution
+    ``floor`` (:attr:`WPScene.floor`), below which no two errors can be ranked; ``at_floor`` says
+    that the second case decided it (rockcli's error above SciPy's, both at the floor)."""
 
     scene: str
     comparator: str
@@ -471,6 +527,8 @@ class WPSummary:
     err_free: float = math.nan
     wall_free_s: float = math.nan
     rtol_kernel: float = 5e-9
+    floor: float = math.nan
+    at_floor: bool = False
 
 
 def scene_default_rtol(scene) -> float:
@@ -490,9 +548,11 @@ def summarise(ws: WPScene) -> WPSummary | None:
         return None
     f = next((r for r in ws.runs if r.method == ws.comparator + FREE_SUFFIX and r.rtol == COMPARE_RTOL
               and not r.note), None)
+    beats = k.error <= s.error
+    at_floor = not beats and k.error <= ws.floor  # False when the floor is NaN
     return WPSummary(ws.scene.name, ws.comparator, k.error, s.error, k.wall_s, kv.wall_s if kv else math.nan,
-                     s.wall_s, k.error <= s.error, k.wall_s / s.wall_s, bool(k.verdict_ok and s.verdict_ok),
-                     f.error if f else math.nan, f.wall_s if f else math.nan, d)
+                     s.wall_s, beats or at_floor, k.wall_s / s.wall_s, bool(k.verdict_ok and s.verdict_ok),
+                     f.error if f else math.nan, f.wall_s if f else math.nan, d, ws.floor, at_floor)
 
 
 # --------------------------------------------------------------------------------------------------

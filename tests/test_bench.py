@@ -119,6 +119,52 @@ def test_work_precision_errors_fall_as_rtol_tightens(tiny_wp):
     assert 0.7 < ws.tol_slope < 1.3 and ws.order > 3
     s = bench.summarise(ws)
     assert s is not None and s.comparator == "RK45" and s.verdicts_agree and s.time_ratio > 0
+    # the reference's rounding noise is measured, and the floor is at least the check's disagreement
+    assert 0.0 <= ws.noise_theta < 1e-10 and ws.noise_t_event_s < 1e-8
+    assert ws.floor == max(ws.check_d_theta, ws.noise_theta) and s.floor == ws.floor
+
+
+def test_ulp_perturbed_moves_each_number_by_one_ulp():
+    from rockcli.records import Record
+
+    rng = np.random.default_rng(3)
+    acc = np.concatenate([np.linspace(-3.0, 3.0, 200), [0.0, 1.0, -2.0]])
+    rec = Record(acc, 0.01, "r")
+    moved = bench.ulp_perturbed(rec, rng).acc
+    up, down = moved == np.nextafter(acc, np.inf), moved == np.nextafter(acc, -np.inf)
+    assert np.all(up | down) and up.sum() > 50 and down.sum() > 50
+    seen = set()
+    for _ in range(20):
+        p = bench.ulp_perturbed(RICKER, rng)
+        assert p.a_p in (np.nextafter(RICKER.a_p, np.inf), np.nextafter(RICKER.a_p, -np.inf))
+        assert p.t0 in (RICKER.t0, np.nextafter(RICKER.t0, np.inf)) and p.T_p == RICKER.T_p
+        assert p.support()[0] >= 0.0
+        seen.add((p.a_p > RICKER.a_p, p.t0 > RICKER.t0))
+    assert len(seen) == 4
+
+
+def _planted_summary(err_kernel, err_scipy, check, noise):
+    scene = bench.select_scenes(["rigid-ricker"], bench.WP_SCENES)[0]
+    ws = bench.WPScene(scene, event="rest", check_d_theta=check, noise_theta=noise)
+    for method, rtol, err in ((bench.KERNEL, 5e-9, err_kernel), (bench.KERNEL_VERDICT, 5e-9, err_kernel),
+                              ("RK45", 1e-8, err_scipy)):
+        ws.runs.append(bench.WPRun(scene.name, method, rtol, verdict_ok=True, event="rest",
+                                   err_theta_max_over_alpha=err, wall_s=1e-3))
+    return bench.summarise(ws)
+
+
+def test_summary_ranks_errors_only_above_the_reference_floor():
+    s = _planted_summary(1e-9, 2e-9, 1e-13, 1e-14)
+    assert s.as_accurate and not s.at_floor and s.floor == 1e-13
+    # rigid-kobe before half-sample steps: rockcli 9.9e-14 against RK45 2.7e-14, floor 3.9e-14: NO
+    s = _planted_summary(9.9e-14, 2.7e-14, 6.1e-15, 3.9e-14)
+    assert not s.as_accurate and not s.at_floor
+    # after: 1.2e-14 against 1.1e-14, both below the floor: they cannot be ranked
+    s = _planted_summary(1.2e-14, 1.1e-14, 6.1e-15, 3.9e-14)
+    assert s.as_accurate and s.at_floor
+    # no floor measured: errors are ranked as they are
+    s = _planted_summary(1.2e-14, 1.1e-14, math.nan, math.nan)
+    assert not s.as_accurate and math.isnan(s.floor)
 
 
 def test_unavailable_scenes_are_reported_not_run(monkeypatch):

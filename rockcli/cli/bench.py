@@ -139,6 +139,9 @@ def work_precision(scenes, csv_path, plot_path, kernel_rtol, scipy_rtol, methods
         click.echo("\nrockcli at its default rtol (5e-9; 2e-9 on sliding bearings) against SciPy at rtol 1e-8 "
                    "(errors as plotted; time ratio = rockcli / SciPy):")
         click.echo(summary)
+        click.echo("floor: the reference's resolution, the larger of its disagreement with the check and its "
+                   "rounding noise; errors below it cannot be ranked. 'yes (floor)': rockcli's error is above "
+                   "SciPy's, and both are below the floor.")
     click.echo("\nTimings are wall times on this machine and depend on its load.")
     if csv_path:
         from rockcli.report.bench import write_work_precision_csv

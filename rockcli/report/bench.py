@@ -10,6 +10,7 @@ import csv
 import math
 from pathlib import Path
 
+from rockcli.bench import NOISE_DRAWS
 from rockcli.errors import RockcliInputError
 from rockcli.report.files import atomic_path, save_figure
 
@@ -17,7 +18,7 @@ from rockcli.report.files import atomic_path, save_figure
 WP_COLUMNS = ("scene", "method", "rtol", "verdict", "verdict_ok", "theta_max_over_alpha", "err_theta_max_over_alpha",
               "event", "t_event_s", "err_t_event_s", "steps", "nfev", "wall_s", "calls", "note", "ref_verdict",
               "ref_theta_max_over_alpha", "ref_t_event_s", "check_method", "check_rtol", "check_d_theta_max_over_alpha",
-              "check_d_t_event_s", "kernel_order", "kernel_tol_slope")
+              "check_d_t_event_s", "noise_theta_max_over_alpha", "noise_t_event_s", "kernel_order", "kernel_tol_slope")
 #: Columns of ``rockcli bench stability --csv``: one row per scene.
 STAB_COLUMNS = ("scene", "title", "status", "reason", "verdict_rtol_1e-6", "verdict_rtol_1e-10",
                 "theta_max_over_alpha_rtol_1e-6", "theta_max_over_alpha_rtol_1e-10", "t_overturn_s_rtol_1e-6",
@@ -81,6 +82,7 @@ def wp_rows(scenes) -> list:
         common = dict(scene=ws.scene.name, ref_verdict=ws.ref_verdict, ref_theta_max_over_alpha=ws.ref_theta_max_over_alpha,
                       ref_t_event_s=ws.ref_t_event_s, check_method=ws.check_method, check_rtol=ws.check_rtol,
                       check_d_theta_max_over_alpha=ws.check_d_theta, check_d_t_event_s=ws.check_d_t_event_s,
+                      noise_theta_max_over_alpha=ws.noise_theta, noise_t_event_s=ws.noise_t_event_s,
                       kernel_order=ws.order, kernel_tol_slope=ws.tol_slope)
         if not ws.available:
             out.append(dict(common, note=ws.note))
@@ -112,12 +114,15 @@ def format_work_precision(scenes) -> str:
         if ws.check_method:
             ref += (f"\n  check: {ws.check_method} at rtol {ws.check_rtol:g} differs by {_e(ws.check_d_theta)} in "
                     f"theta_max/alpha and {_e(ws.check_d_t_event_s)} s in {ev}")
+        if math.isfinite(ws.noise_theta):
+            ref += (f"\n  noise: with the input moved by one ulp ({NOISE_DRAWS} draws) the reference moves by up to "
+                    f"{_e(ws.noise_theta)} in theta_max/alpha and {_e(ws.noise_t_event_s)} s in {ev}")
         if not math.isnan(ws.order):
             ref += (f"\n  rockcli (verdict-only runs): error ~ RHS^-{ws.order:.1f} (observed order), "
                     f"error ~ rtol^{ws.tol_slope:.2f}")
         else:
             ref += ("\n  rockcli's error does not follow rtol here: its steps are capped by the record's sample "
-                    "interval, and one Dormand-Prince step per interval already meets the tolerance")
+                    "interval (half of it on a rigid foundation), and steps that long already meet the tolerance")
         if ws.note:
             ref += f"\n  note: {ws.note}"
         rows = []
@@ -140,14 +145,15 @@ def format_wp_summary(summaries) -> str:
     for s in summaries:
         if s is None:
             continue
-        rows.append([s.scene, s.comparator, f"{s.rtol_kernel:g}", _e(s.err_kernel), _e(s.err_scipy), "yes" if s.as_accurate else "NO",
+        verdict = ("yes (floor)" if s.at_floor else "yes") if s.as_accurate else "NO"
+        rows.append([s.scene, s.comparator, f"{s.rtol_kernel:g}", _e(s.err_kernel), _e(s.err_scipy), _e(s.floor), verdict,
                      f"{1e3 * s.wall_kernel_s:.2f}", f"{1e3 * s.wall_verdict_s:.2f}", f"{1e3 * s.wall_scipy_s:.0f}",
                      f"{s.time_ratio:.1e}", "yes" if s.verdicts_agree else "NO", _e(s.err_free)])
     if not rows:
         return ""
-    return aligned(["scene", "vs", "rockcli rtol", "err rockcli", "err SciPy", "as accurate", "rockcli [ms]", "verdict-only [ms]",
-                    "SciPy [ms]", "time ratio", "verdicts agree", "err SciPy free steps"], rows,
-                   right={"err rockcli", "err SciPy", "rockcli [ms]", "verdict-only [ms]", "SciPy [ms]", "time ratio",
+    return aligned(["scene", "vs", "rockcli rtol", "err rockcli", "err SciPy", "floor", "as accurate", "rockcli [ms]",
+                    "verdict-only [ms]", "SciPy [ms]", "time ratio", "verdicts agree", "err SciPy free steps"], rows,
+                   right={"err rockcli", "err SciPy", "floor", "rockcli [ms]", "verdict-only [ms]", "SciPy [ms]", "time ratio",
                           "err SciPy free steps"})
 
 
@@ -194,9 +200,8 @@ def plot_work_precision(scenes, path, dpi: int = 72) -> Path:
             bad = [(xx, yy) for xx, yy, r in zip(x, y, pts) if r.verdict_ok is False]
             if bad:
                 ax.loglog(*zip(*bad), "x", color="red", ms=7, mew=1.5)
-        chk = ws.check_d_t_event_s if ws.event == "overturn" else ws.check_d_theta
-        if math.isfinite(chk) and chk > 0:
-            ax.axhline(chk, color="0.4", ls=":", lw=0.8)
+        if math.isfinite(ws.floor) and ws.floor > 0:
+            ax.axhline(ws.floor, color="0.4", ls=":", lw=0.8)  # the reference's resolution
         ax.set_title(ws.scene.name, fontsize=9)
         ax.set_xlabel("wall time [s]", fontsize=8)
         ax.set_ylabel("error in t_overturn [s]" if ws.event == "overturn" else "error in theta_max/alpha", fontsize=8)
