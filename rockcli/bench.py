@@ -25,7 +25,9 @@ base and the angular momentum about the new pivot at every impact of the history
 :func:`check_dissipation` (a hysteretic bearing never gives back more than it stored; needs the
 Bouc-Wen history of the sliding-bearing kernels). A run that ends ``NOT PROVEN`` at the horizon
 is a failure unless the scene states it as its expected behaviour (an undamped base that keeps
-lifting the block).
+lifting the block). Each scene's conditioning is measured too (:func:`measure_conditioning`: the
+answer on inputs moved by one ulp); an ill-conditioned scene (its answer is not determined by its
+input at double precision) is reported as such, not failed: that is the physics, not the solver.
 
 Scenes whose isolation spec does not parse yet (sliding bearings before their branch is merged)
 are skipped with the note ``pending: sliding bearings not available``; scenes the solver refuses
@@ -573,6 +575,12 @@ COLLAPSE_RUN = 50
 MAX_REJECTED = 0.5
 #: Tolerances of the stability study.
 STABILITY_RTOLS = (1e-6, 1e-10)
+#: Conditioning: each stability scene is run again (verdict-only, at the tighter rtol) on this many inputs
+#: moved by one ulp (:func:`ulp_perturbed`); a verdict that changes, or a peak (overturning time) that
+#: moves by more than PEAK_TOL (T_OVERTURN_TOL), makes the scene ill-conditioned: its answer is not
+#: determined by its input at double precision (measured and reported, not a failure of the solver).
+ULP_DRAWS = 2
+ULP_SEED = 19800
 
 
 @dataclass(frozen=True)
@@ -952,10 +960,51 @@ class StabilityResult:
     reason: str = ""
     checks: list = field(default_factory=list)
     runs: dict = field(default_factory=dict)  # rtol -> dict of measured values
+    ulp_spread: float = math.nan  # largest change of theta_max/alpha (t_overturn [s] if overturned) over 1-ulp inputs
+    ulp_verdicts: tuple = ()  # the verdicts on the 1-ulp inputs
 
     @property
     def passed(self) -> bool:
         return self.status in ("pass", "stated")
+
+    @property
+    def ill_conditioned(self) -> bool:
+        """One ulp of the input changes the verdict, or moves the answer beyond the tolerance check's limits."""
+        if not self.ulp_verdicts:
+            return False
+        base = self.runs.get(STABILITY_RTOLS[-1], {}).get("verdict")
+        if any(v != base for v in self.ulp_verdicts):
+            return True
+        limit = T_OVERTURN_TOL if base == "overturned" else PEAK_TOL
+        return not self.ulp_spread <= limit
+
+
+def measure_conditioning(block, foundation, exc, rtol: float, tail: float, max_steps: int, draws: int = ULP_DRAWS,
+                         seed: int = ULP_SEED) -> tuple:
+    """``(spread, verdicts)``: the verdicts of verdict-only runs on ``draws`` :func:`ulp_perturbed`
+    inputs and the largest change of theta_max/alpha (of the overturning time [s] when the unperturbed
+    run overturns) against the unperturbed run; NaN spread when a verdict changes."""
+    from rockcli.solve import simulate
+
+    rng = np.random.default_rng(seed)
+    base = simulate(block, foundation, exc, rtol=rtol, tail=tail, max_steps=max_steps)
+
+    def moved(r) -> float:
+        if r.verdict != base.verdict:
+            return math.nan
+        if base.verdict == "overturned":
+            t_a, t_b = r.t_overturn_s, base.t_overturn_s
+            return 0.0 if math.isnan(t_a) and math.isnan(t_b) else abs(t_a - t_b)
+        return abs(r.theta_max_over_alpha - base.theta_max_over_alpha)
+
+    spread, verdicts = 0.0, []
+    for _ in range(draws):
+        r = simulate(block, foundation, ulp_perturbed(exc, rng), rtol=rtol, tail=tail, max_steps=max_steps)
+        verdicts.append(r.verdict)
+        d = moved(r)
+        if not math.isnan(spread) and not d <= spread:
+            spread = d  # NaN (a verdict changed) stays
+    return spread, tuple(verdicts)
 
 
 def _is_hysteretic(foundation) -> bool:
@@ -1035,6 +1084,11 @@ def run_stability(scenes, *, rtols=STABILITY_RTOLS, progress: Callable[[str], No
             res.reason = f"crash at rtol {rt:g}: {type(exc_).__name__}: {exc_}"
             res.checks.append(Check(f"crash @{rt:g}", False, f"{type(exc_).__name__}: {exc_}"))
             continue
+        try:
+            res.ulp_spread, res.ulp_verdicts = measure_conditioning(block, foundation, exc, rtols[-1], sc.tail,
+                                                                    sc.step_budget)
+        except RockcliInputError:  # a perturbed input refused (a pulse moved past a limit): not measured
+            pass
         a, b = (responses[rt] for rt in rtols[:2])
         res.checks.append(check_tolerance(a.verdict, b.verdict, a.theta_max_over_alpha, b.theta_max_over_alpha,
                                           a.t_overturn_s, b.t_overturn_s))

@@ -297,6 +297,34 @@ def test_stability_scenes_pass_and_state_the_undamped_base():
     assert spike.status == "pass" and any(c.name.startswith("momentum") and "impacts" in c.detail for c in spike.checks)
 
 
+def test_conditioning_separates_a_chaotic_long_record_from_a_pulse():
+    # a pulse: one ulp of a_p (and of t0) moves the peak by rounding only
+    spread, verdicts = bench.measure_conditioning(BASSAE, Rigid(), RICKER, 1e-10, 10.0, 5_000_000)
+    assert verdicts == ("rocked", "rocked") and spread < 1e-12
+    # Bassae under 100 s of band-limited motion (596 impacts): one ulp of the record moves the peak,
+    # reached after 56 s, by 0.33 alpha; the scene is reported ill-conditioned, and still passes
+    res = bench.run_stability(bench.select_scenes(["record-100s", "chatter-pulse"], bench.STABILITY_SCENES))
+    chaotic, calm = res
+    assert chaotic.status == "pass" and chaotic.ill_conditioned and chaotic.ulp_spread > 0.1
+    assert chaotic.ulp_verdicts == ("rocked", "rocked")
+    assert calm.status == "pass" and not calm.ill_conditioned and calm.ulp_spread < 1e-12
+
+
+def test_ill_conditioned_reads_the_verdicts_and_the_spread():
+    sc = bench.select_scenes(["alpha-45deg"], bench.STABILITY_SCENES)[0]
+
+    def planted(verdict, spread, verdicts):
+        r = bench.StabilityResult(sc, runs={1e-10: {"verdict": verdict}}, ulp_spread=spread, ulp_verdicts=verdicts)
+        return r.ill_conditioned
+
+    assert not planted("rocked", 5e-4, ("rocked", "rocked"))
+    assert planted("rocked", 2e-3, ("rocked", "rocked"))
+    assert planted("rocked", math.nan, ("rocked", "overturned"))
+    assert not planted("overturned", 5e-4, ("overturned",))  # seconds, against T_OVERTURN_TOL
+    assert planted("overturned", 0.5, ("overturned",))
+    assert not planted("rocked", math.nan, ())  # not measured
+
+
 def test_a_failing_check_fails_the_scene(monkeypatch):
     """Plant a failure in a real run: a tolerance on the peak no run can meet fails the scene."""
     monkeypatch.setattr(bench.check_tolerance, "__kwdefaults__", {"peak_tol": 0.0, "t_tol": 0.0})
@@ -377,6 +405,8 @@ def test_cli_stability_csv(tmp_path):
     assert rows[0]["status"] == "pass" and rows[0]["verdict_rtol_1e-6"] == rows[0]["verdict_rtol_1e-10"] == "rocked"
     assert float(rows[0]["theta_max_over_alpha_rtol_1e-10"]) > 0 and int(rows[0]["steps_rtol_1e-10"]) > 0
     assert rows[1]["status"] in ("pending", "pass") and rows[0]["settled"] == "1"
+    assert float(rows[0]["ulp_spread"]) < 1e-12 and rows[0]["ulp_verdicts"] == "rocked rocked"
+    assert rows[0]["ill_conditioned"] in ("0", "False")
 
 
 # ------------------------------------------------------------------------------------------

@@ -214,6 +214,13 @@ def stability(scenes, csv_path, list_only, verbose, n_random, seed):
     for res in results:
         counts[res.status] = counts.get(res.status, 0) + 1
     click.echo("\n" + ", ".join(f"{v} {k}" for k, v in counts.items()) + f" of {len(results)} scenes")
+    ill = [res for res in results if res.ill_conditioned]
+    if ill:
+        names = ", ".join(res.scene.name for res in ill[:10]) + (", ..." if len(ill) > 10 else "")
+        click.echo(f"ill-conditioned (ILL): {len(ill)} scene(s) whose verdict, or whose peak by more than 1e-3 alpha "
+                   f"(overturning time by more than 1e-3 s), changes when the input moves by one ulp: {names}. "
+                   "Their answer is not determined by the input at double precision (sensitive dependence through "
+                   "impacts); the solver is not at fault, and such an answer should be read as one sample of a spread.")
     if csv_path:
         from rockcli.report.bench import write_stability_csv
 

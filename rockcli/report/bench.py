@@ -24,7 +24,7 @@ STAB_COLUMNS = ("scene", "title", "status", "reason", "verdict_rtol_1e-6", "verd
                 "theta_max_over_alpha_rtol_1e-6", "theta_max_over_alpha_rtol_1e-10", "t_overturn_s_rtol_1e-6",
                 "t_overturn_s_rtol_1e-10", "settled", "steps_rtol_1e-6", "steps_rtol_1e-10", "rejected_rtol_1e-10",
                 "impacts_rtol_1e-10", "rests_rtol_1e-10", "wall_s_rtol_1e-6", "wall_s_rtol_1e-10", "wall_budget_s",
-                "step_budget", "checks")
+                "step_budget", "ulp_spread", "ulp_verdicts", "ill_conditioned", "checks")
 
 METHOD_STYLE = {  # colour, marker
     "rockcli": ("k", "o"), "rockcli-verdict": ("0.55", "s"), "RK45": ("tab:blue", "^"), "DOP853": ("tab:orange", "v"),
@@ -231,7 +231,8 @@ def stability_rows(results) -> list:
     for res in results:
         sc = res.scene
         row = dict(scene=sc.name, title=sc.title, status=res.status, reason=res.reason, wall_budget_s=sc.wall_budget_s,
-                   step_budget=sc.step_budget, checks="; ".join(f"{c.name}: {'ok' if c.ok else 'FAIL'}: {c.detail}"
+                   step_budget=sc.step_budget, ulp_spread=res.ulp_spread, ulp_verdicts=" ".join(res.ulp_verdicts),
+                   ill_conditioned=res.ill_conditioned, checks="; ".join(f"{c.name}: {'ok' if c.ok else 'FAIL'}: {c.detail}"
                                                                 for c in res.checks))
         for rt, d in res.runs.items():
             mant, _, exp = f"{rt:.0e}".partition("e")
@@ -267,8 +268,18 @@ def format_stability(results) -> str:
                 return f"t_ot {d['t_overturn_s']:.4f} s"
             return f"{d['theta_max_over_alpha']:.6f}"
 
-        rows.append([res.scene.name, res.status, b["verdict"] if b else "", peak(a), peak(b),
+        rows.append([res.scene.name, res.status, b["verdict"] if b else "", peak(a), peak(b), _ulp(res),
                      str(b["steps"]) if b else "", f"{1e3 * b['wall_s']:.1f}" if b else "",
                      res.reason if res.status != "pass" else ""])
-    return aligned(["scene", "result", "verdict", "peak @1e-6", "peak @1e-10", "steps @1e-10", "wall [ms]", "why"],
-                   rows, right={"steps @1e-10", "wall [ms]"})
+    return aligned(["scene", "result", "verdict", "peak @1e-6", "peak @1e-10", "1 ulp moves it", "steps @1e-10",
+                    "wall [ms]", "why"], rows, right={"1 ulp moves it", "steps @1e-10", "wall [ms]"})
+
+
+def _ulp(res) -> str:
+    """The conditioning column: how far one ulp of the input moves the answer (``ILL`` past the limits)."""
+    if not res.ulp_verdicts:
+        return ""
+    if math.isnan(res.ulp_spread):
+        return "verdict! ILL"
+    unit = " s" if res.runs.get(1e-10, {}).get("verdict") == "overturned" else ""
+    return f"{res.ulp_spread:.1e}{unit}" + (" ILL" if res.ill_conditioned else "")
