@@ -44,6 +44,7 @@ from typing import Callable
 
 import numpy as np
 
+from rockcli.conditioning import ILL_PEAK, ILL_T_OVERTURN, ULP_DRAWS, ulp_perturbed  # noqa: F401 (re-exported)
 from rockcli.errors import RockcliInputError
 from rockcli.units import G
 
@@ -204,22 +205,6 @@ def select_scenes(names, catalogue) -> list:
         if by_name[n] not in out:
             out.append(by_name[n])
     return out
-
-
-def ulp_perturbed(excitation, rng):
-    """The excitation with its numbers moved by one ulp, each up or down at random (``rng``, a NumPy
-    Generator): every sample of a record; ``a_p`` of a pulse, and its ``t0`` later by one ulp or not
-    (never earlier: the pulse must not start before the run). The same ground motion to within
-    rounding: what changes in a solution is rounding noise."""
-    import dataclasses
-
-    if hasattr(excitation, "acc"):
-        acc = np.asarray(excitation.acc, dtype=float)
-        return dataclasses.replace(excitation, acc=np.nextafter(acc, np.where(rng.random(acc.size) < 0.5, -np.inf,
-                                                                              np.inf)))
-    a_p = float(np.nextafter(excitation.a_p, -np.inf if rng.random() < 0.5 else np.inf))
-    t0 = float(np.nextafter(excitation.t0, np.inf)) if rng.random() < 0.5 else float(excitation.t0)
-    return dataclasses.replace(excitation, a_p=a_p, t0=t0)
 
 
 def excitation_end(excitation) -> float:
@@ -575,11 +560,10 @@ COLLAPSE_RUN = 50
 MAX_REJECTED = 0.5
 #: Tolerances of the stability study.
 STABILITY_RTOLS = (1e-6, 1e-10)
-#: Conditioning: each stability scene is run again (verdict-only, at the tighter rtol) on this many inputs
-#: moved by one ulp (:func:`ulp_perturbed`); a verdict that changes, or a peak (overturning time) that
-#: moves by more than PEAK_TOL (T_OVERTURN_TOL), makes the scene ill-conditioned: its answer is not
-#: determined by its input at double precision (measured and reported, not a failure of the solver).
-ULP_DRAWS = 2
+#: Conditioning (:mod:`rockcli.conditioning`): each stability scene is run again (verdict-only, at the
+#: tighter rtol) on ULP_DRAWS inputs moved by one ulp; a verdict that changes, or a peak (overturning
+#: time) that moves by more than ILL_PEAK (ILL_T_OVERTURN), makes the scene ill-conditioned: its answer
+#: is not determined by its input at double precision (measured and reported, not a solver failure).
 ULP_SEED = 19800
 
 
@@ -975,7 +959,7 @@ class StabilityResult:
         base = self.runs.get(STABILITY_RTOLS[-1], {}).get("verdict")
         if any(v != base for v in self.ulp_verdicts):
             return True
-        limit = T_OVERTURN_TOL if base == "overturned" else PEAK_TOL
+        limit = ILL_T_OVERTURN if base == "overturned" else ILL_PEAK
         return not self.ulp_spread <= limit
 
 

@@ -418,6 +418,30 @@ def test_assess_check_tolerance(pulse_records):
                                     "--check-tolerance"])
     assert res.exit_code == 0, res.output
     assert "Tolerance check: 4 scenes rerun at rtol 5e-11" in res.output and "no verdict changes" in res.output
+    line = next(x for x in res.output.splitlines() if x.startswith("Conditioning check:"))
+    assert "the 4 scenes rerun on 2 copies of their motion moved by one ulp" in line and "no verdict changes" in line
+
+
+def test_assess_prints_the_ill_conditioned_scenes(pulse_records, monkeypatch):
+    import rockcli.assess.table as table
+
+    real = table.check_tolerance
+
+    def planted(result, **kw):
+        chk = real(result, **kw)
+        a, b = result.rows[:2]
+        return table.ToleranceCheck(chk.rtol, chk.base_rtol, chk.n_runs, [], 0.0, chk.base_rtols, 2,
+                                    [(a, ("rocked", "rocked"), 0.25), (b, ("rocked", "overturned"), math.nan)], 0.25)
+
+    monkeypatch.setattr(table, "check_tolerance", planted)
+    res = CliRunner().invoke(main, ["assess", "column", "statue:R=1.2,alpha=14", "--records", str(pulse_records),
+                                    "--isolation", "none", "--no-margin", "--check-tolerance"])
+    assert res.exit_code == 0, res.output
+    out = res.output.splitlines()
+    k = next(i for i, x in enumerate(out) if x.startswith("Conditioning check:"))
+    assert "2 ILL-CONDITIONED" in out[k]
+    assert out[k + 1].endswith(": peak moves by 0.25 alpha")
+    assert out[k + 2].endswith(" -> rocked, overturned")
 
 
 def test_check_tolerance_flags_a_changed_verdict(pulse_records):
@@ -429,10 +453,19 @@ def test_check_tolerance_flags_a_changed_verdict(pulse_records):
                             margin=False)
     chk = check_tolerance(result)
     assert chk.n_runs == 2 and not chk.changed and chk.rtol == pytest.approx(5e-11)
+    # pulses are well conditioned: one ulp of a_p (and of t0) moves a peak by rounding only
+    assert chk.ulp_draws == 2 and not chk.ill and chk.max_ulp_peak_change < 1e-12
+    survivor = next(r for r in result.rows if r.verdict == "rocked")
+    survivor.theta_max_over_alpha += 0.01  # as if the run had landed elsewhere in a chaotic spread
+    chk = check_tolerance(result)
+    assert [(row, v) for row, v, _ in chk.ill] == [(survivor, ("rocked", "rocked"))]
+    assert chk.ill[0][2] == pytest.approx(0.01, rel=1e-6)
+    survivor.theta_max_over_alpha -= 0.01
     planted = result.rows[0]
     planted.verdict = "overturned" if planted.verdict != "overturned" else "rocked"  # as if the loose run had erred
     chk = check_tolerance(result)
     assert [row for row, _ in chk.changed] == [planted]
+    assert [row for row, _, _ in chk.ill] == [planted] and math.isnan(chk.ill[0][2])  # a verdict flip
 
 
 def test_a_crash_is_a_failure_not_an_abort(monkeypatch):

@@ -13,6 +13,9 @@ import re
 from dataclasses import dataclass, field
 from typing import Sequence
 
+import numpy as np
+
+from rockcli.conditioning import ILL_PEAK, ULP_DRAWS, ulp_perturbed
 from rockcli.errors import RockcliInputError
 from rockcli.models import Block
 from rockcli.assess.margin import MARGIN_GRID, NEIGHBOURHOOD, _scaled_job, find_overturn_scales, overturn_shares
@@ -241,6 +244,12 @@ class ToleranceCheck:
 
     ``changed`` holds ``(row, verdict at the tight rtol)`` for each scene whose verdict differs;
     ``max_peak_change`` is the largest change of theta_max/alpha among scenes that survive at both.
+
+    Conditioning (:mod:`rockcli.conditioning`): every scene is also rerun, at its own rtol, on
+    ``ulp_draws`` copies of its motion moved by one ulp. ``ill`` holds ``(row, verdicts, peak change)``
+    for each scene whose verdict changes on one of them (peak change NaN) or whose survivor's peak
+    moves by more than ``ILL_PEAK``: its answer is not determined by its input at double precision.
+    ``max_ulp_peak_change`` is the largest change of a survivor's peak there.
     """
 
     rtol: float
@@ -250,11 +259,17 @@ class ToleranceCheck:
     max_peak_change: float
     #: every base rtol used (each foundation's default when none was given), loosest first
     base_rtols: tuple = ()
+    ulp_draws: int = 0
+    ill: list = field(default_factory=list)
+    max_ulp_peak_change: float = 0.0
 
 
-def check_tolerance(assessment: Assessment, *, factor: float = 100.0, base_rtol: float | None = None) -> ToleranceCheck:
+def check_tolerance(assessment: Assessment, *, factor: float = 100.0, base_rtol: float | None = None,
+                    ulp_draws: int = ULP_DRAWS, seed: int = 1980) -> ToleranceCheck:
     """Rerun every scene of ``assessment`` that ran at a ``factor`` times tighter rtol (verdict
-    only, all cores) and report the verdicts that change (they were decided by the numerics).
+    only, all cores) and report the verdicts that change (they were decided by the numerics); then
+    at its own rtol on ``ulp_draws`` motions moved by one ulp (``seed``), and report the scenes
+    whose answer changes there (ill-conditioned; see :class:`ToleranceCheck`).
     ``base_rtol`` None: each foundation's default (:func:`rockcli.solve.default_rtol`)."""
     from rockcli.solve import DEFAULT_RTOL, default_rtol, simulate_many
 
@@ -264,17 +279,36 @@ def check_tolerance(assessment: Assessment, *, factor: float = 100.0, base_rtol:
     rows = [r for r in assessment.rows if not r.error and r.verdict and xs[r.record].motion is not None]
     jobs = [(blocks[r.column], confs[r.configuration].foundation, xs[r.record].motion) for r in rows]
     bases = [default_rtol(j[1]) if base_rtol is None else float(base_rtol) for j in jobs]
-    tight = [None] * len(jobs)
-    for base in sorted(set(bases)):  # one sweep per base tolerance
-        idx = [i for i, b in enumerate(bases) if b == base]
-        other = {k: v for k, v in assessment.solver.items() if k != "rtol"}
-        for i, r in zip(idx, simulate_many([jobs[i] for i in idx], rtol=base / factor, **other)):
-            tight[i] = r
+    other = {k: v for k, v in assessment.solver.items() if k != "rtol"}
+
+    def sweep(job_list, scale):  # one sweep per base tolerance, in the order of job_list
+        out = [None] * len(job_list)
+        for base in sorted(set(bases)):
+            idx = [i for i, b in enumerate(bases) if b == base]
+            for i, r in zip(idx, simulate_many([job_list[i] for i in idx], rtol=base * scale, **other)):
+                out[i] = r
+        return out
+
     changed, peak = [], 0.0
-    for row, r in zip(rows, tight):
+    for row, r in zip(rows, sweep(jobs, 1.0 / factor)):
         if r.verdict != row.verdict:
             changed.append((row, r.verdict))
         elif r.verdict == "rocked":
             peak = max(peak, abs(r.theta_max_over_alpha - row.theta_max_over_alpha))
+    # conditioning: the same scenes on motions moved by one ulp (one copy per motion and draw)
+    rng = np.random.default_rng(seed)
+    verdicts = [[] for _ in rows]
+    moved = [0.0] * len(rows)
+    for _ in range(ulp_draws):
+        copies = {label: ulp_perturbed(x.motion, rng) for label, x in xs.items() if x.motion is not None}
+        for i, r in enumerate(sweep([(b, f, copies[row.record]) for (b, f, _), row in zip(jobs, rows)], 1.0)):
+            verdicts[i].append(r.verdict)
+            if r.verdict != rows[i].verdict:
+                moved[i] = math.nan
+            elif r.verdict == "rocked" and not math.isnan(moved[i]):
+                moved[i] = max(moved[i], abs(r.theta_max_over_alpha - rows[i].theta_max_over_alpha))
+    ill = [(row, tuple(v), d) for row, v, d in zip(rows, verdicts, moved) if not d <= ILL_PEAK]
+    ulp_peak = max((d for d in moved if not math.isnan(d)), default=0.0)
     base = max(bases) if bases else (DEFAULT_RTOL if base_rtol is None else float(base_rtol))
-    return ToleranceCheck(base / factor, base, len(rows), changed, peak, tuple(sorted(set(bases), reverse=True)))
+    return ToleranceCheck(base / factor, base, len(rows), changed, peak, tuple(sorted(set(bases), reverse=True)),
+                          ulp_draws, ill, ulp_peak)

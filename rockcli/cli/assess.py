@@ -100,7 +100,8 @@ def _columns(names, R, alpha, height, width, name):
               help="Write one figure per run (like the paper's Figure 12) into this folder.")
 @click.option("--check-tolerance", is_flag=True,
               help="Rerun every scene at a 100x tighter rtol (5e-11; 2e-11 on sliding bearings) and flag any "
-                   "verdict that changes.")
+                   "verdict that changes; and on 2 copies of its motion moved by one ulp, and flag any scene "
+                   "whose verdict changes or whose peak moves by more than 1e-3 alpha (ill-conditioned).")
 @horizon_option
 @user_errors
 def column(names, R, alpha, height, width, name, records, units, dt, excitation, isolation, margin, neighbourhood,
@@ -164,6 +165,7 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
 
 def _echo_tolerance_check(result):
     from rockcli.assess.table import check_tolerance
+    from rockcli.conditioning import ILL_PEAK
 
     chk = check_tolerance(result)
     bases = chk.base_rtols or (chk.base_rtol,)
@@ -173,10 +175,22 @@ def _echo_tolerance_check(result):
     if not chk.changed:
         click.echo(head + f"no verdict changes (largest change of a survivor's peak |theta|/alpha: "
                           f"{chk.max_peak_change:.1e}).")
+    else:
+        click.echo(head + f"{len(chk.changed)} VERDICTS CHANGE (decided by the numerics; treat as a coin toss):")
+        for row, tight in chk.changed:
+            click.echo(f"  {row.column} / {row.record} / {row.configuration}: {row.verdict} -> {tight}")
+    head = (f"Conditioning check: the {chk.n_runs} scenes rerun on {chk.ulp_draws} copies of their motion moved by "
+            f"one ulp (the same motion to within rounding): ")
+    if not chk.ill:
+        click.echo(head + f"no verdict changes (largest change of a survivor's peak |theta|/alpha: "
+                          f"{chk.max_ulp_peak_change:.1e}).")
         return
-    click.echo(head + f"{len(chk.changed)} VERDICTS CHANGE (decided by the numerics; treat as a coin toss):")
-    for row, tight in chk.changed:
-        click.echo(f"  {row.column} / {row.record} / {row.configuration}: {row.verdict} -> {tight}")
+    click.echo(head + f"{len(chk.ill)} ILL-CONDITIONED (the verdict changes, or the peak moves by more than "
+                      f"{ILL_PEAK:g} alpha: the answer is not determined by the motion at double precision; read "
+                      f"it as one sample of a spread, and look at the margin):")
+    for row, verdicts, moved in chk.ill:
+        what = f"peak moves by {moved:.2g} alpha" if moved == moved else f"{row.verdict} -> {', '.join(verdicts)}"
+        click.echo(f"  {row.column} / {row.record} / {row.configuration}: {what}")
 
 
 def _write_histories(result, hist_dir, plot_dir):

@@ -1,0 +1,35 @@
+"""Conditioning: does an answer depend on the last bit of its input?
+
+Rocking through many impacts can be sensitive to small changes of the ground motion (Yim, Chopra &
+Penzien 1980). :func:`ulp_perturbed` gives the same ground motion to within rounding; an answer that
+changes on it beyond :data:`ILL_PEAK` (or :data:`ILL_T_OVERTURN`), or whose verdict changes, is not
+determined by its input at double precision: *ill-conditioned*, whatever the solver. Used by
+``rockcli bench stability`` and ``rockcli assess column --check-tolerance``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+#: Inputs moved by one ulp that each scene is rerun on.
+ULP_DRAWS = 2
+#: A peak |theta|/alpha that moves by more than this on them makes the scene ill-conditioned ...
+ILL_PEAK = 1e-3
+#: ... and so does an overturning time [s] that moves by more than this.
+ILL_T_OVERTURN = 1e-3
+
+
+def ulp_perturbed(excitation, rng):
+    """The excitation with its numbers moved by one ulp, each up or down at random (``rng``, a NumPy
+    Generator): every sample of a record; ``a_p`` of a pulse, and its ``t0`` later by one ulp or not
+    (never earlier: the pulse must not start before the run). The same ground motion to within
+    rounding: what changes in a solution is rounding noise."""
+    if hasattr(excitation, "acc"):
+        acc = np.asarray(excitation.acc, dtype=float)
+        return dataclasses.replace(excitation, acc=np.nextafter(acc, np.where(rng.random(acc.size) < 0.5, -np.inf,
+                                                                              np.inf)))
+    a_p = float(np.nextafter(excitation.a_p, -np.inf if rng.random() < 0.5 else np.inf))
+    t0 = float(np.nextafter(excitation.t0, np.inf)) if rng.random() < 0.5 else float(excitation.t0)
+    return dataclasses.replace(excitation, a_p=a_p, t0=t0)
