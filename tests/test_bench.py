@@ -412,11 +412,25 @@ def test_cli_stability_csv(tmp_path):
 # ------------------------------------------------------------------------------------------
 # assess column --check-tolerance
 # ------------------------------------------------------------------------------------------
-def test_assess_check_tolerance(pulse_records):
+def test_assess_check_tolerance(pulse_records, tmp_path):
+    from rockcli.report.tables import CHECK_COLUMNS, CSV_COLUMNS, read_assessment_csv
+
+    out = tmp_path / "t.csv"
+    res = CliRunner().invoke(main, ["assess", "column", "statue:R=1.2,alpha=14", "--records", str(pulse_records),
+                                    "--isolation", "none", "--isolation", "linear:Tb=2", "--no-margin",
+                                    "--check-tolerance", "--csv", str(out)])
+    assert res.exit_code == 0, res.output
+    df = read_assessment_csv(out)
+    assert list(df.columns) == list(CSV_COLUMNS) + list(CHECK_COLUMNS) and len(df) == 4
+    assert (df["tight_rtol_verdict"] == df["verdict"]).all() and (df["tight_rtol_peak_change"] < 1e-6).all()
+    assert all(v.split() == [w, w] for v, w in zip(df["ulp_verdicts"], df["verdict"]))
+    assert (df["ulp_peak_change"] < 1e-12).all() and not df["ill_conditioned"].any()
+    res = CliRunner().invoke(main, ["assess", "column", "statue:R=1.2,alpha=14", "--records", str(pulse_records),
+                                    "--isolation", "none", "--no-margin", "--csv", str(out)])
+    assert res.exit_code == 0 and list(read_assessment_csv(out).columns) == list(CSV_COLUMNS)
     res = CliRunner().invoke(main, ["assess", "column", "statue:R=1.2,alpha=14", "--records", str(pulse_records),
                                     "--isolation", "none", "--isolation", "linear:Tb=2", "--no-margin",
                                     "--check-tolerance"])
-    assert res.exit_code == 0, res.output
     assert "Tolerance check: 4 scenes rerun at rtol 5e-11" in res.output and "no verdict changes" in res.output
     line = next(x for x in res.output.splitlines() if x.startswith("Conditioning check:"))
     assert "the 4 scenes rerun on 2 copies of their motion moved by one ulp" in line and "no verdict changes" in line

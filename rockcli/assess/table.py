@@ -262,6 +262,10 @@ class ToleranceCheck:
     ulp_draws: int = 0
     ill: list = field(default_factory=list)
     max_ulp_peak_change: float = 0.0
+    #: per checked row: ``(row, verdict at the tight rtol, its peak change, verdicts on the one-ulp
+    #: motions, their largest peak change)``; a peak change is NaN where a verdict changed (and 0 for
+    #: an overturned scene, whose peak is not compared)
+    per_row: list = field(default_factory=list)
 
 
 def check_tolerance(assessment: Assessment, *, factor: float = 100.0, base_rtol: float | None = None,
@@ -290,11 +294,17 @@ def check_tolerance(assessment: Assessment, *, factor: float = 100.0, base_rtol:
         return out
 
     changed, peak = [], 0.0
-    for row, r in zip(rows, sweep(jobs, 1.0 / factor)):
+    tight = sweep(jobs, 1.0 / factor)
+    tight_moved = []
+    for row, r in zip(rows, tight):
+        d = 0.0
         if r.verdict != row.verdict:
             changed.append((row, r.verdict))
+            d = math.nan
         elif r.verdict == "rocked":
-            peak = max(peak, abs(r.theta_max_over_alpha - row.theta_max_over_alpha))
+            d = abs(r.theta_max_over_alpha - row.theta_max_over_alpha)
+            peak = max(peak, d)
+        tight_moved.append(d)
     # conditioning: the same scenes on motions moved by one ulp (one copy per motion and draw)
     rng = np.random.default_rng(seed)
     verdicts = [[] for _ in rows]
@@ -310,5 +320,6 @@ def check_tolerance(assessment: Assessment, *, factor: float = 100.0, base_rtol:
     ill = [(row, tuple(v), d) for row, v, d in zip(rows, verdicts, moved) if not d <= ILL_PEAK]
     ulp_peak = max((d for d in moved if not math.isnan(d)), default=0.0)
     base = max(bases) if bases else (DEFAULT_RTOL if base_rtol is None else float(base_rtol))
+    per_row = [(row, r.verdict, dt, tuple(v), d) for row, r, dt, v, d in zip(rows, tight, tight_moved, verdicts, moved)]
     return ToleranceCheck(base / factor, base, len(rows), changed, peak, tuple(sorted(set(bases), reverse=True)),
-                          ulp_draws, ill, ulp_peak)
+                          ulp_draws, ill, ulp_peak, per_row)

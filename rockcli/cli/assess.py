@@ -151,13 +151,12 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
         r = failed_runs[0]
         click.echo(f"Warning: {len(failed_runs)} run(s) failed; their rows carry the error (first: {r.column} / "
                    f"{r.record} / {r.configuration}: {r.error})", err=True)
-    if check_tolerance:
-        _echo_tolerance_check(result)
+    chk = _echo_tolerance_check(result) if check_tolerance else None
 
     if csv_path:
         from rockcli.report.tables import write_assessment_csv
 
-        write_assessment_csv(result, csv_path)
+        write_assessment_csv(result, csv_path, check=chk)
         click.echo(f"wrote {csv_path} ({len(result.rows)} rows)")
     if hist_dir or plot_dir:
         _write_histories(result, hist_dir, plot_dir)
@@ -184,13 +183,14 @@ def _echo_tolerance_check(result):
     if not chk.ill:
         click.echo(head + f"no verdict changes (largest change of a survivor's peak |theta|/alpha: "
                           f"{chk.max_ulp_peak_change:.1e}).")
-        return
+        return chk
     click.echo(head + f"{len(chk.ill)} ILL-CONDITIONED (the verdict changes, or the peak moves by more than "
                       f"{ILL_PEAK:g} alpha: the answer is not determined by the motion at double precision; read "
                       f"it as one sample of a spread, and look at the margin):")
     for row, verdicts, moved in chk.ill:
         what = f"peak moves by {moved:.2g} alpha" if moved == moved else f"{row.verdict} -> {', '.join(verdicts)}"
         click.echo(f"  {row.column} / {row.record} / {row.configuration}: {what}")
+    return chk
 
 
 def _write_histories(result, hist_dir, plot_dir):

@@ -137,9 +137,35 @@ def assessment_frame(assessment):
     return df
 
 
-def write_assessment_csv(assessment, path: str | os.PathLike) -> Path:
-    """Write the CSV report (one row per column x record x configuration), atomically."""
+#: Columns added by ``--check-tolerance`` (:func:`rockcli.assess.table.check_tolerance`), empty on rows
+#: that were not rerun (errors, unavailable motions).
+CHECK_COLUMNS = ("tight_rtol_verdict", "tight_rtol_peak_change", "ulp_verdicts", "ulp_peak_change", "ill_conditioned")
+
+
+def write_assessment_csv(assessment, path: str | os.PathLike, check=None) -> Path:
+    """Write the CSV report (one row per column x record x configuration), atomically; with ``check``
+    (a :class:`rockcli.assess.table.ToleranceCheck`) the :data:`CHECK_COLUMNS` follow."""
     df = assessment_frame(assessment)
+    if check is not None:
+        from rockcli.conditioning import ILL_PEAK
+
+        by_row = {id(row): rest for row, *rest in check.per_row}
+        cols = {c: [] for c in CHECK_COLUMNS}
+        for row in assessment.rows:
+            got = by_row.get(id(row))
+            if got is None:
+                for c in CHECK_COLUMNS:
+                    cols[c].append(None)
+                continue
+            tight_verdict, tight_moved, ulp_verdicts, ulp_moved = got
+            cols["tight_rtol_verdict"].append(tight_verdict)
+            cols["tight_rtol_peak_change"].append(tight_moved)
+            cols["ulp_verdicts"].append(" ".join(ulp_verdicts))
+            cols["ulp_peak_change"].append(ulp_moved)
+            cols["ill_conditioned"].append(not ulp_moved <= ILL_PEAK)
+        for c in CHECK_COLUMNS:
+            df[c] = cols[c]
+        df["ill_conditioned"] = df["ill_conditioned"].astype("boolean")
     return write_text(path, df.to_csv(index=False, float_format="%.6g", lineterminator="\n"))
 
 
