@@ -91,7 +91,9 @@ def work_precision(scenes, csv_path, plot_path, kernel_rtol, scipy_rtol, methods
     Each scene is solved by rockcli at a ladder of rtol (full histories, and verdict-only runs
     as the sweeps use them) and by the SciPy reference (rockcli.reference: the equations typed
     again) with RK45, DOP853, Radau, LSODA and BDF at a ladder of rtol, all against a reference
-    solution: rockcli at rtol 1e-13, checked against DOP853 at 1e-13.
+    solution: rockcli at rtol 1e-13, checked against DOP853 at 1e-13 and recomputed on 4 inputs
+    moved by one ulp (its rounding noise); the larger of the two is the scene's floor, below which
+    errors are not ranked.
     Prints per run the error in theta_max/alpha, in the overturning time (or the time the block
     comes to rest), whether the verdict agrees, steps, right-hand sides and the median wall time;
     then rockcli at its default rtol (5e-9; 2e-9 on sliding bearings) against RK45 at rtol 1e-8 (Radau
@@ -175,7 +177,9 @@ def stability(scenes, csv_path, list_only, verbose, n_random, seed):
     (rigid base); the verdict proven (an undamped base that keeps lifting the block ends NOT
     PROVEN at the horizon: reported as "stated"). Scenes the solver refuses are reported as
     refused, sliding-bearing scenes as pending until those bearings exist. Exit code 1 when a
-    scene fails.
+    scene fails. Each scene is also rerun on 2 inputs moved by one ulp: a scene whose verdict
+    changes there, or whose peak moves by more than 1e-3 alpha, is marked ILL (ill-conditioned:
+    its answer is not determined by its input at double precision); that is reported, not failed.
 
     \b
     Examples:
