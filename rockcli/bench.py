@@ -44,7 +44,8 @@ from typing import Callable
 
 import numpy as np
 
-from rockcli.conditioning import ILL_PEAK, ILL_T_OVERTURN, ULP_DRAWS, ulp_perturbed  # noqa: F401 (re-exported)
+from rockcli.conditioning import (ILL_PEAK, ILL_T_OVERTURN, ULP_DRAWS,  # noqa: F401 (re-exported)
+                                  ill_conditioned, measure_conditioning, ulp_perturbed)
 from rockcli.errors import RockcliInputError
 from rockcli.units import G
 
@@ -956,39 +957,8 @@ class StabilityResult:
         """One ulp of the input changes the verdict, or moves the answer beyond the tolerance check's limits."""
         if not self.ulp_verdicts:
             return False
-        base = self.runs.get(STABILITY_RTOLS[-1], {}).get("verdict")
-        if any(v != base for v in self.ulp_verdicts):
-            return True
-        limit = ILL_T_OVERTURN if base == "overturned" else ILL_PEAK
-        return not self.ulp_spread <= limit
-
-
-def measure_conditioning(block, foundation, exc, rtol: float, tail: float, max_steps: int, draws: int = ULP_DRAWS,
-                         seed: int = ULP_SEED) -> tuple:
-    """``(spread, verdicts)``: the verdicts of verdict-only runs on ``draws`` :func:`ulp_perturbed`
-    inputs and the largest change of theta_max/alpha (of the overturning time [s] when the unperturbed
-    run overturns) against the unperturbed run; NaN spread when a verdict changes."""
-    from rockcli.solve import simulate
-
-    rng = np.random.default_rng(seed)
-    base = simulate(block, foundation, exc, rtol=rtol, tail=tail, max_steps=max_steps)
-
-    def moved(r) -> float:
-        if r.verdict != base.verdict:
-            return math.nan
-        if base.verdict == "overturned":
-            t_a, t_b = r.t_overturn_s, base.t_overturn_s
-            return 0.0 if math.isnan(t_a) and math.isnan(t_b) else abs(t_a - t_b)
-        return abs(r.theta_max_over_alpha - base.theta_max_over_alpha)
-
-    spread, verdicts = 0.0, []
-    for _ in range(draws):
-        r = simulate(block, foundation, ulp_perturbed(exc, rng), rtol=rtol, tail=tail, max_steps=max_steps)
-        verdicts.append(r.verdict)
-        d = moved(r)
-        if not math.isnan(spread) and not d <= spread:
-            spread = d  # NaN (a verdict changed) stays
-    return spread, tuple(verdicts)
+        return ill_conditioned(self.runs.get(STABILITY_RTOLS[-1], {}).get("verdict"), self.ulp_spread,
+                               self.ulp_verdicts)
 
 
 def _is_hysteretic(foundation) -> bool:
@@ -1069,8 +1039,9 @@ def run_stability(scenes, *, rtols=STABILITY_RTOLS, progress: Callable[[str], No
             res.checks.append(Check(f"crash @{rt:g}", False, f"{type(exc_).__name__}: {exc_}"))
             continue
         try:
-            res.ulp_spread, res.ulp_verdicts = measure_conditioning(block, foundation, exc, rtols[-1], sc.tail,
-                                                                    sc.step_budget)
+            res.ulp_spread, res.ulp_verdicts = measure_conditioning(block, foundation, exc, seed=ULP_SEED,
+                                                                    rtol=rtols[-1], tail=sc.tail,
+                                                                    max_steps=sc.step_budget)
         except RockcliInputError:  # a perturbed input refused (a pulse moved past a limit): not measured
             pass
         a, b = (responses[rt] for rt in rtols[:2])

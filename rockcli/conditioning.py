@@ -10,6 +10,7 @@ determined by its input at double precision: *ill-conditioned*, whatever the sol
 from __future__ import annotations
 
 import dataclasses
+import math
 
 import numpy as np
 
@@ -33,3 +34,41 @@ def ulp_perturbed(excitation, rng):
     a_p = float(np.nextafter(excitation.a_p, -np.inf if rng.random() < 0.5 else np.inf))
     t0 = float(np.nextafter(excitation.t0, np.inf)) if rng.random() < 0.5 else float(excitation.t0)
     return dataclasses.replace(excitation, a_p=a_p, t0=t0)
+
+
+def measure_conditioning(block, foundation, excitation, *, draws: int = ULP_DRAWS, seed: int = 0, base=None,
+                         **solver) -> tuple:
+    """``(spread, verdicts)`` of ``excitation``'s scene: the verdicts of verdict-only runs
+    (:func:`rockcli.solve.simulate` with ``solver`` options) on ``draws`` :func:`ulp_perturbed` copies,
+    and the largest change of theta_max/alpha (of the overturning time [s] when the unperturbed run
+    overturns) against the unperturbed run ``base`` (run here when None); NaN when a verdict changes."""
+    from rockcli.solve import simulate
+
+    rng = np.random.default_rng(seed)
+    if base is None:
+        base = simulate(block, foundation, excitation, **solver)
+
+    def moved(r) -> float:
+        if r.verdict != base.verdict:
+            return math.nan
+        if base.verdict == "overturned":
+            t_a, t_b = r.t_overturn_s, base.t_overturn_s
+            return 0.0 if math.isnan(t_a) and math.isnan(t_b) else abs(t_a - t_b)
+        return abs(r.theta_max_over_alpha - base.theta_max_over_alpha)
+
+    spread, verdicts = 0.0, []
+    for _ in range(draws):
+        r = simulate(block, foundation, ulp_perturbed(excitation, rng), **solver)
+        verdicts.append(r.verdict)
+        d = moved(r)
+        if not math.isnan(spread) and not d <= spread:
+            spread = d  # NaN (a verdict changed) stays
+    return spread, tuple(verdicts)
+
+
+def ill_conditioned(verdict: str, spread: float, verdicts) -> bool:
+    """A verdict on the one-ulp copies differs from ``verdict``, or the answer moved beyond
+    :data:`ILL_PEAK` (:data:`ILL_T_OVERTURN` for an overturning time)."""
+    if any(v != verdict for v in verdicts):
+        return True
+    return not spread <= (ILL_T_OVERTURN if verdict == "overturned" else ILL_PEAK)

@@ -83,6 +83,32 @@ def test_record_scale_and_text_column_options(tmp_path):
     assert one["verdict"] != "no_uplift" and half["verdict"] == "no_uplift"
 
 
+def test_check_tolerance_reports_a_well_and_an_ill_conditioned_run(tmp_path):
+    out = run("--column", "bassae", "--pulse", "ricker-sym:ap=0.5,Tp=1.2", "--check-tolerance")
+    assert out.exit_code == 0, out.output
+    lines = {ln.split("  ")[0]: ln for ln in out.output.splitlines()}
+    assert "rtol 5e-11: same verdict" in lines["tolerance check"]
+    assert "2 motions moved by one ulp: same verdict" in lines["conditioning"] and "ILL" not in lines["conditioning"]
+    data = json.loads(run("--column", "bassae", "--pulse", "ricker-sym:ap=0.5,Tp=1.2", "--check-tolerance",
+                          "--json").output)
+    assert data["check_tight_rtol_verdict"] == data["verdict"] == "rocked" and data["check_tight_rtol_change"] < 1e-7
+    assert data["check_ulp_verdicts"] == ["rocked", "rocked"] and data["check_ulp_change"] < 1e-12
+    assert data["check_ill_conditioned"] is False
+    # Bassae under 100 s of band-limited motion (596 impacts; the stability bench's record-100s): one
+    # ulp of the record moves the peak, reached after 56 s, by tenths of alpha
+    from rockcli.bench import band_limited_record
+
+    rec = band_limited_record()
+    path = tmp_path / "long.txt"
+    np.savetxt(path, rec.acc, fmt="%.17g")
+    out = run("--column", "bassae", "--record", str(path), "--units", "m/s^2", "--dt", "0.001", "--check-tolerance",
+              "--json")
+    assert out.exit_code == 0, out.output
+    data = json.loads(out.output)
+    assert data["theta_max_over_alpha"] == pytest.approx(0.3954, abs=1e-4)  # the file holds the record exactly
+    assert data["check_ill_conditioned"] is True and data["check_ulp_change"] > 0.1
+
+
 @pytest.mark.parametrize("args, words", [
     (["--column", "parthenon", "--pulse", "sine:ap=1,Tp=1"], "unknown column"),
     (["--R", "1", "--pulse", "sine:ap=1,Tp=1"], "--R and --alpha"),

@@ -15,7 +15,7 @@ from typing import Sequence
 
 import numpy as np
 
-from rockcli.conditioning import ILL_PEAK, ULP_DRAWS, ulp_perturbed
+from rockcli.conditioning import ULP_DRAWS, ill_conditioned, ulp_perturbed
 from rockcli.errors import RockcliInputError
 from rockcli.models import Block
 from rockcli.assess.margin import MARGIN_GRID, NEIGHBOURHOOD, _scaled_job, find_overturn_scales, overturn_shares
@@ -317,7 +317,7 @@ def check_tolerance(assessment: Assessment, *, factor: float = 100.0, base_rtol:
                 moved[i] = math.nan
             elif r.verdict == "rocked" and not math.isnan(moved[i]):
                 moved[i] = max(moved[i], abs(r.theta_max_over_alpha - rows[i].theta_max_over_alpha))
-    ill = [(row, tuple(v), d) for row, v, d in zip(rows, verdicts, moved) if not d <= ILL_PEAK]
+    ill = [(row, tuple(v), d) for row, v, d in zip(rows, verdicts, moved) if ill_conditioned(row.verdict, d, v)]
     ulp_peak = max((d for d in moved if not math.isnan(d)), default=0.0)
     base = max(bases) if bases else (DEFAULT_RTOL if base_rtol is None else float(base_rtol))
     per_row = [(row, r.verdict, dt, tuple(v), d) for row, r, dt, v, d in zip(rows, tight, tight_moved, verdicts, moved)]

@@ -30,6 +30,10 @@ from rockcli.cli.options import (block_from_options, block_options, check_output
 @click.option("--tail", type=float, default=10.0,
               help="Free motion shown after the excitation in --history/--plot [s]; never changes the verdict.")
 @horizon_option
+@click.option("--check-tolerance", "check", is_flag=True,
+              help="Rerun at a 100x tighter rtol, and on 2 copies of the motion moved by one ulp, and report "
+                   "whether the verdict or the peak changes (ill-conditioned: the answer is not determined by the "
+                   "motion at double precision).")
 @click.option("--json", "as_json", is_flag=True, help="Print the results as one JSON object.")
 @click.option("--history", "history_path", type=click.Path(), default=None,
               help="Write the time history (t, ground acceleration, theta, theta_dot, u, u_dot; on sliding and "
@@ -39,7 +43,7 @@ from rockcli.cli.options import (block_from_options, block_options, check_output
                    "and lead-rubber bearings also their force-displacement loop) to an image.")
 @user_errors
 def simulate(column_name, R, alpha, height, width, name, isolation, record_source, units, dt, fmt, column,
-             pulse, scale, flip, rtol, tail, horizon, as_json, history_path, plot_path):
+             pulse, scale, flip, rtol, tail, horizon, check, as_json, history_path, plot_path):
     """Rocking response of one block to one ground motion, on a rigid or an isolated base.
 
     \b
@@ -88,6 +92,7 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
         raise click.ClickException(
             f"the integrator stopped at its safety cap of {res.steps + res.rejected_steps:,} steps at "
             f"t = {res.t_end_s:.3f} s, a numerical failure: no result is given (please report the command line)")
+    checked = _check(block, foundation, excitation, res, rtol, horizon) if check else None
     if history_path:
         from rockcli.report.response import write_history_csv
 
@@ -100,6 +105,8 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     if as_json:
         out = {"block": block.name, "R_m": block.R, "alpha_deg": block.alpha_deg, "p_radps": block.p,
                "isolation": foundation.label, "excitation": label, **res.summary()}
+        if checked:
+            out.update({k: (None if isinstance(v, float) and v != v else v) for k, v in checked.items()})
         click.echo(json.dumps(out, allow_nan=False))
         return
 
@@ -121,12 +128,52 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
         ("peak base disp.", f"{res.base_disp_max_m:.4f} m"),
         ("integration", f"{res.steps} steps, {res.nfev} right-hand sides, ended at {res.t_end_s:.2f} s"),
     ]
+    if checked:
+        rows += _check_rows(checked, res)
     width_ = max(len(k) for k, _ in rows)
     for k, v in rows:
         click.echo(f"{k:<{width_}}  {v}")
     if not res.settled:
         click.echo(f"NOTE: the verdict is NOT PROVEN: at {res.t_end_s:.1f} s (the horizon) the base could still lift "
                    "the block; lengthen --horizon to follow it")
+
+
+def _check(block, foundation, excitation, res, rtol, horizon) -> dict:
+    """``--check-tolerance``: the verdict-only run at a 100x tighter rtol and on one-ulp copies of
+    the motion, compared with this run's verdict and peak (|theta|/alpha; the overturning time [s]
+    when it overturns). Changes are NaN where the verdict changed."""
+    from rockcli.conditioning import ULP_DRAWS, ill_conditioned, measure_conditioning
+    from rockcli.solve import default_rtol, simulate
+
+    base_rtol = default_rtol(foundation) if rtol is None else rtol
+    tight = simulate(block, foundation, excitation, rtol=base_rtol / 100.0, horizon=horizon)
+    if tight.verdict != res.verdict:
+        d_tight = float("nan")
+    elif res.overturned:
+        d_tight = abs(tight.t_overturn_s - res.t_overturn_s)
+    else:
+        d_tight = abs(tight.theta_max_over_alpha - res.theta_max_over_alpha)
+    spread, verdicts = measure_conditioning(block, foundation, excitation, seed=1980, rtol=rtol, horizon=horizon)
+    return {"check_tight_rtol": base_rtol / 100.0, "check_tight_rtol_verdict": tight.verdict,
+            "check_tight_rtol_change": d_tight, "check_ulp_draws": ULP_DRAWS, "check_ulp_verdicts": list(verdicts),
+            "check_ulp_change": spread, "check_ill_conditioned": ill_conditioned(res.verdict, spread, verdicts)}
+
+
+def _check_rows(c: dict, res) -> list:
+    what = "overturning time" if res.overturned else "peak |theta|/alpha"
+    unit = " s" if res.overturned else ""
+    if c["check_tight_rtol_verdict"] != res.verdict:
+        tight = f"rtol {c['check_tight_rtol']:g}: VERDICT CHANGES to {c['check_tight_rtol_verdict']} (decided by the numerics)"
+    else:
+        tight = f"rtol {c['check_tight_rtol']:g}: same verdict, {what} moves by {c['check_tight_rtol_change']:.1e}{unit}"
+    head = f"{c['check_ulp_draws']} motions moved by one ulp: "
+    if any(v != res.verdict for v in c["check_ulp_verdicts"]):
+        ulp = head + f"VERDICT CHANGES ({', '.join(c['check_ulp_verdicts'])}): ILL-CONDITIONED"
+    else:
+        ulp = head + f"same verdict, {what} moves by up to {c['check_ulp_change']:.1e}{unit}"
+        if c["check_ill_conditioned"]:
+            ulp += ": ILL-CONDITIONED (the answer is not determined by the motion at double precision)"
+    return [("tolerance check", tight), ("conditioning", ulp)]
 
 
 def _pga(excitation, G) -> str:

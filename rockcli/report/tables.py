@@ -147,7 +147,7 @@ def write_assessment_csv(assessment, path: str | os.PathLike, check=None) -> Pat
     (a :class:`rockcli.assess.table.ToleranceCheck`) the :data:`CHECK_COLUMNS` follow."""
     df = assessment_frame(assessment)
     if check is not None:
-        from rockcli.conditioning import ILL_PEAK
+        from rockcli.conditioning import ill_conditioned
 
         by_row = {id(row): rest for row, *rest in check.per_row}
         cols = {c: [] for c in CHECK_COLUMNS}
@@ -162,7 +162,7 @@ def write_assessment_csv(assessment, path: str | os.PathLike, check=None) -> Pat
             cols["tight_rtol_peak_change"].append(tight_moved)
             cols["ulp_verdicts"].append(" ".join(ulp_verdicts))
             cols["ulp_peak_change"].append(ulp_moved)
-            cols["ill_conditioned"].append(not ulp_moved <= ILL_PEAK)
+            cols["ill_conditioned"].append(ill_conditioned(row.verdict, ulp_moved, ulp_verdicts))
         for c in CHECK_COLUMNS:
             df[c] = cols[c]
         df["ill_conditioned"] = df["ill_conditioned"].astype("boolean")
