@@ -45,7 +45,7 @@ from typing import Callable
 import numpy as np
 
 from rockcli.conditioning import (ILL_PEAK, ILL_T_OVERTURN, ULP_DRAWS,  # noqa: F401 (re-exported)
-                                  ill_conditioned, measure_conditioning, ulp_perturbed)
+                                  ill_conditioned, measure_conditioning, ulp_perturbed, widest)
 from rockcli.errors import RockcliInputError
 from rockcli.units import G
 
@@ -345,8 +345,7 @@ def _measure_noise(ws: WPScene, block, foundation, exc):
             ws.note = f"one ulp of the input changes the reference's verdict to {r.verdict}"
             return
         d_theta = max(d_theta, abs(r.theta_max_over_alpha - ws.ref_theta_max_over_alpha))
-        e = abs(_kernel_event_time(r, ws.event) - ws.ref_t_event_s)
-        d_t = e if not e <= d_t else d_t  # NaN (no time of rest) stays NaN
+        d_t = widest(d_t, abs(_kernel_event_time(r, ws.event) - ws.ref_t_event_s))  # NaN: no time of rest
     ws.noise_theta = d_theta
     ws.noise_t_event_s = d_t
 

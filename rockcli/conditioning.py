@@ -47,23 +47,29 @@ def measure_conditioning(block, foundation, excitation, *, draws: int = ULP_DRAW
     rng = np.random.default_rng(seed)
     if base is None:
         base = simulate(block, foundation, excitation, **solver)
-
-    def moved(r) -> float:
-        if r.verdict != base.verdict:
-            return math.nan
-        if base.verdict == "overturned":
-            t_a, t_b = r.t_overturn_s, base.t_overturn_s
-            return 0.0 if math.isnan(t_a) and math.isnan(t_b) else abs(t_a - t_b)
-        return abs(r.theta_max_over_alpha - base.theta_max_over_alpha)
-
     spread, verdicts = 0.0, []
     for _ in range(draws):
         r = simulate(block, foundation, ulp_perturbed(excitation, rng), **solver)
         verdicts.append(r.verdict)
-        d = moved(r)
-        if not math.isnan(spread) and not d <= spread:
-            spread = d  # NaN (a verdict changed) stays
+        spread = widest(spread, answer_change(base, r))
     return spread, tuple(verdicts)
+
+
+def answer_change(base, other) -> float:
+    """How far run ``other`` moved from run ``base``: NaN when the verdict differs, else the change of
+    the overturning time [s] when ``base`` overturns (0 when both times are unknown), else of
+    theta_max/alpha."""
+    if other.verdict != base.verdict:
+        return math.nan
+    if base.verdict == "overturned":
+        t_a, t_b = other.t_overturn_s, base.t_overturn_s
+        return 0.0 if math.isnan(t_a) and math.isnan(t_b) else abs(t_a - t_b)
+    return abs(other.theta_max_over_alpha - base.theta_max_over_alpha)
+
+
+def widest(spread: float, change: float) -> float:
+    """The running largest change: NaN (a changed verdict, an unknown time) once seen, stays."""
+    return spread if math.isnan(spread) or change <= spread else change
 
 
 def ill_conditioned(verdict: str, spread: float, verdicts) -> bool:

@@ -470,10 +470,11 @@ def _check_work(block: Block, foundation, prepared, rtol: float, tail: float, re
 
     So that an accepted scene never reaches the step cap, which is then left for genuine numerical
     failures. The estimate (:func:`_estimate_steps`) is one step per record sample (no step crosses
-    one; two on a rigid foundation, whose steps span at most half a sample) plus a rate times the run: the active excitation (record length or pulse support) and,
-    after it, the time the verdict may take to be proven, at most max(horizon, tail): the longer of
-    a rocking cascade, ``(2/p) sqrt 2/(1.5 sin^2 alpha)``, and 40 decay times of the free base's
-    slowest mode (infinite for an undamped base; a history run also shows ``tail``). The rate adds
+    one; two on a rigid foundation, whose steps span at most half a sample) plus a rate times the
+    run: the active excitation (record length or pulse support) and, after it, the time the
+    verdict may take to be proven, at most max(horizon, tail): the longer of a rocking cascade,
+    ``(2/p) sqrt 2/(1.5 sin^2 alpha)``, and 40 decay times of the free base's slowest mode
+    (infinite for an undamped base; a history run also shows ``tail``). The rate adds
     ``omega_b (xi + sqrt(xi^2 + 1))/3`` for a stiff base (explicit Dormand-Prince is stable to
     ``h lambda ~ 3.3``), ``B omega_b f`` for its oscillation at the accuracy rtol asks (``B = 3``
     steps per radian when damped, 20 when xi < 0.05: an undamped base keeps every kick of the

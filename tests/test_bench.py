@@ -310,6 +310,23 @@ def test_conditioning_separates_a_chaotic_long_record_from_a_pulse():
     assert calm.status == "pass" and not calm.ill_conditioned and calm.ulp_spread < 1e-12
 
 
+def test_a_changed_verdict_or_unknown_time_stays_in_the_running_spread():
+    from rockcli.conditioning import answer_change, widest
+
+    run = SimpleNamespace
+    base = run(verdict="rocked", theta_max_over_alpha=0.5, t_overturn_s=math.nan)
+    assert answer_change(base, run(verdict="rocked", theta_max_over_alpha=0.52, t_overturn_s=math.nan)) == \
+        pytest.approx(0.02)
+    assert math.isnan(answer_change(base, run(verdict="overturned", theta_max_over_alpha=9.0, t_overturn_s=3.0)))
+    fell = run(verdict="overturned", theta_max_over_alpha=9.0, t_overturn_s=3.0)
+    assert answer_change(fell, run(verdict="overturned", theta_max_over_alpha=9.1, t_overturn_s=3.5)) == 0.5
+    spread = 0.0
+    for change in (1e-3, math.nan, 0.5, 1e-9):  # a NaN once seen is kept, whatever follows
+        spread = widest(spread, change)
+    assert math.isnan(spread)
+    assert widest(widest(0.0, 0.3), 0.1) == 0.3
+
+
 def test_ill_conditioned_reads_the_verdicts_and_the_spread():
     sc = bench.select_scenes(["alpha-45deg"], bench.STABILITY_SCENES)[0]
 

@@ -15,7 +15,7 @@ from typing import Sequence
 
 import numpy as np
 
-from rockcli.conditioning import ULP_DRAWS, ill_conditioned, ulp_perturbed
+from rockcli.conditioning import ULP_DRAWS, ill_conditioned, ulp_perturbed, widest
 from rockcli.errors import RockcliInputError
 from rockcli.models import Block
 from rockcli.assess.margin import MARGIN_GRID, NEIGHBOURHOOD, _scaled_job, find_overturn_scales, overturn_shares
@@ -268,6 +268,14 @@ class ToleranceCheck:
     per_row: list = field(default_factory=list)
 
 
+def _peak_change(row: AssessmentRow, r) -> float:
+    """How far rerun ``r`` moved from ``row``: NaN when the verdict differs, the change of a
+    survivor's peak theta_max/alpha, 0 otherwise (an overturn's or a no-uplift's peak is not compared)."""
+    if r.verdict != row.verdict:
+        return math.nan
+    return abs(r.theta_max_over_alpha - row.theta_max_over_alpha) if r.verdict == "rocked" else 0.0
+
+
 def check_tolerance(assessment: Assessment, *, factor: float = 100.0, base_rtol: float | None = None,
                     ulp_draws: int = ULP_DRAWS, seed: int = 1980) -> ToleranceCheck:
     """Rerun every scene of ``assessment`` that ran at a ``factor`` times tighter rtol (verdict
@@ -297,12 +305,10 @@ def check_tolerance(assessment: Assessment, *, factor: float = 100.0, base_rtol:
     tight = sweep(jobs, 1.0 / factor)
     tight_moved = []
     for row, r in zip(rows, tight):
-        d = 0.0
+        d = _peak_change(row, r)
         if r.verdict != row.verdict:
             changed.append((row, r.verdict))
-            d = math.nan
-        elif r.verdict == "rocked":
-            d = abs(r.theta_max_over_alpha - row.theta_max_over_alpha)
+        else:
             peak = max(peak, d)
         tight_moved.append(d)
     # conditioning: the same scenes on motions moved by one ulp (one copy per motion and draw)
@@ -313,10 +319,7 @@ def check_tolerance(assessment: Assessment, *, factor: float = 100.0, base_rtol:
         copies = {label: ulp_perturbed(x.motion, rng) for label, x in xs.items() if x.motion is not None}
         for i, r in enumerate(sweep([(b, f, copies[row.record]) for (b, f, _), row in zip(jobs, rows)], 1.0)):
             verdicts[i].append(r.verdict)
-            if r.verdict != rows[i].verdict:
-                moved[i] = math.nan
-            elif r.verdict == "rocked" and not math.isnan(moved[i]):
-                moved[i] = max(moved[i], abs(r.theta_max_over_alpha - rows[i].theta_max_over_alpha))
+            moved[i] = widest(moved[i], _peak_change(rows[i], r))
     ill = [(row, tuple(v), d) for row, v, d in zip(rows, verdicts, moved) if ill_conditioned(row.verdict, d, v)]
     ulp_peak = max((d for d in moved if not math.isnan(d)), default=0.0)
     base = max(bases) if bases else (DEFAULT_RTOL if base_rtol is None else float(base_rtol))

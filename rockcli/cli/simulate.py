@@ -142,18 +142,14 @@ def _check(block, foundation, excitation, res, rtol, horizon) -> dict:
     """``--check-tolerance``: the verdict-only run at a 100x tighter rtol and on one-ulp copies of
     the motion, compared with this run's verdict and peak (|theta|/alpha; the overturning time [s]
     when it overturns). Changes are NaN where the verdict changed."""
-    from rockcli.conditioning import ULP_DRAWS, ill_conditioned, measure_conditioning
+    from rockcli.conditioning import ULP_DRAWS, answer_change, ill_conditioned, measure_conditioning
     from rockcli.solve import default_rtol, simulate
 
     base_rtol = default_rtol(foundation) if rtol is None else rtol
     tight = simulate(block, foundation, excitation, rtol=base_rtol / 100.0, horizon=horizon)
-    if tight.verdict != res.verdict:
-        d_tight = float("nan")
-    elif res.overturned:
-        d_tight = abs(tight.t_overturn_s - res.t_overturn_s)
-    else:
-        d_tight = abs(tight.theta_max_over_alpha - res.theta_max_over_alpha)
-    spread, verdicts = measure_conditioning(block, foundation, excitation, seed=1980, rtol=rtol, horizon=horizon)
+    d_tight = answer_change(res, tight)
+    spread, verdicts = measure_conditioning(block, foundation, excitation, seed=1980,
+                                            base=res if res.history is None else None, rtol=rtol, horizon=horizon)
     return {"check_tight_rtol": base_rtol / 100.0, "check_tight_rtol_verdict": tight.verdict,
             "check_tight_rtol_change": d_tight, "check_ulp_draws": ULP_DRAWS, "check_ulp_verdicts": list(verdicts),
             "check_ulp_change": spread, "check_ill_conditioned": ill_conditioned(res.verdict, spread, verdicts)}
@@ -162,10 +158,11 @@ def _check(block, foundation, excitation, res, rtol, horizon) -> dict:
 def _check_rows(c: dict, res) -> list:
     what = "overturning time" if res.overturned else "peak |theta|/alpha"
     unit = " s" if res.overturned else ""
+    tight = f"rtol {c['check_tight_rtol']:g}: "
     if c["check_tight_rtol_verdict"] != res.verdict:
-        tight = f"rtol {c['check_tight_rtol']:g}: VERDICT CHANGES to {c['check_tight_rtol_verdict']} (decided by the numerics)"
+        tight += f"VERDICT CHANGES to {c['check_tight_rtol_verdict']} (decided by the numerics)"
     else:
-        tight = f"rtol {c['check_tight_rtol']:g}: same verdict, {what} moves by {c['check_tight_rtol_change']:.1e}{unit}"
+        tight += f"same verdict, {what} moves by {c['check_tight_rtol_change']:.1e}{unit}"
     head = f"{c['check_ulp_draws']} motions moved by one ulp: "
     if any(v != res.verdict for v in c["check_ulp_verdicts"]):
         ulp = head + f"VERDICT CHANGES ({', '.join(c['check_ulp_verdicts'])}): ILL-CONDITIONED"

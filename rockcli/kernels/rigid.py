@@ -54,9 +54,9 @@ side has a kink there) and, on a rigid foundation, also spans at most ``1/RIGID_
 (a half) of a sample interval. With one Dormand-Prince step per interval the error test is met
 by far at every rtol rockcli accepts, yet the truncation error left in the peak is 9.9e-14 alpha
 under Kobe (Bassae); at half an interval it is at the rounding floor (1.2e-14, where solutions
-perturbed by one ulp of the input scatter by up to 3.6e-14). The cost is about a third more time
-per rigid record run. On an isolated base the base's own error dominates and the full interval is kept
-(``docs/bench-work-precision.txt``).
+perturbed by one ulp of the input scatter by up to 3.9e-14). The cost is about 1.9 times the steps
+and 1.6 times the time of a rigid record run. On an isolated base the base's own error dominates and
+the full interval is kept (``docs/bench-work-precision.txt``).
 """
 
 from __future__ import annotations
@@ -69,8 +69,9 @@ from numba import njit
 from rockcli.kernels.dopri import _dp5_step, _restep_rows
 from rockcli.kernels.events import _count_uplift, _hist_push, impact_map
 from rockcli.kernels.ground import _impulse_left, _rigid_uplift, ground_at
-from rockcli.kernels.layout import (EXC_RECORD, O_T_SETTLED, RIGID_RECORD_SUBSTEPS, O_T_THETA_MAX, O_UPLIFTED, P_ALPHA, P_COSA, P_ETA, P_G, P_P2,
-                                    P_SINA, P_THR, PHASE_ROCKING, PHASE_STUCK, RS_FRESH, RS_NRHS,
+from rockcli.kernels.layout import (EXC_RECORD, O_T_SETTLED, O_T_THETA_MAX, O_UPLIFTED, P_ALPHA, P_COSA, P_ETA, P_G,
+                                    P_P2, P_SINA, P_THR, PHASE_ROCKING, PHASE_STUCK, RIGID_RECORD_SUBSTEPS, RS_FRESH,
+                                    RS_NRHS,
                                     RS_PEAK_FINAL, RS_PHASE, RS_REJ, RS_S, RS_SEG_END, RS_SETTLED, RS_STATUS,
                                     RS_STEPS, RS_T, RS_THMAX, STATUS_MAX_STEPS, STATUS_OVERTURNED, W_RE, W_Y)
 from rockcli.kernels.rhs import _rhs_rigid_into
