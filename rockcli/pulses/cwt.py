@@ -59,7 +59,8 @@ class _Wavelet:
 #: rockcli wavelet name -> its PyWavelets wavelet, pulse class and constants
 WAVELETS = {
     "symmetric": _Wavelet("symmetric", "mexh", RickerSymmetric, math.sqrt(2.0) * math.pi, _MEXH_PSI_MAX),
-    "antisymmetric": _Wavelet("antisymmetric", "gaus3", RickerAntisymmetric, 2.0 * math.pi / math.sqrt(6.0), _GAUS3_PSI_MAX),
+    "antisymmetric": _Wavelet("antisymmetric", "gaus3", RickerAntisymmetric, 2.0 * math.pi / math.sqrt(6.0),
+                              _GAUS3_PSI_MAX),
 }
 
 
