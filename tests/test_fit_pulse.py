@@ -411,3 +411,15 @@ def test_kobe_candidates_show_the_fitted_pulse_and_a_longer_competitor(find_reco
     assert cands[0].T_p_s == pytest.approx(0.806, abs=0.005) and cands[0].wavelet == "symmetric"
     longer = [c for c in cands[1:] if 1.0 < c.T_p_s < 1.3]  # the paper reads ~1.1 s
     assert len(longer) == 1 and 0.15 < longer[0].energy_fraction < cands[0].energy_fraction
+
+
+def test_the_fitter_keeps_its_old_import_path():
+    """``rockcli.pulses_fit`` (the fitter before ``rockcli.pulses`` became a package) gives the same objects."""
+    import rockcli.pulses as pulses
+    import rockcli.pulses_fit as old
+    from rockcli.pulses import cwt
+
+    assert old.__all__
+    for name in old.__all__:
+        assert getattr(old, name) is getattr(pulses, name), name
+    assert old._decimate is cwt._decimate

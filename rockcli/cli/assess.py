@@ -3,32 +3,17 @@
 
 from __future__ import annotations
 
+from functools import partial
 
 import click
 
 from rockcli.cli.errors import InputError, user_errors
-from rockcli.cli.options import check_outputs, horizon_option, progress_bar
+from rockcli.cli.options import check_outputs, custom_block_options, horizon_option, progress_bar
 
 
 @click.group(name="assess")
 def assess():
     """Assess free-standing bodies against records and isolation configurations."""
-
-
-def _block_options(func):
-    """``--R``/``--alpha`` or ``--height``/``--width`` and ``--name``: one more (custom) block."""
-    for opt in reversed((
-            click.option("--R", "R", type=float, default=None, metavar="M",
-                         help="Custom block: semi-diagonal R [m] (with --alpha)."),
-            click.option("--alpha", type=float, default=None, metavar="DEG",
-                         help="Custom block: slenderness [deg] (with --R)."),
-            click.option("--height", type=float, default=None, metavar="M",
-                         help="Custom block: full height [m] (with --width)."),
-            click.option("--width", type=float, default=None, metavar="M",
-                         help="Custom block: base width or drum diameter [m] (with --height)."),
-            click.option("--name", default="custom", show_default=True, help="Name of the custom block."))):
-        func = opt(func)
-    return func
 
 
 def _headerless_options(func):
@@ -41,10 +26,24 @@ def _headerless_options(func):
                              "mm/s^2, g/10); a file that states other units is an error row.")(func)
 
 
-def _warn_failed(failed, n_total: int):
+def _run_counted(total: int, run):
+    """``run(progress=...)`` under a progress bar of ``total`` runs (none when piped): its result."""
+    with progress_bar(total) as bar:
+        result = run(progress=bar.update if bar else None)
+        if bar:
+            bar.update(total)
+    return result
+
+
+def _echo_result(result, table: str, notes: str):
+    """Print a result's table and notes, and warn (stderr) about the records that could not be read or run."""
+    click.echo(table)
+    click.echo("")
+    click.echo(notes)
+    failed = result.failed
     if failed:
-        click.echo(f"Warning: {len(failed)} of {n_total} records could not be read or run; they have "
-                   f"error rows: {', '.join(x.label for x in failed[:5])}{' ...' if len(failed) > 5 else ''}",
+        click.echo(f"Warning: {len(failed)} of {len(result.excitations)} records could not be read or run; they "
+                   f"have error rows: {', '.join(x.label for x in failed[:5])}{' ...' if len(failed) > 5 else ''}",
                    err=True)
 
 
@@ -75,7 +74,7 @@ def _columns(names, R, alpha, height, width, name):
 
 @assess.command(name="column")
 @click.argument("names", nargs=-1, metavar="NAME...")
-@_block_options
+@custom_block_options
 @click.option("--records", "records", multiple=True, metavar="ID|FILE|DIR",
               help="Records to run (repeatable): catalogue ids, files, folders. Default: the catalogue's "
                    "Table II records (file where found on ROCKCLI_RECORDS, else the catalogued pulse).")
@@ -133,19 +132,13 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
         raise InputError("no record to run: " + "; ".join(f"{u.label}: {u.reason}" for u in unavailable))
     _refuse_if_none_can_run(excitations)
 
-    total = count_runs(columns, excitations, configurations, margin, neighbourhood)
-    with progress_bar(total) as bar:
-        result = run_assessment(columns, excitations, configurations, margin=margin, neighbourhood=neighbourhood,
-                                unavailable=unavailable, progress=bar.update if bar else None, horizon=horizon)
-        if bar:
-            bar.update(total)
+    result = _run_counted(count_runs(columns, excitations, configurations, margin, neighbourhood),
+                          partial(run_assessment, columns, excitations, configurations, margin=margin,
+                                  neighbourhood=neighbourhood, unavailable=unavailable, horizon=horizon))
 
     from rockcli.report.tables import format_matrix, format_notes
 
-    click.echo(format_matrix(result))
-    click.echo("")
-    click.echo(format_notes(result))
-    _warn_failed(result.failed, len(result.excitations))
+    _echo_result(result, format_matrix(result), format_notes(result))
     failed_runs = [r for r in result.rows if r.error and not any(x.label == r.record for x in result.failed)]
     if failed_runs:
         r = failed_runs[0]
@@ -238,7 +231,7 @@ def _write_histories(result, hist_dir, plot_dir):
 
 @assess.command(name="fragility")
 @click.argument("names", nargs=-1, metavar="NAME...")
-@_block_options
+@custom_block_options
 @click.option("--records", "records", multiple=True, metavar="DIR|ID|FILE",
               help="The suite (repeatable, required): folders (every non-hidden file), catalogue ids, files. "
                    "A file that cannot be read becomes an error row; the others carry on.")
@@ -302,19 +295,13 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
         result = run_fragility_distributed(scheduler, columns, excitations, configurations, im=im, n_boot=n_boot,
                                            seed=seed, unavailable=unavailable, horizon=horizon)
     else:
-        total = count_fragility_runs(columns, excitations, configurations)
-        with progress_bar(total) as bar:
-            result = run_fragility(columns, excitations, configurations, im=im, n_boot=n_boot, seed=seed,
-                                   unavailable=unavailable, progress=bar.update if bar else None, horizon=horizon)
-            if bar:
-                bar.update(total)
+        result = _run_counted(count_fragility_runs(columns, excitations, configurations),
+                              partial(run_fragility, columns, excitations, configurations, im=im, n_boot=n_boot,
+                                      seed=seed, unavailable=unavailable, horizon=horizon))
 
     from rockcli.report.fragility import format_fragility, format_fragility_notes
 
-    click.echo(format_fragility(result))
-    click.echo("")
-    click.echo(format_fragility_notes(result))
-    _warn_failed(result.failed, len(result.excitations))
+    _echo_result(result, format_fragility(result), format_fragility_notes(result))
     if csv_path:
         from rockcli.report.fragility import write_fragility_csv
 

@@ -27,9 +27,7 @@ def record_options(func=None, *, column_flag: str = "--column"):
                          help="1-based column of a multi-column text file (a time column counts), or "
                               "component/trace of a multi-component file."),
         ]
-        for option in reversed(options):
-            f = option(f)
-        return f
+        return _stacked(f, options)
 
     return decorate(func) if func is not None else decorate
 
@@ -57,6 +55,31 @@ def block_options(func):
                      help="Base width (a column's base drum diameter) [m], with --height."),
         click.option("--name", default=None, help="Label of a custom block in reports."),
     ]
+    return _stacked(func, options)
+
+
+def custom_block_options(func):
+    """Add one more (custom) block beside named columns: ``--R`` with ``--alpha`` or ``--height`` with ``--width``,
+    and ``--name`` (default ``custom``); the flags of :func:`block_options` without ``--column``.
+
+    The command receives ``R``, ``alpha``, ``height``, ``width`` and ``name`` (``rockcli assess``).
+    """
+    options = [
+        click.option("--R", "R", type=float, default=None, metavar="M",
+                     help="Custom block: semi-diagonal R [m] (with --alpha)."),
+        click.option("--alpha", type=float, default=None, metavar="DEG",
+                     help="Custom block: slenderness [deg] (with --R)."),
+        click.option("--height", type=float, default=None, metavar="M",
+                     help="Custom block: full height [m] (with --width)."),
+        click.option("--width", type=float, default=None, metavar="M",
+                     help="Custom block: base width or drum diameter [m] (with --height)."),
+        click.option("--name", default="custom", show_default=True, help="Name of the custom block."),
+    ]
+    return _stacked(func, options)
+
+
+def _stacked(func, options):
+    """``func`` decorated with ``options``, the first listed shown first in ``--help``."""
     for option in reversed(options):
         func = option(func)
     return func

@@ -4,7 +4,7 @@ Vassiliou & Makris (2012) describe the coherent pulse of a near-source record by
 acceleration amplitude ``a_p`` [m/s^2] and the pulse period ``T_p = 2 pi / omega_p`` [s]. This module
 gives the four pulse shapes used by rockcli with their exact velocity and displacement, so that the
 solver (which re-implements exactly these formulas in its compiled kernel) and the wavelet fitter
-(:mod:`rockcli.pulses_fit`) share one definition.
+(:mod:`rockcli.pulses.fit`) share one definition.
 
 With ``tau = t - t0`` (``t0`` is the centre of a Ricker and the start of a sine/cosine pulse):
 
@@ -40,7 +40,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import ClassVar, Optional, Tuple, Union
+from typing import ClassVar, Optional, Tuple
 
 import numpy as np
 
@@ -57,8 +57,6 @@ __all__ = [
     "RickerAntisymmetric",
     "OneSine",
     "OneCosine",
-    "make_pulse",
-    "parse_pulse_spec",
     "gaussian_derivative_peak_period",
     "T_P_RANGE_S",
     "A_P_MAX_G",
@@ -249,15 +247,38 @@ class Pulse:
 
 
 @dataclass(frozen=True)
-class RickerSymmetric(Pulse):
+class _Ricker(Pulse):
+    """What the two Rickers share: the (negated) ``n``-th derivative of a Gaussian of standard
+    deviation ``sigma``, truncated to ``t0 +- 3 T_p``, with default ``t0 = 3 T_p`` (the support
+    starts at 0). Subclasses set ``_order`` (``n``), ``_beta`` (the amplitude divisor of Eq 6, 1 for
+    Eq 5) and ``sigma``."""
+
+    _support_tau: ClassVar[Tuple[float, float]] = (-RICKER_HALF_WIDTH, RICKER_HALF_WIDTH)
+    _default_t0: ClassVar[float] = RICKER_HALF_WIDTH
+    _order: ClassVar[int] = 0
+    _beta: ClassVar[float] = 1.0
+
+    def fourier_amplitude(self, omega):
+        """``|F(omega)|`` [m/s] of the untruncated pulse, ``F = integral a(t) exp(-i omega t) dt``.
+
+        ``sqrt(2 pi) (|a_p| / beta) sigma (omega sigma)^n exp(-(omega sigma)^2 / 2)`` (``n = 2``,
+        ``beta = 1`` for the symmetric Ricker; ``n = 3``, ``beta`` = :data:`RICKER_ANTI_BETA` for the
+        antisymmetric one), largest at ``omega = 2 pi / T_p``.
+        """
+        s = self.sigma
+        w = np.asarray(omega, dtype=float) * s
+        return math.sqrt(2.0 * math.pi) * abs(self.a_p) / self._beta * s * w**self._order * np.exp(-(w**2) / 2.0)
+
+
+@dataclass(frozen=True)
+class RickerSymmetric(_Ricker):
     """Symmetric Ricker ("Mexican hat") pulse, Eq (5): peak ``a_p`` at ``t0``, support ``t0 +- 3 T_p``.
 
     Default ``t0 = 3 T_p`` (the support starts at 0).
     """
 
     shape: ClassVar[str] = "ricker-sym"
-    _support_tau: ClassVar[Tuple[float, float]] = (-RICKER_HALF_WIDTH, RICKER_HALF_WIDTH)
-    _default_t0: ClassVar[float] = RICKER_HALF_WIDTH
+    _order: ClassVar[int] = 2
 
     @property
     def _k(self) -> float:
@@ -279,27 +300,17 @@ class RickerSymmetric(Pulse):
         k = self._k
         return -self.a_p * np.exp(-k * tau**2) / (2.0 * k)
 
-    def fourier_amplitude(self, omega):
-        """``|F(omega)|`` [m/s] of the untruncated pulse, ``F = integral a(t) exp(-i omega t) dt``.
-
-        ``sqrt(2 pi) |a_p| sigma (omega sigma)^2 exp(-(omega sigma)^2 / 2)``, largest at
-        ``omega = 2 pi / T_p``.
-        """
-        s = self.sigma
-        w = np.asarray(omega, dtype=float) * s
-        return math.sqrt(2.0 * math.pi) * abs(self.a_p) * s * w**2 * np.exp(-(w**2) / 2.0)
-
 
 @dataclass(frozen=True)
-class RickerAntisymmetric(Pulse):
+class RickerAntisymmetric(_Ricker):
     """Antisymmetric Ricker pulse, Eq (6): ``+a_p`` before ``t0``, ``-a_p`` after, support ``t0 +- 3 T_p``.
 
     Default ``t0 = 3 T_p`` (the support starts at 0).
     """
 
     shape: ClassVar[str] = "ricker-anti"
-    _support_tau: ClassVar[Tuple[float, float]] = (-RICKER_HALF_WIDTH, RICKER_HALF_WIDTH)
-    _default_t0: ClassVar[float] = RICKER_HALF_WIDTH
+    _order: ClassVar[int] = 3
+    _beta: ClassVar[float] = RICKER_ANTI_BETA
 
     @property
     def _c(self) -> float:
@@ -328,16 +339,6 @@ class RickerAntisymmetric(Pulse):
         c = self._c
         x = c * tau
         return (self.a_p / (RICKER_ANTI_BETA * c**2)) * x * np.exp(-(x**2) / 2.0)
-
-    def fourier_amplitude(self, omega):
-        """``|F(omega)|`` [m/s] of the untruncated pulse.
-
-        ``sqrt(2 pi) (|a_p| / beta) sigma (omega sigma)^3 exp(-(omega sigma)^2 / 2)``, largest at
-        ``omega = 2 pi / T_p``.
-        """
-        s = self.sigma
-        w = np.asarray(omega, dtype=float) * s
-        return math.sqrt(2.0 * math.pi) * abs(self.a_p) / RICKER_ANTI_BETA * s * w**3 * np.exp(-(w**2) / 2.0)
 
 
 @dataclass(frozen=True)
@@ -383,85 +384,3 @@ PULSE_SHAPES = {
     "sine": OneSine,
     "cosine": OneCosine,
 }
-
-_ALIASES = {"one-sine": "sine", "one-cosine": "cosine"}
-
-PulseLike = Union[RickerSymmetric, RickerAntisymmetric, OneSine, OneCosine]
-
-
-def _shape_class(shape: str):
-    key = str(shape).strip().lower()
-    key = _ALIASES.get(key, key)
-    if key not in PULSE_SHAPES:
-        raise RockcliInputError(
-            f"unknown pulse shape {shape!r} (expected one of: {', '.join(PULSE_SHAPES)})"
-        )
-    return PULSE_SHAPES[key]
-
-
-def make_pulse(shape: str, a_p: float, T_p: float, t0: Optional[float] = None) -> PulseLike:
-    """Build a pulse by shape name (``ricker-sym``, ``ricker-anti``, ``sine``, ``cosine``), SI units.
-
-    Parameters
-    ----------
-    shape : str
-        Shape name (case-insensitive).
-    a_p : float
-        Amplitude [m/s^2], signed.
-    T_p : float
-        Period [s], > 0.
-    t0 : float, optional
-        Centre (Rickers) or start (sine, cosine) [s]; default ``3 T_p`` for Rickers, 0 otherwise.
-    """
-    return _shape_class(shape)(a_p, T_p, t0)
-
-
-def parse_pulse_spec(text: str) -> PulseLike:
-    """Parse a CLI pulse spec such as ``ricker-sym:ap=0.3,Tp=0.6`` or ``sine:ap=-0.2,Tp=1,t0=0.5``.
-
-    ``ap`` is in g (this is an input edge), ``Tp`` and the optional ``t0`` in seconds; keys are
-    case-insensitive. Raises :class:`~rockcli.errors.RockcliInputError` with one sentence on any
-    problem (unknown shape, unknown or repeated key, missing ``ap``/``Tp``, non-numeric value,
-    ``Tp <= 0``).
-
-    Examples
-    --------
-    >>> p = parse_pulse_spec("ricker-anti:ap=0.25,Tp=1.2")
-    >>> p.shape, round(p.a_p_g, 6), p.T_p, p.t0
-    ('ricker-anti', 0.25, 1.2, 3.5999999999999996)
-    """
-    raw = str(text).strip()
-    if ":" in raw:
-        shape, _, rest = raw.partition(":")
-    else:
-        shape, rest = raw, ""
-    cls = _shape_class(shape)
-    values = {}
-    names = {"ap": "ap", "tp": "Tp", "t0": "t0"}
-    for item in filter(None, (s.strip() for s in rest.split(","))):
-        key, eq, val = item.partition("=")
-        k = key.strip().lower()
-        if not eq or k not in names:
-            raise RockcliInputError(
-                f"pulse spec {raw!r}: unknown parameter {key.strip()!r} (expected ap=<g>, Tp=<s>, optional t0=<s>)"
-            )
-        if names[k] in values:
-            raise RockcliInputError(f"pulse spec {raw!r}: parameter {names[k]} is given twice")
-        try:
-            v = float(val)
-        except ValueError:
-            raise RockcliInputError(f"pulse spec {raw!r}: {names[k]}={val.strip()!r} is not a number") from None
-        if not math.isfinite(v):
-            raise RockcliInputError(f"pulse spec {raw!r}: {names[k]} must be finite")
-        values[names[k]] = v
-    missing = [k for k in ("ap", "Tp") if k not in values]
-    if missing:
-        raise RockcliInputError(
-            f"pulse spec {raw!r} is missing {' and '.join(missing)} (write e.g. {cls.shape}:ap=0.3,Tp=0.6)"
-        )
-    if values["Tp"] <= 0.0:
-        raise RockcliInputError(f"pulse spec {raw!r}: Tp must be > 0 s")
-    try:
-        return cls(values["ap"] * G, values["Tp"], values.get("t0"))
-    except RockcliInputError as exc:
-        raise RockcliInputError(f"pulse spec {raw!r}: {exc}") from None
