@@ -493,13 +493,14 @@ def test_arithmetic_failure_is_one_sentence_exit_1(work, monkeypatch):
 def test_step_cap_is_one_sentence_exit_1_and_nothing_printed(work, monkeypatch):
     """A genuine numerical failure (simulated: a tiny cap) prints no result and writes nothing."""
     import rockcli.solve
+    import rockcli.solve.single
 
     real = rockcli.solve.simulate
 
     def capped(*args, **kwargs):
         return real(*args, **{**kwargs, "max_steps": 5})
 
-    monkeypatch.setattr(rockcli.solve, "_check_work", lambda *a: None)
+    monkeypatch.setattr(rockcli.solve.single, "_check_work", lambda *a: None)  # where simulate looks it up
     monkeypatch.setattr(rockcli.solve, "simulate", capped)
     before = snapshot(work)
     res = run_cli([*SIM, *SINE, "--history", "h.csv"])

@@ -1,0 +1,272 @@
+"""Many verdict-only scenes in parallel: :func:`simulate_many` (a :class:`Response` or :class:`JobError`
+per job) and :func:`simulate_verdicts` (arrays), both on :func:`_run_many`, which validates each distinct
+scene once, packs the scenes' arrays and runs chunks of them on a pool of threads (the batch kernels
+release the GIL).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from rockcli.errors import RockcliInputError
+from rockcli.models import Block, Rigid
+from rockcli.solve.excitation import _excitation_arrays
+from rockcli.solve.options import (DEFAULT_HORIZON, DEFAULT_MAX_STEPS, DEFAULT_REST_TOL, DEFAULT_TAIL, TAIL_MAX,
+                                   _kernel, validate_options)
+from rockcli.solve.parameters import _parameters
+from rockcli.solve.response import JobError, Verdicts, _response
+from rockcli.solve.work import _check_work
+
+
+def _threads() -> int:
+    """Threads a sweep runs on: the cores this process may use (``NUMBA_NUM_THREADS`` caps them)."""
+    import os
+
+    try:
+        cores = len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):
+        cores = os.cpu_count() or 1
+    cap = os.environ.get("NUMBA_NUM_THREADS", "")
+    return max(1, min(cores, int(cap))) if cap.isdigit() and int(cap) > 0 else max(1, cores)
+
+
+def simulate_many(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL,
+                  rest_tol: float = DEFAULT_REST_TOL, horizon: float = DEFAULT_HORIZON,
+                  max_steps: int = DEFAULT_MAX_STEPS, early: bool = False,
+                  progress=None, chunk: int | None = None) -> list:
+    """Verdict-only :func:`simulate` of many scenes, run in parallel on all cores.
+
+    Parameters
+    ----------
+    jobs : sequence of (block, foundation, excitation) or (block, foundation, excitation, scale)
+        ``scale`` multiplies a record's acceleration or a pulse's ``a_p`` (default 1): the same run
+        as the scaled excitation. Scenes that share a record object share its samples.
+    tail : float or sequence of float
+        Free motion a history run would show [s] (one value or one per scene); it never changes a
+        verdict-only run, which ends when its verdict is proven.
+    early : bool
+        Stop each run as soon as its verdict is proven, even during the excitation (the
+        verdicts are the same; ``theta_max`` is then only the peak so far, ``peak_final`` False).
+    progress : callable, optional
+        Called as ``progress(n_done)`` after each chunk of scenes.
+    chunk : int, optional
+        Scenes per batch handed to a thread (default: about 1/8 of a thread's share, and at most
+        1/50 of all scenes with ``progress``).
+
+    Returns
+    -------
+    list of Response or JobError
+        In the order of ``jobs``, identical to what :func:`simulate` returns without history; a
+        job that :func:`simulate` would refuse (bad block, foundation or excitation) gets a
+        :class:`JobError` with the reason and the others still run. Invalid solver options
+        (``rtol``, ``tail``, ``rest_tol``, ``horizon``) concern every job and raise.
+    """
+    outs, alphas, failed = _run_many(jobs, rtol=rtol, tail=tail, rest_tol=rest_tol, horizon=horizon,
+                                     max_steps=max_steps, early=early, progress=progress, chunk=chunk)
+    done = iter(range(outs.shape[0]))
+    return [failed[i] if i in failed else _response(outs[next(done)], None, alphas[i]) for i in range(len(alphas))]
+
+
+def simulate_verdicts(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL, rest_tol: float = DEFAULT_REST_TOL,
+                      horizon: float = DEFAULT_HORIZON, max_steps: int = DEFAULT_MAX_STEPS, early: bool = False,
+                      progress=None, chunk: int | None = None) -> Verdicts:
+    """:func:`simulate_many` returning arrays (no :class:`Response` per scene): for large sweeps.
+
+    Same arguments and the same runs; a job that fails validation raises here.
+    """
+    k = _kernel()
+    outs, alphas, failed = _run_many(jobs, rtol=rtol, tail=tail, rest_tol=rest_tol, horizon=horizon,
+                                     max_steps=max_steps, early=early, progress=progress, chunk=chunk)
+    if failed:
+        i = min(failed)
+        raise RockcliInputError(f"job {i}: {failed[i].error}")
+    return Verdicts(
+        overturned=outs[:, k.O_STATUS] == k.STATUS_OVERTURNED, uplifted=outs[:, k.O_UPLIFTED] != 0.0,
+        theta_max_over_alpha=outs[:, k.O_THETA_MAX] / np.asarray(alphas, dtype=float).reshape(-1),
+        settled=outs[:, k.O_SETTLED] != 0.0, status=outs[:, k.O_STATUS].astype(np.int64),
+        nfev=outs[:, k.O_NRHS].astype(np.int64), peak_final=outs[:, k.O_PEAK_FINAL] != 0.0)
+
+
+def _scene_arrays(block, foundation, excitation, tail, rtol, rest_tol, horizon, max_steps, prepared, params,
+                  checked):
+    """The kernel inputs of one (block, foundation, excitation, tail) of a sweep, validated and its work
+    checked: ``(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end)`` (``epar`` a copy).
+
+    ``prepared``, ``params`` and ``checked`` are the sweep's caches: an excitation's arrays by id, the
+    parameters by (block, foundation) and the work estimates that passed.
+    """
+    k = _kernel()
+    key = id(excitation)
+    if key not in prepared:
+        try:
+            prepared[key] = _excitation_arrays(excitation)
+        except RockcliInputError as exc:
+            prepared[key] = exc
+    if isinstance(prepared[key], RockcliInputError):
+        raise prepared[key]
+    ekind, epar, acc, jtab, dt, t_begin, t_exc_end = prepared[key]
+    try:
+        cached = params.get((block, foundation))
+    except TypeError:  # an unhashable foundation: built for each scene
+        cached = _parameters(block, foundation, rtol, float(rest_tol))
+    if cached is None:
+        cached = params[(block, foundation)] = _parameters(block, foundation, rtol, float(rest_tol))
+    fkind, prm = cached
+    # the work estimate depends only on these (not on the amplitude): checked once per distinct set
+    wkey = (block, foundation, ekind, acc.size, epar[k.E_TE] - epar[k.E_TS], t_exc_end, tail)
+    try:
+        known = wkey in checked
+    except TypeError:
+        known = False
+    if not known:
+        _check_work(block, foundation, prepared[key], rtol, tail, float(rest_tol), float(horizon), int(max_steps))
+        try:
+            checked.add(wkey)
+        except TypeError:
+            pass
+    return fkind, prm, ekind, epar.copy(), acc, jtab, dt, t_begin, t_exc_end
+
+
+def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress, chunk):
+    """Kernel outputs (``O_*`` rows) of the valid jobs, each job's slenderness, and the failed jobs.
+
+    Returns ``(outs, alphas, failed)``: ``outs`` has one row per valid job in job order,
+    ``alphas`` one entry per job (NaN for a failed one), ``failed`` maps job index -> JobError.
+    """
+    jobs = list(jobs)
+    tails_in = np.asarray(tail, dtype=float)
+    if tails_in.ndim == 0:
+        validate_options(rtol, float(tails_in), rest_tol, horizon, max_steps)
+    else:
+        if tails_in.shape != (len(jobs),):
+            raise RockcliInputError(f"tail must be one value or one per job ({len(jobs)}), got {tails_in.shape}")
+        if not np.all(np.isfinite(tails_in) & (tails_in >= 0) & (tails_in <= TAIL_MAX)):
+            raise RockcliInputError(f"tail must be a time between 0 and {TAIL_MAX:g} s for every job")
+        validate_options(rtol, 0.0, rest_tol, horizon, max_steps)
+    k = _kernel()
+    n = len(jobs)
+    if n == 0:
+        return np.zeros((0, k.N_OUT)), [], {}
+    pieces, jpieces, where, total = [], [], {}, 0
+    prepared = {}  # id(excitation) -> validated kernel arrays (or the error): a shared record is checked once
+    params = {}  # (block, foundation) -> kernel parameters: built once per distinct pair
+    checked = set()  # work estimates that passed (see _check_work)
+    groups = {}  # (id(block), id(foundation), id(excitation), tail) -> index into G, or the error
+    G = []  # per distinct scene: (fkind, prm, ekind, epar, offset, length, dt, t_begin, t_exc_end, alpha)
+    failed = {}  # job index -> JobError; those jobs are not run
+    gidx = np.full(n, -1, np.int64)
+    scales = np.ones(n)
+    ground = Rigid()
+    for i, job in enumerate(jobs):
+        try:
+            block, foundation, excitation = job[:3]
+            scale = float(job[3]) if len(job) > 3 else 1.0
+            if not isinstance(block, Block):
+                raise RockcliInputError(f"job {i}: block must be a rockcli.models.Block")
+            foundation = foundation if foundation is not None else ground
+            if not hasattr(foundation, "gamma"):
+                raise RockcliInputError(f"job {i}: unknown foundation {foundation!r}")
+            if not math.isfinite(scale):
+                raise RockcliInputError(f"job {i}: the scale factor must be finite, got {scale!r}")
+            tail_i = float(tails_in if tails_in.ndim == 0 else tails_in[i])
+            # the jobs hold these objects, so their ids stay theirs for the whole loop
+            gkey = (id(block), id(foundation), id(excitation), tail_i)
+            g = groups.get(gkey)
+            if g is None:
+                try:
+                    fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end = _scene_arrays(
+                        block, foundation, excitation, tail_i, rtol, rest_tol, horizon, max_steps, prepared, params,
+                        checked)
+                except (RockcliInputError, TypeError, ValueError) as exc:
+                    g = RockcliInputError(str(exc))
+                else:
+                    akey = id(acc)  # a record's samples, or the table shared by all pulses of one shape
+                    if akey not in where:
+                        where[akey] = total
+                        pieces.append(acc)
+                        jpieces.append(jtab)
+                        total += acc.size
+                    g = len(G)
+                    G.append((fkind, prm, ekind, epar, where[akey], acc.size, dt, t_begin, t_exc_end, block.alpha))
+                groups[gkey] = g
+            if isinstance(g, RockcliInputError):
+                raise g
+        except (RockcliInputError, TypeError, ValueError) as exc:
+            failed[i] = JobError(str(exc))
+            continue
+        gidx[i] = g
+        scales[i] = scale
+    if not G:  # every job failed
+        if progress is not None:
+            progress(n)
+        return np.zeros((0, k.N_OUT)), [math.nan] * n, failed
+    ok = np.flatnonzero(gidx >= 0)
+    sel = gidx[ok]
+    cols = list(zip(*G))
+
+    def per_job(j, dtype=float):  # column j of G, one row per job that runs
+        return np.array(cols[j], dtype=dtype)[sel]
+
+    fkinds, prms, ekinds, epars = per_job(0, np.int64), per_job(1), per_job(2, np.int64), per_job(3)
+    acc_off, acc_len = per_job(4, np.int64), per_job(5, np.int64)
+    dts, t_begins, t_exc_ends = per_job(6), per_job(7), per_job(8)
+    alphas = np.full(n, math.nan)
+    alphas[ok] = per_job(9)
+    alphas = alphas.tolist()
+    record = ekinds == k.EXC_RECORD
+    scale_ok = scales[ok]
+    epars[record, k.E_AP] = scale_ok[record]  # a record: E_AP carries the scale factor
+    epars[~record, k.E_AP] *= scale_ok[~record]  # a pulse: the kernel reads its amplitude from E_AP
+    tails = np.full(ok.size, float(tails_in)) if tails_in.ndim == 0 else tails_in[ok].copy()
+    m = fkinds.size
+    acc_all = np.concatenate(pieces) if pieces else np.zeros(2)
+    jtab_all = np.concatenate(jpieces) if jpieces else np.zeros(2)
+    outs = np.zeros((m, k.N_OUT))
+    threads = _threads()
+    if chunk is None:  # pieces small enough to balance the threads, and to report progress ~50 times
+        chunk = max(1, -(-m // (8 * threads)))
+        if progress is not None:
+            chunk = min(chunk, max(1, m // 50))
+    tasks = []
+    # one batch kernel per driver (rigid foundation, isolated base): a sweep compiles only what it uses
+    rigid = fkinds == k.FOUNDATION_RIGID
+    for batch, sel in ((k.simulate_batch_rigid, np.flatnonzero(rigid)), (k.simulate_batch, np.flatnonzero(~rigid))):
+        whole = sel.size == m  # every job runs on this driver: pass views, the kernel writes into outs
+        for lo in range(0, sel.size, chunk):
+            hi = min(sel.size, lo + chunk)
+            tasks.append((batch, slice(lo, hi) if whole else sel[lo:hi]))
+    common = (acc_all, jtab_all)
+    tail_args = (float(horizon), int(max_steps), bool(early))
+
+    def run(task):
+        batch, part = task
+        o = outs[part] if isinstance(part, slice) else np.zeros((part.size, k.N_OUT))
+        batch(fkinds[part], prms[part], ekinds[part], epars[part], *common, acc_off[part], acc_len[part],
+              dts[part], t_begins[part], t_exc_ends[part], tails[part], *tail_args, o)
+        if not isinstance(part, slice):
+            outs[part] = o
+        return o.shape[0]
+
+    done = 0
+    if threads == 1 or len(tasks) == 1:
+        for task in tasks:
+            done += run(task)
+            if progress is not None:
+                progress(n if done == m else done)
+    else:
+        from concurrent.futures import ThreadPoolExecutor, as_completed
+
+        with ThreadPoolExecutor(max_workers=threads) as pool:  # the kernels run without the GIL
+            futures = [pool.submit(run, task) for task in tasks]
+            try:
+                for fut in as_completed(futures):
+                    done += fut.result()
+                    if progress is not None:
+                        progress(n if done == m else done)
+            except BaseException:  # an error or Ctrl-C: drop the pieces not started, then re-raise
+                for fut in futures:
+                    fut.cancel()
+                raise
+    return outs, alphas, failed

@@ -1,0 +1,112 @@
+"""The excitation as the kernel reads it: a record's samples or a pulse's parameters, validated,
+with the table of the ground impulse still to come (the bound behind the early stops).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from rockcli.errors import RockcliInputError
+from rockcli.solve.options import _kernel
+
+
+#: Latest start of a pulse, in periods: float64 time then resolves the pulse to 2e-10 of a period.
+PULSE_START_MAX_PERIODS = 1e6
+#: points of the unit-pulse tables of the remaining ground impulse (kernels._impulse_left)
+N_IMPULSE_TABLE = 257
+
+_PULSE_CODES = {"ricker-sym": 1, "ricker-anti": 2, "sine": 3, "cosine": 4}
+
+
+def record_impulse_table(acc: np.ndarray, dt: float) -> np.ndarray:
+    """Suffix integrals ``int_{t_j}^{t_end} |ag| dt`` [m/s] of a piecewise-linear record, one per sample.
+
+    Exact per interval (a linear piece that changes sign integrates to ``dt (a0^2 + a1^2) /
+    (2 (|a0| + |a1|))``), summed from the end and enlarged by 1e-9 relative for rounding: an upper
+    bound, as the kernel's early stop (P4) needs.
+    """
+    a0, a1 = np.abs(acc[:-1]), np.abs(acc[1:])
+    same = acc[:-1] * acc[1:] >= 0.0
+    tot = a0 + a1
+    piece = np.where(same, 0.5 * dt * tot, 0.5 * dt * (a0 * a0 + a1 * a1) / np.where(tot > 0, tot, 1.0))
+    out = np.zeros(acc.size)
+    out[:-1] = np.cumsum(piece[::-1])[::-1]
+    return out * (1.0 + 1e-9)
+
+
+_PULSE_ZEROS = {  # zeros of the unit pulse's acceleration, tau = t - t0 in units of T_p
+    "ricker-sym": (-1.0 / (math.pi * math.sqrt(2.0)), 1.0 / (math.pi * math.sqrt(2.0))),
+    "ricker-anti": (-1.5 / math.pi, 0.0, 1.5 / math.pi),
+    "sine": (0.0, 0.5, 1.0),
+    "cosine": (0.25, 0.75),
+}
+_UNIT_TABLES: dict = {}
+
+
+def pulse_impulse_table(shape: str) -> tuple[np.ndarray, np.ndarray]:
+    """``(zeros, J)``: suffix integrals of ``|ag|`` of the unit pulse (a_p = 1, T_p = 1) from
+    :data:`N_IMPULSE_TABLE` equally spaced points of its support to its end.
+
+    Exact: between consecutive zeros of the acceleration, ``int |ag| = |delta v|`` with the
+    pulse's closed-form velocity. Enlarged by 1e-9 relative for rounding. Cached per shape (the
+    zeros array is the kernel's dummy ``acc`` for a pulse, shared by all pulses of the shape).
+    """
+    if shape not in _UNIT_TABLES:
+        from rockcli.pulses import make_pulse
+
+        unit = make_pulse(shape, 1.0, 1.0)
+        ts, te = unit.support()
+        grid = np.linspace(ts, te, N_IMPULSE_TABLE)
+        zeros = [unit.t0 + z for z in _PULSE_ZEROS[shape] if ts < unit.t0 + z < te]
+        pts = np.unique(np.concatenate([grid, zeros]))
+        dv = np.abs(np.diff(np.asarray(unit.velocity(pts), dtype=float)))
+        suffix = np.zeros(pts.size)
+        suffix[:-1] = np.cumsum(dv[::-1])[::-1]
+        J = suffix[np.searchsorted(pts, grid)] * (1.0 + 1e-9) + 1e-15
+        _UNIT_TABLES[shape] = (np.zeros(N_IMPULSE_TABLE), J)
+    return _UNIT_TABLES[shape]
+
+
+def _excitation_arrays(excitation):
+    """(ekind, epar, acc, jtab, dt, t_begin, t_exc_end) for the kernel."""
+    k = _kernel()
+    if hasattr(excitation, "acc") and hasattr(excitation, "dt"):
+        acc = np.ascontiguousarray(excitation.acc, dtype=np.float64)
+        dt = float(excitation.dt)
+        if acc.ndim != 1 or acc.size < 2:
+            raise RockcliInputError(f"record {getattr(excitation, 'name', '')!r} needs at least 2 samples")
+        if not np.all(np.isfinite(acc)):
+            raise RockcliInputError(f"record {getattr(excitation, 'name', '')!r} has NaN or infinite samples")
+        if not (math.isfinite(dt) and dt > 0):
+            raise RockcliInputError(f"record {getattr(excitation, 'name', '')!r} has a non-positive time step {dt!r}")
+        epar = np.zeros(8)
+        epar[k.E_AP] = 1.0  # scale factor of the record
+        return k.EXC_RECORD, epar, acc, record_impulse_table(acc, dt), dt, 0.0, (acc.size - 1) * dt
+    shape = getattr(excitation, "shape", None)
+    if shape in _PULSE_CODES:
+        a_p, T_p, t0 = float(excitation.a_p), float(excitation.T_p), float(excitation.t0)
+        if not (math.isfinite(a_p) and math.isfinite(T_p) and T_p > 0 and math.isfinite(t0)):
+            raise RockcliInputError(f"pulse {shape}: a_p must be finite and T_p positive")
+        ts, te = (float(v) for v in excitation.support())
+        # the run starts at rest at t = 0: a pulse that starts earlier would be cut (its start lost)
+        if ts < 0.0:
+            raise RockcliInputError(
+                f"pulse {shape} (T_p = {T_p:g} s, t0 = {t0:g} s) starts at {ts:g} s, before the run starts at "
+                f"t = 0 s: give t0 >= {t0 - ts:g} s")
+        # float64 time resolves the pulse to eps * t / T_p: 2e-10 of a period at t = 1e6 T_p
+        if ts > PULSE_START_MAX_PERIODS * T_p:
+            raise RockcliInputError(
+                f"pulse {shape} (T_p = {T_p:g} s) starts at {ts:g} s, later than the supported "
+                f"{PULSE_START_MAX_PERIODS:g} T_p = {PULSE_START_MAX_PERIODS * T_p:g} s (the run's clock could no "
+                f"longer resolve the pulse): give a smaller t0")
+        epar = np.zeros(8)
+        epar[k.E_AP], epar[k.E_TP], epar[k.E_T0], epar[k.E_TS], epar[k.E_TE] = a_p, T_p, t0, ts, te
+        if shape == "ricker-anti":
+            from rockcli.pulses import RICKER_ANTI_BETA
+
+            epar[k.E_BETA] = RICKER_ANTI_BETA
+        zeros, jtab = pulse_impulse_table(shape)
+        return _PULSE_CODES[shape], epar, zeros, jtab, 1.0, min(0.0, ts), te
+    raise RockcliInputError(f"cannot simulate excitation of type {type(excitation).__name__}")

@@ -1,0 +1,212 @@
+"""What a run returns: the verdict names, :class:`Response` (with its :class:`History`),
+:class:`JobError` (a batch job refused), :class:`Verdicts` (a batch as arrays), and
+:func:`_response`, which reads a kernel's output row (``O_*``) into a :class:`Response`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from rockcli.models import Block
+from rockcli.solve.options import _kernel
+
+
+VERDICT_NO_UPLIFT = "no_uplift"
+VERDICT_ROCKED = "rocked"
+VERDICT_OVERTURNED = "overturned"
+#: Verdict of a :func:`simulate_many` job that could not be run (see :class:`JobError`).
+VERDICT_ERROR = "error"
+
+
+@dataclass(frozen=True)
+class History:
+    """Time history of a run: arrays at every step end and event [SI units].
+
+    ``z``, ``z2`` (Bouc-Wen variables; ``z2`` of the second surface of a double concave bearing)
+    and ``bearing_force`` (the bearings' restoring force per unit total mass, ``k_b u + Q z`` over
+    ``m + m_b`` [m/s^2]; linear bearings: ``k_b u + c_b u_dot`` over ``m + m_b``) are None where the
+    foundation has none.
+    """
+
+    t: np.ndarray
+    ag: np.ndarray
+    theta: np.ndarray
+    theta_dot: np.ndarray
+    u: np.ndarray
+    u_dot: np.ndarray
+    z: np.ndarray | None = None
+    z2: np.ndarray | None = None
+    bearing_force: np.ndarray | None = None
+
+
+@dataclass(frozen=True)
+class Response:
+    """Outcome of :func:`simulate`.
+
+    Attributes
+    ----------
+    verdict : str
+        ``no_uplift``, ``rocked`` (survives) or ``overturned``.
+    status : int
+        0 finished, 1 overturned (terminal event), -1 failed (step cap reached).
+    message : str
+        What happened, in words.
+    theta_max : float
+        Peak ``|theta|`` [rad] (``pi/2`` when overturned).
+    base_disp_max_m : float
+        Peak ``|u|``, base displacement relative to the ground [m] (0 on a rigid foundation).
+    n_impacts : int
+        Impacts while the ground moves (the same with or without history).
+    n_impacts_total : int
+        Impacts integrated, including free rocking after the excitation (a verdict-only run
+        stops once the outcome is settled, so it may count fewer).
+    settled : bool
+        The verdict is proven (see the solver contract in :mod:`rockcli.solve`); False when the run
+        reached its horizon.
+    peak_final : bool
+        ``theta_max`` is the run's peak (False only for ``early`` verdict-only runs stopped during
+        the excitation: then it is the peak so far).
+    n_base_reversals : int
+        Steps that ended where a hysteretic base reversed (0 for other foundations).
+    """
+
+    verdict: str
+    status: int
+    message: str
+    t_uplift_s: float
+    t_overturn_s: float
+    t_exceed_alpha_s: float
+    theta_max: float
+    theta_max_over_alpha: float
+    t_theta_max_s: float
+    n_impacts: int
+    n_impacts_total: int
+    n_uplifts: int
+    n_rests: int
+    base_disp_max_m: float
+    steps: int
+    rejected_steps: int
+    nfev: int
+    settled: bool
+    t_end_s: float
+    peak_final: bool = True
+    t_settled_s: float = math.nan
+    n_base_reversals: int = 0
+    history: History | None = field(default=None, repr=False)
+
+    @property
+    def overturned(self) -> bool:
+        return self.verdict == VERDICT_OVERTURNED
+
+    def summary(self) -> dict[str, Any]:
+        """The scalar results as a plain dict (JSON-ready; NaN becomes None)."""
+
+        def clean(v):
+            if isinstance(v, float) and math.isnan(v):
+                return None
+            return v
+
+        keys = ("verdict", "t_uplift_s", "t_overturn_s", "t_exceed_alpha_s", "theta_max_over_alpha",
+                "theta_max", "t_theta_max_s", "n_impacts", "n_impacts_total", "n_uplifts", "n_rests",
+                "base_disp_max_m", "steps", "rejected_steps", "nfev", "settled", "t_settled_s", "peak_final",
+                "t_end_s", "status", "message")
+        return {k: clean(getattr(self, k)) for k in keys}
+
+
+@dataclass(frozen=True)
+class JobError:
+    """What :func:`simulate_many` returns for a job that fails validation: the reason, no results.
+
+    It reads like a :class:`Response` where callers look (``verdict`` is ``"error"``,
+    ``overturned`` is False, ``message`` says why, numbers are NaN), so one bad scene does not
+    stop a batch; ``error`` is the message (a :class:`Response` has no ``error``).
+    """
+
+    error: str
+    verdict: str = VERDICT_ERROR
+    status: int = -2
+    overturned: bool = False
+    theta_max_over_alpha: float = math.nan
+    t_overturn_s: float = math.nan
+    t_uplift_s: float = math.nan
+    base_disp_max_m: float = math.nan
+    n_impacts: int | None = None
+
+    @property
+    def message(self) -> str:
+        return self.error
+
+
+@dataclass(frozen=True)
+class Verdicts:
+    """Outcome of :func:`simulate_verdicts`: one array entry per scene, in the order of the jobs.
+
+    ``overturned``, ``uplifted``, ``settled``, ``peak_final`` (bool); ``theta_max_over_alpha``
+    (pi/2/alpha when overturned; with early stops only the peak so far where ``peak_final`` is
+    False); ``status`` (0 finished, 1 overturned, -1 step cap); ``nfev`` (right-hand sides).
+    """
+
+    overturned: np.ndarray
+    uplifted: np.ndarray
+    theta_max_over_alpha: np.ndarray
+    settled: np.ndarray
+    status: np.ndarray
+    nfev: np.ndarray
+    peak_final: np.ndarray
+
+    def __len__(self) -> int:
+        return int(self.overturned.size)
+
+
+def _response(out: np.ndarray, H, block, out_fkind: int = 0) -> Response:
+    k = _kernel()
+    alpha = block.alpha if isinstance(block, Block) else float(block)
+    status = int(out[k.O_STATUS])
+    if status == k.STATUS_OVERTURNED:
+        verdict = VERDICT_OVERTURNED
+        if math.isnan(out[k.O_T_OVERTURN]):
+            message = (f"overturns: proven at t = {out[k.O_T_SETTLED]:.3f} s (early stop; the time it lands is not "
+                       f"computed)")
+        else:
+            message = f"overturned at t = {out[k.O_T_OVERTURN]:.3f} s"
+    elif out[k.O_UPLIFTED]:
+        verdict = VERDICT_ROCKED
+        message = f"rocked and survived (peak |theta|/alpha = {out[k.O_THETA_MAX] / alpha:.3f})"
+    else:
+        verdict = VERDICT_NO_UPLIFT
+        message = "never uplifted: the base acceleration stayed below g tan(alpha)"
+    if status == k.STATUS_MAX_STEPS:
+        message = (f"stopped after {int(out[k.O_STEPS])} steps at t = {out[k.O_T_END]:.3f} s (step cap reached): "
+                   + message)
+    elif not out[k.O_SETTLED]:
+        why = ("the block was still rocking (a very slender block loses little energy per impact)"
+               if out[k.O_THETA_END] != 0.0 else
+               "the block was at rest but its base could still lift it (lightly damped base)")
+        message += (f"; NOT PROVEN: at t = {out[k.O_T_END]:.1f} s (the horizon) {why}, so it could still be lifted "
+                    f"or overturn; lengthen the horizon to follow it")
+    hist = None
+    if H is not None:
+        fkind = out_fkind
+        hyst = fkind in (k.FOUNDATION_BILINEAR, k.FOUNDATION_DCSS)
+        hist = History(t=H[:, k.H_T].copy(), ag=H[:, k.H_AG].copy(), theta=H[:, k.H_TH].copy(),
+                       theta_dot=H[:, k.H_THD].copy(), u=H[:, k.H_U].copy(), u_dot=H[:, k.H_UD].copy(),
+                       z=H[:, k.H_Z].copy() if hyst else None,
+                       z2=H[:, k.H_Z2].copy() if fkind == k.FOUNDATION_DCSS else None,
+                       bearing_force=H[:, k.H_FB].copy() if fkind != k.FOUNDATION_RIGID else None)
+    return Response(
+        verdict=verdict, status=status, message=message,
+        t_uplift_s=float(out[k.O_T_UPLIFT]), t_overturn_s=float(out[k.O_T_OVERTURN]),
+        t_exceed_alpha_s=float(out[k.O_T_EXCEED]), theta_max=float(out[k.O_THETA_MAX]),
+        theta_max_over_alpha=float(out[k.O_THETA_MAX] / alpha), t_theta_max_s=float(out[k.O_T_THETA_MAX]),
+        n_impacts=int(out[k.O_N_IMPACTS]), n_impacts_total=int(out[k.O_N_IMPACTS_ALL]),
+        n_uplifts=int(out[k.O_N_UPLIFTS]), n_rests=int(out[k.O_N_RESTS]),
+        base_disp_max_m=float(out[k.O_U_MAX]), steps=int(out[k.O_STEPS]),
+        rejected_steps=int(out[k.O_REJECTED]), nfev=int(out[k.O_NRHS]), settled=bool(out[k.O_SETTLED]),
+        t_end_s=float(out[k.O_T_END]), peak_final=bool(out[k.O_PEAK_FINAL]),
+        t_settled_s=float(out[k.O_T_SETTLED]) if out[k.O_SETTLED] and status != k.STATUS_OVERTURNED else math.nan,
+        n_base_reversals=int(out[k.O_N_REVERSALS]), history=hist,
+    )

@@ -1,0 +1,74 @@
+""":func:`simulate`: one scene, validated, on the compiled kernel (the driver of its foundation)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from rockcli.errors import RockcliInputError
+from rockcli.models import Block, Rigid
+from rockcli.solve.excitation import _excitation_arrays
+from rockcli.solve.options import (DEFAULT_HORIZON, DEFAULT_MAX_STEPS, DEFAULT_REST_TOL, DEFAULT_TAIL, _kernel,
+                                   validate_options)
+from rockcli.solve.parameters import _parameters
+from rockcli.solve.response import Response, _response
+from rockcli.solve.work import _check_work
+
+
+def simulate(block: Block, foundation=None, excitation=None, *, rtol: float | None = None,
+             history: bool = False, tail: float = DEFAULT_TAIL, rest_tol: float = DEFAULT_REST_TOL,
+             horizon: float = DEFAULT_HORIZON, max_steps: int = DEFAULT_MAX_STEPS, early: bool = False) -> Response:
+    """Rocking response of ``block`` on ``foundation`` under ``excitation``.
+
+    Parameters
+    ----------
+    block : Block
+        The rigid block.
+    foundation : Rigid, LinearIsolation, SingleConcaveSliding, LeadRubber or DoubleConcaveSliding, optional
+        Default :class:`Rigid`.
+    excitation : Record or pulse
+        A :class:`rockcli.records.Record` (``acc`` [m/s^2], ``dt`` [s]) or an analytic pulse
+        (``shape``, ``a_p`` [m/s^2], ``T_p`` [s], ``t0`` [s], ``support()``).
+    rtol : float, optional
+        Relative tolerance of the integrator; the error on each state is kept below
+        ``rtol * max(|y|, scale)`` with scales alpha, p alpha, g tan(alpha)/omega_b^2, g tan(alpha)/omega_b.
+        Default (None): :func:`default_rtol` of the foundation, 5e-9 on a rigid foundation and on
+        linear bearings, 2e-9 on sliding and lead-rubber bearings.
+    history : bool
+        Return the time history (every step end and event). Without it the run stores nothing
+        and stops as soon as the verdict is proven.
+    tail : float
+        Free motion a history run shows after the excitation [s]; it never changes the verdict.
+    rest_tol : float
+        Rest threshold (see the solver contract in :mod:`rockcli.solve`), 0 < rest_tol < 1.
+    horizon : float
+        Longest free motion followed after the excitation to prove the verdict [s].
+    early : bool
+        Verdict only: also stop during the excitation once survival is proven (then
+        ``peak_final`` is False). Not with ``history``.
+    max_steps : int
+        Safety cap on integrator steps.
+
+    Returns
+    -------
+    Response
+    """
+    if foundation is None:
+        foundation = Rigid()
+    if not isinstance(block, Block):
+        raise RockcliInputError(f"block must be a rockcli.models.Block, got {type(block).__name__}")
+    if excitation is None:
+        raise RockcliInputError("simulate needs an excitation (a record or a pulse)")
+    validate_options(rtol, tail, rest_tol, horizon, max_steps)
+    if early and history:
+        raise RockcliInputError("early stopping is for verdict-only runs; it cannot be combined with history")
+    k = _kernel()
+    prepared = _excitation_arrays(excitation)
+    ekind, epar, acc, jtab, dt, t_begin, t_exc_end = prepared
+    fkind, prm = _parameters(block, foundation, rtol, float(rest_tol))
+    _check_work(block, foundation, prepared, rtol, float(tail), float(rest_tol), float(horizon),
+                int(max_steps), bool(history))
+    out = np.zeros(k.N_OUT)
+    kernel = k.simulate_rigid if fkind == k.FOUNDATION_RIGID else k.simulate_core
+    H = kernel(fkind, tuple(float(v) for v in prm), ekind, tuple(float(v) for v in epar), acc, jtab, dt,
+               t_begin, t_exc_end, float(tail), float(horizon), int(max_steps), bool(history), bool(early), out)
+    return _response(out, H if history else None, block, fkind)
