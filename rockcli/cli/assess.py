@@ -7,7 +7,7 @@ from __future__ import annotations
 import click
 
 from rockcli.cli.errors import InputError, user_errors
-from rockcli.cli.options import check_outputs, horizon_option, progress_bar
+from rockcli.cli.options import check_outputs, command_line, horizon_option, progress_bar, report_option
 
 
 @click.group(name="assess")
@@ -102,23 +102,28 @@ def _columns(names, R, alpha, height, width, name):
               help="Rerun every scene at a 100x tighter rtol (5e-11; 2e-11 on sliding bearings) and flag any "
                    "verdict that changes; and on 2 copies of its motion moved by one ulp, and flag any scene "
                    "whose verdict changes or whose peak moves by more than 1e-3 alpha (ill-conditioned).")
+@report_option
 @horizon_option
 @user_errors
 def column(names, R, alpha, height, width, name, records, units, dt, excitation, isolation, margin, neighbourhood,
-           csv_path, hist_dir, plot_dir, check_tolerance, horizon):
+           csv_path, hist_dir, plot_dir, check_tolerance, report_path, horizon):
     """Do the columns NAME... survive the records, on a rigid base and on isolators?
 
     NAME is a preset (bassae, nemea) or a custom block NAME:R=<m>,alpha=<deg> or
     NAME:height=<m>,width=<m>; --R/--alpha or --height/--width add one more block (--name).
     Prints, per column, a table records x configurations (survives with peak |theta|/alpha,
     or OVERTURNS; xS is the smallest scale factor of the record that overturns) and how many
-    records each configuration survives.
+    records each configuration survives, then the answer in plain words: one sentence per body and
+    configuration, with the stroke the isolation bearings must allow. --report writes all of it,
+    with figures and the records' provenance, as one self-contained HTML file.
 
     \b
     Examples:
       ROCKCLI_RECORDS=../shared/records rockcli assess column bassae nemea --csv table.csv
       rockcli assess column statue:R=1.2,alpha=14 --records kobe-1995-takarazuka-000 --isolation none
       rockcli assess column nemea --records RSN983_NORTHR_JGB022.AT2 --isolation linear:Tb=3 --plot figs
+      rockcli assess column statue:R=0.93,alpha=15.5 --records RSN1119_KOBE_TAZ000.AT2 --isolation none \\
+          --isolation linear:Tb=2.5 --report statue.html
     """
     from rockcli.assess import count_runs, parse_configurations, resolve_excitations, run_assessment
 
@@ -127,7 +132,8 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
     validate_options(horizon=horizon)
     columns = _columns(names, R, alpha, height, width, name)
     configurations = parse_configurations(isolation)
-    check_outputs((csv_path, "--csv", False), folders=((hist_dir, "--histories"), (plot_dir, "--plot")))
+    check_outputs((csv_path, "--csv", False), (report_path, "--report", False),
+                  folders=((hist_dir, "--histories"), (plot_dir, "--plot")))
     excitations, unavailable = resolve_excitations(records, excitation, units=units, dt=dt)
     if not excitations:
         raise InputError("no record to run: " + "; ".join(f"{u.label}: {u.reason}" for u in unavailable))
@@ -142,9 +148,13 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
 
     from rockcli.report.tables import format_matrix, format_notes
 
+    from rockcli.assess.verdicts import format_verdicts
+
     click.echo(format_matrix(result))
     click.echo("")
     click.echo(format_notes(result))
+    click.echo("")
+    click.echo(format_verdicts(result))
     _warn_failed(result.failed, len(result.excitations))
     failed_runs = [r for r in result.rows if r.error and not any(x.label == r.record for x in result.failed)]
     if failed_runs:
@@ -160,6 +170,12 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
         click.echo(f"wrote {csv_path} ({len(result.rows)} rows)")
     if hist_dir or plot_dir:
         _write_histories(result, hist_dir, plot_dir)
+    if report_path:
+        from rockcli.report.html import write_report
+        from rockcli.report.html_pages import assessment_report
+
+        write_report(report_path, assessment_report(result, check=chk, command=command_line()))
+        click.echo(f"wrote {report_path} (HTML report)")
 
 
 def _echo_tolerance_check(result):
@@ -261,10 +277,11 @@ def _write_histories(result, hist_dir, plot_dir):
 @click.option("--scheduler", default=None, metavar="tcp://HOST:PORT|local",
               help="Run the margin searches on a Dask cluster (pip install -e \".[dask]\"): the address of an "
                    "existing scheduler, or 'local' for a LocalCluster on this machine. Same results.")
+@report_option
 @horizon_option
 @user_errors
 def fragility(names, R, alpha, height, width, name, records, units, dt, isolation, im, n_boot, seed, csv_path,
-              plot_path, scheduler, horizon):
+              plot_path, scheduler, report_path, horizon):
     """Fragility curves of overturning: P(the column overturns | IM) from a suite of records.
 
     Each record is scaled (0.1x..4x, then bisection) to the smallest factor that overturns the
@@ -288,7 +305,7 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
     if not records:
         raise InputError("give the record suite with --records DIR|ID|FILE (repeatable)")
     configurations = parse_configurations(isolation)
-    check_outputs((csv_path, "--csv", False), (plot_path, "--plot", True))
+    check_outputs((csv_path, "--csv", False), (plot_path, "--plot", True), (report_path, "--report", False))
     if scheduler is not None:
         from rockcli.distributed import check_scheduler
 
@@ -325,3 +342,9 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
 
         plot_fragility(result, plot_path)
         click.echo(f"wrote {plot_path}")
+    if report_path:
+        from rockcli.report.html import write_report
+        from rockcli.report.html_pages import fragility_report
+
+        write_report(report_path, fragility_report(result, command=command_line()))
+        click.echo(f"wrote {report_path} (HTML report)")
