@@ -128,7 +128,8 @@ def command_line() -> str:
     import sys
     from pathlib import Path
 
-    if Path(sys.argv[0]).name in ("rockcli", "__main__.py"):
+    argv0 = Path(sys.argv[0] if sys.argv else "")
+    if argv0.name == "rockcli" or (argv0.name == "__main__.py" and argv0.parent.name == "rockcli"):
         return shlex.join(["rockcli", *sys.argv[1:]])
     ctx = click.get_current_context(silent=True)
     if ctx is None:

@@ -245,9 +245,12 @@ def _fragility_sentence(fr, curve, rows, rigid) -> tuple[str, str]:
     else:
         parts.append("no curve could be fitted" + (f" ({curve.note})" if curve.note else ""))
     if curve.configuration.isolated and math.isfinite(curve.ratio_to_rigid) and rigid:
-        ratio = curve.ratio_to_rigid
-        parts.append(f"isolation multiplies that {im.name} by {ratio:.2f} "
-                     + ("(it makes the body more robust)" if ratio > 1 else "(it makes the body more fragile)"))
+        ratio, (lo, hi) = curve.ratio_to_rigid, curve.ratio_ci
+        if math.isfinite(lo) and lo <= 1 <= hi:
+            effect = f"(interval {lo:.2f} to {hi:.2f}: not clearly better or worse than on the ground)"
+        else:
+            effect = "(it makes the body more robust)" if ratio > 1 else "(it makes the body more fragile)"
+        parts.append(f"isolation multiplies that {im.name} by {ratio:.2f} {effect}")
     return word, "; ".join(parts)
 
 
@@ -327,10 +330,10 @@ def simulate_report(block, foundation, excitation, response, *, label: str, chec
                     command: str = "") -> str:
     """The HTML report of ``rockcli simulate`` (``response`` with its history; ``checked``: the
     ``check_*`` results of ``--check-tolerance``)."""
-    from rockcli.assess.scenes import Configuration
+    from rockcli.assess.scenes import parse_configurations
     from rockcli.report.response import plot_response
 
-    conf = Configuration(foundation.label, foundation, foundation.label)
+    conf = parse_configurations([foundation.label])[0]
     row = SimpleNamespace(error="", overturned=response.overturned, proven=bool(response.overturned or response.settled),
                           verdict=response.verdict, theta_max_over_alpha=response.theta_max_over_alpha,
                           t_overturn_s=response.t_overturn_s, base_disp_max_m=response.base_disp_max_m,
