@@ -32,8 +32,8 @@ from rockcli.report.tables import read_assessment_csv
 # --------------------------------------------------------------------------------------------------
 
 def _row(**kw) -> AssessmentRow:
-    base = dict(column="statue", R_m=0.93, alpha_deg=15.5, height_m=1.79, width_m=0.5, record="rec", excitation="record",
-                source="", pga_g=0.5, a_p_g=math.nan, T_p_s=math.nan, isolation="none", configuration="none",
+    base = dict(column="statue", R_m=0.93, alpha_deg=15.5, height_m=1.79, width_m=0.5, record="rec",
+                excitation="record", source="", pga_g=0.5, a_p_g=math.nan, T_p_s=math.nan, isolation="none", configuration="none",
                 Tb_s=math.nan, xi=math.nan, mu=math.nan, gamma=0.0, verdict="rocked", overturned=False, proven=True)
     base.update(kw)
     return AssessmentRow(**base)

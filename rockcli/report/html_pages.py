@@ -334,7 +334,8 @@ def simulate_report(block, foundation, excitation, response, *, label: str, chec
     from rockcli.report.response import plot_response
 
     conf = parse_configurations([foundation.label])[0]
-    row = SimpleNamespace(error="", overturned=response.overturned, proven=bool(response.overturned or response.settled),
+    row = SimpleNamespace(error="", overturned=response.overturned,
+                          proven=bool(response.overturned or response.settled),
                           verdict=response.verdict, theta_max_over_alpha=response.theta_max_over_alpha,
                           t_overturn_s=response.t_overturn_s, base_disp_max_m=response.base_disp_max_m,
                           overturn_scale=math.nan, margin_note="", overturn_share_pm10=math.nan)
