@@ -165,7 +165,8 @@ def configuration_sentence(rows, *, isolated: bool = False) -> str:
         if survived:
             parts.append(f"survives the other {len(survived)}")
     elif survived:
-        parts.append(f"survives {len(survived)} of {n} records" if undecided else f"survives all {n} records")
+        parts.append(f"survives {len(survived)} of {n} records" if undecided else
+                     "survives both records" if n == 2 else f"survives all {n} records")
         peak = max(survived, key=lambda r: r.theta_max_over_alpha)
         if peak.verdict == "no_uplift":
             parts.append("it does not even lift off its base")
@@ -243,7 +244,9 @@ def isolation_summary(assessment, block) -> str:
             parts.append(f"it survives on isolation {c.header} too{stroke}")
         else:
             parts.append(f"on isolation {c.header} it is {w}")
-    where = "on the ground" if len(assessment.excitations) == 1 else "on the ground (under at least one record)"
+    several = sum(x.motion is not None for x in assessment.excitations) > 1
+    where = "on the ground" + ({TOPPLES: " (under at least one record)", SURVIVES: " (under every record)"}
+                               .get(g, "") if several else "")
     return f"In short: {body_noun(block)} {g} {where}; " + "; ".join(parts) + "."
 
 
@@ -257,7 +260,7 @@ def question(assessment) -> str:
     rigid = any(not c.isolated for c in assessment.configurations)
     where = ("standing on the ground or on isolation bearings" if iso and rigid else
              "on isolation bearings" if iso else "standing on the ground")
-    return f"Does {who} topple under {what}, {where}?"
+    return f"{'Does' if len(assessment.columns) == 1 else 'Do'} {who} topple under {what}, {where}?"
 
 
 def format_verdicts(assessment, width: int = 100) -> str:

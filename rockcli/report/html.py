@@ -205,10 +205,11 @@ def records_section(excitations) -> str:
 def body_section(blocks) -> str:
     """Dimensions, R, alpha and p of every body, with what they mean."""
     from rockcli.assess.verdicts import body_noun
+    from rockcli.units import G
 
     rows = [(esc(b.name), esc(body_noun(b)), num(b.height, ".3f", "m"), num(b.width, ".3f", "m"),
              num(b.h / b.b, ".2f"), num(b.R, ".3f", "m"), num(b.alpha_deg, ".2f", "deg"), num(b.p, ".3f", "rad/s"),
-             num(b.uplift_acceleration / 9.80665, ".3f", "g"), num(b.housner_restitution, ".3f"))
+             num(b.uplift_acceleration / G, ".3f", "g"), num(b.housner_restitution, ".3f"))
             for b in blocks]
     head = ("name", "called", "height", "width", "height / width", "R", "alpha", "p", "lifts off at", "e")
     return (table(head, rows, numeric=range(2, 10)) +

@@ -105,7 +105,8 @@ def _verdict_table(assessment, block) -> str:
             s = r.overturn_scale
             factor = (num(s, ".2f") if math.isfinite(s) else ">4" if r.margin_note.startswith("no overturning")
                       else "-")
-            rows.append((esc(x.label), esc(c.header), f'<b class="w-{word}">{esc(word)}</b>', _peak_cell(r), factor,
+            css = "w-" + word.replace(" ", "-")
+            rows.append((esc(x.label), esc(c.header), f'<b class="{css}">{esc(word)}</b>', _peak_cell(r), factor,
                          num(r.base_disp_max_m, ".3f", "m") if c.isolated else "-",
                          num(100 * r.overturn_share_pm10, ".0f", "%"),
                          esc(scene_sentence(r, isolated=False) + "."),
