@@ -60,6 +60,8 @@ def test_topples_sentence_states_the_fraction_of_the_record():
     s = scene_sentence(_row(verdict="overturned", overturned=True, theta_max_over_alpha=math.pi / 2 / 0.27,
                             t_overturn_s=6.76, overturn_scale=0.73, overturn_scale_survives=0.72))
     assert s.startswith("topples: already at 0.73 times this record") and "after 6.8 s" in s
+    no_margin = scene_sentence(_row(verdict="overturned", overturned=True, t_overturn_s=3.24))
+    assert no_margin == "topples: as recorded, it falls after 3.2 s"
 
 
 def test_safe_island_no_uplift_undecided_and_stroke():

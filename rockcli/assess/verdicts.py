@@ -104,14 +104,13 @@ def scene_sentence(row, *, isolated: bool = False, stroke: bool = True) -> str:
     note = getattr(row, "margin_note", "") or ""
     parts = []
     if what == TOPPLES:
-        if math.isfinite(s) and note.startswith("overturns already"):
-            parts.append(f"topples: even at {_x(s)} times this record, the weakest scale tried")
-        elif math.isfinite(s):
-            parts.append(f"topples: already at {_x(s)} times this record")
+        fall = f"as recorded, it falls after {row.t_overturn_s:.1f} s" if math.isfinite(row.t_overturn_s) else ""
+        if math.isfinite(s):
+            least = ", the weakest scale tried" if note.startswith("overturns already") else ""
+            parts.append(f"topples: {'even' if least else 'already'} at {_x(s)} times this record{least}")
+            parts += [fall] if fall else []
         else:
-            parts.append("topples")
-        if math.isfinite(row.t_overturn_s):
-            parts.append(f"as recorded, it falls after {row.t_overturn_s:.1f} s")
+            parts.append(f"topples: {fall or 'it overturns'}")
     else:
         r = row.theta_max_over_alpha
         if what == UNDECIDED:
