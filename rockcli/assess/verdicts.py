@@ -167,7 +167,7 @@ def configuration_sentence(rows, *, isolated: bool = False) -> str:
         parts.append(f"survives {len(survived)} of {n} records" if undecided else
                      "survives both records" if n == 2 else f"survives all {n} records")
         peak = max(survived, key=lambda r: r.theta_max_over_alpha)
-        if peak.verdict == "no_uplift":
+        if all(r.verdict == "no_uplift" for r in survived):
             parts.append("it does not even lift off its base")
         else:
             parts.append(f"at most it rocks to {_pct(peak.theta_max_over_alpha)} of its overturning angle "
