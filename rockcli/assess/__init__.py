@@ -12,6 +12,10 @@ The library behind ``rockcli assess`` (no click, no pandas). Read it in this ord
     neighbourhood share, and :func:`map_chunks`, the seam for running the search elsewhere.
 :mod:`rockcli.assess.table`
     ``assess column``: every scene verdict-only, with its margin -> :class:`Assessment` rows.
+:mod:`rockcli.assess.verdicts`
+    The answer in plain words: one sentence per body and configuration (``survives: it rocks to
+    39 % of its overturning angle; a record 1.60 times stronger would topple it``), in words that
+    fit the body, with the stroke the isolation bearings must allow.
 :mod:`rockcli.assess.fragility`
     ``assess fragility``: each record's overturning capacity (smallest overturning scale x the
     record's intensity measure) and a lognormal fragility per column x configuration fitted by
@@ -29,10 +33,12 @@ from rockcli.assess.scenes import (DEFAULT_ISOLATION, EXCITATION_MODES, EXCITATI
                                    parse_column_spec, parse_configurations, resolve_excitations, table_ii_entries)
 from rockcli.assess.table import (ROW_FIELDS, Assessment, AssessmentRow, count_runs, history_runs, run_assessment,
                                   safe_name)
+from rockcli.assess.verdicts import body_noun, configuration_sentence, format_verdicts, scene_sentence
 
 __all__ = ["DEFAULT_ISOLATION", "EXCITATION_MODES", "EXCITATION_PULSE", "EXCITATION_RECORD", "IMS", "MARGIN_GRID",
            "MARGIN_RTOL", "NEIGHBOURHOOD", "ROW_FIELDS", "Assessment", "AssessmentRow", "Configuration", "Excitation",
-           "Fragility", "FragilityCurve", "FragilityRow", "Unavailable", "column_title", "count_runs",
+           "Fragility", "FragilityCurve", "FragilityRow", "Unavailable", "body_noun", "column_title",
+           "configuration_sentence", "count_runs", "format_verdicts", "scene_sentence",
            "custom_column", "find_overturn_scales", "fit_lognormal", "fragility_probability", "history_runs",
            "intensity_measure", "map_chunks", "overturn_scales_chunked", "overturn_shares", "parse_column_spec",
            "parse_configurations", "resolve_excitations", "run_assessment", "run_fragility", "run_local",

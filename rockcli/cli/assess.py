@@ -8,7 +8,8 @@ from functools import partial
 import click
 
 from rockcli.cli.errors import InputError, user_errors
-from rockcli.cli.options import check_outputs, custom_block_options, horizon_option, progress_bar
+from rockcli.cli.options import (check_outputs, command_line, custom_block_options, horizon_option, progress_bar,
+                                 report_option)
 
 
 @click.group(name="assess")
@@ -35,11 +36,15 @@ def _run_counted(total: int, run):
     return result
 
 
-def _echo_result(result, table: str, notes: str):
-    """Print a result's table and notes, and warn (stderr) about the records that could not be read or run."""
+def _echo_result(result, table: str, notes: str, plain: str | None = None):
+    """Print a result's table, notes and (when given) the answer in plain words, and warn (stderr) about the
+    records that could not be read or run."""
     click.echo(table)
     click.echo("")
     click.echo(notes)
+    if plain is not None:
+        click.echo("")
+        click.echo(plain)
     failed = result.failed
     if failed:
         click.echo(f"Warning: {len(failed)} of {len(result.excitations)} records could not be read or run; they "
@@ -101,23 +106,28 @@ def _columns(names, R, alpha, height, width, name):
               help="Rerun every scene at a 100x tighter rtol (5e-11; 2e-11 on sliding bearings) and flag any "
                    "verdict that changes; and on 2 copies of its motion moved by one ulp, and flag any scene "
                    "whose verdict changes or whose peak moves by more than 1e-3 alpha (ill-conditioned).")
+@report_option
 @horizon_option
 @user_errors
 def column(names, R, alpha, height, width, name, records, units, dt, excitation, isolation, margin, neighbourhood,
-           csv_path, hist_dir, plot_dir, check_tolerance, horizon):
+           csv_path, hist_dir, plot_dir, check_tolerance, report_path, horizon):
     """Do the columns NAME... survive the records, on a rigid base and on isolators?
 
     NAME is a preset (bassae, nemea) or a custom block NAME:R=<m>,alpha=<deg> or
     NAME:height=<m>,width=<m>; --R/--alpha or --height/--width add one more block (--name).
     Prints, per column, a table records x configurations (survives with peak |theta|/alpha,
     or OVERTURNS; xS is the smallest scale factor of the record that overturns) and how many
-    records each configuration survives.
+    records each configuration survives, then the answer in plain words: one sentence per body and
+    configuration, with the stroke the isolation bearings must allow. --report writes all of it,
+    with figures and the records' provenance, as one self-contained HTML file.
 
     \b
     Examples:
       ROCKCLI_RECORDS=../shared/records rockcli assess column bassae nemea --csv table.csv
       rockcli assess column statue:R=1.2,alpha=14 --records kobe-1995-takarazuka-000 --isolation none
       rockcli assess column nemea --records RSN983_NORTHR_JGB022.AT2 --isolation linear:Tb=3 --plot figs
+      rockcli assess column statue:R=0.93,alpha=15.5 --records RSN1119_KOBE_TAZ000.AT2 --isolation none \\
+          --isolation linear:Tb=2.5 --report statue.html
     """
     from rockcli.assess import count_runs, parse_configurations, resolve_excitations, run_assessment
 
@@ -126,7 +136,8 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
     validate_options(horizon=horizon)
     columns = _columns(names, R, alpha, height, width, name)
     configurations = parse_configurations(isolation)
-    check_outputs((csv_path, "--csv", False), folders=((hist_dir, "--histories"), (plot_dir, "--plot")))
+    check_outputs((csv_path, "--csv", False), (report_path, "--report", False),
+                  folders=((hist_dir, "--histories"), (plot_dir, "--plot")))
     excitations, unavailable = resolve_excitations(records, excitation, units=units, dt=dt)
     if not excitations:
         raise InputError("no record to run: " + "; ".join(f"{u.label}: {u.reason}" for u in unavailable))
@@ -138,7 +149,9 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
 
     from rockcli.report.tables import format_matrix, format_notes
 
-    _echo_result(result, format_matrix(result), format_notes(result))
+    from rockcli.assess.verdicts import format_verdicts
+
+    _echo_result(result, format_matrix(result), format_notes(result), format_verdicts(result))
     failed_runs = [r for r in result.rows if r.error and not any(x.label == r.record for x in result.failed)]
     if failed_runs:
         r = failed_runs[0]
@@ -153,6 +166,12 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
         click.echo(f"wrote {csv_path} ({len(result.rows)} rows)")
     if hist_dir or plot_dir:
         _write_histories(result, hist_dir, plot_dir)
+    if report_path:
+        from rockcli.report.html import write_report
+        from rockcli.report.html_pages import assessment_report
+
+        write_report(report_path, assessment_report(result, check=chk, command=command_line()))
+        click.echo(f"wrote {report_path} (HTML report)")
 
 
 def _echo_tolerance_check(result):
@@ -254,10 +273,11 @@ def _write_histories(result, hist_dir, plot_dir):
 @click.option("--scheduler", default=None, metavar="tcp://HOST:PORT|local",
               help="Run the margin searches on a Dask cluster (pip install -e \".[dask]\"): the address of an "
                    "existing scheduler, or 'local' for a LocalCluster on this machine. Same results.")
+@report_option
 @horizon_option
 @user_errors
 def fragility(names, R, alpha, height, width, name, records, units, dt, isolation, im, n_boot, seed, csv_path,
-              plot_path, scheduler, horizon):
+              plot_path, scheduler, report_path, horizon):
     """Fragility curves of overturning: P(the column overturns | IM) from a suite of records.
 
     Each record is scaled (0.1x..4x, then bisection) to the smallest factor that overturns the
@@ -281,7 +301,7 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
     if not records:
         raise InputError("give the record suite with --records DIR|ID|FILE (repeatable)")
     configurations = parse_configurations(isolation)
-    check_outputs((csv_path, "--csv", False), (plot_path, "--plot", True))
+    check_outputs((csv_path, "--csv", False), (plot_path, "--plot", True), (report_path, "--report", False))
     if scheduler is not None:
         from rockcli.distributed import check_scheduler
 
@@ -312,3 +332,9 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
 
         plot_fragility(result, plot_path)
         click.echo(f"wrote {plot_path}")
+    if report_path:
+        from rockcli.report.html import write_report
+        from rockcli.report.html_pages import fragility_report
+
+        write_report(report_path, fragility_report(result, command=command_line()))
+        click.echo(f"wrote {report_path} (HTML report)")

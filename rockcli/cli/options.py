@@ -130,3 +130,32 @@ def progress_bar(total: int, label: str = "runs", *, eta: bool = True):
     if not sys.stderr.isatty() or total <= 0:
         return contextlib.nullcontext(None)
     return click.progressbar(length=total, label=label, file=sys.stderr, show_eta=eta)
+
+
+def report_option(func):
+    """``--report FILE.html``: the self-contained HTML report (:mod:`rockcli.report.html`)."""
+    return click.option("--report", "report_path", type=click.Path(), default=None, metavar="FILE.html",
+                        help="Write a self-contained HTML report (figures embedded, no network needed) for "
+                             "readers who are not engineers: the question and the answer, the body, the "
+                             "records with their SHA-256, the verdicts, figures, checks, assumptions and the "
+                             "command to reproduce it.")(func)
+
+
+def command_line() -> str:
+    """The command line as typed (``rockcli ...``), for the report's "how to reproduce it".
+
+    When the command was called from Python (``CliRunner``, a notebook), the command path and the
+    parameters that were given stand in for it.
+    """
+    import shlex
+    import sys
+    from pathlib import Path
+
+    argv0 = Path(sys.argv[0] if sys.argv else "")
+    if argv0.name == "rockcli" or (argv0.name == "__main__.py" and argv0.parent.name == "rockcli"):
+        return shlex.join(["rockcli", *sys.argv[1:]])
+    ctx = click.get_current_context(silent=True)
+    if ctx is None:
+        return "rockcli"
+    given = ", ".join(f"{k}={v!r}" for k, v in ctx.params.items() if v not in (None, (), False))
+    return f"{ctx.command_path} (called from Python with {given})"

@@ -5,8 +5,8 @@ from __future__ import annotations
 import click
 
 from rockcli.cli.errors import user_errors
-from rockcli.cli.options import (block_from_options, block_options, check_outputs, horizon_option, record_kwargs,
-                                 record_options)
+from rockcli.cli.options import (block_from_options, block_options, check_outputs, command_line, horizon_option,
+                                 record_kwargs, record_options, report_option)
 
 
 @click.command(context_settings={"show_default": True})
@@ -41,9 +41,10 @@ from rockcli.cli.options import (block_from_options, block_options, check_output
 @click.option("--plot", "plot_path", type=click.Path(), default=None,
               help="Draw ground acceleration, theta/alpha, theta_dot/p (and base displacement u(t); on sliding "
                    "and lead-rubber bearings also their force-displacement loop) to an image.")
+@report_option
 @user_errors
 def simulate(column_name, R, alpha, height, width, name, isolation, record_source, units, dt, fmt, column,
-             pulse, scale, flip, rtol, tail, horizon, check, as_json, history_path, plot_path):
+             pulse, scale, flip, rtol, tail, horizon, check, as_json, history_path, plot_path, report_path):
     """Rocking response of one block to one ground motion, on a rigid or an isolated base.
 
     \b
@@ -59,7 +60,7 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     from rockcli.models import parse_isolation_spec
     from rockcli.units import G
 
-    check_outputs((history_path, "--history", False), (plot_path, "--plot", True))
+    check_outputs((history_path, "--history", False), (plot_path, "--plot", True), (report_path, "--report", False))
     block = block_from_options(column_name, R, alpha, height, width, name)
     foundation = parse_isolation_spec(isolation)
     if (record_source is None) == (pulse is None):
@@ -87,7 +88,7 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     from rockcli.solve import simulate as run
 
     res = run(block, foundation, excitation, rtol=rtol, tail=tail, horizon=horizon,
-              history=bool(history_path or plot_path))
+              history=bool(history_path or plot_path or report_path))
     if res.status < 0:  # a genuine numerical failure: no result is printed or written as if it were valid
         raise click.ClickException(
             f"the integrator stopped at its safety cap of {res.steps + res.rejected_steps:,} steps at "
@@ -101,6 +102,12 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
         from rockcli.report.response import plot_response
 
         plot_response(res, block, foundation, f"{block.name} on {foundation.label}, {label}", plot_path)
+    if report_path:
+        from rockcli.report.html import write_report
+        from rockcli.report.html_pages import simulate_report
+
+        write_report(report_path, simulate_report(block, foundation, excitation, res, label=label, checked=checked,
+                                                  command=command_line()))
 
     if as_json:
         out = {"block": block.name, "R_m": block.R, "alpha_deg": block.alpha_deg, "p_radps": block.p,

@@ -85,7 +85,7 @@ def format_matrix(assessment) -> str:
 def format_notes(assessment) -> str:
     """Legend and what was idealised, not available or failed."""
     confs = assessment.configurations
-    lines = ["survives r: the column rocks and survives, r = peak |theta|/alpha; no uplift: it never leaves its "
+    lines = ["survives r: the body rocks and survives, r = peak |theta|/alpha; no uplift: it never leaves its "
              "base; OVERTURNS: |theta| reaches 90 deg."]
     if assessment.unproven:
         from rockcli.solve import DEFAULT_HORIZON
@@ -96,7 +96,7 @@ def format_notes(assessment) -> str:
                      "as surviving (very slender blocks on sliding bearings, see the README); --horizon "
                      "(up to 3600 s) follows it longer.")
     if assessment.margin:
-        lines.append("xS: smallest scale factor of the record that overturns the column in that configuration "
+        lines.append("xS: smallest scale factor of the record that overturns the body in that configuration "
                      "(S > 1: survival margin; S < 1 on an overturn: it overturns already at S times the record; "
                      "S < 1 on a survivor: a weaker record overturns it, 1x sits on a safe island; x>4: nothing "
                      "up to 4x overturns). Found on a 0.1x..4x grid (10 % steps) refined to 1 %; where the "
@@ -107,7 +107,7 @@ def format_notes(assessment) -> str:
     iso = [c for c in confs if c.label != "none"]
     if iso:
         lines.append("Configurations: " + "; ".join(f"{c.header} = {c.label}" for c in iso)
-                     + " (gamma = m/(m+m_b), the mass ratio of column to column + isolated base).")
+                     + " (gamma = m/(m+m_b), the mass ratio of body to body + isolated base).")
     if assessment.idealised:
         lines.append("Idealised (record file not found; its catalogued Ricker pulse was run instead): "
                      + ", ".join(assessment.idealised) + ". A single pulse lacks the record's other cycles: "

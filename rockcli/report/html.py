@@ -1,0 +1,299 @@
+"""Self-contained HTML reports: one file a conservator can hand to a committee.
+
+The page is built from plain strings (the standard library's :func:`html.escape`); the figures are
+PNG images embedded as base64 ``data:`` URIs and the style sheet is inline, so the file refers to no
+other file and to no network resource: it opens offline, anywhere, and can be mailed as it is.
+
+Every report has the same sections, in this order (their ``id`` is in :data:`SECTIONS`): the
+question and the answer in one sentence per body and configuration (the first screen), the body,
+the configurations, the records with their provenance (file, format, SHA-256, units as stated,
+PGA, PGV, fitted pulse), the verdicts with their margins, the figures, how sure the numbers are,
+the assumptions and limits, and how to reproduce it (the command line and the versions).
+
+This module holds the page and the sections every report shares; :mod:`rockcli.report.html_pages`
+fills them for ``assess column``, ``assess fragility`` and ``simulate``, and
+:mod:`rockcli.report.html_figures` draws the figures.
+"""
+
+from __future__ import annotations
+
+import base64
+import hashlib
+import html
+import math
+import os
+import platform
+from datetime import datetime, timezone
+from pathlib import Path
+
+from rockcli.report.files import write_text
+
+#: Section ids and titles, in the order of the page.
+SECTIONS = (("answer", "The answer"), ("body", "The body"), ("configurations", "How it stands"),
+            ("records", "The ground motions"), ("verdicts", "Verdicts and margins"), ("figures", "Figures"),
+            ("certainty", "How sure is this?"), ("assumptions", "Assumptions and limits"),
+            ("reproduce", "How to reproduce it"))
+
+CSS = """
+body{font-family:-apple-system,"Segoe UI",Roboto,"DejaVu Sans",Arial,sans-serif;margin:0;color:#1d1d1d;
+background:#fafafa;line-height:1.45}
+main{max-width:1180px;margin:0 auto;padding:18px 28px 60px;background:#fff}
+h1{font-size:1.7em;margin:.2em 0 .1em}
+h2{font-size:1.25em;border-bottom:2px solid #ddd;padding-bottom:.2em;margin-top:1.8em}
+h3{font-size:1.05em;margin:1.2em 0 .3em}
+.question{font-size:1.2em;margin:.4em 0 .8em}
+.short{font-size:1.1em;font-weight:600;margin:.5em 0}
+.subtitle{color:#555;margin:0 0 .6em}
+.card{border-left:8px solid #777;background:#f4f4f4;padding:.55em .9em;margin:.45em 0;font-size:1.08em}
+.card .word{font-weight:700;text-transform:uppercase;letter-spacing:.03em}
+.card .where{font-weight:600}
+.topples{border-color:#c0392b;background:#fbeeee}.topples .word{color:#c0392b}
+.survives{border-color:#2e7d32;background:#edf6ee}.survives .word{color:#2e7d32}
+.undecided{border-color:#e69500;background:#fdf5e6}.undecided .word{color:#b37400}
+.w-topples{color:#c0392b}.w-survives{color:#2e7d32}.w-undecided{color:#b37400}
+.keyfacts{display:flex;flex-wrap:wrap;gap:10px;margin:.8em 0}
+.fact{border:1px solid #ddd;border-radius:6px;padding:.4em .8em;background:#fff}
+.fact b{font-size:1.2em}
+nav{font-size:.92em;color:#555;margin:1em 0}nav a{color:#1f5fa8;margin-right:.8em}
+table{border-collapse:collapse;margin:.5em 0;font-size:.9em}
+th,td{border:1px solid #ddd;padding:.25em .55em;text-align:left;vertical-align:top}
+th{background:#f0f0f0}td.num{text-align:right;white-space:nowrap;font-variant-numeric:tabular-nums}
+.figrow{display:flex;flex-wrap:wrap;gap:12px}.figrow figure{flex:1 1 480px;margin:0}
+figure{margin:.8em 0}figure img{max-width:100%;border:1px solid #eee}
+figcaption{font-size:.88em;color:#444}
+code.hash{font-size:.78em;word-break:break-all;display:inline-block;max-width:15em}
+code,pre{font-family:"DejaVu Sans Mono",Consolas,monospace;font-size:.88em}
+pre{background:#f4f4f4;padding:.6em;white-space:pre-wrap;word-break:break-all}
+.note{color:#555;font-size:.92em}
+"""
+
+
+def esc(text) -> str:
+    """``text`` escaped for HTML (quotes too)."""
+    return html.escape(str(text), quote=True)
+
+
+def num(x, spec: str = ".3g", unit: str = "") -> str:
+    """A number for a table cell: ``-`` when missing or not finite."""
+    try:
+        x = float(x)
+    except (TypeError, ValueError):
+        return "-"
+    if not math.isfinite(x):
+        return "-"
+    return format(x, spec) + (f" {unit}" if unit else "")
+
+
+def table(head, rows, numeric=()) -> str:
+    """An HTML table; ``rows`` hold already escaped cells; columns in ``numeric`` align right; no header
+    row when ``head`` is None (a two-column list of names and values)."""
+    out = ["<table>" + ("<thead><tr>" + "".join(f"<th>{h}</th>" for h in head) + "</tr></thead>" if head else "")
+           + "<tbody>"]
+    for r in rows:
+        out.append("<tr>" + "".join(f'<td class="num">{c}</td>' if i in numeric else f"<td>{c}</td>"
+                                    for i, c in enumerate(r)) + "</tr>")
+    out.append("</tbody></table>")
+    return "\n".join(out)
+
+
+def figure(png: bytes | None, caption: str) -> str:
+    """A ``<figure>`` with the PNG embedded as a base64 ``data:`` URI (empty when ``png`` is None)."""
+    if not png:
+        return ""
+    data = base64.b64encode(png).decode("ascii")
+    return (f'<figure><img alt="{esc(caption)}" src="data:image/png;base64,{data}">'
+            f"<figcaption>{esc(caption)}</figcaption></figure>")
+
+
+def card(word: str, where: str, sentence: str) -> str:
+    """One answer: the configuration, the outcome word and the sentence (escaped here)."""
+    css = word if word in ("topples", "survives", "undecided") else ""
+    rest = sentence[len(word) + 1:].strip() if sentence.startswith((word + ":", word + " ")) else sentence
+    return (f'<div class="card {css}"><span class="where">{esc(where[:1].upper() + where[1:])}</span>: '
+            f'<span class="word">{esc(word)}</span> &mdash; {esc(rest)}.</div>')
+
+
+def plural(n: int, word: str) -> str:
+    """``1 scene``, ``2 scenes``."""
+    return f"{n} {word}" + ("" if n == 1 else "s")
+
+
+def sha256_of(path) -> str:
+    """SHA-256 of a file's bytes, in hex (``-`` when it cannot be read)."""
+    h = hashlib.sha256()
+    try:
+        with open(path, "rb") as fh:
+            for chunk in iter(lambda: fh.read(1 << 20), b""):
+                h.update(chunk)
+    except OSError:
+        return "-"
+    return h.hexdigest()
+
+
+def provenance(excitation) -> dict:
+    """Where a ground motion came from and what it is: for a record read from a file, its name,
+    format, SHA-256, units as stated (and by whom), time step, samples, PGA [g], PGV [m/s] (trapezoid
+    rule from rest) and fitted Ricker pulse; for an analytic or catalogued pulse, its parameters."""
+    motion = getattr(excitation, "motion", excitation)
+    label = getattr(excitation, "label", getattr(motion, "name", ""))
+    if motion is None:
+        return {"label": label, "error": getattr(excitation, "error", "") or "could not be read"}
+    if not hasattr(motion, "acc"):
+        from rockcli.units import G
+
+        return {"label": label, "kind": "pulse", "shape": motion.shape, "a_p_g": motion.a_p / G,
+                "T_p_s": motion.T_p, "source": getattr(excitation, "source", "analytic pulse")}
+    from rockcli.records.motion import calc_peaks
+
+    meta = dict(motion.meta)
+    path = meta.get("path") or getattr(excitation, "source", "")
+    out = {"label": label, "kind": "record", "file": Path(path).name if path else "-", "path": str(path or "-"),
+           "format": meta.get("format", "-"), "sha256": sha256_of(path) if path else "-",
+           "units": meta.get("units", "-"), "units_source": meta.get("units_source", ""),
+           "dt": motion.dt, "npts": motion.npts, "duration": motion.duration, "pga_g": motion.pga_g,
+           "pgv_mps": calc_peaks(motion).pgv_mps, "scale": meta.get("scale", 1.0),
+           "event": meta.get("event", ""), "station": meta.get("station", ""),
+           "component": meta.get("component", "")}
+    try:
+        from rockcli.pulses_fit import fit_pulse
+
+        fit = fit_pulse(motion)
+        out["pulse"] = (f"{fit.shape}, a_p = {fit.a_p_g:+.3f} g, T_p = {fit.T_p_s:.2f} s at t = {fit.t0_s:.2f} s "
+                        f"({100 * fit.energy_fraction:.0f} % of the record's energy)")
+    except Exception as exc:  # a record no pulse fits still gets its report
+        out["pulse"] = f"no pulse fitted ({exc})"
+    return out
+
+
+def records_section(excitations) -> str:
+    """The records with their provenance: one row each (a pulse: its parameters)."""
+    rows, pulses, bad = [], [], []
+    for x in excitations:
+        p = provenance(x)
+        if "error" in p:
+            bad.append(f"<li>{esc(p['label'])}: could not be used: {esc(p['error'])}</li>")
+        elif p["kind"] == "pulse":
+            pulses.append((esc(p["label"]), esc(p["shape"]), num(p["a_p_g"], "+.4f", "g"), num(p["T_p_s"], ".4f", "s"),
+                           esc(p["source"])))
+        else:
+            what = ", ".join(v for v in (p["event"], p["station"], p["component"] and f"component {p['component']}")
+                             if v)
+            stated = {"file": "as stated in the file", "caller": "as given on the command line"}.get(
+                p["units_source"], p["units_source"])
+            scaled = f"<br>scaled by {p['scale']:g} (PGA and PGV of the scaled motion)" if p["scale"] != 1.0 else ""
+            rows.append((f"<b>{esc(p['label'])}</b><br>{esc(what or '-')}", f"{esc(p['file'])}<br>{esc(p['format'])}",
+                         esc(p["units"]) + (f"<br><span class='note'>{esc(stated)}</span>" if stated else ""),
+                         f"{p['npts']} at {p['dt']:g} s<br>({p['duration']:.2f} s)" + scaled,
+                         num(p["pga_g"], ".3f", "g"), num(p["pgv_mps"], ".3f", "m/s"), esc(p["pulse"]),
+                         f"<code class='hash'>{esc(p['sha256'])}</code>"))
+    parts = ["<p>Each ground motion is used as it is in its file (no filtering, no baseline correction), scaled "
+             "only where said. PGA: peak ground acceleration; PGV: peak ground velocity (integrated from rest); "
+             "the fitted pulse is the Ricker wavelet that best matches the record's strongest pulse. The "
+             "SHA-256 fingerprint identifies the exact file: the same file gives the same fingerprint anywhere."
+             "</p>"]
+    if rows:
+        parts.append(table(("record", "file, format", "units", "samples", "PGA", "PGV", "fitted pulse", "SHA-256"),
+                           rows, numeric=(4, 5)))
+    if pulses:
+        parts.append("<p>Idealised pulses (not recorded ground motions):</p>"
+                     + table(("name", "shape", "amplitude a_p", "period T_p", "source"), pulses, numeric=(2, 3)))
+    if bad:
+        parts.append("<ul>" + "".join(bad) + "</ul>")
+    return "\n".join(parts)
+
+
+def body_section(blocks) -> str:
+    """Dimensions, R, alpha and p of every body, with what they mean."""
+    from rockcli.assess.verdicts import body_noun
+    from rockcli.units import G
+
+    rows = [(esc(b.name), esc(body_noun(b)), num(b.height, ".3f", "m"), num(b.width, ".3f", "m"),
+             num(b.h / b.b, ".2f"), num(b.R, ".3f", "m"), num(b.alpha_deg, ".2f", "deg"), num(b.p, ".3f", "rad/s"),
+             num(b.uplift_acceleration / G, ".3f", "g"), num(b.housner_restitution, ".3f"))
+            for b in blocks]
+    head = ("name", "called", "height", "width", "height / width", "R", "alpha", "p", "lifts off at", "e")
+    return (table(head, rows, numeric=range(2, 10)) +
+            "<p class='note'>The body is taken as a rigid block. R: distance from its centre of mass to a corner "
+            "of its base; alpha: its slenderness, atan(width/height) (the angle it must tilt to fall); p = "
+            "sqrt(3g/4R): its frequency parameter (larger bodies rock more slowly and are harder to topple); "
+            "it lifts off when the ground acceleration exceeds g tan(alpha); e: the share of rocking velocity "
+            "kept at each impact (Housner's rule).</p>")
+
+
+def configurations_section(configurations) -> str:
+    """Every configuration with all its parameters."""
+    from rockcli.assess.verdicts import configuration_words
+
+    rows = []
+    for c in configurations:
+        f = c.foundation
+        params = {k: v for k, v in vars(f).items() if isinstance(v, (int, float))}
+        text = ", ".join(f"{k} = {v:g}" for k, v in params.items()) or "-"
+        rows.append((esc(c.header), esc(configuration_words(c)), f"<code>{esc(f.label)}</code>", esc(text)))
+    return (table(("short name", "in words", "specification", "parameters"), rows) +
+            "<p class='note'>Tb: period of the isolated base [s]; xi: damping ratio of linear bearings; mu: "
+            "friction coefficient of sliding bearings; Q: strength of lead-rubber bearings over the weight; uy: "
+            "yield displacement [m]; gamma = m/(m + m_b): the mass of the body over that of body and isolated "
+            "base. The bearings are assumed to allow any displacement (no stops).</p>")
+
+
+ASSUMPTIONS = (
+    "The body is rigid: it does not bend, crack or break, and its base does not slide or bounce; it rocks in "
+    "one vertical plane about the two edges of its base (the model of Housner 1963 and of Vassiliou & Makris "
+    "2012).",
+    "At each impact it keeps a share e of its rocking velocity given by Housner's rule from its slenderness; a "
+    "real base (mortar, a plinth, a soft floor) may dissipate more or less energy.",
+    "Only the horizontal ground motion in the plane of rocking is applied, as given in its file: the vertical "
+    "motion and the other horizontal direction are ignored.",
+    "A record is one sample of what an earthquake can do: another station, another event or the other "
+    "component can be much stronger or weaker at the same PGA. Margins are scale factors of these records "
+    "only; a design decision needs a suite of records chosen for the site.",
+    "Margins are found on a grid of scale factors 0.1 to 4 about 10 % apart, refined to 1 %: narrow "
+    "windows of scale factors that topple the body between two surviving ones can be missed.",
+    "On isolation, the bearings follow their idealised laws (linear spring and dashpot; or friction with a "
+    "smooth Bouc-Wen transition) and move as far as needed: the displacement shown is the demand the bearings "
+    "and the space around the base must allow.",
+    "'Survives' means it does not overturn: impacts can still chip edges, and a body that rocks close to its "
+    "overturning angle is not safe in any practical sense.",
+)
+
+
+def assumptions_section(extra=()) -> str:
+    return "<ul>" + "".join(f"<li>{esc(t)}</li>" for t in (*ASSUMPTIONS, *extra)) + "</ul>"
+
+
+def reproduce_section(command: str) -> str:
+    """The exact command line and the versions of rockcli and its main libraries."""
+    import rockcli
+
+    versions = [("rockcli", rockcli.__version__), ("Python", platform.python_version())]
+    for mod in ("numpy", "scipy", "numba"):
+        try:
+            versions.append((mod, __import__(mod).__version__))
+        except Exception:  # pragma: no cover - every supported install has them
+            pass
+    when = datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    return (f"<p>Run this command, with the same record files (check their SHA-256 above), to get the same "
+            f"numbers:</p><pre>{esc(command)}</pre>"
+            + table(("software", "version"), [(esc(k), esc(v)) for k, v in versions])
+            + f"<p class='note'>Written {esc(when)} on {esc(platform.system())} {esc(platform.machine())}.</p>")
+
+
+def page(title: str, subtitle: str, sections: dict) -> str:
+    """The whole page: ``sections`` maps every id of :data:`SECTIONS` to its HTML body."""
+    nav = " ".join(f'<a href="#{sid}">{esc(name)}</a>' for sid, name in SECTIONS[1:])
+    body = []
+    for sid, name in SECTIONS:
+        head = f"<h1>{esc(title)}</h1><p class='subtitle'>{esc(subtitle)}</p>" if sid == "answer" else \
+            f"<h2>{esc(name)}</h2>"
+        body.append(f'<section id="{sid}">{head}\n{sections[sid]}\n' + (f"<nav>Contents: {nav}</nav>"
+                                                                        if sid == "answer" else "") + "</section>")
+    return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+            "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
+            f"<title>{esc(title)}</title><style>{CSS}</style></head>\n<body><main>\n"
+            + "\n".join(body) + "\n</main></body></html>\n")
+
+
+def write_report(path: str | os.PathLike, text: str) -> Path:
+    """Write the report atomically (a complete file or none)."""
+    return write_text(path, text, "--report")

@@ -1,0 +1,260 @@
+"""The answer in plain words (rockcli.assess.verdicts) and the self-contained HTML report (--report).
+
+The report is parsed with the standard library's html.parser: every section is there, in order; the
+record's SHA-256 is that of its file; the answer on the first screen says what the CSV says; and no
+resource is external (every image a data: URI, every link an in-page anchor, no script, no @import,
+no url()).
+"""
+
+from __future__ import annotations
+
+import base64
+import hashlib
+import math
+import re
+from html.parser import HTMLParser
+
+import pytest
+from click.testing import CliRunner
+from conftest import write_pulse_record
+
+from rockcli.assess import AssessmentRow
+from rockcli.assess.verdicts import (SURVIVES, TOPPLES, UNDECIDED, body_noun, configuration_sentence, outcome,
+                                     scene_sentence)
+from rockcli.cli import main
+from rockcli.models import Block, column
+from rockcli.report.html import SECTIONS
+from rockcli.report.tables import read_assessment_csv
+
+
+# --------------------------------------------------------------------------------------------------
+# plain words
+# --------------------------------------------------------------------------------------------------
+
+def _row(**kw) -> AssessmentRow:
+    base = dict(column="statue", R_m=0.93, alpha_deg=15.5, height_m=1.79, width_m=0.5, record="rec",
+                excitation="record", source="", pga_g=0.5, a_p_g=math.nan, T_p_s=math.nan, isolation="none",
+                configuration="none", Tb_s=math.nan, xi=math.nan, mu=math.nan, gamma=0.0, verdict="rocked",
+                overturned=False, proven=True)
+    base.update(kw)
+    return AssessmentRow(**base)
+
+
+def test_body_noun_fits_the_body():
+    assert body_noun(column("bassae")) == "the column"
+    assert body_noun(Block.from_degrees(0.93, 15.5, "statue")) == "the statue"
+    assert body_noun(Block.from_degrees(0.93, 15.5, "marble_vase")) == "the marble vase"
+    for unnamed in ("custom", "R0.93m-alpha15.5deg", "1.8x0.5m"):
+        assert body_noun(Block.from_degrees(0.93, 15.5, unnamed)) == "the block"
+
+
+@pytest.mark.parametrize("peak, scale", [(0.39, 1.6), (0.713, 2.345), (0.05, 1.04)])
+def test_survivor_sentence_states_peak_and_margin(peak, scale):
+    s = scene_sentence(_row(theta_max_over_alpha=peak, overturn_scale=scale, overturn_scale_survives=scale / 1.01))
+    assert s.startswith("survives: it rocks to ")
+    assert f"{100 * peak:.0f} % of its overturning angle" in s
+    assert f"a record {scale:.2f} times stronger would topple it" in s
+
+
+def test_topples_sentence_states_the_fraction_of_the_record():
+    s = scene_sentence(_row(verdict="overturned", overturned=True, theta_max_over_alpha=math.pi / 2 / 0.27,
+                            t_overturn_s=6.76, overturn_scale=0.73, overturn_scale_survives=0.72))
+    assert s.startswith("topples: already at 0.73 times this record") and "after 6.8 s" in s
+    no_margin = scene_sentence(_row(verdict="overturned", overturned=True, t_overturn_s=3.24))
+    assert no_margin == "topples: as recorded, it falls after 3.2 s"
+
+
+def test_safe_island_no_uplift_undecided_and_stroke():
+    island = scene_sentence(_row(theta_max_over_alpha=0.6, overturn_scale=0.8, overturn_scale_survives=0.79))
+    assert island.startswith("survives") and "weaker record, 0.80 times this one, topples it" in island
+    none = scene_sentence(_row(verdict="no_uplift", theta_max_over_alpha=0.0, margin_note="no overturning up to 4x"))
+    assert "does not even lift off" in none and "not even a record 4 times stronger" in none
+    row = _row(proven=False, theta_max_over_alpha=0.55)
+    assert outcome(row) == UNDECIDED and scene_sentence(row).startswith("undecided") and "55 %" in scene_sentence(row)
+    iso = _row(configuration="Tb=2.5s", theta_max_over_alpha=0.2, base_disp_max_m=0.3369)
+    assert "the base moves up to 0.34 m" in scene_sentence(iso, isolated=True)
+    assert "base moves" not in scene_sentence(iso, isolated=False)
+
+
+def test_configuration_sentence_over_several_records():
+    rows = [_row(record="a", theta_max_over_alpha=0.3, overturn_scale=2.0, base_disp_max_m=0.2),
+            _row(record="b", verdict="overturned", overturned=True, overturn_scale=0.7, base_disp_max_m=0.45),
+            _row(record="c", theta_max_over_alpha=0.5, overturn_scale=1.3, base_disp_max_m=0.31),
+            _row(record="d", verdict="overturned", overturned=True, overturn_scale=0.5, base_disp_max_m=0.1)]
+    s = configuration_sentence(rows, isolated=True)
+    # the records that topple it, smallest factor first; the closest call among the survivors; the largest stroke
+    assert s.startswith("topples under 2 of 4 records (d already at 0.50 times, b already at 0.70 times)")
+    assert "the closest call is c: 1.30 times stronger" in s and "up to 0.45 m (b;" in s
+    survivors = configuration_sentence([rows[0], rows[2]])
+    assert survivors.startswith("survives both records") and "50 % of its overturning angle (c)" in survivors
+
+
+# --------------------------------------------------------------------------------------------------
+# the HTML report
+# --------------------------------------------------------------------------------------------------
+
+class _Page(HTMLParser):
+    """Collects section ids, every tag and its attributes, the text per section and the style sheets."""
+
+    def __init__(self):
+        super().__init__()
+        self.sections, self.tags, self.styles, self.text = [], [], [], {}
+        self._in_style, self._section = False, None
+        self.cards = []  # (css classes, text)
+        self._card = None
+
+    def handle_starttag(self, tag, attrs):
+        a = dict(attrs)
+        self.tags.append((tag, a))
+        if tag == "section":
+            self._section = a.get("id")
+            self.sections.append(self._section)
+            self.text[self._section] = ""
+        if tag == "style":
+            self._in_style = True
+        if tag == "div" and "card" in (a.get("class") or "").split():
+            self._card = [a["class"], ""]
+
+    def handle_endtag(self, tag):
+        if tag == "style":
+            self._in_style = False
+        if tag == "div" and self._card is not None:
+            self.cards.append(tuple(self._card))
+            self._card = None
+
+    def handle_data(self, data):
+        if self._in_style:
+            self.styles.append(data)
+        elif self._section:
+            self.text[self._section] += data
+        if self._card is not None:
+            self._card[1] += data
+
+
+def parse(path) -> _Page:
+    p = _Page()
+    p.feed(path.read_text(encoding="utf-8"))
+    return p
+
+
+def assert_self_contained(page: _Page, raw: str):
+    """No resource outside the file: images are data: URIs, links are anchors, no scripts or imports."""
+    for tag, attrs in page.tags:
+        assert tag not in ("script", "link", "iframe", "object", "embed", "base"), tag
+        for name in ("src", "href", "srcset", "action", "poster", "data"):
+            value = attrs.get(name)
+            if value is None:
+                continue
+            if name == "href":
+                assert value.startswith("#"), value
+            else:
+                assert value.startswith("data:image/png;base64,"), value[:60]
+                png = base64.b64decode(value.split(",", 1)[1], validate=True)
+                assert png.startswith(b"\x89PNG\r\n\x1a\n")
+    css = "".join(page.styles)
+    assert "@import" not in css and "url(" not in css
+    assert not re.search(r"""(src|href)\s*=\s*["']?\s*(https?:)?//""", raw, re.I)
+
+
+def test_assess_column_report(find_record, tmp_path):
+    """The acceptance scene: a statue under Kobe, on the ground and on linear bearings."""
+    rec = find_record("RSN1119_KOBE_TAZ000.AT2")
+    html_path, csv_path = tmp_path / "statue.html", tmp_path / "statue.csv"
+    res = CliRunner().invoke(main, ["assess", "column", "statue:R=0.93,alpha=15.5", "--records", str(rec),
+                                    "--isolation", "none", "--isolation", "linear:Tb=2.5", "--csv", str(csv_path),
+                                    "--report", str(html_path)])
+    assert res.exit_code == 0, res.output
+    raw = html_path.read_text(encoding="utf-8")
+    page = parse(html_path)
+    assert page.sections == [sid for sid, _ in SECTIONS]
+    assert_self_contained(page, raw)
+    assert not list(tmp_path.glob(".*tmp*"))  # written atomically: no temporary file left
+
+    # provenance: the SHA-256 of the very file, its format, units and PGA
+    digest = hashlib.sha256(rec.read_bytes()).hexdigest()
+    records = page.text["records"]
+    assert digest in records and rec.name in records and "PEER_AT2" in records
+
+    # the first screen answers the question, one card per configuration, as the CSV says
+    df = read_assessment_csv(csv_path)
+    answer = page.text["answer"]
+    assert "Does the statue topple" in answer
+    assert len(page.cards) == len(df) == 2
+    for (classes, text), row in zip(page.cards, df.itertuples()):
+        word = TOPPLES if row.overturned else SURVIVES
+        assert word in classes.split() and word.upper() in text.upper()
+        if math.isfinite(row.overturn_scale):
+            assert f"{row.overturn_scale:.2f} times" in text
+        if row.configuration != "none":
+            assert f"{row.base_disp_max_m:.2f} m" in text  # the bearings' stroke
+    # the figures: both responses (the critical record on each configuration), margins, stroke
+    images = [a for t, a in page.tags if t == "img"]
+    assert len(images) >= 4
+    alts = " ".join(a["alt"] for a in images)
+    assert "standing on the ground" in alts and "linear (rubber) bearings" in alts
+    assert "assess column" in page.text["reproduce"]
+
+    # the terminal: the answer in plain words after the table, readable without the legend
+    out = res.output
+    plain = out[out.index("In plain words:"):]
+    assert "The statue, 1.79 m tall" in plain
+    for row in df.itertuples():
+        word = "topples" if row.overturned else "survives"
+        where = "standing on the ground" if row.configuration == "none" else "on linear (rubber) bearings, Tb=2.5s"
+        assert f"{where}: {word}" in plain
+
+
+def test_simulate_report_with_pulse(tmp_path):
+    html_path = tmp_path / "one.html"
+    res = CliRunner().invoke(main, ["simulate", "--height", "2", "--width", "0.5", "--name", "cabinet", "--pulse",
+                                    "sine:ap=0.5,Tp=1", "--isolation", "linear:Tb=2", "--json", "--report",
+                                    str(html_path)])
+    assert res.exit_code == 0, res.output
+    import json
+
+    out = json.loads(res.output)  # --json output stays pure JSON
+    page = parse(html_path)
+    assert page.sections == [sid for sid, _ in SECTIONS]
+    assert_self_contained(page, html_path.read_text(encoding="utf-8"))
+    assert "Does the cabinet topple" in page.text["answer"]
+    ((classes, text),) = page.cards
+    assert (TOPPLES if out["verdict"] == "overturned" else SURVIVES) in classes.split()
+    assert f"{out['base_disp_max_m']:.2f} m" in text
+    assert "idealised" in page.text["records"].lower() and "sine" in page.text["records"]
+
+
+def test_fragility_report(tmp_path):
+    folder = tmp_path / "suite"
+    folder.mkdir()
+    for k, (a, T) in enumerate([(0.4, 0.5), (0.3, 0.8), (0.5, 0.4)]):
+        write_pulse_record(folder / f"p{k}.txt", a_p_g=a, T_p=T)
+    html_path = tmp_path / "frag.html"
+    res = CliRunner().invoke(main, ["assess", "fragility", "--R", "0.6", "--alpha", "12", "--name", "statue",
+                                    "--records", str(folder), "--isolation", "none", "--bootstrap", "20",
+                                    "--report", str(html_path)])
+    assert res.exit_code == 0, res.output
+    page = parse(html_path)
+    assert page.sections == [sid for sid, _ in SECTIONS]
+    assert_self_contained(page, html_path.read_text(encoding="utf-8"))
+    for k in range(3):
+        p = folder / f"p{k}.txt"
+        assert hashlib.sha256(p.read_bytes()).hexdigest() in page.text["records"]
+    assert len(page.cards) == 1 and "median" in page.text["verdicts"]
+
+
+def test_report_to_a_missing_folder_is_refused_before_any_work(tmp_path):
+    target = tmp_path / "nowhere" / "r.html"
+    res = CliRunner().invoke(main, ["simulate", "--R", "1", "--alpha", "10", "--pulse", "sine:ap=0.3,Tp=1",
+                                    "--report", str(target)])
+    assert res.exit_code == 2 and "--report" in res.output and "does not exist" in res.output
+    assert "Traceback" not in res.output and not target.parent.exists()
+
+
+@pytest.mark.parametrize("bad", ['<img src="https://example.org/a.png">', '<a href="http://example.org">x</a>',
+                                 "<style>@import 'x.css';</style>", "<style>body{background:url(//x/y.png)}</style>",
+                                 '<script src="data:image/png;base64,AAAA"></script>'])
+def test_the_self_contained_check_catches_external_resources(bad, tmp_path):
+    p = tmp_path / "bad.html"
+    p.write_text(f"<html><body><section id='answer'>{bad}</section></body></html>")
+    with pytest.raises(AssertionError):
+        assert_self_contained(parse(p), p.read_text())
