@@ -6,7 +6,7 @@ from __future__ import annotations
 import click
 
 from rockcli.cli.errors import InputError, user_errors
-from rockcli.cli.options import horizon_option, progress_bar, record_kwargs, record_options
+from rockcli.cli.options import add_inputs, horizon_option, progress_bar, record_kwargs, record_options
 
 _SHAPES = "ricker-sym|ricker-anti|sine|cosine"
 
@@ -68,7 +68,9 @@ def _pulses(pulses, records, units, dt, fmt, column, default=("ricker-sym",)):
         from rockcli.records import read_record
 
         for src in records:
-            out.append(pulse_from_record(read_record(src, **record_kwargs(units, dt, fmt, column))))
+            rec = read_record(src, **record_kwargs(units, dt, fmt, column))
+            add_inputs([rec.meta.get("path")], "the record")
+            out.append(pulse_from_record(rec))
     if not out:
         out = [parse_pulse_choice(p) for p in default]
     return out
