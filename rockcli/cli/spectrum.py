@@ -40,7 +40,9 @@ def _scene_options(isolation_help: str, isolation_default, multiple_isolation: b
                          help="Draw the figure (.png, .pdf, .svg)."),
             click.option("--scheduler", default=None, metavar="tcp://HOST:PORT|local",
                          help="Run the cells in chunks on a Dask cluster (pip install -e \".[dask]\"): an "
-                              "existing scheduler, or 'local' for a LocalCluster on this machine."),
+                              "existing scheduler, or 'local' for a LocalCluster on this machine. A scheduler that "
+                              "does not answer, has no worker or loses all its workers stops the run after "
+                              "ROCKCLI_DASK_TIMEOUT seconds (default 60)."),
             horizon_option,
         ]
         f = record_options(f, column_flag="--record-column")
