@@ -103,16 +103,19 @@ def os_error_reason(exc: OSError) -> str:
 
 
 def _name_max(folder: Path) -> int:
-    """The longest file name [bytes] the file system of ``folder`` accepts (255 when unknown)."""
-    try:
-        return int(os.pathconf(folder, "PC_NAME_MAX"))
-    except (OSError, ValueError, AttributeError):
-        return 255
+    """The longest file name [bytes] the file system of ``folder`` (or its nearest existing ancestor)
+    accepts; 255 when unknown."""
+    for candidate in (folder, *folder.parents):
+        try:
+            return int(os.pathconf(candidate, "PC_NAME_MAX"))
+        except (OSError, ValueError, AttributeError):
+            continue
+    return 255
 
 
 def _check_name_length(path: Path, label: str) -> None:
-    folder = path.parent if path.parent.exists() else next((p for p in path.parents if p.exists()), Path("."))
-    limit = _name_max(folder)
+    """Refuse a path component longer than the file system allows (before anything touches the path)."""
+    limit = _name_max(path.parent)
     for part in path.parts:
         size = len(os.fsencode(part))
         if size > limit:
@@ -167,11 +170,11 @@ def check_output(path, option: str | None = None, *, image: bool = False) -> Pat
     label = _label(path, option)
     if str(path) in ("", "."):
         raise RockcliInputError(f"{option or 'output'}: give a file name")
+    _check_name_length(path, label)
     if path.is_dir():
         raise RockcliInputError(f"{label}: is a folder; give a file name")
     if image:
         _check_image_suffix(path, label)
-    _check_name_length(path, label)
     blocker = _file_in_path(path)
     if blocker is not None:
         raise RockcliInputError(f"{label}: cannot write there: {blocker} is a file, not a folder")
@@ -266,7 +269,7 @@ class Transaction:
             if _same(ident, other):
                 if (other_path, other_option) == (path, option):
                     return path
-                raise RockcliInputError(f"{_label(path, option)} and {_label(other_path, other_option)} are the "
+                raise RockcliInputError(f"{_label(other_path, other_option)} and {_label(path, option)} are the "
                                         f"same file; give each output its own path")
         for other, what in self.inputs:
             if _same(ident, other):
