@@ -276,3 +276,27 @@ def test_the_only_worker_killed_mid_run_stops_with_one_sentence(dask_timeout, sc
             assert time.monotonic() - t0 < 25  # the timeout and a few polls, not the tasks' 30 s
     finally:
         _stop(worker)
+
+
+# --------------------------------------------------------------------------------------------------
+# searches end: a bisection tolerance below what double precision resolves is raised to a floor
+# --------------------------------------------------------------------------------------------------
+@pytest.mark.parametrize("rtol", [0.0, 1e-300])
+def test_margin_bisection_below_double_precision_ends(rtol):
+    from rockcli.assess import find_overturn_scales, parse_column_spec
+    from rockcli.assess.margin import RTOL_FLOOR
+    from rockcli.models import Rigid
+    from rockcli.pulses import make_pulse
+    from rockcli.units import G
+
+    block = parse_column_spec("a:R=0.8,alpha=12")
+    scene = (block, Rigid(), make_pulse("ricker-sym", 0.5 * G, 0.6))
+    found = []
+    worker = threading.Thread(target=lambda: found.extend(find_overturn_scales([scene], rtol=rtol)), daemon=True)
+    worker.start()
+    worker.join(timeout=120)
+    assert not worker.is_alive(), "the bisection did not end"
+    hi, lo, note = found[0]
+    assert note == "" and 0 < hi / lo - 1 <= RTOL_FLOOR  # bracketed to the floor: a few ulps
+    coarse = find_overturn_scales([scene])[0]  # the default 1 % bracket holds the fine one
+    assert coarse[1] <= lo < hi <= coarse[0]
