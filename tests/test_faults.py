@@ -300,3 +300,30 @@ def test_margin_bisection_below_double_precision_ends(rtol):
     assert note == "" and 0 < hi / lo - 1 <= RTOL_FLOOR  # bracketed to the floor: a few ulps
     coarse = find_overturn_scales([scene])[0]  # the default 1 % bracket holds the fine one
     assert coarse[1] <= lo < hi <= coarse[0]
+
+
+# --------------------------------------------------------------------------------------------------
+# numba's disk cache: never a condition of a run
+# --------------------------------------------------------------------------------------------------
+KERNEL_CALL = ("import numpy as np; from rockcli.kernels import polynomials as p; "
+               "print(p._first_exceed(np.array([0.0, 1.0, 0.0, 0.0, 0.0]), 0.5)[0])")
+
+
+def test_kernels_run_without_a_writable_cache_or_with_a_full_disk(tmp_path):
+    """No folder for the cache (one under a regular file: even root cannot make it), and a cache folder on a
+    'full disk' (a 512-byte file size limit): the kernel runs, one notice line each, no temporary file left.
+    Both cases compile one small kernel in memory, in parallel."""
+    (tmp_path / "afile").write_text("a file: no folder can be made under it\n")
+    cases = {"no folder": (tmp_path / "afile" / "numba", None, "rockcli: numba's disk cache cannot be written"),
+             "full disk": (tmp_path / "cache", lambda: resource.setrlimit(resource.RLIMIT_FSIZE, (512, 512)),
+                           "rockcli: numba's disk cache could not be written")}
+    procs = {k: subprocess.Popen([sys.executable, "-c", KERNEL_CALL], env={**ENV, "NUMBA_CACHE_DIR": str(folder)},
+                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, preexec_fn=limit)
+             for k, (folder, limit, _) in cases.items()}
+    for k, proc in procs.items():
+        out, err = proc.communicate(timeout=300)
+        assert proc.returncode == 0, (k, err)
+        assert abs(float(out) - 0.5) < 1e-12  # the polynomial c(x) = x first exceeds 0.5 at x = 0.5
+        notes = err.strip().splitlines()
+        assert len(notes) == 1 and notes[0].startswith(cases[k][2]), (k, err)
+    assert not [p for p in (tmp_path / "cache").rglob("*") if ".tmp." in p.name]  # numba's partial files removed
