@@ -282,9 +282,9 @@ def _write_histories(result, hist_dir, plot_dir):
               help="Write the fragility curves (one panel per column, every configuration) to this image, e.g. FILE.png.")
 @click.option("--scheduler", default=None, metavar="tcp://HOST:PORT|local",
               help="Run the margin searches on a Dask cluster (pip install -e \".[dask]\"): the address of an "
-                   "existing scheduler, or 'local' for a LocalCluster on this machine. Same results. A scheduler that does "
-                   "not answer, has no worker or loses all its workers stops the run after ROCKCLI_DASK_TIMEOUT "
-                   "seconds (default 60).")
+                   "existing scheduler, or 'local' for a LocalCluster on this machine. Same results. A scheduler "
+                   "that does not answer, has no worker or loses all its workers stops the run after "
+                   "ROCKCLI_DASK_TIMEOUT seconds (default 60).")
 @horizon_option
 @user_errors
 def fragility(names, R, alpha, height, width, name, records, units, dt, isolation, im, n_boot, seed, csv_path,

@@ -170,7 +170,10 @@ def _make_locator():
                 except OSError:
                     continue
                 return self
-            bases = [config.CACHE_DIR] if config.CACHE_DIR else [str(PACKAGE_DIR / "__pycache__"), str(Path(user) / "rockcli")]
+            if config.CACHE_DIR:
+                bases = [config.CACHE_DIR]
+            else:
+                bases = [str(PACKAGE_DIR / "__pycache__"), str(Path(user) / "rockcli")]
             notice(f"numba's disk cache cannot be written (tried {' and '.join(bases)}); kernels not cached there are "
                    f"compiled in memory on every run (about a minute; set NUMBA_CACHE_DIR to a writable folder)")
             return _NoDiskLocator(py_func, py_file, candidates[0])
