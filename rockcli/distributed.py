@@ -190,7 +190,7 @@ def _where(client) -> str:
     return f"the Dask scheduler {getattr(address, 'address', '') or ''}".rstrip()
 
 
-def wait_for_results(client, futures, *, progress=None, timeout: float | None = None, poll: float = 0.2) -> list:
+def wait_for_results(client, futures, *, progress=None, timeout: float | None = None, poll: float = 0.5) -> list:
     """The results of ``futures`` in their order, watching the cluster while they run.
 
     ``progress(i)`` is called with the index of each future as it finishes. Raises one sentence
@@ -214,9 +214,9 @@ def wait_for_results(client, futures, *, progress=None, timeout: float | None = 
                 try:
                     fut.result()
                 except distributed.KilledWorker:
-                    raise RockcliInputError(f"{_where(client)}: a task's workers died while running it, "
-                                            f"{distributed.config.get('distributed.scheduler.allowed-failures')} "
-                                            f"+ 1 times (out of memory?); no result is given") from None
+                    raise RockcliInputError(f"{_where(client)}: the workers running a task died each time it was "
+                                            f"tried (Dask's KilledWorker: out of memory?); no result is "
+                                            f"given") from None
             del pending[i]
             if progress is not None:
                 progress(i)
@@ -235,7 +235,12 @@ def wait_for_results(client, futures, *, progress=None, timeout: float | None = 
             elif now - alone_since > timeout:
                 raise RockcliInputError(f"{_where(client)} has had no worker for {timeout:g} s (the workers died or "
                                         f"left); no result is given")
-        time.sleep(poll)
+        try:  # returns as soon as one more task ends, or after ``poll`` seconds
+            distributed.wait(list(pending.values()), timeout=poll, return_when="FIRST_COMPLETED")
+        except TimeoutError:
+            pass
+        except Exception:  # noqa: BLE001 - cancelled tasks (the statuses above tell), or another default client
+            time.sleep(poll)
     try:
         return client.gather(list(futures))
     except distributed.KilledWorker:  # pragma: no cover - the loop above saw every error first

@@ -168,9 +168,9 @@ def dask_timeout(monkeypatch):
     monkeypatch.setenv("ROCKCLI_DASK_TIMEOUT", str(TIMEOUT))
 
 
-def _start(args, tmp_path, name):
+def _start(args, tmp_path, name, **env):
     log = open(tmp_path / f"{name}.log", "w")
-    return subprocess.Popen([sys.executable, "-m", *args], env=ENV, stdout=log, stderr=log, cwd=tmp_path)
+    return subprocess.Popen([sys.executable, "-m", *args], env={**ENV, **env}, stdout=log, stderr=log, cwd=tmp_path)
 
 
 def _stop(proc):
@@ -178,21 +178,35 @@ def _stop(proc):
     proc.wait(timeout=30)
 
 
-@pytest.fixture
-def scheduler(tmp_path):
-    """A `dask scheduler` subprocess on 127.0.0.1 (its address), no worker."""
+def _scheduler(tmp_path, **env):
+    """A `dask scheduler` subprocess on 127.0.0.1, no worker: (process, address)."""
     info = tmp_path / "scheduler.json"
     proc = _start(["distributed.cli.dask_scheduler", "--host", "127.0.0.1", "--port", "0", "--no-dashboard",
-                   "--scheduler-file", str(info)], tmp_path, "scheduler")
-    try:
-        deadline = time.monotonic() + 60
-        while not info.exists() and time.monotonic() < deadline:
-            time.sleep(0.1)
-        assert info.exists(), (tmp_path / "scheduler.log").read_text()
-        time.sleep(0.2)
-        yield json.loads(info.read_text())["address"]
-    finally:
+                   "--scheduler-file", str(info)], tmp_path, "scheduler", **env)
+    deadline = time.monotonic() + 60
+    while not info.exists() and time.monotonic() < deadline:
+        time.sleep(0.1)
+    if not info.exists():
         _stop(proc)
+        pytest.fail((tmp_path / "scheduler.log").read_text())
+    time.sleep(0.2)
+    return proc, json.loads(info.read_text())["address"]
+
+
+@pytest.fixture
+def scheduler(tmp_path):
+    """The address of a `dask scheduler` subprocess on 127.0.0.1 without a worker."""
+    proc, address = _scheduler(tmp_path)
+    yield address
+    _stop(proc)
+
+
+@pytest.fixture
+def strict_scheduler(tmp_path):
+    """As ``scheduler``, but a task whose worker dies once is given up at once (Dask's KilledWorker)."""
+    proc, address = _scheduler(tmp_path, DASK_DISTRIBUTED__SCHEDULER__ALLOWED_FAILURES="0")
+    yield address
+    _stop(proc)
 
 
 def _server(reply: bytes):
@@ -274,6 +288,21 @@ def test_the_only_worker_killed_mid_run_stops_with_one_sentence(dask_timeout, sc
             with pytest.raises(RockcliInputError, match=r"has had no worker for 2 s .*no result is given"):
                 map_chunks(client, time.sleep, [30.0, 30.0])
             assert time.monotonic() - t0 < 25  # the timeout and a few polls, not the tasks' 30 s
+    finally:
+        _stop(worker)
+
+
+
+@needs_dask
+def test_a_task_that_kills_its_worker_stops_with_one_sentence(dask_timeout, strict_scheduler, tmp_path):
+    from rockcli.distributed import map_chunks, open_client
+
+    worker = _start(["distributed.cli.dask_worker", strict_scheduler, "--nthreads", "1", "--no-dashboard"], tmp_path,
+                    "worker")
+    try:
+        with open_client(strict_scheduler, timeout=60) as client:
+            with pytest.raises(RockcliInputError, match=r"died each time it was tried \(Dask's KilledWorker"):
+                map_chunks(client, os._exit, [3])  # the task ends its worker's process (the nanny restarts it)
     finally:
         _stop(worker)
 
