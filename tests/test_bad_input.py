@@ -530,12 +530,12 @@ def test_atomic_write_keeps_the_old_file_when_the_disk_fills(work, monkeypatch):
 ])
 def test_preflight_reports_unwritable_folders(work, monkeypatch, code, words):
     """Running as root, chmod cannot make a folder unwritable: the failing probe is simulated."""
-    import rockcli.files
+    import rockcli.output_checks
 
     def refuse(*args, **kwargs):
         raise OSError(code, os.strerror(code))
 
-    monkeypatch.setattr(rockcli.files.tempfile, "mkstemp", refuse)
+    monkeypatch.setattr(rockcli.output_checks.tempfile, "mkstemp", refuse)
     before = snapshot(work)
     res = run_cli(["records", "show", "good.AT2", "--plot", "adir/x.png"])
     assert_one_sentence(res, ["--plot adir/x.png: cannot write there", words])

@@ -34,6 +34,9 @@ from rockcli.models import LinearIsolation, Rigid
 MARGIN_GRID = np.unique(np.concatenate([np.geomspace(0.1, 1.0, 25), np.geomspace(1.0, 4.0, 16)]))
 #: Relative width of the bracket at which the bisection stops.
 MARGIN_RTOL = 0.01
+#: The smallest bisection width used: below a few ulps the geometric midpoint equals an end of the
+#: bracket and the bisection would never end, so a smaller ``rtol`` is raised to this floor.
+RTOL_FLOOR = 8 * float(np.finfo(float).eps)
 
 NOTE_NO_OVERTURN = "no overturning up to {:g}x"
 NOTE_OVERTURNS_AT_MIN = "overturns already at {:g}x, the smallest factor scanned"
@@ -65,7 +68,7 @@ def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL,
     grid : array
         Increasing scale factors scanned; 1 should be one of them.
     rtol : float
-        Bisection stops when ``hi / lo - 1 <= rtol``.
+        Bisection stops when ``hi / lo - 1 <= rtol`` (raised to :data:`RTOL_FLOOR`, 8 ulps, when smaller).
     known : sequence of Response or None, optional
         Responses at scale 1 when already computed.
     progress : callable, optional
@@ -91,8 +94,12 @@ def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL,
     this without a run), then, only for scenes that did not overturn at or below 1, upwards from
     1 until the first overturning factor.
     """
+    from rockcli.errors import RockcliInputError
     from rockcli.solve import VERDICT_ERROR, VERDICT_NO_UPLIFT, simulate_many
 
+    if not (isinstance(rtol, (int, float)) and rtol >= 0 and math.isfinite(rtol)):
+        raise RockcliInputError(f"margin bisection tolerance must be a finite number >= 0, got {rtol!r}")
+    rtol = max(float(rtol), RTOL_FLOOR)
     grid = np.asarray(grid, dtype=float)
     n, m = len(scenes), grid.size
     # state[i, j]: 0 not run, 1 survives, 2 overturns, 3 survives without uplift, 4 refused

@@ -84,7 +84,7 @@ def run():
     for stream in (sys.stdout, sys.stderr):
         try:
             stream.flush()
-        except (OSError, ValueError):  # a closed pipe or stream: nothing more can be shown
+        except (OSError, ValueError, AttributeError):  # a closed or full stream (None when closed at start)
             pass
     atexit._run_exitfuncs()
     os._exit(code)

@@ -60,6 +60,14 @@ def _refuse_if_none_can_run(excitations):
                          f"none of the {len(failed)} records can be run:\n" + "\n".join(failed))
 
 
+def _add_record_inputs(excitations):
+    """The record files read: no output may be written onto one of them."""
+    from rockcli.assess import EXCITATION_RECORD
+    from rockcli.cli.options import add_inputs
+
+    add_inputs([x.source for x in excitations if x.kind == EXCITATION_RECORD], "the record")
+
+
 def _columns(names, R, alpha, height, width, name):
     from rockcli.assess import custom_column, parse_column_spec
     from rockcli.cli.options import BLOCK_FLAGS
@@ -142,6 +150,9 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
     if not excitations:
         raise InputError("no record to run: " + "; ".join(f"{u.label}: {u.reason}" for u in unavailable))
     _refuse_if_none_can_run(excitations)
+    _add_record_inputs(excitations)
+    if hist_dir or plot_dir:
+        _plan_run_files(columns, excitations, configurations, hist_dir, plot_dir)
 
     result = _run_counted(count_runs(columns, excitations, configurations, margin, neighbourhood),
                           partial(run_assessment, columns, excitations, configurations, margin=margin,
@@ -205,45 +216,55 @@ def _echo_tolerance_check(result):
     return chk
 
 
+def _plan_run_files(columns, excitations, configurations, hist_dir, plot_dir):
+    """Declare the file of every run in --histories/--plot before any work: two runs whose names give
+    the same file name (after the unsafe characters are replaced; letter case ignored) are refused."""
+    from pathlib import Path
+
+    from rockcli.assess import safe_name
+    from rockcli.files import current
+
+    outputs = current()
+    seen = {}
+    for b in columns:
+        for x in (x for x in excitations if x.motion is not None):
+            for c in configurations:
+                stem = safe_name(b.name, x.label, c.header)
+                other = seen.setdefault(stem.casefold(), (b.name, x.label, c.header))
+                if other != (b.name, x.label, c.header):
+                    raise InputError(f"the runs {' / '.join(other)} and {b.name} / {x.label} / {c.header} would write "
+                                     f"the same file {stem}.*; give the columns (or records) names that differ in "
+                                     f"letters or digits")
+                for folder, option, suffix in ((hist_dir, "--histories", ".csv"), (plot_dir, "--plot", ".png")):
+                    if folder and outputs is not None:
+                        outputs.declare(Path(folder) / f"{stem}{suffix}", option, check=False)
+
+
 def _write_histories(result, hist_dir, plot_dir):
+    """One history CSV and/or figure per run, staged in the command's transaction (nothing is replaced or
+    left behind unless every one of them, and the rest of the run, succeeds)."""
     from pathlib import Path
 
     from rockcli.assess import history_runs, safe_name
-    from rockcli.errors import RockcliInputError
-    from rockcli.files import describe_os_error
+    from rockcli.files import transaction
     from rockcli.report.response import plot_response, write_history_csv
 
     n = 0
-    created, written = [], []  # removed again if a write fails: nothing is left half-done
-    try:
-        for folder in (hist_dir, plot_dir):
+    with transaction() as outputs:
+        for folder, option in ((hist_dir, "--histories"), (plot_dir, "--plot")):
             if folder:
-                missing = [p for p in (Path(folder), *Path(folder).parents) if not p.exists()]
-                try:
-                    Path(folder).mkdir(parents=True, exist_ok=True)
-                except OSError as exc:
-                    raise describe_os_error(exc, folder) from None
-                created += reversed(missing)
+                outputs.make_folder(folder, option)
         for row, block, conf, x, resp in history_runs(result):
             if resp.status < 0:  # the step cap: no history to show as if it were valid
                 continue
             stem = safe_name(row.column, row.record, row.configuration)
             label = x.label + (" (catalogued pulse)" if x.kind == "pulse" else "")
             if hist_dir:
-                written.append(write_history_csv(resp, block, Path(hist_dir) / f"{stem}.csv"))
+                write_history_csv(resp, block, Path(hist_dir) / f"{stem}.csv")
             if plot_dir:
-                written.append(plot_response(resp, block, conf.foundation, f"{block.name}, {label}, {conf.label}",
-                                             Path(plot_dir) / f"{stem}.png"))
+                plot_response(resp, block, conf.foundation, f"{block.name}, {label}, {conf.label}",
+                              Path(plot_dir) / f"{stem}.png")
             n += 1
-    except RockcliInputError:
-        for p in written:
-            p.unlink(missing_ok=True)
-        for d in reversed(created):
-            try:
-                d.rmdir()
-            except OSError:
-                pass
-        raise
     what = " and ".join(f"{k} in {d}" for k, d in (("histories", hist_dir), ("figures", plot_dir)) if d)
     click.echo(f"wrote {what} ({n} runs)")
 
@@ -264,7 +285,8 @@ def _write_histories(result, hist_dir, plot_dir):
                    "ap [g], the amplitude of the record's fitted Ricker pulse.")
 @click.option("--bootstrap", "n_boot", type=click.IntRange(0, 100000), default=1000, show_default=True,
               help="Bootstrap resamples over records for the confidence intervals (0: none).")
-@click.option("--seed", type=int, default=13, show_default=True, help="Seed of the bootstrap resamples.")
+@click.option("--seed", type=click.IntRange(min=0), default=13, show_default=True,
+              help="Seed of the bootstrap resamples (a whole number >= 0).")
 @click.option("--csv", "csv_path", type=click.Path(), default=None,
               help="Write one row per column x record x configuration (IM, scale, capacity, censoring, error) "
                    "with the fit of its column and configuration.")
@@ -272,7 +294,9 @@ def _write_histories(result, hist_dir, plot_dir):
               help="Write the fragility curves (one panel per column, every configuration) to this image, e.g. FILE.png.")
 @click.option("--scheduler", default=None, metavar="tcp://HOST:PORT|local",
               help="Run the margin searches on a Dask cluster (pip install -e \".[dask]\"): the address of an "
-                   "existing scheduler, or 'local' for a LocalCluster on this machine. Same results.")
+                   "existing scheduler, or 'local' for a LocalCluster on this machine. Same results. A scheduler "
+                   "that does not answer, has no worker or loses all its workers stops the run after "
+                   "ROCKCLI_DASK_TIMEOUT seconds (default 60).")
 @report_option
 @horizon_option
 @user_errors
@@ -308,6 +332,7 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
         check_scheduler(scheduler)
     excitations, unavailable = resolve_excitations(records, "record", units=units, dt=dt)
     _refuse_if_none_can_run(excitations)
+    _add_record_inputs(excitations)
 
     if scheduler is not None:
         from rockcli.assess.fragility import run_fragility_distributed

@@ -18,12 +18,9 @@ def bench():
 
 def _check_outputs(csv=None, plot=None):
     """Outputs checked before any run (rockcli.files): a long study never fails on its output."""
-    from rockcli.files import check_output
+    from rockcli.cli.options import check_outputs
 
-    if csv is not None:
-        check_output(csv, "--csv")
-    if plot is not None:
-        check_output(plot, "--plot", image=True)
+    check_outputs((csv, "--csv", False), (plot, "--plot", True))
 
 
 def _rtols(text, opt):
@@ -166,7 +163,8 @@ def work_precision(scenes, csv_path, plot_path, kernel_rtol, scipy_rtol, methods
 @click.option("--random", "n_random", type=click.IntRange(0, 100000), default=0, metavar="N",
               help="Instead of the named scenes, N random extreme pulse scenes (alpha 1-45 deg, R 0.2-20 m, rigid "
                    "or linear bearings with xi 0-1 and gamma 0-0.99, T_p 0.05-10 s, a_p up to 5 g).")
-@click.option("--seed", type=int, default=1, show_default=True, help="Seed of --random.")
+@click.option("--seed", type=click.IntRange(min=0), default=1, show_default=True,
+              help="Seed of --random (a whole number >= 0).")
 @user_errors
 def stability(scenes, csv_path, list_only, verbose, n_random, seed):
     """Stiff and extreme scenes, each run at rtol 1e-6 and 1e-10 within a wall-time and step budget.

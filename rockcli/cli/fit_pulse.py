@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 
 from rockcli.cli.errors import InputError, user_errors
-from rockcli.cli.options import check_outputs, record_kwargs, record_options
+from rockcli.cli.options import add_inputs, catalog_file, check_outputs, record_kwargs, record_options
 
 #: Pulse columns of records/catalog.csv that ``--update-catalog`` fills, and their rounding.
 _CATALOG_DIGITS = {"a_p_g": 4, "T_p_s": 4, "t0_s": 3, "pulse_energy": 4}
@@ -71,21 +71,36 @@ def _candidates_table(fits, candidates) -> str:
 
 
 def _update_catalog(fits):
-    """Fill the pulse columns of the fitted catalogue entries; every other cell and the row order stay."""
-    from dataclasses import replace
+    """Fill the pulse columns of the fitted catalogue rows in place: every other column (a user's own
+    too), cell, row and line ending stays as it was; a linked catalogue stays a link, its mode stays."""
+    import csv
+    import io
 
-    from rockcli.records.catalog import catalog_path, load_catalog, write_catalog
+    from rockcli.files import write_text
+    from rockcli.records.catalog import catalog_path
 
+    path = catalog_path()
+    raw = path.read_bytes()
+    text = raw.decode("utf-8-sig")
+    newline = "\r\n" if "\r\n" in text else "\n"
+    rows = list(csv.reader(io.StringIO(text, newline="")))
+    head = rows[0]
+    col = {name: head.index(name) for name in ("id", *_CATALOG_DIGITS, "pulse_shape")}
     by_id = {f.record_name: f for f in fits}
-    entries = []
-    for e in load_catalog():
-        f = by_id.get(e.id)
-        if f is not None:
-            e = replace(e, pulse_shape=f.pulse.shape, a_p_g=round(f.a_p_g, _CATALOG_DIGITS["a_p_g"]),
-                        T_p_s=round(f.T_p_s, _CATALOG_DIGITS["T_p_s"]), t0_s=round(f.t0_s, _CATALOG_DIGITS["t0_s"]),
-                        pulse_energy=round(f.energy_fraction, _CATALOG_DIGITS["pulse_energy"]))
-        entries.append(e)
-    return write_catalog(entries, catalog_path())
+    for row in rows[1:]:
+        f = by_id.get(row[col["id"]]) if len(row) > col["id"] else None
+        if f is None:
+            continue
+        row.extend([""] * (len(head) - len(row)))
+        values = {"pulse_shape": f.pulse.shape, "a_p_g": f.a_p_g, "T_p_s": f.T_p_s, "t0_s": f.t0_s,
+                  "pulse_energy": f.energy_fraction}
+        for name, value in values.items():
+            row[col[name]] = value if name == "pulse_shape" else repr(round(float(value), _CATALOG_DIGITS[name]))
+    out = io.StringIO()
+    csv.writer(out, lineterminator=newline).writerows(rows)
+    bom = "\ufeff" if raw.startswith(b"\xef\xbb\xbf") else ""
+    write_text(path, bom + out.getvalue(), "--update-catalog")
+    return path
 
 
 @click.command(name="fit-pulse")
@@ -144,11 +159,9 @@ def fit_pulse(sources, units, dt, fmt, column, use_catalog, wavelet, periods, cs
         raise InputError("--update-catalog stores the fit only; leave out --candidates")
     if not sources and not use_catalog:
         raise InputError("give at least one SOURCE (a record file or catalogue id), or --catalog")
-    check_outputs((csv_path, "--csv", False), (plot_path, "--plot", True))
-    if update_catalog:
-        from rockcli.records.catalog import catalog_path
-
-        check_outputs((catalog_path(), "--update-catalog", False))
+    check_outputs((csv_path, "--csv", False), (plot_path, "--plot", True),
+                  (catalog_file() if update_catalog else None, "--update-catalog", False),
+                  catalogue_is_input=not update_catalog)
 
     warnings = []
     jobs = [(s, record_kwargs(units, dt, fmt, column)) for s in sources]
@@ -158,10 +171,10 @@ def fit_pulse(sources, units, dt, fmt, column, use_catalog, wavelet, periods, cs
     from rockcli.pulses_fit import fit_pulse as fit
     from rockcli.records import read_record
 
-    records, fits, candidates = [], [], []
-    for source, kwargs in jobs:
-        rec = read_record(source, **kwargs)
-        records.append(rec)
+    records = [read_record(source, **kwargs) for source, kwargs in jobs]
+    add_inputs([rec.meta.get("path") for rec in records], "the record")
+    fits, candidates = [], []
+    for rec in records:
         fits.append(fit(rec, wavelet.lower(), periods=period_range))
         if n_candidates:
             from rockcli.pulses_fit import fit_pulse_candidates

@@ -105,20 +105,43 @@ def block_from_options(column_name=None, R=None, alpha=None, height=None, width=
                        labels=BLOCK_FLAGS)
 
 
-def check_outputs(*files, folders=()):
-    """Check every output before any work: ``files`` are ``(path, option, is_image)``, ``folders`` ``(path, option)``.
+def check_outputs(*files, folders=(), catalogue_is_input: bool = True):
+    """Declare and check every output before any work: ``files`` are ``(path, option, is_image)``,
+    ``folders`` ``(path, option)``; entries whose path is None (option not given) are skipped.
 
-    Entries whose path is None (option not given) are skipped. Raises ``RockcliInputError`` with
-    one sentence naming the option and the path (see :mod:`rockcli.files`).
+    The outputs join the command's transaction (:mod:`rockcli.files`, opened by ``user_errors``):
+    two outputs on one path are refused, and so is an output on the record catalogue, which every
+    command may read (``catalogue_is_input=False`` for the command that updates it). Raises
+    ``RockcliInputError`` with one sentence naming the option and the path.
     """
-    from rockcli.files import check_output, check_output_folder
+    from rockcli.files import Transaction, current
 
+    outputs = current() or Transaction()
+    if catalogue_is_input:
+        add_inputs([catalog_file()], "the record catalogue")
     for path, option, image in files:
         if path is not None:
-            check_output(path, option, image=image)
+            outputs.declare(path, option, image=image)
     for path, option in folders:
         if path is not None:
-            check_output_folder(path, option)
+            outputs.declare_folder(path, option)
+    return outputs
+
+
+def catalog_file():
+    """The record catalogue's path (``ROCKCLI_CATALOG`` or the repository's ``records/catalog.csv``)."""
+    from rockcli.records.catalog import catalog_path
+
+    return catalog_path()
+
+
+def add_inputs(paths, what: str) -> None:
+    """Files the command reads (records, the catalogue): an output on one of them is refused."""
+    from rockcli.files import current
+
+    outputs = current()
+    if outputs is not None:
+        outputs.add_inputs([p for p in paths if p], what)
 
 
 def progress_bar(total: int, label: str = "runs", *, eta: bool = True):

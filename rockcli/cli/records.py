@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 
 from rockcli.cli.errors import user_errors
-from rockcli.cli.options import check_outputs, record_kwargs, record_options
+from rockcli.cli.options import add_inputs, check_outputs, record_kwargs, record_options
 
 
 @click.group(name="records")
@@ -45,6 +45,7 @@ def list_records(csv_path):
 
     check_outputs((csv_path, "--csv", False))
     rows = _status_rows()
+    add_inputs([r["path"] for r in rows], "the record file")
     table = [("id", "event", "PGA [g]", "PGV [m/s]", "status", "path")]
     for r in rows:
         table.append((r["id"], f"{r['event']} {r['year']}", _fmt(r["pga_published_g"], ".2f"),
@@ -79,6 +80,7 @@ def show(source, units, dt, fmt, column, plot_path):
 
     check_outputs((plot_path, "--plot", True))
     rec = read_record(source, **record_kwargs(units, dt, fmt, column))
+    add_inputs([rec.meta.get("path")], "the record")
     peaks = calc_peaks(rec)
     meta = rec.meta
     lines = [("record", rec.name)]

@@ -5,8 +5,8 @@ from __future__ import annotations
 import click
 
 from rockcli.cli.errors import user_errors
-from rockcli.cli.options import (block_from_options, block_options, check_outputs, command_line, horizon_option,
-                                 record_kwargs, record_options, report_option)
+from rockcli.cli.options import (add_inputs, block_from_options, block_options, check_outputs, command_line,
+                                 horizon_option, record_kwargs, record_options, report_option)
 
 
 @click.command(context_settings={"show_default": True})
@@ -81,6 +81,7 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
         from rockcli.records import read_record
 
         excitation = read_record(record_source, **record_kwargs(units, dt, fmt, column))
+        add_inputs([excitation.meta.get("path")], "the record")
         if factor != 1.0:
             excitation = excitation.scaled(factor)
         label = f"record {excitation.name}" + (f" x {factor:g}" if factor != 1.0 else "")

@@ -6,7 +6,7 @@ from __future__ import annotations
 import click
 
 from rockcli.cli.errors import InputError, user_errors
-from rockcli.cli.options import horizon_option, progress_bar, record_kwargs, record_options
+from rockcli.cli.options import add_inputs, horizon_option, progress_bar, record_kwargs, record_options
 
 _SHAPES = "ricker-sym|ricker-anti|sine|cosine"
 
@@ -40,7 +40,9 @@ def _scene_options(isolation_help: str, isolation_default, multiple_isolation: b
                          help="Draw the figure (.png, .pdf, .svg)."),
             click.option("--scheduler", default=None, metavar="tcp://HOST:PORT|local",
                          help="Run the cells in chunks on a Dask cluster (pip install -e \".[dask]\"): an "
-                              "existing scheduler, or 'local' for a LocalCluster on this machine."),
+                              "existing scheduler, or 'local' for a LocalCluster on this machine. A scheduler that "
+                              "does not answer, has no worker or loses all its workers stops the run after "
+                              "ROCKCLI_DASK_TIMEOUT seconds (default 60)."),
             horizon_option,
         ]
         f = record_options(f, column_flag="--record-column")
@@ -68,7 +70,9 @@ def _pulses(pulses, records, units, dt, fmt, column, default=("ricker-sym",)):
         from rockcli.records import read_record
 
         for src in records:
-            out.append(pulse_from_record(read_record(src, **record_kwargs(units, dt, fmt, column))))
+            rec = read_record(src, **record_kwargs(units, dt, fmt, column))
+            add_inputs([rec.meta.get("path")], "the record")
+            out.append(pulse_from_record(rec))
     if not out:
         out = [parse_pulse_choice(p) for p in default]
     return out

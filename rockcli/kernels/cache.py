@@ -8,18 +8,61 @@ so an edit anywhere in the package recompiles every kernel, and an unchanged pac
 the cache. The cache lives in the package's ``__pycache__`` (numba's own default place), or, when
 that is not writable, in the user cache folder (``NUMBA_CACHE_DIR`` when set).
 
+The disk cache is an optimisation, never a condition of a run:
+
+* when none of these folders can be written (a read-only install and home, as on shared clusters
+  and in containers), the kernels run without a disk cache (compiled in memory, every run) and
+  one notice line says so on the standard error;
+* when writing the cache fails (a full disk, a quota, a file size limit), or reading it fails, the
+  run carries on without it (one notice line): :func:`install` wraps numba's ``save_overload`` and
+  ``load_overload`` for the functions of this package only.
+
 :func:`install` registers the locator with numba; it must run before the kernel modules are
 imported (numba picks a function's locator when ``@njit(cache=True)`` is applied). It changes
 nothing for functions outside this package.
+
+``NUMBA_NUM_THREADS`` set to 0 or less makes numba fail at import; it is refused here first, in one
+sentence (:func:`check_thread_setting`).
 """
 
 from __future__ import annotations
 
 import hashlib
 import os
+import pickle
+import sys
 from pathlib import Path
 
+from rockcli.errors import RockcliInputError
+
 PACKAGE_DIR = Path(__file__).resolve().parent
+_notices: set = set()
+
+
+def check_thread_setting() -> None:
+    """Refuse ``NUMBA_NUM_THREADS`` <= 0 in one sentence (numba itself raises a traceback at import)."""
+    text = os.environ.get("NUMBA_NUM_THREADS", "").strip()
+    try:
+        value = int(text)
+    except ValueError:
+        return  # unset, or a value numba ignores with its own warning
+    if value <= 0:
+        raise RockcliInputError(f"NUMBA_NUM_THREADS={text}: give a positive number of threads, or unset it")
+
+
+check_thread_setting()
+
+
+def notice(text: str) -> None:
+    """Print ``text`` once per process on the standard error, as one line."""
+    if text in _notices:
+        return
+    _notices.add(text)
+    try:
+        sys.stderr.write(f"rockcli: {text}\n")
+        sys.stderr.flush()
+    except (OSError, ValueError, AttributeError):  # no standard error: nothing more to do
+        pass
 
 
 def source_hash(folder: Path = PACKAGE_DIR) -> str:
@@ -34,7 +77,8 @@ def source_hash(folder: Path = PACKAGE_DIR) -> str:
 
 
 def install() -> None:
-    """Register :class:`PackageLocator` first in numba's list of cache locators (idempotent)."""
+    """Register :class:`PackageLocator` first in numba's list of cache locators, and make cache
+    reads and writes of this package's functions non-fatal (idempotent)."""
     from numba.core import caching
 
     locators = caching.CacheImpl._locator_classes
@@ -43,6 +87,44 @@ def install() -> None:
             locators.remove(cls)
     if PackageLocator not in locators:
         locators.insert(0, PackageLocator)
+    _wrap_cache_io(caching.Cache)
+
+
+def _ours(cache) -> bool:
+    locator = getattr(getattr(cache, "_impl", None), "locator", None)
+    return bool(getattr(locator, "_rockcli_package_locator", False))
+
+
+def _wrap_cache_io(cache_cls) -> None:
+    """Cache I/O of this package's functions: an OSError (or a damaged file) skips the cache with a notice."""
+    save, load = cache_cls.save_overload, cache_cls.load_overload
+    if getattr(save, "_rockcli_tolerant", False):
+        return
+
+    def save_overload(self, sig, data):
+        if not _ours(self):
+            return save(self, sig, data)
+        if getattr(self._impl.locator, "_no_disk", False):
+            return None
+        try:
+            return save(self, sig, data)
+        except OSError as exc:
+            self.disable()
+            reason = (exc.strerror or type(exc).__name__).lower()
+            notice(f"numba's disk cache could not be written in {self.cache_path} ({reason}); the kernels "
+                   f"run without it")
+            return None
+
+    def load_overload(self, sig, target_context):
+        if not _ours(self):
+            return load(self, sig, target_context)
+        try:
+            return load(self, sig, target_context)
+        except (OSError, EOFError, pickle.UnpicklingError):
+            return None  # an unreadable or damaged entry: compiled again
+
+    save_overload._rockcli_tolerant = True
+    cache_cls.save_overload, cache_cls.load_overload = save_overload, load_overload
 
 
 def _make_locator():
@@ -88,7 +170,21 @@ def _make_locator():
                 except OSError:
                     continue
                 return self
-            return None
+            if config.CACHE_DIR:
+                bases = [config.CACHE_DIR]
+            else:
+                bases = [str(PACKAGE_DIR / "__pycache__"), str(Path(user) / "rockcli")]
+            notice(f"numba's disk cache cannot be written (tried {' and '.join(bases)}); kernels not cached there are "
+                   f"compiled in memory on every run (about a minute; set NUMBA_CACHE_DIR to a writable folder)")
+            return _NoDiskLocator(py_func, py_file, candidates[0])
+
+    class _NoDiskLocator(_PackageLocator):
+        """No folder can be written: nothing is saved; loads use what is there (a cache shipped read-only)."""
+
+        _no_disk = True
+
+        def ensure_cache_path(self):
+            pass
 
     return _PackageLocator
 

@@ -26,7 +26,7 @@ import platform
 from datetime import datetime, timezone
 from pathlib import Path
 
-from rockcli.report.files import write_text
+from rockcli.files import write_text
 
 #: Section ids and titles, in the order of the page.
 SECTIONS = (("answer", "The answer"), ("body", "The body"), ("configurations", "How it stands"),

@@ -2,7 +2,7 @@
 
 * :func:`png_of`: the bytes of a figure drawn by one of the file-writing plotters
   (:func:`rockcli.report.response.plot_response`, :func:`rockcli.report.fragility.plot_fragility`),
-  through a private temporary folder, so that those plotters stay the one place that draws them;
+  captured in memory, so that those plotters stay the one place that draws them;
 * :func:`margins_png`: per record and configuration, the smallest scale factor that topples the body;
 * :func:`share_png`: for several records, the share of them that topple the body when all are scaled
   by the same factor (an empirical fragility in units of the records themselves);
@@ -25,11 +25,17 @@ _CONF_COLOURS = ("#444444", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b
 
 
 def png_of(draw) -> bytes:
-    """The PNG bytes written by ``draw(path)`` (a plotter that writes a figure file)."""
-    with tempfile.TemporaryDirectory(prefix="rockcli-report-") as folder:
+    """The PNG bytes that ``draw(path)`` (a plotter that writes a figure file) would write.
+
+    The figure is captured in memory (:func:`rockcli.files.captured_figures`); the path names a private
+    temporary folder only so that the plotter's checks of its output path pass.
+    """
+    from rockcli.files import captured_figures
+
+    with tempfile.TemporaryDirectory(prefix="rockcli-report-") as folder, captured_figures() as got:
         path = Path(folder) / "figure.png"
         draw(path)
-        return path.read_bytes()
+        return got[path]
 
 
 def _pyplot():

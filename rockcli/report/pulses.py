@@ -10,7 +10,7 @@ import csv
 import io
 from pathlib import Path
 
-from rockcli.report.files import check_output, save_figure, write_text
+from rockcli.files import check_output, save_figure, write_text
 from rockcli.units import G
 
 #: Columns of ``rockcli fit-pulse --csv``.

@@ -11,7 +11,7 @@ import io
 import os
 from pathlib import Path
 
-from rockcli.report.files import check_output, save_figure, write_text
+from rockcli.files import check_output, save_figure, write_text
 
 #: Columns of the ``rockcli records list --csv`` table.
 LIST_COLUMNS = ("id", "event", "year", "station", "component", "mw", "distance_km", "pga_published_g",

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-from rockcli.report.files import check_output, save_figure, write_text
+from rockcli.files import check_output, save_figure, write_text
 from rockcli.units import G
 
 #: Columns of a history CSV (SI units, g only where labelled).

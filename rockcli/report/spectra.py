@@ -12,7 +12,7 @@ import io
 import math
 from pathlib import Path
 
-from rockcli.report.files import check_output, save_figure, write_text
+from rockcli.files import check_output, save_figure, write_text
 from rockcli.units import G
 
 #: Columns of ``rockcli spectrum overturning --csv`` (one row per cell of every map).
