@@ -9,7 +9,10 @@ Solver contract
   right corner, theta > 0) or ``+g tan(alpha)`` (theta < 0).
 * Impacts at theta = 0 keep the total horizontal momentum and the block's angular momentum about
   the new pivot: ``theta_dot+ = eta theta_dot-`` with ``eta = (k - 2)/(k + 4)``,
-  ``k = (4 - 3 gamma) cot^2(alpha)`` (Housner's ``1 - 1.5 sin^2 alpha`` when gamma = 0).
+  ``k = (4 - 3 gamma) cot^2(alpha)`` (Housner's ``1 - 1.5 sin^2 alpha`` when gamma = 0). A given
+  coefficient of restitution ``0 < E <= 1`` replaces it by ``E`` on a rigid foundation and by
+  ``1 - 4 (1 - E)/(4 - 3 gamma cos^2 alpha)`` on an isolated base (horizontal momentum kept;
+  derivation in :mod:`rockcli.impact`).
 * Rest: after an impact, when the current base acceleration ``a`` could not lift the block
   (``|a| < g tan alpha``) and the rotation it could still reach against the restoring
   acceleration ``p^2 cos(alpha) (tan(alpha) - |a|/g)``, ``theta_dot^2 / (2 p^2 cos(alpha) (tan(alpha) -
@@ -41,8 +44,8 @@ from typing import Any
 import numpy as np
 
 from rockcli.errors import RockcliInputError
-from rockcli.models import (Block, DoubleConcaveSliding, LeadRubber, LinearIsolation, Rigid, SingleConcaveSliding,
-                            impact_coefficient)
+from rockcli.impact import check_restitution, impact_ratio
+from rockcli.models import Block, DoubleConcaveSliding, LeadRubber, LinearIsolation, Rigid, SingleConcaveSliding
 from rockcli.units import G
 
 VERDICT_NO_UPLIFT = "no_uplift"
@@ -318,9 +321,9 @@ def _rtol(foundation, rtol) -> float:
     return default_rtol(foundation) if rtol is None else float(rtol)
 
 
-def _parameters(block: Block, foundation, rtol, rest_tol: float):
+def _parameters(block: Block, foundation, rtol, rest_tol: float, restitution: float | None = None):
     """``(fkind, prm)``: the kernel's foundation code and parameter vector (``rockcli.kernels.layout``);
-    ``rtol`` None takes the foundation's default."""
+    ``rtol`` None takes the foundation's default; ``restitution`` None Housner's (:mod:`rockcli.impact`)."""
     k = _kernel()
     rtol = _rtol(foundation, rtol)
     prm = np.zeros(k.N_PRM)
@@ -336,7 +339,7 @@ def _parameters(block: Block, foundation, rtol, rest_tol: float):
     prm[k.P_SINA] = math.sin(alpha)
     prm[k.P_COSA] = math.cos(alpha)
     prm[k.P_H] = block.h
-    prm[k.P_ETA] = impact_coefficient(alpha, gamma)
+    prm[k.P_ETA] = impact_ratio(alpha, gamma, restitution)
     # base velocity jump at an impact, u_dot+ = u_dot- + P_DU theta_dot-: the total horizontal momentum
     # u_dot + gamma h theta_dot is kept, so P_DU = gamma h (1 - eta) (= 6 gamma h/(k + 4) when eta is not
     # clamped; a block too squat to rock, eta clamped to 0, hands all its momentum to the base)
@@ -433,7 +436,7 @@ def validate_options(rtol=None, tail=DEFAULT_TAIL, rest_tol=DEFAULT_REST_TOL, ho
 
 
 def _estimate_steps(block: Block, foundation, prepared, rtol: float, tail: float, rest_tol: float,
-                    horizon: float, history: bool):
+                    horizon: float, history: bool, restitution: float | None = None):
     """``(estimate, samples, run)``: an upper estimate of the integrator steps a scene needs, its
     record samples and its longest run [s]; see :func:`_check_work`."""
     k = _kernel()
@@ -445,7 +448,10 @@ def _estimate_steps(block: Block, foundation, prepared, rtol: float, tail: float
         samples, active = 0, epar[k.E_TE] - epar[k.E_TS]
     f = max((default_rtol(foundation) / rtol) ** 0.2, 1.0)  # a looser rtol saves little where events and stiffness rule
     rate = 2.0 * block.p * f
-    settle = (2.0 / block.p) * math.sqrt(2.0) / (1.5 * math.sin(block.alpha) ** 2)  # a rocking cascade
+    loss = 1.5 * math.sin(block.alpha) ** 2  # 1 - eta: the share of theta_dot an impact takes
+    if restitution is not None:  # a restitution above Housner's loses less (at least 1e-3 counted)
+        loss = min(loss, max(1.0 - restitution, 1e-3))
+    settle = (2.0 / block.p) * math.sqrt(2.0) / loss  # a rocking cascade
     stiff = 0.0
     if isinstance(foundation, LinearIsolation):
         w, xi = foundation.omega_b, foundation.xi
@@ -458,14 +464,14 @@ def _estimate_steps(block: Block, foundation, prepared, rtol: float, tail: float
     after = min(max(horizon, tail), settle)
     if history:
         after = max(after, tail)
-    impacts = math.log(1.0 / rest_tol) / (3.0 * math.sin(block.alpha) ** 2)  # one cascade down to rest
+    impacts = math.log(1.0 / rest_tol) / (2.0 * loss)  # one cascade down to rest
     cascade = 2.0 * impacts * (1.0 + stiff / (3.0 * block.p))  # a flight of ~1/p at the base's stable step
     per_sample = k.RIGID_RECORD_SUBSTEPS if isinstance(foundation, Rigid) else 1  # steps per sample, at least
     return samples * per_sample + (active + after) * rate + cascade, samples, active + after
 
 
 def _check_work(block: Block, foundation, prepared, rtol: float, tail: float, rest_tol: float, horizon: float,
-                max_steps: int, history: bool = False) -> None:
+                max_steps: int, history: bool = False, restitution: float | None = None) -> None:
     """Refuse, in one sentence, a scene whose estimated step count exceeds a fifth of ``max_steps``.
 
     So that an accepted scene never reaches the step cap, which is then left for genuine numerical
@@ -485,12 +491,14 @@ def _check_work(block: Block, foundation, prepared, rtol: float, tail: float, re
     chatter near the rest threshold, up to ``p/(2 sqrt(2 rest_tol))`` a second; an empirical term,
     negligible below gamma = 0.6); plus
     one cascade of impacts down to rest, ``ln(1/rest_tol)/(3 sin^2 alpha)`` impacts of ``2 (1 +
-    lambda/(3 p))`` steps each (a flight of about 1/p at the base's stable step). Calibrated on
+    lambda/(3 p))`` steps each (a flight of about 1/p at the base's stable step); a restitution E above
+    Housner's value replaces ``1.5 sin^2 alpha`` by ``max(1 - E, 1e-3)`` in both. Calibrated on
     random scenes over every supported range, where the steps taken stayed within a few times this
     estimate; then checked on 60,000 others (README, Bad input): no accepted scene reached the cap.
     """
     rtol = _rtol(foundation, rtol)
-    estimate, samples, run = _estimate_steps(block, foundation, prepared, rtol, tail, rest_tol, horizon, history)
+    estimate, samples, run = _estimate_steps(block, foundation, prepared, rtol, tail, rest_tol, horizon, history,
+                                             restitution)
     limit = max_steps // 5
     if estimate > limit:
         what = [f"{samples:,} record samples" if samples > limit / 4 else f"a run of up to {run:.4g} s"]
@@ -507,7 +515,8 @@ def _check_work(block: Block, foundation, prepared, rtol: float, tail: float, re
 
 def simulate(block: Block, foundation=None, excitation=None, *, rtol: float | None = None,
              history: bool = False, tail: float = DEFAULT_TAIL, rest_tol: float = DEFAULT_REST_TOL,
-             horizon: float = DEFAULT_HORIZON, max_steps: int = DEFAULT_MAX_STEPS, early: bool = False) -> Response:
+             horizon: float = DEFAULT_HORIZON, max_steps: int = DEFAULT_MAX_STEPS, early: bool = False,
+             restitution: float | None = None) -> Response:
     """Rocking response of ``block`` on ``foundation`` under ``excitation``.
 
     Parameters
@@ -538,6 +547,10 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float | No
         ``peak_final`` is False). Not with ``history``.
     max_steps : int
         Safety cap on integrator steps.
+    restitution : float, optional
+        Coefficient of restitution E, 0 < E <= 1: ``theta_dot+ = E theta_dot-`` at an impact on a
+        rigid foundation (None: Housner's ``1 - 1.5 sin^2 alpha``); on an isolated base the map
+        keeps the horizontal momentum and E enters as in :mod:`rockcli.impact`.
 
     Returns
     -------
@@ -550,14 +563,15 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float | No
     if excitation is None:
         raise RockcliInputError("simulate needs an excitation (a record or a pulse)")
     validate_options(rtol, tail, rest_tol, horizon, max_steps)
+    restitution = check_restitution(restitution)
     if early and history:
         raise RockcliInputError("early stopping is for verdict-only runs; it cannot be combined with history")
     k = _kernel()
     prepared = _excitation_arrays(excitation)
     ekind, epar, acc, jtab, dt, t_begin, t_exc_end = prepared
-    fkind, prm = _parameters(block, foundation, rtol, float(rest_tol))
+    fkind, prm = _parameters(block, foundation, rtol, float(rest_tol), restitution)
     _check_work(block, foundation, prepared, rtol, float(tail), float(rest_tol), float(horizon),
-                int(max_steps), bool(history))
+                int(max_steps), bool(history), restitution)
     out = np.zeros(k.N_OUT)
     kernel = k.simulate_rigid if fkind == k.FOUNDATION_RIGID else k.simulate_core
     H = kernel(fkind, tuple(float(v) for v in prm), ekind, tuple(float(v) for v in epar), acc, jtab, dt,
@@ -616,7 +630,7 @@ def _response(out: np.ndarray, H, block, out_fkind: int = 0) -> Response:
 def simulate_many(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL,
                   rest_tol: float = DEFAULT_REST_TOL, horizon: float = DEFAULT_HORIZON,
                   max_steps: int = DEFAULT_MAX_STEPS, early: bool = False,
-                  progress=None, chunk: int | None = None) -> list:
+                  progress=None, chunk: int | None = None, restitution=None) -> list:
     """Verdict-only :func:`simulate` of many scenes, run in parallel on all cores.
 
     Parameters
@@ -635,6 +649,8 @@ def simulate_many(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL,
     chunk : int, optional
         Scenes per batch handed to a thread (default: about 1/8 of a thread's share, and at most
         1/50 of all scenes with ``progress``).
+    restitution : float, None or sequence of them
+        Coefficient of restitution of :func:`simulate` (one value or one per scene; None: Housner's).
 
     Returns
     -------
@@ -645,7 +661,8 @@ def simulate_many(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL,
         (``rtol``, ``tail``, ``rest_tol``, ``horizon``) concern every job and raise.
     """
     outs, alphas, failed = _run_many(jobs, rtol=rtol, tail=tail, rest_tol=rest_tol, horizon=horizon,
-                                     max_steps=max_steps, early=early, progress=progress, chunk=chunk)
+                                     max_steps=max_steps, early=early, progress=progress, chunk=chunk,
+                                     restitution=restitution)
     done = iter(range(outs.shape[0]))
     return [failed[i] if i in failed else _response(outs[next(done)], None, alphas[i]) for i in range(len(alphas))]
 
@@ -673,14 +690,15 @@ class Verdicts:
 
 def simulate_verdicts(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL, rest_tol: float = DEFAULT_REST_TOL,
                       horizon: float = DEFAULT_HORIZON, max_steps: int = DEFAULT_MAX_STEPS, early: bool = False,
-                      progress=None, chunk: int | None = None) -> Verdicts:
+                      progress=None, chunk: int | None = None, restitution=None) -> Verdicts:
     """:func:`simulate_many` returning arrays (no :class:`Response` per scene): for large sweeps.
 
     Same arguments and the same runs; a job that fails validation raises here.
     """
     k = _kernel()
     outs, alphas, failed = _run_many(jobs, rtol=rtol, tail=tail, rest_tol=rest_tol, horizon=horizon,
-                                     max_steps=max_steps, early=early, progress=progress, chunk=chunk)
+                                     max_steps=max_steps, early=early, progress=progress, chunk=chunk,
+                                     restitution=restitution)
     if failed:
         i = min(failed)
         raise RockcliInputError(f"job {i}: {failed[i].error}")
@@ -692,7 +710,7 @@ def simulate_verdicts(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL, res
 
 
 def _scene_arrays(block, foundation, excitation, tail, rtol, rest_tol, horizon, max_steps, prepared, params,
-                  checked):
+                  checked, restitution=None):
     """The kernel inputs of one (block, foundation, excitation, tail) of a sweep, validated and its work
     checked: ``(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end)`` (``epar`` a copy).
 
@@ -710,20 +728,22 @@ def _scene_arrays(block, foundation, excitation, tail, rtol, rest_tol, horizon, 
         raise prepared[key]
     ekind, epar, acc, jtab, dt, t_begin, t_exc_end = prepared[key]
     try:
-        cached = params.get((block, foundation))
+        cached = params.get((block, foundation, restitution))
     except TypeError:  # an unhashable foundation: built for each scene
-        cached = _parameters(block, foundation, rtol, float(rest_tol))
+        cached = _parameters(block, foundation, rtol, float(rest_tol), restitution)
     if cached is None:
-        cached = params[(block, foundation)] = _parameters(block, foundation, rtol, float(rest_tol))
+        cached = params[(block, foundation, restitution)] = _parameters(block, foundation, rtol, float(rest_tol),
+                                                                        restitution)
     fkind, prm = cached
     # the work estimate depends only on these (not on the amplitude): checked once per distinct set
-    wkey = (block, foundation, ekind, acc.size, epar[k.E_TE] - epar[k.E_TS], t_exc_end, tail)
+    wkey = (block, foundation, ekind, acc.size, epar[k.E_TE] - epar[k.E_TS], t_exc_end, tail, restitution)
     try:
         known = wkey in checked
     except TypeError:
         known = False
     if not known:
-        _check_work(block, foundation, prepared[key], rtol, tail, float(rest_tol), float(horizon), int(max_steps))
+        _check_work(block, foundation, prepared[key], rtol, tail, float(rest_tol), float(horizon), int(max_steps),
+                    restitution=restitution)
         try:
             checked.add(wkey)
         except TypeError:
@@ -731,7 +751,17 @@ def _scene_arrays(block, foundation, excitation, tail, rtol, rest_tol, horizon, 
     return fkind, prm, ekind, epar.copy(), acc, jtab, dt, t_begin, t_exc_end
 
 
-def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress, chunk):
+def _per_job(value, n: int, check, what: str) -> list:
+    """A solver option given as one value or one per job, checked, as a list of ``n`` values."""
+    if value is None or np.ndim(value) == 0:
+        return [check(value)] * n
+    values = list(value)
+    if len(values) != n:
+        raise RockcliInputError(f"{what} must be one value or one per job ({n}), got {len(values)}")
+    return [check(v) for v in values]
+
+
+def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress, chunk, restitution=None):
     """Kernel outputs (``O_*`` rows) of the valid jobs, each job's slenderness, and the failed jobs.
 
     Returns ``(outs, alphas, failed)``: ``outs`` has one row per valid job in job order,
@@ -747,6 +777,7 @@ def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress
         if not np.all(np.isfinite(tails_in) & (tails_in >= 0) & (tails_in <= TAIL_MAX)):
             raise RockcliInputError(f"tail must be a time between 0 and {TAIL_MAX:g} s for every job")
         validate_options(rtol, 0.0, rest_tol, horizon, max_steps)
+    restitutions = _per_job(restitution, len(jobs), check_restitution, "restitution")
     k = _kernel()
     n = len(jobs)
     if n == 0:
@@ -774,13 +805,13 @@ def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress
                 raise RockcliInputError(f"job {i}: the scale factor must be finite, got {scale!r}")
             tail_i = float(tails_in if tails_in.ndim == 0 else tails_in[i])
             # the jobs hold these objects, so their ids stay theirs for the whole loop
-            gkey = (id(block), id(foundation), id(excitation), tail_i)
+            gkey = (id(block), id(foundation), id(excitation), tail_i, restitutions[i])
             g = groups.get(gkey)
             if g is None:
                 try:
                     fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end = _scene_arrays(
                         block, foundation, excitation, tail_i, rtol, rest_tol, horizon, max_steps, prepared, params,
-                        checked)
+                        checked, restitutions[i])
                 except (RockcliInputError, TypeError, ValueError) as exc:
                     g = RockcliInputError(str(exc))
                 else:

@@ -7,12 +7,20 @@ from __future__ import annotations
 import click
 
 from rockcli.cli.errors import InputError, user_errors
-from rockcli.cli.options import check_outputs, horizon_option, progress_bar
+from rockcli.cli.options import check_outputs, horizon_option, progress_bar, restitution_option
 
 
 @click.group(name="assess")
 def assess():
     """Assess free-standing bodies against records and isolation configurations."""
+
+
+def _restitution_kw(restitution) -> dict:
+    """The solver keyword of ``--restitution`` (checked; none when not given: Housner's rule)."""
+    from rockcli.impact import check_restitution
+
+    restitution = check_restitution(restitution, "--restitution")
+    return {} if restitution is None else {"restitution": restitution}
 
 
 def _block_options(func):
@@ -103,9 +111,10 @@ def _columns(names, R, alpha, height, width, name):
                    "verdict that changes; and on 2 copies of its motion moved by one ulp, and flag any scene "
                    "whose verdict changes or whose peak moves by more than 1e-3 alpha (ill-conditioned).")
 @horizon_option
+@restitution_option
 @user_errors
 def column(names, R, alpha, height, width, name, records, units, dt, excitation, isolation, margin, neighbourhood,
-           csv_path, hist_dir, plot_dir, check_tolerance, horizon):
+           csv_path, hist_dir, plot_dir, check_tolerance, horizon, restitution):
     """Do the columns NAME... survive the records, on a rigid base and on isolators?
 
     NAME is a preset (bassae, nemea) or a custom block NAME:R=<m>,alpha=<deg> or
@@ -125,6 +134,7 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
     from rockcli.solve import validate_options
 
     validate_options(horizon=horizon)
+    solver = _restitution_kw(restitution)
     columns = _columns(names, R, alpha, height, width, name)
     configurations = parse_configurations(isolation)
     check_outputs((csv_path, "--csv", False), folders=((hist_dir, "--histories"), (plot_dir, "--plot")))
@@ -136,7 +146,8 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
     total = count_runs(columns, excitations, configurations, margin, neighbourhood)
     with progress_bar(total) as bar:
         result = run_assessment(columns, excitations, configurations, margin=margin, neighbourhood=neighbourhood,
-                                unavailable=unavailable, progress=bar.update if bar else None, horizon=horizon)
+                                unavailable=unavailable, progress=bar.update if bar else None, horizon=horizon,
+                                **solver)
         if bar:
             bar.update(total)
 
@@ -262,9 +273,10 @@ def _write_histories(result, hist_dir, plot_dir):
               help="Run the margin searches on a Dask cluster (pip install -e \".[dask]\"): the address of an "
                    "existing scheduler, or 'local' for a LocalCluster on this machine. Same results.")
 @horizon_option
+@restitution_option
 @user_errors
 def fragility(names, R, alpha, height, width, name, records, units, dt, isolation, im, n_boot, seed, csv_path,
-              plot_path, scheduler, horizon):
+              plot_path, scheduler, horizon, restitution):
     """Fragility curves of overturning: P(the column overturns | IM) from a suite of records.
 
     Each record is scaled (0.1x..4x, then bisection) to the smallest factor that overturns the
@@ -284,6 +296,7 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
     from rockcli.solve import validate_options
 
     validate_options(horizon=horizon)
+    solver = _restitution_kw(restitution)
     columns = _columns(names, R, alpha, height, width, name)
     if not records:
         raise InputError("give the record suite with --records DIR|ID|FILE (repeatable)")
@@ -300,12 +313,13 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
         from rockcli.assess.fragility import run_fragility_distributed
 
         result = run_fragility_distributed(scheduler, columns, excitations, configurations, im=im, n_boot=n_boot,
-                                           seed=seed, unavailable=unavailable, horizon=horizon)
+                                           seed=seed, unavailable=unavailable, horizon=horizon, **solver)
     else:
         total = count_fragility_runs(columns, excitations, configurations)
         with progress_bar(total) as bar:
             result = run_fragility(columns, excitations, configurations, im=im, n_boot=n_boot, seed=seed,
-                                   unavailable=unavailable, progress=bar.update if bar else None, horizon=horizon)
+                                   unavailable=unavailable, progress=bar.update if bar else None, horizon=horizon,
+                                   **solver)
             if bar:
                 bar.update(total)
 

@@ -70,6 +70,16 @@ def horizon_option(func):
                              "3600); a run still moving then is reported NOT PROVEN.")(func)
 
 
+def restitution_option(func):
+    """``--restitution E``: the coefficient of restitution of every impact (``restitution`` keyword of
+    :func:`rockcli.solve.simulate`); the command checks it (:func:`rockcli.impact.check_restitution`)."""
+    return click.option("--restitution", type=float, default=None, metavar="E",
+                        help="Coefficient of restitution, 0 < E <= 1: theta_dot after / before an impact on a rigid "
+                             "foundation [default: Housner's 1 - 1.5 sin^2 alpha]. On an isolated base the impact "
+                             "keeps the horizontal momentum and theta_dot+ = (1 - 4 (1 - E)/(4 - 3 gamma cos^2 "
+                             "alpha)) theta_dot- (README, Restitution).")(func)
+
+
 #: The block flags, as :func:`rockcli.models.build_block` names them in messages.
 BLOCK_FLAGS = {"preset": "--column NAME", "R": "--R", "alpha": "--alpha", "height": "--height", "width": "--width"}
 

@@ -6,7 +6,7 @@ import click
 
 from rockcli.cli.errors import user_errors
 from rockcli.cli.options import (block_from_options, block_options, check_outputs, horizon_option, record_kwargs,
-                                 record_options)
+                                 record_options, restitution_option)
 
 
 @click.command(context_settings={"show_default": True})
@@ -30,6 +30,7 @@ from rockcli.cli.options import (block_from_options, block_options, check_output
 @click.option("--tail", type=float, default=10.0,
               help="Free motion shown after the excitation in --history/--plot [s]; never changes the verdict.")
 @horizon_option
+@restitution_option
 @click.option("--check-tolerance", "check", is_flag=True,
               help="Rerun at a 100x tighter rtol, and on 2 copies of the motion moved by one ulp, and report "
                    "whether the verdict or the peak changes (ill-conditioned: the answer is not determined by the "
@@ -43,7 +44,7 @@ from rockcli.cli.options import (block_from_options, block_options, check_output
                    "and lead-rubber bearings also their force-displacement loop) to an image.")
 @user_errors
 def simulate(column_name, R, alpha, height, width, name, isolation, record_source, units, dt, fmt, column,
-             pulse, scale, flip, rtol, tail, horizon, check, as_json, history_path, plot_path):
+             pulse, scale, flip, rtol, tail, horizon, restitution, check, as_json, history_path, plot_path):
     """Rocking response of one block to one ground motion, on a rigid or an isolated base.
 
     \b
@@ -56,12 +57,15 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     import math
 
     from rockcli.errors import RockcliInputError
+    from rockcli.impact import check_restitution
     from rockcli.models import parse_isolation_spec
     from rockcli.units import G
 
     check_outputs((history_path, "--history", False), (plot_path, "--plot", True))
     block = block_from_options(column_name, R, alpha, height, width, name)
     foundation = parse_isolation_spec(isolation)
+    restitution = check_restitution(restitution, "--restitution")
+    solver = {} if restitution is None else {"restitution": restitution}
     if (record_source is None) == (pulse is None):
         raise RockcliInputError("give the ground motion as exactly one of --record SOURCE or --pulse SPEC")
     if not math.isfinite(scale) or scale == 0:
@@ -87,12 +91,12 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     from rockcli.solve import simulate as run
 
     res = run(block, foundation, excitation, rtol=rtol, tail=tail, horizon=horizon,
-              history=bool(history_path or plot_path))
+              history=bool(history_path or plot_path), **solver)
     if res.status < 0:  # a genuine numerical failure: no result is printed or written as if it were valid
         raise click.ClickException(
             f"the integrator stopped at its safety cap of {res.steps + res.rejected_steps:,} steps at "
             f"t = {res.t_end_s:.3f} s, a numerical failure: no result is given (please report the command line)")
-    checked = _check(block, foundation, excitation, res, rtol, horizon) if check else None
+    checked = _check(block, foundation, excitation, res, rtol, horizon, solver) if check else None
     if history_path:
         from rockcli.report.response import write_history_csv
 
@@ -104,7 +108,8 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
 
     if as_json:
         out = {"block": block.name, "R_m": block.R, "alpha_deg": block.alpha_deg, "p_radps": block.p,
-               "isolation": foundation.label, "excitation": label, **res.summary()}
+               "isolation": foundation.label, "excitation": label, **_impact_keys(block, foundation, restitution),
+               **res.summary()}
         if checked:
             out.update({k: (None if isinstance(v, float) and v != v else v) for k, v in checked.items()})
         click.echo(json.dumps(out, allow_nan=False))
@@ -117,6 +122,7 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
         ("block", f"{block.name}: R = {block.R:.3f} m, alpha = {block.alpha_deg:.2f} deg "
                   f"(h/b = {block.h / block.b:.2f}), p = {block.p:.3f} rad/s"),
         ("foundation", foundation.label),
+        *([("impact rule", _impact_row(block, foundation, restitution))] if restitution is not None else []),
         ("excitation", label + _pga(excitation, G)),
         ("verdict", {"overturned": "OVERTURNS", "rocked": "survives (rocks)",
                      "no_uplift": "survives (no uplift)"}[res.verdict]),
@@ -138,7 +144,24 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
                    "the block; lengthen --horizon to follow it")
 
 
-def _check(block, foundation, excitation, res, rtol, horizon) -> dict:
+def _impact_keys(block, foundation, restitution) -> dict:
+    """JSON keys of a given restitution (none for Housner's rule, the default)."""
+    if restitution is None:
+        return {}
+    from rockcli.impact import impact_ratio
+
+    return {"restitution": restitution, "impact_ratio": impact_ratio(block.alpha, foundation.gamma, restitution)}
+
+
+def _impact_row(block, foundation, restitution) -> str:
+    from rockcli.impact import housner_restitution, impact_ratio
+
+    eta = impact_ratio(block.alpha, foundation.gamma, restitution)
+    return (f"restitution E = {restitution:g} (Housner's {housner_restitution(block.alpha):.4f}): "
+            f"theta_dot+ = {eta:.4f} theta_dot-")
+
+
+def _check(block, foundation, excitation, res, rtol, horizon, solver=None) -> dict:
     """``--check-tolerance``: the verdict-only run at a 100x tighter rtol and on one-ulp copies of
     the motion, compared with this run's verdict and peak (|theta|/alpha; the overturning time [s]
     when it overturns). Changes are NaN where the verdict changed."""
@@ -146,10 +169,12 @@ def _check(block, foundation, excitation, res, rtol, horizon) -> dict:
     from rockcli.solve import default_rtol, simulate
 
     base_rtol = default_rtol(foundation) if rtol is None else rtol
-    tight = simulate(block, foundation, excitation, rtol=base_rtol / 100.0, horizon=horizon)
+    solver = solver or {}
+    tight = simulate(block, foundation, excitation, rtol=base_rtol / 100.0, horizon=horizon, **solver)
     d_tight = answer_change(res, tight)
     spread, verdicts = measure_conditioning(block, foundation, excitation, seed=1980,
-                                            base=res if res.history is None else None, rtol=rtol, horizon=horizon)
+                                            base=res if res.history is None else None, rtol=rtol, horizon=horizon,
+                                            **solver)
     return {"check_tight_rtol": base_rtol / 100.0, "check_tight_rtol_verdict": tight.verdict,
             "check_tight_rtol_change": d_tight, "check_ulp_draws": ULP_DRAWS, "check_ulp_verdicts": list(verdicts),
             "check_ulp_change": spread, "check_ill_conditioned": ill_conditioned(res.verdict, spread, verdicts)}

@@ -6,7 +6,7 @@ from __future__ import annotations
 import click
 
 from rockcli.cli.errors import InputError, user_errors
-from rockcli.cli.options import horizon_option, progress_bar, record_kwargs, record_options
+from rockcli.cli.options import horizon_option, progress_bar, record_kwargs, record_options, restitution_option
 
 _SHAPES = "ricker-sym|ricker-anti|sine|cosine"
 
@@ -42,6 +42,7 @@ def _scene_options(isolation_help: str, isolation_default, multiple_isolation: b
                          help="Run the cells in chunks on a Dask cluster (pip install -e \".[dask]\"): an "
                               "existing scheduler, or 'local' for a LocalCluster on this machine."),
             horizon_option,
+            restitution_option,
         ]
         f = record_options(f, column_flag="--record-column")
         for option in reversed(options):
@@ -74,16 +75,18 @@ def _pulses(pulses, records, units, dt, fmt, column, default=("ricker-sym",)):
     return out
 
 
-def _runner(scheduler, horizon):
+def _runner(scheduler, horizon, restitution=None):
+    from rockcli.impact import check_restitution
     from rockcli.solve import validate_options
     from rockcli.spectra import Runner
 
     validate_options(horizon=horizon)
+    restitution = check_restitution(restitution, "--restitution")
     if scheduler is not None:
         from rockcli.distributed import check_scheduler
 
         check_scheduler(scheduler)
-    return Runner(scheduler, horizon=horizon)
+    return Runner(scheduler, horizon=horizon, restitution=restitution)
 
 
 def _echo_unproven(runner):
@@ -111,7 +114,7 @@ def _echo_notes(pcs):
                    "follows every run until its peak is final (the same map, slower).")
 @user_errors
 def overturning(alpha, pulses, records, isolations, csv_path, plot_path, scheduler, units, dt, fmt, column, wp_p, ap,
-                early, horizon):
+                early, horizon, restitution):
     """Overturning map over omega_p/p x a_p/(g tan alpha), like the paper's Figures 6 and 9.
 
     Light grey: the block rocks and survives; dark grey: it overturns; white: it never uplifts.
@@ -133,7 +136,7 @@ def overturning(alpha, pulses, records, isolations, csv_path, plot_path, schedul
     ap_grid = parse_grid(ap, "--ap")
     isos = [parse_isolation(s) for s in isolations]
     _check_outputs(csv_path, plot_path)
-    runner = _runner(scheduler, horizon)
+    runner = _runner(scheduler, horizon, restitution)
     pcs = _pulses(pulses, records, units, dt, fmt, column)
     n = len(alphas) * len(pcs) * len(isos) * wp_grid.count * ap_grid.count
     t0 = time.perf_counter()
@@ -179,7 +182,7 @@ def overturning(alpha, pulses, records, isolations, csv_path, plot_path, schedul
               help="Relative resolution of the bisection after the scan.")
 @user_errors
 def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, scheduler, units, dt, fmt, column,
-                    gammas, wp_p, ap_max, step, tol, horizon):
+                    gammas, wp_p, ap_max, step, tol, horizon, restitution):
     """Minimum overturning acceleration over omega_p/p, like the paper's Figures 7, 8, 9 and 11.
 
     For each omega_p/p: the smallest a_p that overturns, found by scanning up from the uplift
@@ -207,7 +210,7 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
             iso.foundation(1.0)
     isos = list(dict.fromkeys(isos))
     _check_outputs(csv_path, plot_path)
-    runner = _runner(scheduler, horizon)
+    runner = _runner(scheduler, horizon, restitution)
     pcs = _pulses(pulses, records, units, dt, fmt, column)
     n = len(alphas) * len(pcs) * len(isos) * xs.size
     t0 = time.perf_counter()
@@ -269,9 +272,10 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
 @click.option("--scheduler", default=None, metavar="tcp://HOST:PORT|local",
               help="Run the cells on a Dask cluster (see overturning).")
 @horizon_option
+@restitution_option
 @user_errors
 def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, fmt, column, wp_p, xtol, ap_max,
-                  step, tol, csv_path, plot_path, scheduler, horizon):
+                  step, tol, csv_path, plot_path, scheduler, horizon, restitution):
     """Block size beyond which a block is safer without isolation, like the paper's Table I.
 
     Where the minimum overturning curves of the rigid foundation and of the isolated base cross
@@ -301,7 +305,7 @@ def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, 
         xi = 0.05
     isos = table_i_isolations(ratios, xi=xi, gamma=gamma, template=bearing)
     _check_outputs(csv_path, plot_path)
-    runner = _runner(scheduler, horizon)
+    runner = _runner(scheduler, horizon, restitution)
     if pulses or records:
         pcs = _pulses(pulses, records, units, dt, fmt, column, default=())
     else:

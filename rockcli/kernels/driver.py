@@ -450,8 +450,11 @@ def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, ta
        of block + base, ``E = u'^2/2 + gamma R cos(A) u' theta' + (2/3) gamma R^2 theta'^2 + gamma g R (cos A
        - cos alpha) + E_b`` (kinetic energy of base and block, ``I_cm = m R^2/3``; the block's height
        above rest; ``E_b`` the energy stored in the bearings, :func:`rockcli.kernels.bearings.bearing_energy`),
-       never grows with the ground still: the bearings are passive (P3s), an impact keeps both momenta
-       and loses kinetic energy (tests/test_solver.py), a rest or a failed uplift keeps the momentum and
+       never grows with the ground still: the bearings are passive (P3s), an impact keeps the horizontal
+       momentum (and, with Housner's rule, the angular momentum about the new pivot) and changes the kinetic
+       energy by ``gamma (2 R^2/3 - gamma h^2/2) (eta^2 - 1) theta'^2 <= 0`` for every ``0 <= eta <= 1``, so for
+       every restitution ``0 < E <= 1`` (:mod:`rockcli.impact`; tests/test_solver.py, tests/test_restitution.py),
+       a rest or a failed uplift keeps the momentum and
        loses ``theta'^2 gamma (2 R^2/3 - gamma h^2/2) > 0``. The block's height term alone is
        ``gamma g R (cos(alpha - |theta|) - cos alpha)``, increasing in ``|theta|`` up to alpha. Hence if
        ``|theta| < L = min(theta_max, alpha)`` now and ``E`` is below the height term at ``L``, the block
@@ -473,7 +476,8 @@ def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, ta
        cos alpha)`` obeys ``(4/3) R^2 theta'' = -g R sin A - R cos(A) a``, so ``dE/dt = -R cos(A) a theta'``;
        while ``|theta| <= 2 alpha`` the height term is >= 0, so ``theta'^2 <= 3 E/(2 R^2)`` and
        ``d sqrt(E)/dt <= sqrt(3/2) |a|/2``; impacts only lose kinetic energy (gamma = 0 is Eq 4's
-       impact) and a rest or an uplift sets or starts it at 0. Hence ``E <= (sqrt(E0) + sqrt(3/2) J/2)^2``
+       impact, ``theta'+ = eta theta'-`` with ``eta <= 1`` also for a given restitution E <= 1) and a
+       rest or an uplift sets or starts it at 0. Hence ``E <= (sqrt(E0) + sqrt(3/2) J/2)^2``
        for all later times (:func:`_decoupled_energy_bound`), and if ``|theta| < L = min(theta_max,
        alpha)`` and this bound is below ``g R (cos(alpha - L) - cos alpha)``, the block's height at
        ``L``, the block never reaches ``L`` (the bound keeps ``|theta| < L <= 2 alpha`` throughout): it

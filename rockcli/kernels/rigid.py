@@ -13,7 +13,8 @@ P1 (ground still, block stuck). With ``ag = 0`` and theta = 0 the uplift conditi
    ``|ag| > g tan(alpha)`` can never hold again.
 P2 (ground still, rocking, ``|theta| < alpha``). Between impacts
    ``E = theta_dot^2/2 + p^2 cos(alpha - |theta|)`` is conserved (Eq 3 with ``ag = 0``); an impact
-   keeps theta = 0 and multiplies theta_dot by ``|eta| <= 1``, so E never grows; a rest sets
+   keeps theta = 0 and multiplies theta_dot by ``|eta| <= 1`` (Housner's ``1 - 1.5 sin^2 alpha``, or a
+   given restitution ``0 < E <= 1``: all this proof and P4 ask of an impact), so E never grows; a rest sets
    ``E = p^2 cos(alpha)``. The potential ``p^2 cos(alpha - |theta|)`` is largest, ``p^2``, at
    ``|theta| = alpha``. Hence if ``E < p^2`` while ``|theta| < alpha`` the block never reaches
    alpha, so never pi/2, and each later peak ``alpha - acos(E/p^2)`` is at most the next one,
@@ -25,7 +26,8 @@ P2 (ground still, rocking, ``|theta| < alpha``). Between impacts
 P4 (``early`` only, during the excitation, after the first uplift, block stuck or
    ``|theta| < alpha``). ``dE/dt = -p^2 (ag/g) cos(A) theta_dot`` and, while
    ``|theta| <= alpha``, ``theta_dot^2/2 <= E - p^2 cos(alpha) = X^2``, so
-   ``dX/dt <= p^2 |ag| / (sqrt(2) g)`` (impacts and rests only lower X). Hence
+   ``dX/dt <= p^2 |ag| / (sqrt(2) g)`` (impacts, ``X -> |eta| X`` with ``|eta| <= 1`` for any
+   restitution, and rests only lower X). Hence
    ``X(t') <= X(t) + p^2/(sqrt(2) g) int_t^t' |ag|``. If that bound with the whole remaining
    impulse (:func:`rockcli.kernels.ground._impulse_left`) is below ``p sqrt(1 - cos(alpha))``
    (``E < p^2``), the block cannot reach alpha before the ground stops (a first arrival at alpha

@@ -95,6 +95,10 @@ def format_notes(assessment) -> str:
                      "peak so far r; it had not overturned, but its survival is not proven and it is not counted "
                      "as surviving (very slender blocks on sliding bearings, see the README); --horizon "
                      "(up to 3600 s) follows it longer.")
+    if assessment.solver.get("restitution") is not None:
+        lines.append(f"Impacts: coefficient of restitution E = {assessment.solver['restitution']:g} (on the ground "
+                     "theta_dot+ = E theta_dot-; on isolators the map of the README's Restitution section), not "
+                     "Housner's 1 - 1.5 sin^2 alpha.")
     if assessment.margin:
         lines.append("xS: smallest scale factor of the record that overturns the column in that configuration "
                      "(S > 1: survival margin; S < 1 on an overturn: it overturns already at S times the record; "
@@ -146,6 +150,8 @@ def write_assessment_csv(assessment, path: str | os.PathLike, check=None) -> Pat
     """Write the CSV report (one row per column x record x configuration), atomically; with ``check``
     (a :class:`rockcli.assess.table.ToleranceCheck`) the :data:`CHECK_COLUMNS` follow."""
     df = assessment_frame(assessment)
+    if assessment.solver.get("restitution") is not None:  # a given coefficient of restitution (default: none)
+        df["restitution"] = assessment.solver["restitution"]
     if check is not None:
         from rockcli.conditioning import ill_conditioned
 
