@@ -2,7 +2,8 @@
 
 Solver contract
 ---------------
-* The block starts at rest on its base, base and ground at rest, at the start of the excitation.
+* The block starts at rest on its base, base and ground at rest, at the start of the excitation
+  (or, with ``theta0``/``theta_dot0``, rocking from that state: :mod:`rockcli.initial`).
 * A record is piecewise linear between its samples, zero after its last sample. A pulse is
   evaluated analytically and is zero outside its support.
 * Uplift when the absolute base acceleration ``a`` passes ``-g tan(alpha)`` (rocking on the
@@ -45,6 +46,7 @@ import numpy as np
 
 from rockcli.errors import RockcliInputError
 from rockcli.impact import check_restitution, impact_ratio
+from rockcli.initial import check_initial_state, still_ground_arrays
 from rockcli.models import Block, DoubleConcaveSliding, LeadRubber, LinearIsolation, Rigid, SingleConcaveSliding
 from rockcli.units import G
 
@@ -99,6 +101,9 @@ class History:
     z: np.ndarray | None = None
     z2: np.ndarray | None = None
     bearing_force: np.ndarray | None = None
+    #: the turning points of theta while rocking (theta_dot = 0, on the dense output): times [s] and angles [rad]
+    peak_t: np.ndarray | None = None
+    peak_theta: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
@@ -516,7 +521,7 @@ def _check_work(block: Block, foundation, prepared, rtol: float, tail: float, re
 def simulate(block: Block, foundation=None, excitation=None, *, rtol: float | None = None,
              history: bool = False, tail: float = DEFAULT_TAIL, rest_tol: float = DEFAULT_REST_TOL,
              horizon: float = DEFAULT_HORIZON, max_steps: int = DEFAULT_MAX_STEPS, early: bool = False,
-             restitution: float | None = None) -> Response:
+             restitution: float | None = None, theta0: float = 0.0, theta_dot0: float = 0.0) -> Response:
     """Rocking response of ``block`` on ``foundation`` under ``excitation``.
 
     Parameters
@@ -551,6 +556,9 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float | No
         Coefficient of restitution E, 0 < E <= 1: ``theta_dot+ = E theta_dot-`` at an impact on a
         rigid foundation (None: Housner's ``1 - 1.5 sin^2 alpha``); on an isolated base the map
         keeps the horizontal momentum and E enters as in :mod:`rockcli.impact`.
+    theta0, theta_dot0 : float
+        Start rocking from this tilt [rad] (``|theta0| < pi/2``) and angular velocity [rad/s]
+        instead of at rest (:mod:`rockcli.initial`); ``excitation`` may then be None (free rocking).
 
     Returns
     -------
@@ -560,16 +568,19 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float | No
         foundation = Rigid()
     if not isinstance(block, Block):
         raise RockcliInputError(f"block must be a rockcli.models.Block, got {type(block).__name__}")
-    if excitation is None:
-        raise RockcliInputError("simulate needs an excitation (a record or a pulse)")
+    theta0, theta_dot0 = check_initial_state(theta0, theta_dot0)
+    if excitation is None and theta0 == 0.0 and theta_dot0 == 0.0:
+        raise RockcliInputError("simulate needs an excitation (a record or a pulse), or a start away from rest "
+                                "(theta0 or theta_dot0)")
     validate_options(rtol, tail, rest_tol, horizon, max_steps)
     restitution = check_restitution(restitution)
     if early and history:
         raise RockcliInputError("early stopping is for verdict-only runs; it cannot be combined with history")
     k = _kernel()
-    prepared = _excitation_arrays(excitation)
+    prepared = still_ground_arrays(k) if excitation is None else _excitation_arrays(excitation)
     ekind, epar, acc, jtab, dt, t_begin, t_exc_end = prepared
     fkind, prm = _parameters(block, foundation, rtol, float(rest_tol), restitution)
+    prm[k.P_TH0], prm[k.P_THD0] = theta0, theta_dot0
     _check_work(block, foundation, prepared, rtol, float(tail), float(rest_tol), float(horizon),
                 int(max_steps), bool(history), restitution)
     out = np.zeros(k.N_OUT)
@@ -607,11 +618,14 @@ def _response(out: np.ndarray, H, block, out_fkind: int = 0) -> Response:
     if H is not None:
         fkind = out_fkind
         hyst = fkind in (k.FOUNDATION_BILINEAR, k.FOUNDATION_DCSS)
+        peaks = H[H[:, k.H_KIND] == k.HK_PEAK]
+        H = H[H[:, k.H_KIND] == k.HK_STATE]
         hist = History(t=H[:, k.H_T].copy(), ag=H[:, k.H_AG].copy(), theta=H[:, k.H_TH].copy(),
                        theta_dot=H[:, k.H_THD].copy(), u=H[:, k.H_U].copy(), u_dot=H[:, k.H_UD].copy(),
                        z=H[:, k.H_Z].copy() if hyst else None,
                        z2=H[:, k.H_Z2].copy() if fkind == k.FOUNDATION_DCSS else None,
-                       bearing_force=H[:, k.H_FB].copy() if fkind != k.FOUNDATION_RIGID else None)
+                       bearing_force=H[:, k.H_FB].copy() if fkind != k.FOUNDATION_RIGID else None,
+                       peak_t=peaks[:, k.H_T].copy(), peak_theta=peaks[:, k.H_TH].copy())
     return Response(
         verdict=verdict, status=status, message=message,
         t_uplift_s=float(out[k.O_T_UPLIFT]), t_overturn_s=float(out[k.O_T_OVERTURN]),

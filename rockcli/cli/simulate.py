@@ -23,6 +23,11 @@ from rockcli.cli.options import (block_from_options, block_options, check_output
 @click.option("--pulse", default=None, metavar="SPEC",
               help="Ground motion: an analytic pulse, e.g. 'ricker-sym:ap=0.3,Tp=0.6' (ap in g, Tp in s); "
                    "shapes ricker-sym, ricker-anti, sine, cosine.")
+@click.option("--theta0", type=float, default=0.0, metavar="RAD",
+              help="Start rocking from this tilt [rad] (|theta0| < pi/2; > 0 on the right corner) instead of at rest; "
+                   "without --record/--pulse the block rocks freely on still ground.")
+@click.option("--theta-dot0", "theta_dot0", type=float, default=0.0, metavar="RAD/S",
+              help="Start with this angular velocity [rad/s] (with or without --theta0).")
 @click.option("--scale", type=float, default=1.0, help="Multiply the record's acceleration by this factor.")
 @click.option("--flip", is_flag=True, help="Reverse the sign of the ground motion.")
 @click.option("--rtol", type=float, default=None,
@@ -44,7 +49,7 @@ from rockcli.cli.options import (block_from_options, block_options, check_output
                    "and lead-rubber bearings also their force-displacement loop) to an image.")
 @user_errors
 def simulate(column_name, R, alpha, height, width, name, isolation, record_source, units, dt, fmt, column,
-             pulse, scale, flip, rtol, tail, horizon, restitution, check, as_json, history_path, plot_path):
+             pulse, theta0, theta_dot0, scale, flip, rtol, tail, horizon, restitution, check, as_json, history_path, plot_path):
     """Rocking response of one block to one ground motion, on a rigid or an isolated base.
 
     \b
@@ -52,6 +57,7 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
       rockcli simulate --height 2 --width 0.5 --pulse sine:ap=0.29,Tp=2
       rockcli simulate --column nemea --record northridge-1994-jensen-022 --isolation linear:Tb=3
       rockcli simulate --R 1 --alpha 16 --pulse ricker-sym:ap=0.5,Tp=0.6 --isolation scss:Tb=1.8,mu=0.05 --plot f.png
+      rockcli simulate --R 2.5 --alpha 11.5 --theta0 0.1 --restitution 0.9 --history free.csv
     """
     import json
     import math
@@ -66,12 +72,27 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     foundation = parse_isolation_spec(isolation)
     restitution = check_restitution(restitution, "--restitution")
     solver = {} if restitution is None else {"restitution": restitution}
-    if (record_source is None) == (pulse is None):
+    from rockcli.initial import check_initial_state
+
+    theta0, theta_dot0 = check_initial_state(theta0, theta_dot0, ("--theta0", "--theta-dot0"))
+    moving = theta0 != 0.0 or theta_dot0 != 0.0
+    if moving:
+        solver.update(theta0=theta0, theta_dot0=theta_dot0)
+    if record_source is not None and pulse is not None:
         raise RockcliInputError("give the ground motion as exactly one of --record SOURCE or --pulse SPEC")
+    if record_source is None and pulse is None and not moving:
+        raise RockcliInputError("give the ground motion as exactly one of --record SOURCE or --pulse SPEC, or start "
+                                "the block rocking freely with --theta0 RAD and/or --theta-dot0 RAD/S")
+    if check and record_source is None and pulse is None:
+        raise RockcliInputError("--check-tolerance perturbs the ground motion: it needs --record or --pulse")
     if not math.isfinite(scale) or scale == 0:
         raise RockcliInputError(f"--scale must be a finite non-zero number, got {scale!r}")
     factor = -scale if flip else scale
-    if pulse is not None:
+    if record_source is None and pulse is None:
+        if any(v is not None for v in (units, dt, fmt, column)):
+            raise RockcliInputError("--units, --dt, --format and --record-column apply to --record")
+        excitation, label = None, "free rocking (no ground motion)"
+    elif pulse is not None:
         from rockcli.pulses import parse_pulse_spec
 
         if any(v is not None for v in (units, dt, fmt, column)):
@@ -109,6 +130,7 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     if as_json:
         out = {"block": block.name, "R_m": block.R, "alpha_deg": block.alpha_deg, "p_radps": block.p,
                "isolation": foundation.label, "excitation": label, **_impact_keys(block, foundation, restitution),
+               **({"theta0": theta0, "theta_dot0": theta_dot0} if moving else {}),
                **res.summary()}
         if checked:
             out.update({k: (None if isinstance(v, float) and v != v else v) for k, v in checked.items()})
@@ -124,6 +146,8 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
         ("foundation", foundation.label),
         *([("impact rule", _impact_row(block, foundation, restitution))] if restitution is not None else []),
         ("excitation", label + _pga(excitation, G)),
+        *([("start", f"theta0 = {theta0:g} rad ({theta0 / block.alpha:.4g} alpha), theta_dot0 = {theta_dot0:g} rad/s")]
+          if moving else []),
         ("verdict", {"overturned": "OVERTURNS", "rocked": "survives (rocks)",
                      "no_uplift": "survives (no uplift)"}[res.verdict]),
         ("uplift at", fmt_t(res.t_uplift_s)),
@@ -199,6 +223,8 @@ def _check_rows(c: dict, res) -> list:
 
 
 def _pga(excitation, G) -> str:
+    if excitation is None:
+        return ""
     if hasattr(excitation, "pga_g"):
         return f", PGA {excitation.pga_g:.3f} g, {excitation.duration:.2f} s at dt = {excitation.dt:g} s"
     return f", a_p = {abs(excitation.a_p) / G:.3f} g, T_p = {excitation.T_p:g} s"

@@ -68,18 +68,18 @@ import math
 import numpy as np
 from numba import njit
 
-from rockcli.kernels.dopri import _dp5_step, _restep_rows
-from rockcli.kernels.events import _count_uplift, _hist_push, impact_map
+from rockcli.kernels.dopri import _dp5_step, _restep_rows, _state_at
+from rockcli.kernels.events import _count_uplift, _hist_peak, _hist_push, impact_map
 from rockcli.kernels.ground import _impulse_left, _rigid_uplift, ground_at
-from rockcli.kernels.layout import (EXC_RECORD, O_T_SETTLED, O_T_THETA_MAX, O_UPLIFTED, P_ALPHA, P_COSA, P_ETA, P_G,
-                                    P_P2, P_SINA, P_THR, PHASE_ROCKING, PHASE_STUCK, RIGID_RECORD_SUBSTEPS, RS_FRESH,
-                                    RS_NRHS,
+from rockcli.kernels.layout import (EXC_RECORD, HK_STATE, O_T_SETTLED, O_T_THETA_MAX, O_UPLIFTED, P_ALPHA, P_COSA,
+                                    P_ETA, P_G, P_P2, P_SINA, P_TH0, P_THD0, P_THR, PHASE_ROCKING, PHASE_STUCK,
+                                    RIGID_RECORD_SUBSTEPS, RS_FRESH, RS_NRHS, RS_PK_ON, RS_PK_SIG, RS_PK_T,
                                     RS_PEAK_FINAL, RS_PHASE, RS_REJ, RS_S, RS_SEG_END, RS_SETTLED, RS_STATUS,
-                                    RS_STEPS, RS_T, RS_THMAX, STATUS_MAX_STEPS, STATUS_OVERTURNED, W_RE, W_Y)
+                                    RS_STEPS, RS_T, RS_THMAX, STATUS_MAX_STEPS, STATUS_OVERTURNED, W_RE, W_TMP, W_Y)
 from rockcli.kernels.rhs import _rhs_rigid_into
 from rockcli.kernels.steps import (EV_FAILED, EV_IMPACT, EV_OVERTURN, _advance_segment, _bounce, _close_step,
-                                   _finish, _grown, _out_of_time, _rocking_events, _seg, _shrink, _start,
-                                   _step_start, _to_impact, _to_overturn, _to_step_end)
+                                   _finish, _grown, _initial_state, _out_of_time, _rocking_events, _seg, _shrink,
+                                   _start, _step_start, _to_impact, _to_overturn, _to_step_end)
 
 _NO_HY = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)  # no hysteretic elements
 
@@ -207,7 +207,7 @@ def _restep_rigid(fkind, phase, s, prm, seg, epar, hy, t, h, W, i0, i1):
 @njit(cache=True, inline='always')
 def _history_rigid(H, nh, rs, epar, W):
     t = rs[RS_T]
-    return _hist_push(H, nh, t, ground_at(t, _seg(rs), epar), W, W_Y, 0.0, 0.0, 0.0)
+    return _hist_push(H, nh, t, ground_at(t, _seg(rs), epar), W, W_Y, 0.0, 0.0, 0.0, HK_STATE)
 
 
 @njit(cache=True, inline='always')
@@ -229,11 +229,14 @@ def simulate_rigid(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, t
     """Integrate one scene on a rigid foundation; the arguments, outputs and the general end-of-run
     rule are those of :func:`rockcli.kernels.driver.simulate_core` (``fkind`` is ignored)."""
     W, rs, H = _start(ekind, epar, acc, dt, t_begin, want_history, out)
+    _initial_state(prm, rs, W, out)
     nh = np.int64(0)
     t_show_end = t_exc_end + tail
     t_horizon = t_exc_end + max(horizon, tail)
     if want_history:
         H, nh = _history_rigid(H, nh, rs, epar, W)
+        if prm[P_TH0] != 0.0 and prm[P_THD0] == 0.0:  # released from rest at a tilt: its first peak
+            H, nh = _hist_peak(H, nh, rs[RS_T], ground_at(rs[RS_T], _seg(rs), epar), W, W_Y)
 
     while True:
         _advance_segment(rs, ekind, epar, acc, dt, t_begin)
@@ -260,6 +263,9 @@ def simulate_rigid(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, t
         t_new = t_stop if last else rs[RS_T] + hs
 
         code, sig = _rocking_events(prm, rs, W, out, hs, t_new, 1.0)
+        if want_history and rs[RS_PK_ON] != 0.0:  # a turning point of theta inside the step
+            _state_at(W, hs, rs[RS_PK_SIG], np.int64(2))
+            H, nh = _hist_peak(H, nh, rs[RS_PK_T], ground_at(rs[RS_PK_T], _seg(rs), epar), W, W_TMP)
         if code == EV_OVERTURN:
             _to_overturn(rs, W, out, hs, sig, 2)
         elif code == EV_FAILED:
