@@ -45,6 +45,7 @@ from typing import Any
 import numpy as np
 
 from rockcli.errors import RockcliInputError
+from rockcli.colonnade import apply_cap_ratio, check_cap_ratio
 from rockcli.impact import check_restitution, impact_ratio
 from rockcli.initial import check_initial_state, still_ground_arrays
 from rockcli.models import Block, DoubleConcaveSliding, LeadRubber, LinearIsolation, Rigid, SingleConcaveSliding
@@ -326,7 +327,8 @@ def _rtol(foundation, rtol) -> float:
     return default_rtol(foundation) if rtol is None else float(rtol)
 
 
-def _parameters(block: Block, foundation, rtol, rest_tol: float, restitution: float | None = None):
+def _parameters(block: Block, foundation, rtol, rest_tol: float, restitution: float | None = None,
+                cap_ratio: float = 0.0):
     """``(fkind, prm)``: the kernel's foundation code and parameter vector (``rockcli.kernels.layout``);
     ``rtol`` None takes the foundation's default; ``restitution`` None Housner's (:mod:`rockcli.impact`)."""
     k = _kernel()
@@ -386,6 +388,7 @@ def _parameters(block: Block, foundation, rtol, rest_tol: float, restitution: fl
         prm[k.P_SC0 + 3] = prm[k.P_THR] / max(w, p)
     else:
         raise RockcliInputError(f"unknown foundation {foundation!r}")
+    apply_cap_ratio(prm, k, block, check_cap_ratio(cap_ratio, foundation), restitution)  # a capped colonnade
     return fkind, prm
 
 
@@ -521,7 +524,8 @@ def _check_work(block: Block, foundation, prepared, rtol: float, tail: float, re
 def simulate(block: Block, foundation=None, excitation=None, *, rtol: float | None = None,
              history: bool = False, tail: float = DEFAULT_TAIL, rest_tol: float = DEFAULT_REST_TOL,
              horizon: float = DEFAULT_HORIZON, max_steps: int = DEFAULT_MAX_STEPS, early: bool = False,
-             restitution: float | None = None, theta0: float = 0.0, theta_dot0: float = 0.0) -> Response:
+             restitution: float | None = None, theta0: float = 0.0, theta_dot0: float = 0.0,
+             cap_ratio: float = 0.0) -> Response:
     """Rocking response of ``block`` on ``foundation`` under ``excitation``.
 
     Parameters
@@ -559,6 +563,9 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float | No
     theta0, theta_dot0 : float
         Start rocking from this tilt [rad] (``|theta0| < pi/2``) and angular velocity [rad/s]
         instead of at rest (:mod:`rockcli.initial`); ``excitation`` may then be None (free rocking).
+    cap_ratio : float
+        A capped colonnade of such columns on a rigid foundation: beam mass over the columns' total
+        mass, >= 0 (0: the solitary column; :mod:`rockcli.colonnade`).
 
     Returns
     -------
@@ -579,7 +586,7 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float | No
     k = _kernel()
     prepared = still_ground_arrays(k) if excitation is None else _excitation_arrays(excitation)
     ekind, epar, acc, jtab, dt, t_begin, t_exc_end = prepared
-    fkind, prm = _parameters(block, foundation, rtol, float(rest_tol), restitution)
+    fkind, prm = _parameters(block, foundation, rtol, float(rest_tol), restitution, cap_ratio)
     prm[k.P_TH0], prm[k.P_THD0] = theta0, theta_dot0
     _check_work(block, foundation, prepared, rtol, float(tail), float(rest_tol), float(horizon),
                 int(max_steps), bool(history), restitution)
@@ -644,7 +651,7 @@ def _response(out: np.ndarray, H, block, out_fkind: int = 0) -> Response:
 def simulate_many(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL,
                   rest_tol: float = DEFAULT_REST_TOL, horizon: float = DEFAULT_HORIZON,
                   max_steps: int = DEFAULT_MAX_STEPS, early: bool = False,
-                  progress=None, chunk: int | None = None, restitution=None) -> list:
+                  progress=None, chunk: int | None = None, restitution=None, cap_ratio=0.0) -> list:
     """Verdict-only :func:`simulate` of many scenes, run in parallel on all cores.
 
     Parameters
@@ -665,6 +672,8 @@ def simulate_many(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL,
         1/50 of all scenes with ``progress``).
     restitution : float, None or sequence of them
         Coefficient of restitution of :func:`simulate` (one value or one per scene; None: Housner's).
+    cap_ratio : float or sequence of float
+        Capped colonnade of :func:`simulate` (one value or one per scene; 0: solitary columns).
 
     Returns
     -------
@@ -676,7 +685,7 @@ def simulate_many(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL,
     """
     outs, alphas, failed = _run_many(jobs, rtol=rtol, tail=tail, rest_tol=rest_tol, horizon=horizon,
                                      max_steps=max_steps, early=early, progress=progress, chunk=chunk,
-                                     restitution=restitution)
+                                     restitution=restitution, cap_ratio=cap_ratio)
     done = iter(range(outs.shape[0]))
     return [failed[i] if i in failed else _response(outs[next(done)], None, alphas[i]) for i in range(len(alphas))]
 
@@ -704,7 +713,7 @@ class Verdicts:
 
 def simulate_verdicts(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL, rest_tol: float = DEFAULT_REST_TOL,
                       horizon: float = DEFAULT_HORIZON, max_steps: int = DEFAULT_MAX_STEPS, early: bool = False,
-                      progress=None, chunk: int | None = None, restitution=None) -> Verdicts:
+                      progress=None, chunk: int | None = None, restitution=None, cap_ratio=0.0) -> Verdicts:
     """:func:`simulate_many` returning arrays (no :class:`Response` per scene): for large sweeps.
 
     Same arguments and the same runs; a job that fails validation raises here.
@@ -712,7 +721,7 @@ def simulate_verdicts(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL, res
     k = _kernel()
     outs, alphas, failed = _run_many(jobs, rtol=rtol, tail=tail, rest_tol=rest_tol, horizon=horizon,
                                      max_steps=max_steps, early=early, progress=progress, chunk=chunk,
-                                     restitution=restitution)
+                                     restitution=restitution, cap_ratio=cap_ratio)
     if failed:
         i = min(failed)
         raise RockcliInputError(f"job {i}: {failed[i].error}")
@@ -724,7 +733,7 @@ def simulate_verdicts(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL, res
 
 
 def _scene_arrays(block, foundation, excitation, tail, rtol, rest_tol, horizon, max_steps, prepared, params,
-                  checked, restitution=None):
+                  checked, restitution=None, cap_ratio=0.0):
     """The kernel inputs of one (block, foundation, excitation, tail) of a sweep, validated and its work
     checked: ``(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end)`` (``epar`` a copy).
 
@@ -742,12 +751,12 @@ def _scene_arrays(block, foundation, excitation, tail, rtol, rest_tol, horizon, 
         raise prepared[key]
     ekind, epar, acc, jtab, dt, t_begin, t_exc_end = prepared[key]
     try:
-        cached = params.get((block, foundation, restitution))
+        cached = params.get((block, foundation, restitution, cap_ratio))
     except TypeError:  # an unhashable foundation: built for each scene
-        cached = _parameters(block, foundation, rtol, float(rest_tol), restitution)
+        cached = _parameters(block, foundation, rtol, float(rest_tol), restitution, cap_ratio)
     if cached is None:
-        cached = params[(block, foundation, restitution)] = _parameters(block, foundation, rtol, float(rest_tol),
-                                                                        restitution)
+        cached = params[(block, foundation, restitution, cap_ratio)] = _parameters(
+            block, foundation, rtol, float(rest_tol), restitution, cap_ratio)
     fkind, prm = cached
     # the work estimate depends only on these (not on the amplitude): checked once per distinct set
     wkey = (block, foundation, ekind, acc.size, epar[k.E_TE] - epar[k.E_TS], t_exc_end, tail, restitution)
@@ -775,7 +784,8 @@ def _per_job(value, n: int, check, what: str) -> list:
     return [check(v) for v in values]
 
 
-def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress, chunk, restitution=None):
+def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress, chunk, restitution=None,
+              cap_ratio=0.0):
     """Kernel outputs (``O_*`` rows) of the valid jobs, each job's slenderness, and the failed jobs.
 
     Returns ``(outs, alphas, failed)``: ``outs`` has one row per valid job in job order,
@@ -792,6 +802,7 @@ def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress
             raise RockcliInputError(f"tail must be a time between 0 and {TAIL_MAX:g} s for every job")
         validate_options(rtol, 0.0, rest_tol, horizon, max_steps)
     restitutions = _per_job(restitution, len(jobs), check_restitution, "restitution")
+    caps = _per_job(cap_ratio, len(jobs), check_cap_ratio, "cap_ratio")  # (the foundation is checked per job)
     k = _kernel()
     n = len(jobs)
     if n == 0:
@@ -819,13 +830,13 @@ def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress
                 raise RockcliInputError(f"job {i}: the scale factor must be finite, got {scale!r}")
             tail_i = float(tails_in if tails_in.ndim == 0 else tails_in[i])
             # the jobs hold these objects, so their ids stay theirs for the whole loop
-            gkey = (id(block), id(foundation), id(excitation), tail_i, restitutions[i])
+            gkey = (id(block), id(foundation), id(excitation), tail_i, restitutions[i], caps[i])
             g = groups.get(gkey)
             if g is None:
                 try:
                     fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end = _scene_arrays(
                         block, foundation, excitation, tail_i, rtol, rest_tol, horizon, max_steps, prepared, params,
-                        checked, restitutions[i])
+                        checked, restitutions[i], caps[i])
                 except (RockcliInputError, TypeError, ValueError) as exc:
                     g = RockcliInputError(str(exc))
                 else:

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import click
 
 from rockcli.cli.errors import user_errors
@@ -36,6 +38,10 @@ from rockcli.cli.options import (block_from_options, block_options, check_output
               help="Free motion shown after the excitation in --history/--plot [s]; never changes the verdict.")
 @horizon_option
 @restitution_option
+@click.option("--cap-ratio", "cap_ratio", type=float, default=0.0, metavar="GAMMA_C",
+              help="A capped colonnade of N such columns carrying a rigid beam (Makris & Vassiliou 2013), rigid "
+                   "foundation only: beam mass over the columns' total mass; they rock as one column with p "
+                   "times sqrt((1 + 2 gamma_c)/(1 + 3 gamma_c)) (docs/physics-colonnade.md). 0: one column.")
 @click.option("--check-tolerance", "check", is_flag=True,
               help="Rerun at a 100x tighter rtol, and on 2 copies of the motion moved by one ulp, and report "
                    "whether the verdict or the peak changes (ill-conditioned: the answer is not determined by the "
@@ -49,7 +55,7 @@ from rockcli.cli.options import (block_from_options, block_options, check_output
                    "and lead-rubber bearings also their force-displacement loop) to an image.")
 @user_errors
 def simulate(column_name, R, alpha, height, width, name, isolation, record_source, units, dt, fmt, column,
-             pulse, theta0, theta_dot0, scale, flip, rtol, tail, horizon, restitution, check, as_json, history_path, plot_path):
+             pulse, theta0, theta_dot0, scale, flip, rtol, tail, horizon, restitution, cap_ratio, check, as_json, history_path, plot_path):
     """Rocking response of one block to one ground motion, on a rigid or an isolated base.
 
     \b
@@ -72,7 +78,12 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     foundation = parse_isolation_spec(isolation)
     restitution = check_restitution(restitution, "--restitution")
     solver = {} if restitution is None else {"restitution": restitution}
+    from rockcli.colonnade import check_cap_ratio
     from rockcli.initial import check_initial_state
+
+    cap_ratio = check_cap_ratio(cap_ratio, foundation, "--cap-ratio")
+    if cap_ratio > 0.0:
+        solver["cap_ratio"] = cap_ratio
 
     theta0, theta_dot0 = check_initial_state(theta0, theta_dot0, ("--theta0", "--theta-dot0"))
     moving = theta0 != 0.0 or theta_dot0 != 0.0
@@ -129,7 +140,8 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
 
     if as_json:
         out = {"block": block.name, "R_m": block.R, "alpha_deg": block.alpha_deg, "p_radps": block.p,
-               "isolation": foundation.label, "excitation": label, **_impact_keys(block, foundation, restitution),
+               "isolation": foundation.label, "excitation": label,
+               **_impact_keys(block, foundation, restitution, cap_ratio),
                **({"theta0": theta0, "theta_dot0": theta_dot0} if moving else {}),
                **res.summary()}
         if checked:
@@ -144,6 +156,7 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
         ("block", f"{block.name}: R = {block.R:.3f} m, alpha = {block.alpha_deg:.2f} deg "
                   f"(h/b = {block.h / block.b:.2f}), p = {block.p:.3f} rad/s"),
         ("foundation", foundation.label),
+        *([("colonnade", _colonnade_row(block, cap_ratio))] if cap_ratio > 0.0 else []),
         *([("impact rule", _impact_row(block, foundation, restitution))] if restitution is not None else []),
         ("excitation", label + _pga(excitation, G)),
         *([("start", f"theta0 = {theta0:g} rad ({theta0 / block.alpha:.4g} alpha), theta_dot0 = {theta_dot0:g} rad/s")]
@@ -168,13 +181,27 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
                    "the block; lengthen --horizon to follow it")
 
 
-def _impact_keys(block, foundation, restitution) -> dict:
-    """JSON keys of a given restitution (none for Housner's rule, the default)."""
-    if restitution is None:
-        return {}
+def _impact_keys(block, foundation, restitution, cap_ratio=0.0) -> dict:
+    """JSON keys of a given restitution and of a colonnade (none for the defaults)."""
+    from rockcli.colonnade import colonnade_restitution, frequency_factor
     from rockcli.impact import impact_ratio
 
-    return {"restitution": restitution, "impact_ratio": impact_ratio(block.alpha, foundation.gamma, restitution)}
+    out = {}
+    if cap_ratio > 0.0:
+        out.update(cap_ratio=cap_ratio, p_colonnade_radps=block.p * math.sqrt(frequency_factor(cap_ratio)))
+        eta = colonnade_restitution(block.alpha, cap_ratio) if restitution is None else restitution
+        out.update(impact_ratio=eta)
+    if restitution is not None:
+        out = {"restitution": restitution, "impact_ratio": impact_ratio(block.alpha, foundation.gamma, restitution),
+               **out}
+    return out
+
+
+def _colonnade_row(block, cap_ratio) -> str:
+    from rockcli.colonnade import colonnade_restitution, frequency_factor
+
+    return (f"capped, beam/columns mass gamma_c = {cap_ratio:g}: p = {block.p * math.sqrt(frequency_factor(cap_ratio)):.3f} "
+            f"rad/s, impact ratio {colonnade_restitution(block.alpha, cap_ratio):.4f} (Makris & Vassiliou 2013)")
 
 
 def _impact_row(block, foundation, restitution) -> str:
