@@ -17,9 +17,9 @@ from rockcli.colonnade import colonnade_restitution, frequency_factor
 from rockcli.errors import RockcliInputError
 from rockcli.models import Block, LinearIsolation, Rigid
 from rockcli.pulses import make_pulse
-from rockcli.solve import simulate, simulate_many
+from rockcli.solve import simulate
 from rockcli.units import G
-from test_verdict_paths import random_scenes
+from test_verdict_paths import _compare_modes, random_scenes
 
 _GL = np.array([-1.0, 1.0]) / math.sqrt(3.0)  # 2-point Gauss-Legendre: exact for the quadratic mass moments
 
@@ -219,18 +219,8 @@ def test_verdict_only_equals_full_history_for_random_colonnades():
     jobs = [j for j in random_scenes(3000, 2013) if isinstance(j[1], Rigid)]
     rng = np.random.default_rng(2013)
     caps = [float(rng.choice([0.0, rng.uniform(0.0, 3.0)])) for _ in jobs]
-    early = simulate_many(jobs, early=True, cap_ratio=caps)
-    verdict_only = simulate_many(jobs, cap_ratio=caps)
-    bad = []
-    for i, (job, gc) in enumerate(zip(jobs, caps)):
-        full = simulate(*job, history=True, cap_ratio=gc)
-        a, b = early[i], verdict_only[i]
-        same = a.verdict == b.verdict == full.verdict and b.n_impacts == full.n_impacts and b.settled == full.settled
-        same = same and b.theta_max == pytest.approx(full.theta_max, rel=1e-6, abs=1e-15)
-        same = same and a.theta_max <= full.theta_max * (1 + 1e-7) + 1e-15
-        if not same:
-            bad.append((i, gc, a.verdict, b.verdict, full.verdict))
-    assert bad == []
+    early, verdict_only, mismatches = _compare_modes(jobs, cap_ratio=caps)
+    assert mismatches == []
     verdicts = [r.verdict for r in verdict_only]
     assert min(verdicts.count(v) for v in ("rocked", "overturned")) > 300 and verdicts.count("no_uplift") > 20
     assert sum(not r.peak_final for r in early) > 50
