@@ -169,6 +169,8 @@ def test_cli_spectrum_and_assess_pass_restitution(tmp_path):
         assert float(row["theta_max_over_alpha"]) == pytest.approx(r.theta_max_over_alpha, rel=1e-5)
         assert (row["overturned"] in ("True", "1", "true")) == r.overturned
     assert [r["theta_max_over_alpha"] for r in csvs[0]] != [r["theta_max_over_alpha"] for r in csvs[1]]
+    assert "restitution" not in csvs[0][0] and all(float(r["restitution"]) == 0.6 for r in csvs[1])
+    assert "coefficient of restitution E = 0.6" in out.output
     path = tmp_path / "a.csv"
     out = runner.invoke(main, ["assess", "column", "statue:R=1.2,alpha=14", "--records", "kobe-1995-takarazuka-000",
                                "--excitation", "pulse", "--isolation", "none", "--no-margin", "--csv", str(path),

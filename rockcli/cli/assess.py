@@ -328,11 +328,17 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
     click.echo(format_fragility(result))
     click.echo("")
     click.echo(format_fragility_notes(result))
+    if solver:
+        click.echo(f"Impacts: coefficient of restitution E = {solver['restitution']:g} (README, Restitution).")
     _warn_failed(result.failed, len(result.excitations))
     if csv_path:
         from rockcli.report.fragility import write_fragility_csv
 
         write_fragility_csv(result, csv_path)
+        if solver:  # a given --restitution (nothing for the default)
+            from rockcli.report.spectra import add_constant_columns
+
+            add_constant_columns(csv_path, solver)
         click.echo(f"wrote {csv_path} ({len(result.rows)} rows)")
     if plot_path:
         from rockcli.report.fragility import plot_fragility

@@ -89,7 +89,21 @@ def _runner(scheduler, horizon, restitution=None):
     return Runner(scheduler, horizon=horizon, restitution=restitution)
 
 
+def _echo_impacts(runner):
+    if runner.restitution is not None:
+        click.echo(f"impacts: coefficient of restitution E = {runner.restitution:g} (README, Restitution)")
+
+
+def _csv_options(csv_path, runner):
+    """A given --restitution as a column of the CSV (nothing for the default, Housner's rule)."""
+    if runner.restitution is not None:
+        from rockcli.report.spectra import add_constant_columns
+
+        add_constant_columns(csv_path, {"restitution": runner.restitution})
+
+
 def _echo_unproven(runner):
+    _echo_impacts(runner)
     if runner.unproven:
         click.echo(f"note: {runner.unproven} runs reached the solver's horizon with the verdict NOT PROVEN "
                    "(counted as surviving)")
@@ -152,10 +166,12 @@ def overturning(alpha, pulses, records, isolations, csv_path, plot_path, schedul
                    f"{int(m.overturned.sum())} of {cells} cells overturn, {int((~m.uplifted).sum())} never uplift"
                    + (f", {unsettled} NOT PROVEN (still moving at the solver's horizon)" if unsettled else ""))
     click.echo(f"{n} cells (omega_p/p {wp_grid}, a_p/(g tan alpha) {ap_grid}) in {elapsed:.2f} s")
+    _echo_impacts(runner)
     if csv_path:
         from rockcli.report.spectra import write_map_csv
 
         write_map_csv(maps, csv_path)
+        _csv_options(csv_path, runner)
         click.echo(f"wrote {csv_path} ({n} rows)")
     if plot_path:
         from rockcli.report.spectra import plot_maps
@@ -231,6 +247,7 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
         from rockcli.report.spectra import write_min_csv
 
         write_min_csv(curves, csv_path)
+        _csv_options(csv_path, runner)
         click.echo(f"wrote {csv_path} ({len(curves) * xs.size} rows)")
     if plot_path:
         from rockcli.report.spectra import plot_min_curves
@@ -341,6 +358,7 @@ def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, 
         from rockcli.report.spectra import write_critical_csv
 
         write_critical_csv(result.rows, csv_path)
+        _csv_options(csv_path, runner)
         click.echo(f"wrote {csv_path} ({len(result.rows)} rows)")
     if plot_path:
         from rockcli.report.spectra import plot_min_curves

@@ -54,6 +54,20 @@ def _write_rows(path, columns, rows) -> Path:
     return write_text(path, fh.getvalue())
 
 
+def add_constant_columns(path, values: dict) -> Path:
+    """Append one column per ``values`` item (the same value on every row) to the CSV at ``path``,
+    atomically: the solver options a sweep ran with (e.g. ``restitution``) when they are not the defaults."""
+    if not values:
+        return Path(path)
+    rows = list(csv.reader(io.StringIO(Path(path).read_text())))
+    fh = io.StringIO()
+    w = csv.writer(fh, lineterminator="\n")
+    w.writerow(rows[0] + list(values))
+    for row in rows[1:]:
+        w.writerow(row + [_fmt(v) for v in values.values()])
+    return write_text(path, fh.getvalue())
+
+
 def _check_image_path(path) -> Path:
     return check_output(path, image=True)
 
