@@ -224,3 +224,33 @@ def test_verdict_only_equals_full_history_for_random_colonnades():
     verdicts = [r.verdict for r in verdict_only]
     assert min(verdicts.count(v) for v in ("rocked", "overturned")) > 300 and verdicts.count("no_uplift") > 20
     assert sum(not r.peak_final for r in early) > 50
+
+
+def test_cli_spectrum_and_assess_run_colonnades(tmp_path):
+    import csv
+
+    from rockcli.cli import main
+    from rockcli.spectra import Family, parse_isolation
+
+    runner = CliRunner()
+    path = tmp_path / "map.csv"
+    out = runner.invoke(main, ["spectrum", "overturning", "--alpha", "10", "--wp-p", "2:6:3", "--ap", "2:6:3",
+                               "--csv", str(path), "--full-peaks", "--cap-ratio", "0.5"])
+    assert out.exit_code == 0, out.output
+    assert "gamma_c = 0.5" in out.output
+    fam = Family(math.radians(10.0), "ricker-sym", parse_isolation("none"))
+    for row in csv.DictReader(path.open()):
+        assert float(row["cap_ratio"]) == 0.5
+        r = simulate(*fam.scene(float(row["wp_over_p"]), float(row["ap_over_g_tan_alpha"])), cap_ratio=0.5)
+        assert float(row["theta_max_over_alpha"]) == pytest.approx(r.theta_max_over_alpha, rel=1e-5)
+    refused = runner.invoke(main, ["spectrum", "overturning", "--alpha", "10", "--isolation", "none",
+                                   "--isolation", "linear:TbTp=2", "--cap-ratio", "0.5"])
+    assert refused.exit_code == 2 and "--cap-ratio needs a rigid foundation" in refused.output
+    path = tmp_path / "a.csv"
+    out = runner.invoke(main, ["assess", "column", "nemea", "--records", "kobe-1995-takarazuka-000", "--excitation",
+                               "pulse", "--isolation", "none", "--no-margin", "--cap-ratio", "1", "--csv", str(path)])
+    assert out.exit_code == 0, out.output
+    rows = list(csv.DictReader(path.open()))
+    assert rows and all(float(r["cap_ratio"]) == 1.0 for r in rows)
+    refused = runner.invoke(main, ["assess", "column", "nemea", "--cap-ratio", "1"])
+    assert refused.exit_code == 2 and "--cap-ratio needs a rigid foundation" in refused.output

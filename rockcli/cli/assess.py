@@ -7,7 +7,7 @@ from __future__ import annotations
 import click
 
 from rockcli.cli.errors import InputError, user_errors
-from rockcli.cli.options import check_outputs, horizon_option, progress_bar, restitution_option
+from rockcli.cli.options import cap_ratio_option, check_outputs, horizon_option, progress_bar, restitution_option
 
 
 @click.group(name="assess")
@@ -21,6 +21,19 @@ def _restitution_kw(restitution) -> dict:
 
     restitution = check_restitution(restitution, "--restitution")
     return {} if restitution is None else {"restitution": restitution}
+
+
+def _cap_ratio_kw(cap_ratio, configurations) -> dict:
+    """The solver keyword of ``--cap-ratio`` (none when 0), refused with isolated configurations."""
+    from rockcli.colonnade import check_cap_ratio
+
+    cap_ratio = check_cap_ratio(cap_ratio, None, "--cap-ratio")
+    if cap_ratio == 0.0:
+        return {}
+    if any(c.isolated for c in configurations):
+        raise InputError("--cap-ratio needs a rigid foundation: give --isolation none (a capped colonnade on an "
+                         "isolated base is not derived in rockcli)")
+    return {"cap_ratio": cap_ratio}
 
 
 def _block_options(func):
@@ -112,9 +125,10 @@ def _columns(names, R, alpha, height, width, name):
                    "whose verdict changes or whose peak moves by more than 1e-3 alpha (ill-conditioned).")
 @horizon_option
 @restitution_option
+@cap_ratio_option
 @user_errors
 def column(names, R, alpha, height, width, name, records, units, dt, excitation, isolation, margin, neighbourhood,
-           csv_path, hist_dir, plot_dir, check_tolerance, horizon, restitution):
+           csv_path, hist_dir, plot_dir, check_tolerance, horizon, restitution, cap_ratio):
     """Do the columns NAME... survive the records, on a rigid base and on isolators?
 
     NAME is a preset (bassae, nemea) or a custom block NAME:R=<m>,alpha=<deg> or
@@ -137,6 +151,7 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
     solver = _restitution_kw(restitution)
     columns = _columns(names, R, alpha, height, width, name)
     configurations = parse_configurations(isolation)
+    solver.update(_cap_ratio_kw(cap_ratio, configurations))
     check_outputs((csv_path, "--csv", False), folders=((hist_dir, "--histories"), (plot_dir, "--plot")))
     excitations, unavailable = resolve_excitations(records, excitation, units=units, dt=dt)
     if not excitations:

@@ -8,7 +8,7 @@ import click
 
 from rockcli.cli.errors import user_errors
 from rockcli.cli.options import (block_from_options, block_options, check_outputs, horizon_option, record_kwargs,
-                                 record_options, restitution_option)
+                                 record_options, restitution_option, cap_ratio_option)
 
 
 @click.command(context_settings={"show_default": True})
@@ -38,10 +38,7 @@ from rockcli.cli.options import (block_from_options, block_options, check_output
               help="Free motion shown after the excitation in --history/--plot [s]; never changes the verdict.")
 @horizon_option
 @restitution_option
-@click.option("--cap-ratio", "cap_ratio", type=float, default=0.0, metavar="GAMMA_C",
-              help="A capped colonnade of N such columns carrying a rigid beam (Makris & Vassiliou 2013), rigid "
-                   "foundation only: beam mass over the columns' total mass; they rock as one column with p "
-                   "times sqrt((1 + 2 gamma_c)/(1 + 3 gamma_c)) (docs/physics-colonnade.md). 0: one column.")
+@cap_ratio_option
 @click.option("--check-tolerance", "check", is_flag=True,
               help="Rerun at a 100x tighter rtol, and on 2 copies of the motion moved by one ulp, and report "
                    "whether the verdict or the peak changes (ill-conditioned: the answer is not determined by the "

@@ -6,7 +6,8 @@ from __future__ import annotations
 import click
 
 from rockcli.cli.errors import InputError, user_errors
-from rockcli.cli.options import horizon_option, progress_bar, record_kwargs, record_options, restitution_option
+from rockcli.cli.options import (cap_ratio_option, horizon_option, progress_bar, record_kwargs, record_options,
+                                 restitution_option)
 
 _SHAPES = "ricker-sym|ricker-anti|sine|cosine"
 
@@ -43,6 +44,7 @@ def _scene_options(isolation_help: str, isolation_default, multiple_isolation: b
                               "existing scheduler, or 'local' for a LocalCluster on this machine."),
             horizon_option,
             restitution_option,
+            cap_ratio_option,
         ]
         f = record_options(f, column_flag="--record-column")
         for option in reversed(options):
@@ -75,31 +77,41 @@ def _pulses(pulses, records, units, dt, fmt, column, default=("ricker-sym",)):
     return out
 
 
-def _runner(scheduler, horizon, restitution=None):
+def _runner(scheduler, horizon, restitution=None, cap_ratio=0.0, isolations=()):
+    from rockcli.colonnade import check_cap_ratio
     from rockcli.impact import check_restitution
     from rockcli.solve import validate_options
     from rockcli.spectra import Runner
 
     validate_options(horizon=horizon)
     restitution = check_restitution(restitution, "--restitution")
+    cap_ratio = check_cap_ratio(cap_ratio, None, "--cap-ratio")
+    if cap_ratio > 0.0 and not all(iso.rigid for iso in isolations):
+        raise InputError("--cap-ratio needs a rigid foundation: give --isolation none (a capped colonnade on an "
+                         "isolated base is not derived in rockcli)")
     if scheduler is not None:
         from rockcli.distributed import check_scheduler
 
         check_scheduler(scheduler)
-    return Runner(scheduler, horizon=horizon, restitution=restitution)
+    return Runner(scheduler, horizon=horizon, restitution=restitution, cap_ratio=cap_ratio)
 
 
 def _echo_impacts(runner):
     if runner.restitution is not None:
         click.echo(f"impacts: coefficient of restitution E = {runner.restitution:g} (README, Restitution)")
+    if runner.cap_ratio > 0.0:
+        click.echo(f"capped colonnades: beam/columns mass gamma_c = {runner.cap_ratio:g} (docs/physics-colonnade.md)")
 
 
 def _csv_options(csv_path, runner):
     """A given --restitution as a column of the CSV (nothing for the default, Housner's rule)."""
-    if runner.restitution is not None:
+    extra = {"restitution": runner.restitution} if runner.restitution is not None else {}
+    if runner.cap_ratio > 0.0:
+        extra["cap_ratio"] = runner.cap_ratio
+    if extra:
         from rockcli.report.spectra import add_constant_columns
 
-        add_constant_columns(csv_path, {"restitution": runner.restitution})
+        add_constant_columns(csv_path, extra)
 
 
 def _echo_unproven(runner):
@@ -128,7 +140,7 @@ def _echo_notes(pcs):
                    "follows every run until its peak is final (the same map, slower).")
 @user_errors
 def overturning(alpha, pulses, records, isolations, csv_path, plot_path, scheduler, units, dt, fmt, column, wp_p, ap,
-                early, horizon, restitution):
+                early, horizon, restitution, cap_ratio):
     """Overturning map over omega_p/p x a_p/(g tan alpha), like the paper's Figures 6 and 9.
 
     Light grey: the block rocks and survives; dark grey: it overturns; white: it never uplifts.
@@ -150,7 +162,7 @@ def overturning(alpha, pulses, records, isolations, csv_path, plot_path, schedul
     ap_grid = parse_grid(ap, "--ap")
     isos = [parse_isolation(s) for s in isolations]
     _check_outputs(csv_path, plot_path)
-    runner = _runner(scheduler, horizon, restitution)
+    runner = _runner(scheduler, horizon, restitution, cap_ratio, isos)
     pcs = _pulses(pulses, records, units, dt, fmt, column)
     n = len(alphas) * len(pcs) * len(isos) * wp_grid.count * ap_grid.count
     t0 = time.perf_counter()
@@ -198,7 +210,7 @@ def overturning(alpha, pulses, records, isolations, csv_path, plot_path, schedul
               help="Relative resolution of the bisection after the scan.")
 @user_errors
 def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, scheduler, units, dt, fmt, column,
-                    gammas, wp_p, ap_max, step, tol, horizon, restitution):
+                    gammas, wp_p, ap_max, step, tol, horizon, restitution, cap_ratio):
     """Minimum overturning acceleration over omega_p/p, like the paper's Figures 7, 8, 9 and 11.
 
     For each omega_p/p: the smallest a_p that overturns, found by scanning up from the uplift
@@ -226,7 +238,7 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
             iso.foundation(1.0)
     isos = list(dict.fromkeys(isos))
     _check_outputs(csv_path, plot_path)
-    runner = _runner(scheduler, horizon, restitution)
+    runner = _runner(scheduler, horizon, restitution, cap_ratio, isos)
     pcs = _pulses(pulses, records, units, dt, fmt, column)
     n = len(alphas) * len(pcs) * len(isos) * xs.size
     t0 = time.perf_counter()
