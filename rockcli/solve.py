@@ -330,7 +330,8 @@ def _rtol(foundation, rtol) -> float:
 def _parameters(block: Block, foundation, rtol, rest_tol: float, restitution: float | None = None,
                 cap_ratio: float = 0.0):
     """``(fkind, prm)``: the kernel's foundation code and parameter vector (``rockcli.kernels.layout``);
-    ``rtol`` None takes the foundation's default; ``restitution`` None Housner's (:mod:`rockcli.impact`)."""
+    ``rtol`` None takes the foundation's default; ``restitution`` None Housner's (:mod:`rockcli.impact`);
+    ``cap_ratio`` > 0 a capped colonnade (:mod:`rockcli.colonnade`)."""
     k = _kernel()
     rtol = _rtol(foundation, rtol)
     prm = np.zeros(k.N_PRM)
