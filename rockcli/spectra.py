@@ -345,12 +345,13 @@ class Cells:
 
 def run_cells_local(families: Sequence[Family], fam: np.ndarray, x: np.ndarray, y: np.ndarray,
                     progress: Optional[Callable[[int], None]] = None, early: bool = False,
-                    horizon: float | None = None) -> Cells:
+                    horizon: float | None = None, restitution: float | None = None, cap_ratio: float = 0.0) -> Cells:
     """Run cells ``(families[fam[i]], x[i], y[i])`` with :func:`rockcli.solve.simulate_verdicts` (all cores).
 
     ``progress(n)`` is called with the number of cells finished since the last call; ``early``: stop
     each run once its verdict is proven (the same verdicts; peaks may be lower bounds); ``horizon``:
-    the solver's horizon [s] (None: its default, 600 s).
+    the solver's horizon [s] (None: its default, 600 s); ``restitution``: the coefficient of
+    restitution of every impact (None: Housner's); ``cap_ratio``: capped colonnades (0: solitary blocks).
     """
     from rockcli.solve import DEFAULT_HORIZON, simulate_verdicts
 
@@ -377,7 +378,8 @@ def run_cells_local(families: Sequence[Family], fam: np.ndarray, x: np.ndarray, 
     # results back. Cells are independent: the order changes no result.
     order = np.random.default_rng(0).permutation(n)
     v = simulate_verdicts([jobs[i] for i in order], early=early, progress=step if progress else None,
-                          horizon=DEFAULT_HORIZON if horizon is None else horizon)
+                          horizon=DEFAULT_HORIZON if horizon is None else horizon, restitution=restitution,
+                          cap_ratio=cap_ratio)
     back = np.empty(n, np.int64)
     back[order] = np.arange(n)
     return Cells(v.overturned[back], v.uplifted[back], v.theta_max_over_alpha[back], v.settled[back],
@@ -386,8 +388,9 @@ def run_cells_local(families: Sequence[Family], fam: np.ndarray, x: np.ndarray, 
 
 def _run_cells_task(args) -> Cells:
     """One chunk on a Dask worker (module-level so that it pickles by reference)."""
-    families, fam, x, y, early, horizon = args
-    return run_cells_local(families, fam, x, y, early=early, horizon=horizon)
+    families, fam, x, y, early, horizon, restitution, cap_ratio = args
+    return run_cells_local(families, fam, x, y, early=early, horizon=horizon, restitution=restitution,
+                           cap_ratio=cap_ratio)
 
 
 class Runner:
@@ -403,12 +406,19 @@ class Runner:
         Cells per Dask task.
     horizon : float, optional
         The solver's horizon [s] for every run (None: its default, 600 s).
+    restitution : float, optional
+        The coefficient of restitution of every impact (None: Housner's; :mod:`rockcli.impact`).
+    cap_ratio : float
+        Capped colonnades of the blocks, rigid foundation only (:mod:`rockcli.colonnade`; 0: none).
     """
 
-    def __init__(self, scheduler=None, *, chunk: int = 2000, horizon: float | None = None):
+    def __init__(self, scheduler=None, *, chunk: int = 2000, horizon: float | None = None,
+                 restitution: float | None = None, cap_ratio: float = 0.0):
         self.scheduler = scheduler
         self.chunk = int(chunk)
         self.horizon = horizon
+        self.restitution = restitution
+        self.cap_ratio = cap_ratio
         self._client = None
         self._close = None
         self.cells_run = 0
@@ -434,7 +444,8 @@ class Runner:
         x = np.asarray(x, dtype=float)
         y = np.asarray(y, dtype=float)
         if self.scheduler is None:
-            out = run_cells_local(families, fam, x, y, progress, early, self.horizon)
+            out = run_cells_local(families, fam, x, y, progress, early, self.horizon, self.restitution,
+                                  self.cap_ratio)
         else:
             if self._client is None:
                 raise RuntimeError("use the Runner as a context manager to run on a scheduler")
@@ -442,7 +453,8 @@ class Runner:
 
             n = len(x)
             bounds = [(lo, min(n, lo + self.chunk)) for lo in range(0, n, self.chunk)]
-            tasks = [(tuple(families), fam[lo:hi], x[lo:hi], y[lo:hi], early, self.horizon) for lo, hi in bounds]
+            tasks = [(tuple(families), fam[lo:hi], x[lo:hi], y[lo:hi], early, self.horizon, self.restitution,
+                      self.cap_ratio) for lo, hi in bounds]
             sizes = [hi - lo for lo, hi in bounds]
             parts = map_chunks(self._client, _run_cells_task, tasks,
                                progress=(lambda i: progress(sizes[i])) if progress else None)

@@ -8,13 +8,34 @@ from functools import partial
 import click
 
 from rockcli.cli.errors import InputError, user_errors
-from rockcli.cli.options import (check_outputs, command_line, custom_block_options, horizon_option, progress_bar,
-                                 report_option)
+from rockcli.cli.options import (cap_ratio_option, check_outputs, command_line, custom_block_options,
+                                 horizon_option, progress_bar, report_option, restitution_option)
 
 
 @click.group(name="assess")
 def assess():
     """Assess free-standing bodies against records and isolation configurations."""
+
+
+def _restitution_kw(restitution) -> dict:
+    """The solver keyword of ``--restitution`` (checked; none when not given: Housner's rule)."""
+    from rockcli.impact import check_restitution
+
+    restitution = check_restitution(restitution, "--restitution")
+    return {} if restitution is None else {"restitution": restitution}
+
+
+def _cap_ratio_kw(cap_ratio, configurations) -> dict:
+    """The solver keyword of ``--cap-ratio`` (none when 0), refused with isolated configurations."""
+    from rockcli.colonnade import check_cap_ratio
+
+    cap_ratio = check_cap_ratio(cap_ratio, None, "--cap-ratio")
+    if cap_ratio == 0.0:
+        return {}
+    if any(c.isolated for c in configurations):
+        raise InputError("--cap-ratio needs a rigid foundation: give --isolation none (a capped colonnade on an "
+                         "isolated base is not derived in rockcli)")
+    return {"cap_ratio": cap_ratio}
 
 
 def _headerless_options(func):
@@ -116,9 +137,11 @@ def _columns(names, R, alpha, height, width, name):
                    "whose verdict changes or whose peak moves by more than 1e-3 alpha (ill-conditioned).")
 @report_option
 @horizon_option
+@restitution_option
+@cap_ratio_option
 @user_errors
 def column(names, R, alpha, height, width, name, records, units, dt, excitation, isolation, margin, neighbourhood,
-           csv_path, hist_dir, plot_dir, check_tolerance, report_path, horizon):
+           csv_path, hist_dir, plot_dir, check_tolerance, report_path, horizon, restitution, cap_ratio):
     """Do the columns NAME... survive the records, on a rigid base and on isolators?
 
     NAME is a preset (bassae, nemea) or a custom block NAME:R=<m>,alpha=<deg> or
@@ -142,8 +165,10 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
     from rockcli.solve import validate_options
 
     validate_options(horizon=horizon)
+    solver = _restitution_kw(restitution)
     columns = _columns(names, R, alpha, height, width, name)
     configurations = parse_configurations(isolation)
+    solver.update(_cap_ratio_kw(cap_ratio, configurations))
     check_outputs((csv_path, "--csv", False), (report_path, "--report", False),
                   folders=((hist_dir, "--histories"), (plot_dir, "--plot")))
     excitations, unavailable = resolve_excitations(records, excitation, units=units, dt=dt)
@@ -156,7 +181,7 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
 
     result = _run_counted(count_runs(columns, excitations, configurations, margin, neighbourhood),
                           partial(run_assessment, columns, excitations, configurations, margin=margin,
-                                  neighbourhood=neighbourhood, unavailable=unavailable, horizon=horizon))
+                                  neighbourhood=neighbourhood, unavailable=unavailable, horizon=horizon, **solver))
 
     from rockcli.report.tables import format_matrix, format_notes
 
@@ -299,9 +324,10 @@ def _write_histories(result, hist_dir, plot_dir):
                    "ROCKCLI_DASK_TIMEOUT seconds (default 60).")
 @report_option
 @horizon_option
+@restitution_option
 @user_errors
 def fragility(names, R, alpha, height, width, name, records, units, dt, isolation, im, n_boot, seed, csv_path,
-              plot_path, scheduler, report_path, horizon):
+              plot_path, scheduler, report_path, horizon, restitution):
     """Fragility curves of overturning: P(the column overturns | IM) from a suite of records.
 
     Each record is scaled (0.1x..4x, then bisection) to the smallest factor that overturns the
@@ -321,6 +347,7 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
     from rockcli.solve import validate_options
 
     validate_options(horizon=horizon)
+    solver = _restitution_kw(restitution)
     columns = _columns(names, R, alpha, height, width, name)
     if not records:
         raise InputError("give the record suite with --records DIR|ID|FILE (repeatable)")
@@ -338,19 +365,22 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
         from rockcli.assess.fragility import run_fragility_distributed
 
         result = run_fragility_distributed(scheduler, columns, excitations, configurations, im=im, n_boot=n_boot,
-                                           seed=seed, unavailable=unavailable, horizon=horizon)
+                                           seed=seed, unavailable=unavailable, horizon=horizon, **solver)
     else:
         result = _run_counted(count_fragility_runs(columns, excitations, configurations),
                               partial(run_fragility, columns, excitations, configurations, im=im, n_boot=n_boot,
-                                      seed=seed, unavailable=unavailable, horizon=horizon))
+                                      seed=seed, unavailable=unavailable, horizon=horizon, **solver))
 
     from rockcli.report.fragility import format_fragility, format_fragility_notes
 
-    _echo_result(result, format_fragility(result), format_fragility_notes(result))
+    notes = format_fragility_notes(result)
+    if solver:
+        notes += f"\nImpacts: coefficient of restitution E = {solver['restitution']:g} (README, Restitution)."
+    _echo_result(result, format_fragility(result), notes)
     if csv_path:
         from rockcli.report.fragility import write_fragility_csv
 
-        write_fragility_csv(result, csv_path)
+        write_fragility_csv(result, csv_path, solver)  # a given --restitution as a column
         click.echo(f"wrote {csv_path} ({len(result.rows)} rows)")
     if plot_path:
         from rockcli.report.fragility import plot_fragility

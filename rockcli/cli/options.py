@@ -93,6 +93,26 @@ def horizon_option(func):
                              "3600); a run still moving then is reported NOT PROVEN.")(func)
 
 
+def restitution_option(func):
+    """``--restitution E``: the coefficient of restitution of every impact (``restitution`` keyword of
+    :func:`rockcli.solve.simulate`); the command checks it (:func:`rockcli.impact.check_restitution`)."""
+    return click.option("--restitution", type=float, default=None, metavar="E",
+                        help="Coefficient of restitution, 0 < E <= 1: theta_dot after / before an impact on a rigid "
+                             "foundation [default: Housner's 1 - 1.5 sin^2 alpha]. On an isolated base the impact "
+                             "keeps the horizontal momentum and theta_dot+ = (1 - 4 (1 - E)/(4 - 3 gamma cos^2 "
+                             "alpha)) theta_dot- (README, Restitution).")(func)
+
+
+def cap_ratio_option(func):
+    """``--cap-ratio GAMMA_C``: a capped colonnade of the columns (``cap_ratio`` keyword of
+    :func:`rockcli.solve.simulate`), rigid foundation only (:mod:`rockcli.colonnade`)."""
+    return click.option("--cap-ratio", "cap_ratio", type=float, default=0.0, metavar="GAMMA_C",
+                        help="A capped colonnade of N such columns carrying a rigid beam (Makris & Vassiliou 2013), "
+                             "rigid foundation only: beam mass over the columns' total mass; they rock as one column "
+                             "with p times sqrt((1 + 2 gamma_c)/(1 + 3 gamma_c)) (docs/physics-colonnade.md). "
+                             "0: solitary columns.")(func)
+
+
 #: The block flags, as :func:`rockcli.models.build_block` names them in messages.
 BLOCK_FLAGS = {"preset": "--column NAME", "R": "--R", "alpha": "--alpha", "height": "--height", "width": "--width"}
 

@@ -2,11 +2,14 @@
 
 from __future__ import annotations
 
+import math
+
 import click
 
 from rockcli.cli.errors import user_errors
-from rockcli.cli.options import (add_inputs, block_from_options, block_options, check_outputs, command_line,
-                                 horizon_option, record_kwargs, record_options, report_option)
+from rockcli.cli.options import (add_inputs, block_from_options, block_options, cap_ratio_option, check_outputs,
+                                 command_line, horizon_option, record_kwargs, record_options, report_option,
+                                 restitution_option)
 
 
 @click.command(context_settings={"show_default": True})
@@ -23,6 +26,11 @@ from rockcli.cli.options import (add_inputs, block_from_options, block_options, 
 @click.option("--pulse", default=None, metavar="SPEC",
               help="Ground motion: an analytic pulse, e.g. 'ricker-sym:ap=0.3,Tp=0.6' (ap in g, Tp in s); "
                    "shapes ricker-sym, ricker-anti, sine, cosine.")
+@click.option("--theta0", type=float, default=0.0, metavar="RAD",
+              help="Start rocking from this tilt [rad] (|theta0| < pi/2; > 0 on the right corner) instead of at rest; "
+                   "without --record/--pulse the block rocks freely on still ground.")
+@click.option("--theta-dot0", "theta_dot0", type=float, default=0.0, metavar="RAD/S",
+              help="Start with this angular velocity [rad/s] (with or without --theta0).")
 @click.option("--scale", type=float, default=1.0, help="Multiply the record's acceleration by this factor.")
 @click.option("--flip", is_flag=True, help="Reverse the sign of the ground motion.")
 @click.option("--rtol", type=float, default=None,
@@ -30,6 +38,8 @@ from rockcli.cli.options import (add_inputs, block_from_options, block_options, 
 @click.option("--tail", type=float, default=10.0,
               help="Free motion shown after the excitation in --history/--plot [s]; never changes the verdict.")
 @horizon_option
+@restitution_option
+@cap_ratio_option
 @click.option("--check-tolerance", "check", is_flag=True,
               help="Rerun at a 100x tighter rtol, and on 2 copies of the motion moved by one ulp, and report "
                    "whether the verdict or the peak changes (ill-conditioned: the answer is not determined by the "
@@ -44,7 +54,8 @@ from rockcli.cli.options import (add_inputs, block_from_options, block_options, 
 @report_option
 @user_errors
 def simulate(column_name, R, alpha, height, width, name, isolation, record_source, units, dt, fmt, column,
-             pulse, scale, flip, rtol, tail, horizon, check, as_json, history_path, plot_path, report_path):
+             pulse, theta0, theta_dot0, scale, flip, rtol, tail, horizon, restitution, cap_ratio, check, as_json,
+             history_path, plot_path, report_path):
     """Rocking response of one block to one ground motion, on a rigid or an isolated base.
 
     \b
@@ -52,23 +63,47 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
       rockcli simulate --height 2 --width 0.5 --pulse sine:ap=0.29,Tp=2
       rockcli simulate --column nemea --record northridge-1994-jensen-022 --isolation linear:Tb=3
       rockcli simulate --R 1 --alpha 16 --pulse ricker-sym:ap=0.5,Tp=0.6 --isolation scss:Tb=1.8,mu=0.05 --plot f.png
+      rockcli simulate --R 2.5 --alpha 11.5 --theta0 0.1 --restitution 0.9 --history free.csv
     """
     import json
     import math
 
     from rockcli.errors import RockcliInputError
+    from rockcli.impact import check_restitution
     from rockcli.models import parse_isolation_spec
     from rockcli.units import G
 
     check_outputs((history_path, "--history", False), (plot_path, "--plot", True), (report_path, "--report", False))
     block = block_from_options(column_name, R, alpha, height, width, name)
     foundation = parse_isolation_spec(isolation)
-    if (record_source is None) == (pulse is None):
+    restitution = check_restitution(restitution, "--restitution")
+    solver = {} if restitution is None else {"restitution": restitution}
+    from rockcli.colonnade import check_cap_ratio
+    from rockcli.initial import check_initial_state
+
+    cap_ratio = check_cap_ratio(cap_ratio, foundation, "--cap-ratio")
+    if cap_ratio > 0.0:
+        solver["cap_ratio"] = cap_ratio
+
+    theta0, theta_dot0 = check_initial_state(theta0, theta_dot0, ("--theta0", "--theta-dot0"))
+    moving = theta0 != 0.0 or theta_dot0 != 0.0
+    if moving:
+        solver.update(theta0=theta0, theta_dot0=theta_dot0)
+    if record_source is not None and pulse is not None:
         raise RockcliInputError("give the ground motion as exactly one of --record SOURCE or --pulse SPEC")
+    if record_source is None and pulse is None and not moving:
+        raise RockcliInputError("give the ground motion as exactly one of --record SOURCE or --pulse SPEC, or start "
+                                "the block rocking freely with --theta0 RAD and/or --theta-dot0 RAD/S")
+    if check and record_source is None and pulse is None:
+        raise RockcliInputError("--check-tolerance perturbs the ground motion: it needs --record or --pulse")
     if not math.isfinite(scale) or scale == 0:
         raise RockcliInputError(f"--scale must be a finite non-zero number, got {scale!r}")
     factor = -scale if flip else scale
-    if pulse is not None:
+    if record_source is None and pulse is None:
+        if any(v is not None for v in (units, dt, fmt, column)):
+            raise RockcliInputError("--units, --dt, --format and --record-column apply to --record")
+        excitation, label = None, "free rocking (no ground motion)"
+    elif pulse is not None:
         from rockcli.pulses import parse_pulse_spec
 
         if any(v is not None for v in (units, dt, fmt, column)):
@@ -89,12 +124,12 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     from rockcli.solve import simulate as run
 
     res = run(block, foundation, excitation, rtol=rtol, tail=tail, horizon=horizon,
-              history=bool(history_path or plot_path or report_path))
+              history=bool(history_path or plot_path or report_path), **solver)
     if res.status < 0:  # a genuine numerical failure: no result is printed or written as if it were valid
         raise click.ClickException(
             f"the integrator stopped at its safety cap of {res.steps + res.rejected_steps:,} steps at "
             f"t = {res.t_end_s:.3f} s, a numerical failure: no result is given (please report the command line)")
-    checked = _check(block, foundation, excitation, res, rtol, horizon) if check else None
+    checked = _check(block, foundation, excitation, res, rtol, horizon, solver) if check else None
     if history_path:
         from rockcli.report.response import write_history_csv
 
@@ -112,7 +147,10 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
 
     if as_json:
         out = {"block": block.name, "R_m": block.R, "alpha_deg": block.alpha_deg, "p_radps": block.p,
-               "isolation": foundation.label, "excitation": label, **res.summary()}
+               "isolation": foundation.label, "excitation": label,
+               **_impact_keys(block, foundation, restitution, cap_ratio),
+               **({"theta0": theta0, "theta_dot0": theta_dot0} if moving else {}),
+               **res.summary()}
         if checked:
             out.update({k: (None if isinstance(v, float) and v != v else v) for k, v in checked.items()})
         click.echo(json.dumps(out, allow_nan=False))
@@ -125,7 +163,11 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
         ("block", f"{block.name}: R = {block.R:.3f} m, alpha = {block.alpha_deg:.2f} deg "
                   f"(h/b = {block.h / block.b:.2f}), p = {block.p:.3f} rad/s"),
         ("foundation", foundation.label),
+        *([("colonnade", _colonnade_row(block, cap_ratio))] if cap_ratio > 0.0 else []),
+        *([("impact rule", _impact_row(block, foundation, restitution))] if restitution is not None else []),
         ("excitation", label + _pga(excitation, G)),
+        *([("start", f"theta0 = {theta0:g} rad ({theta0 / block.alpha:.4g} alpha), theta_dot0 = {theta_dot0:g} rad/s")]
+          if moving else []),
         ("verdict", {"overturned": "OVERTURNS", "rocked": "survives (rocks)",
                      "no_uplift": "survives (no uplift)"}[res.verdict]),
         ("uplift at", fmt_t(res.t_uplift_s)),
@@ -146,7 +188,38 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
                    "the block; lengthen --horizon to follow it")
 
 
-def _check(block, foundation, excitation, res, rtol, horizon) -> dict:
+def _impact_keys(block, foundation, restitution, cap_ratio=0.0) -> dict:
+    """JSON keys of a given restitution and of a colonnade (none for the defaults)."""
+    from rockcli.colonnade import colonnade_restitution, frequency_factor
+    from rockcli.impact import impact_ratio
+
+    out = {}
+    if cap_ratio > 0.0:
+        out.update(cap_ratio=cap_ratio, p_colonnade_radps=block.p * math.sqrt(frequency_factor(cap_ratio)))
+        eta = colonnade_restitution(block.alpha, cap_ratio) if restitution is None else restitution
+        out.update(impact_ratio=eta)
+    if restitution is not None:
+        out = {"restitution": restitution, "impact_ratio": impact_ratio(block.alpha, foundation.gamma, restitution),
+               **out}
+    return out
+
+
+def _colonnade_row(block, cap_ratio) -> str:
+    from rockcli.colonnade import colonnade_restitution, frequency_factor
+
+    return (f"capped, beam/columns mass gamma_c = {cap_ratio:g}: p = {block.p * math.sqrt(frequency_factor(cap_ratio)):.3f} "
+            f"rad/s, impact ratio {colonnade_restitution(block.alpha, cap_ratio):.4f} (Makris & Vassiliou 2013)")
+
+
+def _impact_row(block, foundation, restitution) -> str:
+    from rockcli.impact import housner_restitution, impact_ratio
+
+    eta = impact_ratio(block.alpha, foundation.gamma, restitution)
+    return (f"restitution E = {restitution:g} (Housner's {housner_restitution(block.alpha):.4f}): "
+            f"theta_dot+ = {eta:.4f} theta_dot-")
+
+
+def _check(block, foundation, excitation, res, rtol, horizon, solver=None) -> dict:
     """``--check-tolerance``: the verdict-only run at a 100x tighter rtol and on one-ulp copies of
     the motion, compared with this run's verdict and peak (|theta|/alpha; the overturning time [s]
     when it overturns). Changes are NaN where the verdict changed."""
@@ -154,10 +227,12 @@ def _check(block, foundation, excitation, res, rtol, horizon) -> dict:
     from rockcli.solve import default_rtol, simulate
 
     base_rtol = default_rtol(foundation) if rtol is None else rtol
-    tight = simulate(block, foundation, excitation, rtol=base_rtol / 100.0, horizon=horizon)
+    solver = solver or {}
+    tight = simulate(block, foundation, excitation, rtol=base_rtol / 100.0, horizon=horizon, **solver)
     d_tight = answer_change(res, tight)
     spread, verdicts = measure_conditioning(block, foundation, excitation, seed=1980,
-                                            base=res if res.history is None else None, rtol=rtol, horizon=horizon)
+                                            base=res if res.history is None else None, rtol=rtol, horizon=horizon,
+                                            **solver)
     return {"check_tight_rtol": base_rtol / 100.0, "check_tight_rtol_verdict": tight.verdict,
             "check_tight_rtol_change": d_tight, "check_ulp_draws": ULP_DRAWS, "check_ulp_verdicts": list(verdicts),
             "check_ulp_change": spread, "check_ill_conditioned": ill_conditioned(res.verdict, spread, verdicts)}
@@ -182,6 +257,8 @@ def _check_rows(c: dict, res) -> list:
 
 
 def _pga(excitation, G) -> str:
+    if excitation is None:
+        return ""
     if hasattr(excitation, "pga_g"):
         return f", PGA {excitation.pga_g:.3f} g, {excitation.duration:.2f} s at dt = {excitation.dt:g} s"
     return f", a_p = {abs(excitation.a_p) / G:.3f} g, T_p = {excitation.T_p:g} s"

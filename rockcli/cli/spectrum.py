@@ -6,7 +6,8 @@ from __future__ import annotations
 import click
 
 from rockcli.cli.errors import InputError, user_errors
-from rockcli.cli.options import add_inputs, horizon_option, progress_bar, record_kwargs, record_options
+from rockcli.cli.options import (add_inputs, cap_ratio_option, horizon_option, progress_bar, record_kwargs,
+                                 record_options, restitution_option)
 
 _SHAPES = "ricker-sym|ricker-anti|sine|cosine"
 
@@ -44,6 +45,8 @@ def _scene_options(isolation_help: str, isolation_default, multiple_isolation: b
                               "does not answer, has no worker or loses all its workers stops the run after "
                               "ROCKCLI_DASK_TIMEOUT seconds (default 60)."),
             horizon_option,
+            restitution_option,
+            cap_ratio_option,
         ]
         f = record_options(f, column_flag="--record-column")
         for option in reversed(options):
@@ -78,19 +81,42 @@ def _pulses(pulses, records, units, dt, fmt, column, default=("ricker-sym",)):
     return out
 
 
-def _runner(scheduler, horizon):
+def _runner(scheduler, horizon, restitution=None, cap_ratio=0.0, isolations=()):
+    from rockcli.colonnade import check_cap_ratio
+    from rockcli.impact import check_restitution
     from rockcli.solve import validate_options
     from rockcli.spectra import Runner
 
     validate_options(horizon=horizon)
+    restitution = check_restitution(restitution, "--restitution")
+    cap_ratio = check_cap_ratio(cap_ratio, None, "--cap-ratio")
+    if cap_ratio > 0.0 and not all(iso.rigid for iso in isolations):
+        raise InputError("--cap-ratio needs a rigid foundation: give --isolation none (a capped colonnade on an "
+                         "isolated base is not derived in rockcli)")
     if scheduler is not None:
         from rockcli.distributed import check_scheduler
 
         check_scheduler(scheduler)
-    return Runner(scheduler, horizon=horizon)
+    return Runner(scheduler, horizon=horizon, restitution=restitution, cap_ratio=cap_ratio)
+
+
+def _echo_impacts(runner):
+    if runner.restitution is not None:
+        click.echo(f"impacts: coefficient of restitution E = {runner.restitution:g} (README, Restitution)")
+    if runner.cap_ratio > 0.0:
+        click.echo(f"capped colonnades: beam/columns mass gamma_c = {runner.cap_ratio:g} (docs/physics-colonnade.md)")
+
+
+def _csv_options(runner) -> dict:
+    """Constant CSV columns of a given --restitution and --cap-ratio (nothing for the defaults)."""
+    extra = {"restitution": runner.restitution} if runner.restitution is not None else {}
+    if runner.cap_ratio > 0.0:
+        extra["cap_ratio"] = runner.cap_ratio
+    return extra
 
 
 def _echo_unproven(runner):
+    _echo_impacts(runner)
     if runner.unproven:
         click.echo(f"note: {runner.unproven} runs reached the solver's horizon with the verdict NOT PROVEN "
                    "(counted as surviving)")
@@ -115,7 +141,7 @@ def _echo_notes(pcs):
                    "follows every run until its peak is final (the same map, slower).")
 @user_errors
 def overturning(alpha, pulses, records, isolations, csv_path, plot_path, scheduler, units, dt, fmt, column, wp_p, ap,
-                early, horizon):
+                early, horizon, restitution, cap_ratio):
     """Overturning map over omega_p/p x a_p/(g tan alpha), like the paper's Figures 6 and 9.
 
     Light grey: the block rocks and survives; dark grey: it overturns; white: it never uplifts.
@@ -137,7 +163,7 @@ def overturning(alpha, pulses, records, isolations, csv_path, plot_path, schedul
     ap_grid = parse_grid(ap, "--ap")
     isos = [parse_isolation(s) for s in isolations]
     _check_outputs(csv_path, plot_path)
-    runner = _runner(scheduler, horizon)
+    runner = _runner(scheduler, horizon, restitution, cap_ratio, isos)
     pcs = _pulses(pulses, records, units, dt, fmt, column)
     n = len(alphas) * len(pcs) * len(isos) * wp_grid.count * ap_grid.count
     t0 = time.perf_counter()
@@ -153,10 +179,11 @@ def overturning(alpha, pulses, records, isolations, csv_path, plot_path, schedul
                    f"{int(m.overturned.sum())} of {cells} cells overturn, {int((~m.uplifted).sum())} never uplift"
                    + (f", {unsettled} NOT PROVEN (still moving at the solver's horizon)" if unsettled else ""))
     click.echo(f"{n} cells (omega_p/p {wp_grid}, a_p/(g tan alpha) {ap_grid}) in {elapsed:.2f} s")
+    _echo_impacts(runner)
     if csv_path:
         from rockcli.report.spectra import write_map_csv
 
-        write_map_csv(maps, csv_path)
+        write_map_csv(maps, csv_path, _csv_options(runner))
         click.echo(f"wrote {csv_path} ({n} rows)")
     if plot_path:
         from rockcli.report.spectra import plot_maps
@@ -183,7 +210,7 @@ def overturning(alpha, pulses, records, isolations, csv_path, plot_path, schedul
               help="Relative resolution of the bisection after the scan.")
 @user_errors
 def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, scheduler, units, dt, fmt, column,
-                    gammas, wp_p, ap_max, step, tol, horizon):
+                    gammas, wp_p, ap_max, step, tol, horizon, restitution, cap_ratio):
     """Minimum overturning acceleration over omega_p/p, like the paper's Figures 7, 8, 9 and 11.
 
     For each omega_p/p: the smallest a_p that overturns, found by scanning up from the uplift
@@ -211,7 +238,7 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
             iso.foundation(1.0)
     isos = list(dict.fromkeys(isos))
     _check_outputs(csv_path, plot_path)
-    runner = _runner(scheduler, horizon)
+    runner = _runner(scheduler, horizon, restitution, cap_ratio, isos)
     pcs = _pulses(pulses, records, units, dt, fmt, column)
     n = len(alphas) * len(pcs) * len(isos) * xs.size
     t0 = time.perf_counter()
@@ -231,7 +258,7 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
     if csv_path:
         from rockcli.report.spectra import write_min_csv
 
-        write_min_csv(curves, csv_path)
+        write_min_csv(curves, csv_path, _csv_options(runner))
         click.echo(f"wrote {csv_path} ({len(curves) * xs.size} rows)")
     if plot_path:
         from rockcli.report.spectra import plot_min_curves
@@ -273,9 +300,10 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
 @click.option("--scheduler", default=None, metavar="tcp://HOST:PORT|local",
               help="Run the cells on a Dask cluster (see overturning).")
 @horizon_option
+@restitution_option
 @user_errors
 def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, fmt, column, wp_p, xtol, ap_max,
-                  step, tol, csv_path, plot_path, scheduler, horizon):
+                  step, tol, csv_path, plot_path, scheduler, horizon, restitution):
     """Block size beyond which a block is safer without isolation, like the paper's Table I.
 
     Where the minimum overturning curves of the rigid foundation and of the isolated base cross
@@ -305,7 +333,7 @@ def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, 
         xi = 0.05
     isos = table_i_isolations(ratios, xi=xi, gamma=gamma, template=bearing)
     _check_outputs(csv_path, plot_path)
-    runner = _runner(scheduler, horizon)
+    runner = _runner(scheduler, horizon, restitution)
     if pulses or records:
         pcs = _pulses(pulses, records, units, dt, fmt, column, default=())
     else:
@@ -340,7 +368,7 @@ def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, 
     if csv_path:
         from rockcli.report.spectra import write_critical_csv
 
-        write_critical_csv(result.rows, csv_path)
+        write_critical_csv(result.rows, csv_path, _csv_options(runner))
         click.echo(f"wrote {csv_path} ({len(result.rows)} rows)")
     if plot_path:
         from rockcli.report.spectra import plot_min_curves

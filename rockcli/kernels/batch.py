@@ -23,7 +23,8 @@ def _scene(i, prms, epars):
     """Scene ``i``'s parameter and excitation tuples."""
     q = prms[i]
     prm = (q[0], q[1], q[2], q[3], q[4], q[5], q[6], q[7], q[8], q[9], q[10], q[11], q[12], q[13],
-           q[14], q[15], q[16], q[17], q[18], q[19], q[20], q[21], q[22], q[23], q[24], q[25], q[26])
+           q[14], q[15], q[16], q[17], q[18], q[19], q[20], q[21], q[22], q[23], q[24], q[25], q[26], q[27],
+           q[28])
     e = epars[i]
     return prm, (e[0], e[1], e[2], e[3], e[4], e[5], e[6], e[7])
 

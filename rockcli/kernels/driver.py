@@ -25,20 +25,21 @@ from numba import njit
 
 from rockcli.kernels.bearings import (base_force, bearing_energy, element_states, free_disp_bound, free_force_bound,
                                       force_rate, initial_anchor, knee_ratio, knee_step, reanchor, z_sensitivity)
-from rockcli.kernels.dopri import _dense, _dp5_step, _restep_rows, _shift_event
-from rockcli.kernels.events import (REV_AT, REV_WRONG_START, _count_uplift, _hist_push, _u_extremum,
+from rockcli.kernels.dopri import _dense, _dp5_step, _restep_rows, _shift_event, _state_at
+from rockcli.kernels.events import (REV_AT, REV_WRONG_START, _count_uplift, _hist_peak, _hist_push, _u_extremum,
                                     hysteretic_uplift, impact_map, reversal_check)
 from rockcli.kernels.ground import ground_at
-from rockcli.kernels.layout import (FOUNDATION_BILINEAR, FOUNDATION_LINEAR, O_T_SETTLED, P_ALPHA, P_COSA, P_G, P_GAMMA, P_H, P_R,
-                                    P_RTOL, P_SC0, P_THR, P_W, P_XI, PHASE_ROCKING, PHASE_STUCK, RS_DIR, RS_FRESH,
-                                    RS_NREV, RS_NRHS, RS_PHASE, RS_REJ, RS_S, RS_SEG_END, RS_SETTLED,
+from rockcli.kernels.layout import (FOUNDATION_BILINEAR, FOUNDATION_LINEAR, HK_STATE, O_T_SETTLED, P_ALPHA, P_COSA, P_G,
+                                    P_GAMMA, P_H, P_R, P_RTOL, P_SC0, P_TH0, P_THD0, P_THR, P_W, P_XI, PHASE_ROCKING,
+                                    PHASE_STUCK, RS_DIR, RS_FRESH, RS_NREV, RS_NRHS, RS_PHASE, RS_PK_ON, RS_PK_SIG,
+                                    RS_PK_T, RS_REJ, RS_S, RS_SEG_END, RS_SETTLED,
                                     RS_SPLIT, RS_STATUS, RS_STEPS, RS_T, RS_THMAX, RS_U1A, RS_UA, RS_UMAX, RS_XI1,
-                                    RS_XI2, STATUS_MAX_STEPS, W_EV, W_FEV, W_RE, W_Y, W_YNEW)
+                                    RS_XI2, STATUS_MAX_STEPS, W_EV, W_FEV, W_RE, W_TMP, W_Y, W_YNEW)
 from rockcli.kernels.polynomials import _first_exceed, _poly
 from rockcli.kernels.rhs import _rhs_into
 from rockcli.kernels.steps import (EV_FAILED, EV_IMPACT, EV_OVERTURN, _advance_segment, _bounce, _close_step,
-                                   _finish, _grown, _out_of_time, _rocking_events, _seg, _shrink, _start,
-                                   _step_start, _to_impact, _to_overturn, _to_step_end)
+                                   _finish, _grown, _initial_state, _out_of_time, _rocking_events, _seg, _shrink,
+                                   _start, _step_start, _to_impact, _to_overturn, _to_step_end)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -89,7 +90,7 @@ def _history_row(H, nh, fkind, prm, rs, epar, W, row):
     fb = -base_force(fkind, prm, u, W[row, 3], hy)
     if fkind >= FOUNDATION_BILINEAR:
         z1, z2, _ = element_states(fkind, prm, hy, u)
-    return _hist_push(H, nh, t, ag, W, row, z1, z2, fb)
+    return _hist_push(H, nh, t, ag, W, row, z1, z2, fb, HK_STATE)
 
 
 @njit(cache=True)
@@ -347,6 +348,8 @@ def _after_rocking_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, nst, epar):
     (:func:`rockcli.kernels.steps._rocking_events`) and the base's part of each. Returns the event
     code (``EV_*``); at an impact the state is left just before it (see :func:`_impact`)."""
     code, sig = _rocking_events(prm, rs, W, out, hs, t_new, sig_lim)
+    if rs[RS_PK_ON] != 0.0:  # the state at a turning point of theta, for the history (W_TMP is kept below)
+        _state_at(W, hs, rs[RS_PK_SIG], nst)
     if (W[W_Y, 3] > 0.0) != (W[W_YNEW, 3] > 0.0):
         rs[RS_UMAX] = max(rs[RS_UMAX], _u_extremum(W, hs, sig))
     if code == EV_OVERTURN:
@@ -450,8 +453,11 @@ def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, ta
        of block + base, ``E = u'^2/2 + gamma R cos(A) u' theta' + (2/3) gamma R^2 theta'^2 + gamma g R (cos A
        - cos alpha) + E_b`` (kinetic energy of base and block, ``I_cm = m R^2/3``; the block's height
        above rest; ``E_b`` the energy stored in the bearings, :func:`rockcli.kernels.bearings.bearing_energy`),
-       never grows with the ground still: the bearings are passive (P3s), an impact keeps both momenta
-       and loses kinetic energy (tests/test_solver.py), a rest or a failed uplift keeps the momentum and
+       never grows with the ground still: the bearings are passive (P3s), an impact keeps the horizontal
+       momentum (and, with Housner's rule, the angular momentum about the new pivot) and changes the kinetic
+       energy by ``gamma (2 R^2/3 - gamma h^2/2) (eta^2 - 1) theta'^2 <= 0`` for every ``0 <= eta <= 1``, so for
+       every restitution ``0 < E <= 1`` (:mod:`rockcli.impact`; tests/test_solver.py, tests/test_restitution.py),
+       a rest or a failed uplift keeps the momentum and
        loses ``theta'^2 gamma (2 R^2/3 - gamma h^2/2) > 0``. The block's height term alone is
        ``gamma g R (cos(alpha - |theta|) - cos alpha)``, increasing in ``|theta|`` up to alpha. Hence if
        ``|theta| < L = min(theta_max, alpha)`` now and ``E`` is below the height term at ``L``, the block
@@ -473,7 +479,8 @@ def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, ta
        cos alpha)`` obeys ``(4/3) R^2 theta'' = -g R sin A - R cos(A) a``, so ``dE/dt = -R cos(A) a theta'``;
        while ``|theta| <= 2 alpha`` the height term is >= 0, so ``theta'^2 <= 3 E/(2 R^2)`` and
        ``d sqrt(E)/dt <= sqrt(3/2) |a|/2``; impacts only lose kinetic energy (gamma = 0 is Eq 4's
-       impact) and a rest or an uplift sets or starts it at 0. Hence ``E <= (sqrt(E0) + sqrt(3/2) J/2)^2``
+       impact, ``theta'+ = eta theta'-`` with ``eta <= 1`` also for a given restitution E <= 1) and a
+       rest or an uplift sets or starts it at 0. Hence ``E <= (sqrt(E0) + sqrt(3/2) J/2)^2``
        for all later times (:func:`_decoupled_energy_bound`), and if ``|theta| < L = min(theta_max,
        alpha)`` and this bound is below ``g R (cos(alpha - L) - cos alpha)``, the block's height at
        ``L``, the block never reaches ``L`` (the bound keeps ``|theta| < L <= 2 alpha`` throughout): it
@@ -510,11 +517,17 @@ def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, ta
     Returns
     -------
     H : float64[n, N_HIST]
-        History rows ``t, ag, theta, theta_dot, u, u_dot, z1, z2, bearing force`` (empty when not
-        wanted).
+        History rows ``t, ag, theta, theta_dot, u, u_dot, z1, z2, bearing force, kind`` (empty when not
+        wanted); ``kind`` ``HK_PEAK`` marks the turning points of theta (theta_dot = 0, z's and force
+        NaN), ``HK_STATE`` every other row.
+
+    The start: at rest, or rocking from ``prm[P_TH0], prm[P_THD0]``
+    (:func:`rockcli.kernels.steps._initial_state`); the proofs above argue from the current state
+    only, so they hold for any start.
     """
     nst = np.int64(4)  # (not a literal 4: one compiled specialization of each callee, see steps.py)
     W, rs, H = _start(ekind, epar, acc, dt, t_begin, want_history, out)
+    _initial_state(prm, rs, W, out)
     nh = np.int64(0)
     if fkind >= FOUNDATION_BILINEAR:
         _set_hy(rs, initial_anchor(fkind, prm))
@@ -522,6 +535,8 @@ def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, ta
     t_horizon = t_exc_end + max(horizon, tail)
     if want_history:
         H, nh = _history_row(H, nh, fkind, prm, rs, epar, W, W_Y)
+        if prm[P_TH0] != 0.0 and prm[P_THD0] == 0.0:  # released from rest at a tilt: its first peak
+            H, nh = _hist_peak(H, nh, rs[RS_T], ground_at(rs[RS_T], _seg(rs), epar), W, W_Y)
 
     while True:
         _advance_segment(rs, ekind, epar, acc, dt, t_begin)
@@ -555,6 +570,8 @@ def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, ta
             continue
 
         code = _after_rocking_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, nst, epar)
+        if want_history and rs[RS_PK_ON] != 0.0 and code != EV_OVERTURN:  # a turning point inside the step
+            H, nh = _hist_peak(H, nh, rs[RS_PK_T], ground_at(rs[RS_PK_T], _seg(rs), epar), W, W_TMP)
         if code == EV_IMPACT:
             if want_history:  # the state just before the impact, then (below) just after
                 H, nh = _history_row(H, nh, fkind, prm, rs, epar, W, W_Y)

@@ -13,7 +13,8 @@ from numba import njit
 
 from rockcli.kernels.bearings import base_force, u_at_force
 from rockcli.kernels.dopri import _dense
-from rockcli.kernels.layout import (H_AG, H_FB, H_T, H_TH, H_THD, H_U, H_UD, H_Z, H_Z2, N_HIST, O_N_UPLIFTS,
+from rockcli.kernels.layout import (H_AG, H_FB, H_KIND, H_T, H_TH, H_THD, H_U, H_UD, H_Z, H_Z2, HK_PEAK, N_HIST,
+                                    O_N_UPLIFTS,
                                     O_T_UPLIFT, O_UPLIFTED, P_COSA, P_DU, P_ETA, P_G, P_P2, P_REST, W_Y)
 from rockcli.kernels.polynomials import _first_down, _first_exceed, _poly
 
@@ -29,6 +30,12 @@ def impact_map(prm, thd1):
     block + base and the block's angular momentum about the new pivot are kept, which gives
     ``theta_dot+ = eta theta_dot-`` and ``u_dot+ = u_dot- + DU theta_dot-`` (``DU = 0`` on a rigid
     foundation). The Bouc-Wen variables of a hysteretic base do not jump: u does not.
+
+    With a coefficient of restitution E (``--restitution``, :mod:`rockcli.impact`) ``eta`` is
+    ``E`` on a rigid foundation and ``1 - 4 (1 - E)/(4 - 3 gamma cos^2 alpha)`` on an isolated base,
+    and ``DU = gamma h (1 - eta)`` still keeps the horizontal momentum. Every ``0 <= eta <= 1`` with
+    that ``DU`` changes the kinetic energy by ``gamma (2 R^2/3 - gamma h^2/2) (eta^2 - 1) theta_dot-^2
+    <= 0`` (per unit total mass): impacts never add energy, which is what the end-of-run proofs use.
     """
     return prm[P_ETA] * thd1, prm[P_DU] * thd1
 
@@ -137,8 +144,9 @@ def _count_uplift(out, t):
 
 
 @njit(cache=True)
-def _hist_push(H, n, t, ag, W, row, z1, z2, fb):
-    """Append the row ``t, ag, theta, theta_dot, u, u_dot, z1, z2, bearing force`` (grows ``H``)."""
+def _hist_push(H, n, t, ag, W, row, z1, z2, fb, kind):
+    """Append the row ``t, ag, theta, theta_dot, u, u_dot, z1, z2, bearing force, kind`` (grows ``H``;
+    ``kind`` is ``HK_STATE`` or ``HK_PEAK``)."""
     if n >= H.shape[0]:
         H2 = np.empty((2 * H.shape[0], N_HIST))
         for i in range(n):  # an explicit copy: a slice assignment compiles numba's generic broadcasting
@@ -154,5 +162,15 @@ def _hist_push(H, n, t, ag, W, row, z1, z2, fb):
     H[n, H_Z] = z1
     H[n, H_Z2] = z2
     H[n, H_FB] = fb
+    H[n, H_KIND] = kind
     return H, n + 1
+
+
+@njit(cache=True)
+def _hist_peak(H, n, t, ag, W, row):
+    """Append a peak row (``HK_PEAK``): the state ``W[row]`` at the turning point ``t`` of theta, with
+    theta_dot = 0 exactly and no bearing variables (NaN)."""
+    H, n = _hist_push(H, n, t, ag, W, row, np.nan, np.nan, np.nan, HK_PEAK)
+    H[n - 1, H_THD] = 0.0
+    return H, n
 

@@ -45,7 +45,10 @@ P_K1 = 23  # DCSS: stiffness per unit total mass of surface 1, g / R1_eff [1/s^2
 P_K2 = 24  # DCSS: g / R2_eff [1/s^2]
 P_Q2 = 25  # DCSS: mu2 g [m/s^2]
 P_UY2 = 26  # DCSS: yield displacement of surface 2 [m]
-N_PRM = 27
+# the initial state (rockcli.kernels.steps._initial_state): 0, 0 is a start at rest
+P_TH0 = 27  # theta at the start [rad], |theta0| < pi/2
+P_THD0 = 28  # theta_dot at the start [rad/s]
+N_PRM = 29
 
 # ---------------------------------------------------------------------------------------------
 # The output vector
@@ -64,7 +67,11 @@ STATUS_MAX_STEPS = -1
 # History columns (z, z2 and the bearing force are filled for hysteretic bearings only)
 # ---------------------------------------------------------------------------------------------
 H_T, H_AG, H_TH, H_THD, H_U, H_UD, H_Z, H_Z2, H_FB = 0, 1, 2, 3, 4, 5, 6, 7, 8
-N_HIST = 9
+# row kind: HK_STATE a state at a step end or event; HK_PEAK a turning point of theta while rocking
+# (theta_dot = 0, located on the step's dense output; z, z2 and the force NaN)
+H_KIND = 9
+HK_STATE, HK_PEAK = 0.0, 1.0
+N_HIST = 10
 
 PHASE_STUCK = 0
 PHASE_ROCKING = 1
@@ -110,4 +117,8 @@ RS_U1A = 22  # DCSS: displacement across surface 1 at the anchor [m]
 RS_XI2 = 23  # DCSS: branch coordinate of element 2
 RS_SPLIT = 24  # DCSS: share of a displacement increment taken by surface 1 at the anchor (Newton's start)
 RS_NREV = 25  # steps ended at a reversal of the base
-N_RS = 26
+# a peak of theta (theta_dot = 0) inside the last rocking step (rockcli.kernels.steps._rocking_events)
+RS_PK_ON = 26  # 1: there is one
+RS_PK_SIG = 27  # its fraction of the step
+RS_PK_T = 28  # its time [s]
+N_RS = 29

@@ -13,7 +13,8 @@ P1 (ground still, block stuck). With ``ag = 0`` and theta = 0 the uplift conditi
    ``|ag| > g tan(alpha)`` can never hold again.
 P2 (ground still, rocking, ``|theta| < alpha``). Between impacts
    ``E = theta_dot^2/2 + p^2 cos(alpha - |theta|)`` is conserved (Eq 3 with ``ag = 0``); an impact
-   keeps theta = 0 and multiplies theta_dot by ``|eta| <= 1``, so E never grows; a rest sets
+   keeps theta = 0 and multiplies theta_dot by ``|eta| <= 1`` (Housner's ``1 - 1.5 sin^2 alpha``, or a
+   given restitution ``0 < E <= 1``: all this proof and P4 ask of an impact), so E never grows; a rest sets
    ``E = p^2 cos(alpha)``. The potential ``p^2 cos(alpha - |theta|)`` is largest, ``p^2``, at
    ``|theta| = alpha``. Hence if ``E < p^2`` while ``|theta| < alpha`` the block never reaches
    alpha, so never pi/2, and each later peak ``alpha - acos(E/p^2)`` is at most the next one,
@@ -25,7 +26,8 @@ P2 (ground still, rocking, ``|theta| < alpha``). Between impacts
 P4 (``early`` only, during the excitation, after the first uplift, block stuck or
    ``|theta| < alpha``). ``dE/dt = -p^2 (ag/g) cos(A) theta_dot`` and, while
    ``|theta| <= alpha``, ``theta_dot^2/2 <= E - p^2 cos(alpha) = X^2``, so
-   ``dX/dt <= p^2 |ag| / (sqrt(2) g)`` (impacts and rests only lower X). Hence
+   ``dX/dt <= p^2 |ag| / (sqrt(2) g)`` (impacts, ``X -> |eta| X`` with ``|eta| <= 1`` for any
+   restitution, and rests only lower X). Hence
    ``X(t') <= X(t) + p^2/(sqrt(2) g) int_t^t' |ag|``. If that bound with the whole remaining
    impulse (:func:`rockcli.kernels.ground._impulse_left`) is below ``p sqrt(1 - cos(alpha))``
    (``E < p^2``), the block cannot reach alpha before the ground stops (a first arrival at alpha
@@ -66,18 +68,18 @@ import math
 import numpy as np
 from numba import njit
 
-from rockcli.kernels.dopri import _dp5_step, _restep_rows
-from rockcli.kernels.events import _count_uplift, _hist_push, impact_map
+from rockcli.kernels.dopri import _dp5_step, _restep_rows, _state_at
+from rockcli.kernels.events import _count_uplift, _hist_peak, _hist_push, impact_map
 from rockcli.kernels.ground import _impulse_left, _rigid_uplift, ground_at
-from rockcli.kernels.layout import (EXC_RECORD, O_T_SETTLED, O_T_THETA_MAX, O_UPLIFTED, P_ALPHA, P_COSA, P_ETA, P_G,
-                                    P_P2, P_SINA, P_THR, PHASE_ROCKING, PHASE_STUCK, RIGID_RECORD_SUBSTEPS, RS_FRESH,
-                                    RS_NRHS,
+from rockcli.kernels.layout import (EXC_RECORD, HK_STATE, O_T_SETTLED, O_T_THETA_MAX, O_UPLIFTED, P_ALPHA, P_COSA,
+                                    P_ETA, P_G, P_P2, P_SINA, P_TH0, P_THD0, P_THR, PHASE_ROCKING, PHASE_STUCK,
+                                    RIGID_RECORD_SUBSTEPS, RS_FRESH, RS_NRHS, RS_PK_ON, RS_PK_SIG, RS_PK_T,
                                     RS_PEAK_FINAL, RS_PHASE, RS_REJ, RS_S, RS_SEG_END, RS_SETTLED, RS_STATUS,
-                                    RS_STEPS, RS_T, RS_THMAX, STATUS_MAX_STEPS, STATUS_OVERTURNED, W_RE, W_Y)
+                                    RS_STEPS, RS_T, RS_THMAX, STATUS_MAX_STEPS, STATUS_OVERTURNED, W_RE, W_TMP, W_Y)
 from rockcli.kernels.rhs import _rhs_rigid_into
 from rockcli.kernels.steps import (EV_FAILED, EV_IMPACT, EV_OVERTURN, _advance_segment, _bounce, _close_step,
-                                   _finish, _grown, _out_of_time, _rocking_events, _seg, _shrink, _start,
-                                   _step_start, _to_impact, _to_overturn, _to_step_end)
+                                   _finish, _grown, _initial_state, _out_of_time, _rocking_events, _seg, _shrink,
+                                   _start, _step_start, _to_impact, _to_overturn, _to_step_end)
 
 _NO_HY = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)  # no hysteretic elements
 
@@ -205,7 +207,7 @@ def _restep_rigid(fkind, phase, s, prm, seg, epar, hy, t, h, W, i0, i1):
 @njit(cache=True, inline='always')
 def _history_rigid(H, nh, rs, epar, W):
     t = rs[RS_T]
-    return _hist_push(H, nh, t, ground_at(t, _seg(rs), epar), W, W_Y, 0.0, 0.0, 0.0)
+    return _hist_push(H, nh, t, ground_at(t, _seg(rs), epar), W, W_Y, 0.0, 0.0, 0.0, HK_STATE)
 
 
 @njit(cache=True, inline='always')
@@ -227,11 +229,14 @@ def simulate_rigid(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, t
     """Integrate one scene on a rigid foundation; the arguments, outputs and the general end-of-run
     rule are those of :func:`rockcli.kernels.driver.simulate_core` (``fkind`` is ignored)."""
     W, rs, H = _start(ekind, epar, acc, dt, t_begin, want_history, out)
+    _initial_state(prm, rs, W, out)
     nh = np.int64(0)
     t_show_end = t_exc_end + tail
     t_horizon = t_exc_end + max(horizon, tail)
     if want_history:
         H, nh = _history_rigid(H, nh, rs, epar, W)
+        if prm[P_TH0] != 0.0 and prm[P_THD0] == 0.0:  # released from rest at a tilt: its first peak
+            H, nh = _hist_peak(H, nh, rs[RS_T], ground_at(rs[RS_T], _seg(rs), epar), W, W_Y)
 
     while True:
         _advance_segment(rs, ekind, epar, acc, dt, t_begin)
@@ -258,6 +263,9 @@ def simulate_rigid(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, t
         t_new = t_stop if last else rs[RS_T] + hs
 
         code, sig = _rocking_events(prm, rs, W, out, hs, t_new, 1.0)
+        if want_history and rs[RS_PK_ON] != 0.0:  # a turning point of theta inside the step
+            _state_at(W, hs, rs[RS_PK_SIG], np.int64(2))
+            H, nh = _hist_peak(H, nh, rs[RS_PK_T], ground_at(rs[RS_PK_T], _seg(rs), epar), W, W_TMP)
         if code == EV_OVERTURN:
             _to_overturn(rs, W, out, hs, sig, 2)
         elif code == EV_FAILED:

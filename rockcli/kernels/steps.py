@@ -24,13 +24,14 @@ import numpy as np
 from numba import njit
 
 from rockcli.kernels.dopri import _dense, _shift_event, _state_at
-from rockcli.kernels.events import comes_to_rest
+from rockcli.kernels.events import _count_uplift, comes_to_rest
 from rockcli.kernels.ground import _pulse_segment
 from rockcli.kernels.layout import (E_AP, E_TP, EXC_RECORD, N_HIST, N_OUT, N_RS, N_W, O_N_IMPACTS, O_N_IMPACTS_ALL,
                                     O_N_RESTS, O_N_REVERSALS, O_NRHS, O_PEAK_FINAL, O_REJECTED, O_SETTLED, O_STATUS,
                                     O_STEPS, O_T_END, O_T_EXCEED, O_T_OVERTURN, O_T_THETA_MAX, O_T_UPLIFT,
-                                    O_THETA_END, O_THETA_MAX, O_U_END, O_U_MAX, P_ALPHA, P_P2, P_THR, PHASE_ROCKING,
-                                    PHASE_STUCK, RS_FRESH, RS_H, RS_J, RS_NREV, RS_NRHS, RS_PEAK_FINAL, RS_PHASE,
+                                    O_THETA_END, O_THETA_MAX, O_U_END, O_U_MAX, P_ALPHA, P_P2, P_TH0, P_THD0, P_THR,
+                                    PHASE_ROCKING, PHASE_STUCK, RS_FRESH, RS_H, RS_J, RS_NREV, RS_NRHS,
+                                    RS_PEAK_FINAL, RS_PHASE, RS_PK_ON, RS_PK_SIG, RS_PK_T,
                                     RS_REJ, RS_S, RS_SEG, RS_SEG_END, RS_SETTLED, RS_STATUS, RS_STEPS, RS_T,
                                     RS_THMAX, RS_UMAX, SEG_LINEAR, STATUS_DONE, STATUS_MAX_STEPS, STATUS_OVERTURNED,
                                     W_EV, W_FEV, W_TMP, W_Y, W_YNEW)
@@ -83,6 +84,33 @@ def _start(ekind, epar, acc, dt, t_begin, want_history, out):
     else:
         H = np.empty((0, N_HIST))
     return W, rs, H
+
+
+@njit(cache=True)
+def _initial_state(prm, rs, W, out):
+    """A start from a tilt ``theta0`` and/or an angular velocity ``theta_dot0`` (``P_TH0``, ``P_THD0``;
+    both 0: at rest, nothing to do). The block starts rocking at ``t_begin`` on the corner
+    ``s = sign(theta0)`` (``sign(theta_dot0)`` when theta0 = 0), the base and the ground at rest; this
+    counts as its first uplift, its peak so far is ``|theta0|``. Every end-of-run proof argues from the
+    current state (energy and impulse bounds, never from the history), so none assumes a start at rest;
+    the early stops P4, P6, P7 wait for the first uplift only so that a ``no_uplift`` verdict stays
+    final, and a tilted start has uplifted."""
+    th0 = prm[P_TH0]
+    thd0 = prm[P_THD0]
+    if th0 == 0.0 and thd0 == 0.0:
+        return
+    W[W_Y, 0] = th0
+    W[W_Y, 1] = thd0
+    ref = th0 if th0 != 0.0 else thd0
+    rs[RS_S] = 1.0 if ref > 0.0 else -1.0
+    rs[RS_PHASE] = PHASE_ROCKING
+    rs[RS_FRESH] = 1.0
+    _count_uplift(out, rs[RS_T])
+    if th0 != 0.0:
+        rs[RS_THMAX] = abs(th0)
+        out[O_T_THETA_MAX] = rs[RS_T]
+        if abs(th0) >= prm[P_ALPHA]:
+            out[O_T_EXCEED] = rs[RS_T]
 
 
 @njit(cache=True, inline='always')
@@ -204,7 +232,9 @@ EV_IMPACT = 3  # s theta falls to 0 at sigma
 def _rocking_events(prm, rs, W, out, hs, t_new, sig_lim):
     """Events in theta of a rocking step about corner ``s`` over ``[0, sig_lim]`` of the step:
     ``(code, sigma)`` (``EV_*``; sigma of the event, or ``sig_lim``). Updates the peak
-    ``theta_max`` (its time) and the time alpha is first exceeded; changes no state."""
+    ``theta_max`` (its time) and the time alpha is first exceeded; changes no state. A peak of theta
+    (``theta_dot`` = 0) inside the step is noted in ``RS_PK_*`` (for the history's peak rows)."""
+    rs[RS_PK_ON] = 0.0
     s = rs[RS_S]
     t = rs[RS_T]
     alpha = prm[P_ALPHA]
@@ -225,6 +255,9 @@ def _rocking_events(prm, rs, W, out, hs, t_new, sig_lim):
         sp = _first_down(_dense(W, hs, np.int64(1), s), 0.0, 0.0, sig_end)
         if sp >= 0.0:
             thp = _poly(_dense(W, hs, np.int64(0), s), sp)
+            rs[RS_PK_ON] = 1.0
+            rs[RS_PK_SIG] = sp
+            rs[RS_PK_T] = t + sp * hs
             if thp > rs[RS_THMAX]:
                 rs[RS_THMAX] = thp
                 out[O_T_THETA_MAX] = t + sp * hs

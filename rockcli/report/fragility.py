@@ -116,10 +116,12 @@ def fragility_frame(fr):
     return pd.DataFrame(data, columns=list(fragility_columns(im)))
 
 
-def write_fragility_csv(fr, path: str | os.PathLike) -> Path:
-    """Write the fragility CSV (see :func:`fragility_columns`), atomically."""
+def write_fragility_csv(fr, path: str | os.PathLike, extra: dict | None = None) -> Path:
+    """Write the fragility CSV (see :func:`fragility_columns`; ``extra``: constant columns appended), atomically."""
+    from rockcli.report.spectra import constant_columns
+
     df = fragility_frame(fr)
-    return write_text(path, df.to_csv(index=False, float_format="%.6g", lineterminator="\n"))
+    return write_text(path, constant_columns(df.to_csv(index=False, float_format="%.6g", lineterminator="\n"), extra))
 
 
 def plot_fragility(fr, path: str | os.PathLike, *, dpi: int = 90) -> Path:

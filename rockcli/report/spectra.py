@@ -45,13 +45,27 @@ def _fmt(v):
     return v
 
 
-def _write_rows(path, columns, rows) -> Path:
+def _write_rows(path, columns, rows, extra: dict | None = None) -> Path:
     fh = io.StringIO()
     w = csv.writer(fh, lineterminator="\n")
     w.writerow(columns)
     for row in rows:
         w.writerow([_fmt(row[c]) for c in columns])
-    return write_text(path, fh.getvalue())
+    return write_text(path, constant_columns(fh.getvalue(), extra))
+
+
+def constant_columns(text: str, values: dict | None) -> str:
+    """The CSV ``text`` with one column per ``values`` item appended (the same value on every row): the
+    solver options a sweep ran with (e.g. ``restitution``) when they are not the defaults."""
+    if not values:
+        return text
+    rows = list(csv.reader(io.StringIO(text)))
+    fh = io.StringIO()
+    w = csv.writer(fh, lineterminator="\n")
+    w.writerow(rows[0] + list(values))
+    for row in rows[1:]:
+        w.writerow(row + [_fmt(v) for v in values.values()])
+    return fh.getvalue()
 
 
 def _check_image_path(path) -> Path:
@@ -109,15 +123,16 @@ def map_columns(m) -> dict:
             "proven": (np.asarray(m.settled, dtype=bool) | np.asarray(m.overturned, dtype=bool)).ravel()}
 
 
-def write_map_csv(maps, path) -> Path:
-    """Write every cell of ``maps`` (:class:`rockcli.spectra.OverturningMap`) as CSV, atomically."""
+def write_map_csv(maps, path, extra: dict | None = None) -> Path:
+    """Write every cell of ``maps`` (:class:`rockcli.spectra.OverturningMap`) as CSV, atomically
+    (``extra``: constant columns appended, see :func:`constant_columns`)."""
     fh = io.StringIO()
     w = csv.writer(fh, lineterminator="\n")
     w.writerow(MAP_COLUMNS)
     for m in maps:
         cols = map_columns(m)
         w.writerows(zip(*(_column_text(cols[c]) for c in MAP_COLUMNS)))
-    return write_text(path, fh.getvalue())
+    return write_text(path, constant_columns(fh.getvalue(), extra))
 
 
 def _panel_grid(n_rows, n_cols, plt, width=3.4, height=3.0):
@@ -210,9 +225,9 @@ def min_rows(curves):
                    "scan_step": c.step, "tolerance": c.tol, "ap_max_over_g_tan_alpha": c.ap_max}
 
 
-def write_min_csv(curves, path) -> Path:
-    """Write the minimum-overturning curves as CSV (:data:`MIN_COLUMNS`), atomically."""
-    return _write_rows(path, MIN_COLUMNS, min_rows(curves))
+def write_min_csv(curves, path, extra: dict | None = None) -> Path:
+    """Write the minimum-overturning curves as CSV (:data:`MIN_COLUMNS`; ``extra`` appended), atomically."""
+    return _write_rows(path, MIN_COLUMNS, min_rows(curves), extra)
 
 
 def plot_min_curves(curves, path, *, crossings=None, title: str | None = None, y_max: float | None = None,
@@ -328,9 +343,10 @@ def _num(v, ap_max=None):
 # --------------------------------------------------------------------------------------------------
 # Critical size (Table I)
 # --------------------------------------------------------------------------------------------------
-def write_critical_csv(rows, path) -> Path:
-    """Write the critical sizes (:class:`rockcli.spectra.CriticalRow`) as CSV (:data:`CRITICAL_COLUMNS`)."""
-    return _write_rows(path, CRITICAL_COLUMNS, (r.as_dict() for r in rows))
+def write_critical_csv(rows, path, extra: dict | None = None) -> Path:
+    """Write the critical sizes (:class:`rockcli.spectra.CriticalRow`) as CSV (:data:`CRITICAL_COLUMNS`;
+    ``extra`` appended)."""
+    return _write_rows(path, CRITICAL_COLUMNS, (r.as_dict() for r in rows), extra)
 
 
 def format_critical_table(rows) -> str:

@@ -95,6 +95,13 @@ def format_notes(assessment) -> str:
                      "peak so far r; it had not overturned, but its survival is not proven and it is not counted "
                      "as surviving (very slender blocks on sliding bearings, see the README); --horizon "
                      "(up to 3600 s) follows it longer.")
+    if assessment.solver.get("restitution") is not None:
+        lines.append(f"Impacts: coefficient of restitution E = {assessment.solver['restitution']:g} (on the ground "
+                     "theta_dot+ = E theta_dot-; on isolators the map of the README's Restitution section), not "
+                     "Housner's 1 - 1.5 sin^2 alpha.")
+    if assessment.solver.get("cap_ratio"):
+        lines.append(f"Capped colonnades: each column stands in a colonnade carrying a beam of gamma_c = "
+                     f"{assessment.solver['cap_ratio']:g} times the columns' mass (docs/physics-colonnade.md).")
     if assessment.margin:
         lines.append("xS: smallest scale factor of the record that overturns the body in that configuration "
                      "(S > 1: survival margin; S < 1 on an overturn: it overturns already at S times the record; "
@@ -146,6 +153,9 @@ def write_assessment_csv(assessment, path: str | os.PathLike, check=None) -> Pat
     """Write the CSV report (one row per column x record x configuration), atomically; with ``check``
     (a :class:`rockcli.assess.table.ToleranceCheck`) the :data:`CHECK_COLUMNS` follow."""
     df = assessment_frame(assessment)
+    for key in ("restitution", "cap_ratio"):  # given physics options (nothing for the defaults)
+        if assessment.solver.get(key):
+            df[key] = assessment.solver[key]
     if check is not None:
         from rockcli.conditioning import ill_conditioned
 

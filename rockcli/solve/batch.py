@@ -10,7 +10,9 @@ import math
 
 import numpy as np
 
+from rockcli.colonnade import check_cap_ratio
 from rockcli.errors import RockcliInputError
+from rockcli.impact import check_restitution
 from rockcli.models import Block, Rigid
 from rockcli.solve.excitation import _excitation_arrays
 from rockcli.solve.options import (DEFAULT_HORIZON, DEFAULT_MAX_STEPS, DEFAULT_REST_TOL, DEFAULT_TAIL, TAIL_MAX,
@@ -35,7 +37,7 @@ def _threads() -> int:
 def simulate_many(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL,
                   rest_tol: float = DEFAULT_REST_TOL, horizon: float = DEFAULT_HORIZON,
                   max_steps: int = DEFAULT_MAX_STEPS, early: bool = False,
-                  progress=None, chunk: int | None = None) -> list:
+                  progress=None, chunk: int | None = None, restitution=None, cap_ratio=0.0) -> list:
     """Verdict-only :func:`simulate` of many scenes, run in parallel on all cores.
 
     Parameters
@@ -54,6 +56,10 @@ def simulate_many(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL,
     chunk : int, optional
         Scenes per batch handed to a thread (default: about 1/8 of a thread's share, and at most
         1/50 of all scenes with ``progress``).
+    restitution : float, None or sequence of them
+        Coefficient of restitution of :func:`simulate` (one value or one per scene; None: Housner's).
+    cap_ratio : float or sequence of float
+        Capped colonnade of :func:`simulate` (one value or one per scene; 0: solitary columns).
 
     Returns
     -------
@@ -64,21 +70,23 @@ def simulate_many(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL,
         (``rtol``, ``tail``, ``rest_tol``, ``horizon``) concern every job and raise.
     """
     outs, alphas, failed = _run_many(jobs, rtol=rtol, tail=tail, rest_tol=rest_tol, horizon=horizon,
-                                     max_steps=max_steps, early=early, progress=progress, chunk=chunk)
+                                     max_steps=max_steps, early=early, progress=progress, chunk=chunk,
+                                     restitution=restitution, cap_ratio=cap_ratio)
     done = iter(range(outs.shape[0]))
     return [failed[i] if i in failed else _response(outs[next(done)], None, alphas[i]) for i in range(len(alphas))]
 
 
 def simulate_verdicts(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL, rest_tol: float = DEFAULT_REST_TOL,
                       horizon: float = DEFAULT_HORIZON, max_steps: int = DEFAULT_MAX_STEPS, early: bool = False,
-                      progress=None, chunk: int | None = None) -> Verdicts:
+                      progress=None, chunk: int | None = None, restitution=None, cap_ratio=0.0) -> Verdicts:
     """:func:`simulate_many` returning arrays (no :class:`Response` per scene): for large sweeps.
 
     Same arguments and the same runs; a job that fails validation raises here.
     """
     k = _kernel()
     outs, alphas, failed = _run_many(jobs, rtol=rtol, tail=tail, rest_tol=rest_tol, horizon=horizon,
-                                     max_steps=max_steps, early=early, progress=progress, chunk=chunk)
+                                     max_steps=max_steps, early=early, progress=progress, chunk=chunk,
+                                     restitution=restitution, cap_ratio=cap_ratio)
     if failed:
         i = min(failed)
         raise RockcliInputError(f"job {i}: {failed[i].error}")
@@ -90,7 +98,7 @@ def simulate_verdicts(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL, res
 
 
 def _scene_arrays(block, foundation, excitation, tail, rtol, rest_tol, horizon, max_steps, prepared, params,
-                  checked):
+                  checked, restitution=None, cap_ratio=0.0):
     """The kernel inputs of one (block, foundation, excitation, tail) of a sweep, validated and its work
     checked: ``(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end)`` (``epar`` a copy).
 
@@ -108,20 +116,22 @@ def _scene_arrays(block, foundation, excitation, tail, rtol, rest_tol, horizon, 
         raise prepared[key]
     ekind, epar, acc, jtab, dt, t_begin, t_exc_end = prepared[key]
     try:
-        cached = params.get((block, foundation))
+        cached = params.get((block, foundation, restitution, cap_ratio))
     except TypeError:  # an unhashable foundation: built for each scene
-        cached = _parameters(block, foundation, rtol, float(rest_tol))
+        cached = _parameters(block, foundation, rtol, float(rest_tol), restitution, cap_ratio)
     if cached is None:
-        cached = params[(block, foundation)] = _parameters(block, foundation, rtol, float(rest_tol))
+        cached = params[(block, foundation, restitution, cap_ratio)] = _parameters(
+            block, foundation, rtol, float(rest_tol), restitution, cap_ratio)
     fkind, prm = cached
     # the work estimate depends only on these (not on the amplitude): checked once per distinct set
-    wkey = (block, foundation, ekind, acc.size, epar[k.E_TE] - epar[k.E_TS], t_exc_end, tail)
+    wkey = (block, foundation, ekind, acc.size, epar[k.E_TE] - epar[k.E_TS], t_exc_end, tail, restitution)
     try:
         known = wkey in checked
     except TypeError:
         known = False
     if not known:
-        _check_work(block, foundation, prepared[key], rtol, tail, float(rest_tol), float(horizon), int(max_steps))
+        _check_work(block, foundation, prepared[key], rtol, tail, float(rest_tol), float(horizon), int(max_steps),
+                    restitution=restitution)
         try:
             checked.add(wkey)
         except TypeError:
@@ -129,7 +139,18 @@ def _scene_arrays(block, foundation, excitation, tail, rtol, rest_tol, horizon, 
     return fkind, prm, ekind, epar.copy(), acc, jtab, dt, t_begin, t_exc_end
 
 
-def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress, chunk):
+def _per_job(value, n: int, check, what: str) -> list:
+    """A solver option given as one value or one per job, checked, as a list of ``n`` values."""
+    if value is None or np.ndim(value) == 0:
+        return [check(value)] * n
+    values = list(value)
+    if len(values) != n:
+        raise RockcliInputError(f"{what} must be one value or one per job ({n}), got {len(values)}")
+    return [check(v) for v in values]
+
+
+def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress, chunk, restitution=None,
+              cap_ratio=0.0):
     """Kernel outputs (``O_*`` rows) of the valid jobs, each job's slenderness, and the failed jobs.
 
     Returns ``(outs, alphas, failed)``: ``outs`` has one row per valid job in job order,
@@ -145,6 +166,8 @@ def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress
         if not np.all(np.isfinite(tails_in) & (tails_in >= 0) & (tails_in <= TAIL_MAX)):
             raise RockcliInputError(f"tail must be a time between 0 and {TAIL_MAX:g} s for every job")
         validate_options(rtol, 0.0, rest_tol, horizon, max_steps)
+    restitutions = _per_job(restitution, len(jobs), check_restitution, "restitution")
+    caps = _per_job(cap_ratio, len(jobs), check_cap_ratio, "cap_ratio")  # (the foundation is checked per job)
     k = _kernel()
     n = len(jobs)
     if n == 0:
@@ -172,13 +195,13 @@ def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress
                 raise RockcliInputError(f"job {i}: the scale factor must be finite, got {scale!r}")
             tail_i = float(tails_in if tails_in.ndim == 0 else tails_in[i])
             # the jobs hold these objects, so their ids stay theirs for the whole loop
-            gkey = (id(block), id(foundation), id(excitation), tail_i)
+            gkey = (id(block), id(foundation), id(excitation), tail_i, restitutions[i], caps[i])
             g = groups.get(gkey)
             if g is None:
                 try:
                     fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end = _scene_arrays(
                         block, foundation, excitation, tail_i, rtol, rest_tol, horizon, max_steps, prepared, params,
-                        checked)
+                        checked, restitutions[i], caps[i])
                 except (RockcliInputError, TypeError, ValueError) as exc:
                     g = RockcliInputError(str(exc))
                 else:

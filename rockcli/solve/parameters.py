@@ -9,15 +9,18 @@ import math
 import numpy as np
 
 from rockcli.errors import RockcliInputError
-from rockcli.models import (Block, DoubleConcaveSliding, LeadRubber, LinearIsolation, Rigid, SingleConcaveSliding,
-                            impact_coefficient)
+from rockcli.colonnade import apply_cap_ratio, check_cap_ratio
+from rockcli.impact import impact_ratio
+from rockcli.models import Block, DoubleConcaveSliding, LeadRubber, LinearIsolation, Rigid, SingleConcaveSliding
 from rockcli.solve.options import DEFAULT_REST_TOL, DEFAULT_RTOL, _kernel, _rtol
 from rockcli.units import G
 
 
-def _parameters(block: Block, foundation, rtol, rest_tol: float):
+def _parameters(block: Block, foundation, rtol, rest_tol: float, restitution: float | None = None,
+                cap_ratio: float = 0.0):
     """``(fkind, prm)``: the kernel's foundation code and parameter vector (``rockcli.kernels.layout``);
-    ``rtol`` None takes the foundation's default."""
+    ``rtol`` None takes the foundation's default; ``restitution`` None Housner's (:mod:`rockcli.impact`);
+    ``cap_ratio`` > 0 a capped colonnade (:mod:`rockcli.colonnade`)."""
     k = _kernel()
     rtol = _rtol(foundation, rtol)
     prm = np.zeros(k.N_PRM)
@@ -33,7 +36,7 @@ def _parameters(block: Block, foundation, rtol, rest_tol: float):
     prm[k.P_SINA] = math.sin(alpha)
     prm[k.P_COSA] = math.cos(alpha)
     prm[k.P_H] = block.h
-    prm[k.P_ETA] = impact_coefficient(alpha, gamma)
+    prm[k.P_ETA] = impact_ratio(alpha, gamma, restitution)
     # base velocity jump at an impact, u_dot+ = u_dot- + P_DU theta_dot-: the total horizontal momentum
     # u_dot + gamma h theta_dot is kept, so P_DU = gamma h (1 - eta) (= 6 gamma h/(k + 4) when eta is not
     # clamped; a block too squat to rock, eta clamped to 0, hands all its momentum to the base)
@@ -75,6 +78,7 @@ def _parameters(block: Block, foundation, rtol, rest_tol: float):
         prm[k.P_SC0 + 3] = prm[k.P_THR] / max(w, p)
     else:
         raise RockcliInputError(f"unknown foundation {foundation!r}")
+    apply_cap_ratio(prm, k, block, check_cap_ratio(cap_ratio, foundation), restitution)  # a capped colonnade
     return fkind, prm
 
 

@@ -41,6 +41,9 @@ class History:
     z: np.ndarray | None = None
     z2: np.ndarray | None = None
     bearing_force: np.ndarray | None = None
+    #: the turning points of theta while rocking (theta_dot = 0, on the dense output): times [s] and angles [rad]
+    peak_t: np.ndarray | None = None
+    peak_theta: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
@@ -192,11 +195,14 @@ def _response(out: np.ndarray, H, block, out_fkind: int = 0) -> Response:
     if H is not None:
         fkind = out_fkind
         hyst = fkind in (k.FOUNDATION_BILINEAR, k.FOUNDATION_DCSS)
+        peaks = H[H[:, k.H_KIND] == k.HK_PEAK]
+        H = H[H[:, k.H_KIND] == k.HK_STATE]
         hist = History(t=H[:, k.H_T].copy(), ag=H[:, k.H_AG].copy(), theta=H[:, k.H_TH].copy(),
                        theta_dot=H[:, k.H_THD].copy(), u=H[:, k.H_U].copy(), u_dot=H[:, k.H_UD].copy(),
                        z=H[:, k.H_Z].copy() if hyst else None,
                        z2=H[:, k.H_Z2].copy() if fkind == k.FOUNDATION_DCSS else None,
-                       bearing_force=H[:, k.H_FB].copy() if fkind != k.FOUNDATION_RIGID else None)
+                       bearing_force=H[:, k.H_FB].copy() if fkind != k.FOUNDATION_RIGID else None,
+                       peak_t=peaks[:, k.H_T].copy(), peak_theta=peaks[:, k.H_TH].copy())
     return Response(
         verdict=verdict, status=status, message=message,
         t_uplift_s=float(out[k.O_T_UPLIFT]), t_overturn_s=float(out[k.O_T_OVERTURN]),

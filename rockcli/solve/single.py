@@ -5,6 +5,8 @@ from __future__ import annotations
 import numpy as np
 
 from rockcli.errors import RockcliInputError
+from rockcli.impact import check_restitution
+from rockcli.initial import check_initial_state, still_ground_arrays
 from rockcli.models import Block, Rigid
 from rockcli.solve.excitation import _excitation_arrays
 from rockcli.solve.options import (DEFAULT_HORIZON, DEFAULT_MAX_STEPS, DEFAULT_REST_TOL, DEFAULT_TAIL, _kernel,
@@ -16,7 +18,9 @@ from rockcli.solve.work import _check_work
 
 def simulate(block: Block, foundation=None, excitation=None, *, rtol: float | None = None,
              history: bool = False, tail: float = DEFAULT_TAIL, rest_tol: float = DEFAULT_REST_TOL,
-             horizon: float = DEFAULT_HORIZON, max_steps: int = DEFAULT_MAX_STEPS, early: bool = False) -> Response:
+             horizon: float = DEFAULT_HORIZON, max_steps: int = DEFAULT_MAX_STEPS, early: bool = False,
+             restitution: float | None = None, theta0: float = 0.0, theta_dot0: float = 0.0,
+             cap_ratio: float = 0.0) -> Response:
     """Rocking response of ``block`` on ``foundation`` under ``excitation``.
 
     Parameters
@@ -47,6 +51,16 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float | No
         ``peak_final`` is False). Not with ``history``.
     max_steps : int
         Safety cap on integrator steps.
+    restitution : float, optional
+        Coefficient of restitution E, 0 < E <= 1: ``theta_dot+ = E theta_dot-`` at an impact on a
+        rigid foundation (None: Housner's ``1 - 1.5 sin^2 alpha``); on an isolated base the map
+        keeps the horizontal momentum and E enters as in :mod:`rockcli.impact`.
+    theta0, theta_dot0 : float
+        Start rocking from this tilt [rad] (``|theta0| < pi/2``) and angular velocity [rad/s]
+        instead of at rest (:mod:`rockcli.initial`); ``excitation`` may then be None (free rocking).
+    cap_ratio : float
+        A capped colonnade of such columns on a rigid foundation: beam mass over the columns' total
+        mass, >= 0 (0: the solitary column; :mod:`rockcli.colonnade`).
 
     Returns
     -------
@@ -56,17 +70,21 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float | No
         foundation = Rigid()
     if not isinstance(block, Block):
         raise RockcliInputError(f"block must be a rockcli.models.Block, got {type(block).__name__}")
-    if excitation is None:
-        raise RockcliInputError("simulate needs an excitation (a record or a pulse)")
+    theta0, theta_dot0 = check_initial_state(theta0, theta_dot0)
+    if excitation is None and theta0 == 0.0 and theta_dot0 == 0.0:
+        raise RockcliInputError("simulate needs an excitation (a record or a pulse), or a start away from rest "
+                                "(theta0 or theta_dot0)")
     validate_options(rtol, tail, rest_tol, horizon, max_steps)
+    restitution = check_restitution(restitution)
     if early and history:
         raise RockcliInputError("early stopping is for verdict-only runs; it cannot be combined with history")
     k = _kernel()
-    prepared = _excitation_arrays(excitation)
+    prepared = still_ground_arrays(k) if excitation is None else _excitation_arrays(excitation)
     ekind, epar, acc, jtab, dt, t_begin, t_exc_end = prepared
-    fkind, prm = _parameters(block, foundation, rtol, float(rest_tol))
+    fkind, prm = _parameters(block, foundation, rtol, float(rest_tol), restitution, cap_ratio)
+    prm[k.P_TH0], prm[k.P_THD0] = theta0, theta_dot0
     _check_work(block, foundation, prepared, rtol, float(tail), float(rest_tol), float(horizon),
-                int(max_steps), bool(history))
+                int(max_steps), bool(history), restitution)
     out = np.zeros(k.N_OUT)
     kernel = k.simulate_rigid if fkind == k.FOUNDATION_RIGID else k.simulate_core
     H = kernel(fkind, tuple(float(v) for v in prm), ekind, tuple(float(v) for v in epar), acc, jtab, dt,
