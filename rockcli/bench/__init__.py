@@ -51,22 +51,22 @@ What is where, in reading order (every name is importable from ``rockcli.bench``
 The printing, CSV and plots are in :mod:`rockcli.report.bench`, the command in ``rockcli.cli.bench``.
 """
 
-from rockcli.bench.checks import (COLLAPSE_RUN, ENERGY_TOL_PER_RTOL, MAX_REJECTED, MOMENTUM_TOL, PEAK_TOL, T_OVERTURN_TOL,
-                                  TINY_STEP, Check, check_budget, check_dissipation, check_energy, check_finite,
-                                  check_momentum, check_steps, check_tolerance)
+from rockcli.bench.checks import (COLLAPSE_RUN, ENERGY_TOL_PER_RTOL, MAX_REJECTED, MOMENTUM_TOL, PEAK_TOL,
+                                  T_OVERTURN_TOL, TINY_STEP, Check, check_budget, check_dissipation, check_energy,
+                                  check_finite, check_momentum, check_steps, check_tolerance)
 from rockcli.bench.history import history_rest_time, impact_rows
 from rockcli.bench.scenes import (KOBE, PENDING_SLIDING, WP_SCENES, Scene, SceneUnavailable, excitation_end,
                                   parse_foundation, resolve_scene, select_scenes)
 from rockcli.bench.stability import STABILITY_RTOLS, ULP_SEED, StabilityResult, judge_run, run_stability
-from rockcli.bench.stability_scenes import (STABILITY_SCENES, StabilityScene, _passes_alpha_at_end,  # noqa: F401 (tests)
-                                            _subnormal_uplift, band_limited_record, random_scenes)
+from rockcli.bench.stability_scenes import (STABILITY_SCENES, StabilityScene,  # noqa: F401 (two private scenes: tests)
+                                            _passes_alpha_at_end, _subnormal_uplift, band_limited_record, random_scenes)
 from rockcli.bench.work_precision import (CHECK_METHOD, CHECK_RTOL, COMPARE_RTOL, FREE_SUFFIX, KERNEL, KERNEL_RTOLS,
                                           KERNEL_VERDICT, NOISE_DRAWS, NOISE_SEED, REFERENCE_RTOL, SCIPY_BUDGET_FULL_S,
                                           SCIPY_BUDGET_S, SCIPY_METHODS, SCIPY_RTOLS, SCIPY_RTOLS_FULL, WP_TAIL, WPRun,
                                           WPScene, WPSummary, median_time, run_work_precision, scene_default_rtol,
                                           summarise)
-from rockcli.conditioning import (ILL_PEAK, ILL_T_OVERTURN, ULP_DRAWS, ill_conditioned,
-                                  measure_conditioning, ulp_perturbed, widest)
+from rockcli.conditioning import (ILL_PEAK, ILL_T_OVERTURN, ULP_DRAWS, ill_conditioned, measure_conditioning,
+                                  ulp_perturbed, widest)
 
 __all__ = ["CHECK_METHOD", "CHECK_RTOL", "COLLAPSE_RUN", "COMPARE_RTOL", "ENERGY_TOL_PER_RTOL", "FREE_SUFFIX",
            "ILL_PEAK", "ILL_T_OVERTURN", "KERNEL", "KERNEL_RTOLS", "KERNEL_VERDICT", "KOBE", "MAX_REJECTED",

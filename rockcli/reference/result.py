@@ -19,7 +19,8 @@ class RefResult:
     overturn), ``n_impacts`` (while the ground moves), peak base displacement ``u_max`` [m];
     ``t_rest`` [s], the last time the block was set at rest for good (NaN when it never rests or
     overturns); ``t_theta_max`` [s], when the peak was reached; the work: ``steps`` (accepted steps
-    of every ``solve_ivp`` call), ``nfev`` (right-hand sides, including ``n_states`` per finite-difference Jacobian), ``njev``, ``nlu``
+    of every ``solve_ivp`` call), ``nfev`` (right-hand sides, including ``n_states`` per
+    finite-difference Jacobian), ``njev``, ``nlu``
     and ``wall_s`` (the whole run); ``method``, ``rtol`` and ``atol`` as used.
     """
 
