@@ -5,7 +5,7 @@ For each scene and u_y it prints accepted steps, right-hand-side evaluations, wa
 error of the peak |theta| (the overturning time for a scene that overturns) and of the peak base
 displacement against a converged kernel run (rtol = 1e-12, itself checked against Radau at
 rtol = 1e-10), for the kernel at rtol 1e-6, 1e-8, 1e-10 and for SciPy's Radau and LSODA
-(``tests/naive_sliding.py``, the same equations with z integrated as a state) at rtol 1e-6 and 1e-8;
+(:func:`rockcli.reference.reference_sliding`, the same equations with z integrated as a state) at rtol 1e-6 and 1e-8;
 then the speed-up at matched accuracy: the kernel's cheapest run whose peak error is at most the
 SciPy run's, time against time. (The reference finds its peak base displacement by sampling its
 dense output on a grid, which floors that error near 1e-6: the match is made on the peak |theta|.) SciPy's explicit RK45 on the same equations is shown for the larger u_y
@@ -23,13 +23,11 @@ import time
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE.parent / "tests"))
 sys.path.insert(0, str(HERE.parent))
-
-from naive_sliding import reference_sliding  # noqa: E402
 
 from rockcli.models import Block, DoubleConcaveSliding, SingleConcaveSliding, column  # noqa: E402
 from rockcli.pulses import make_pulse  # noqa: E402
+from rockcli.reference import reference_sliding  # noqa: E402
 from rockcli.solve import simulate  # noqa: E402
 from rockcli.units import G  # noqa: E402
 

@@ -1,4 +1,4 @@
-"""Compiled kernel vs the SciPy reference (tests/naive.py) on the same scenes, at matched accuracy.
+"""Compiled kernel vs the SciPy reference (rockcli.reference) on the same scenes, at matched accuracy.
 
 Prints, for a 40 s record (Kobe Takarazuka 000, rigid and isolated) and one Ricker pulse:
 the error of each solver against a converged solution, wall times, the speed-up at matched
@@ -18,13 +18,12 @@ import time
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE.parent / "tests"))
-
-from naive import reference_simulate  # noqa: E402
+sys.path.insert(0, str(HERE.parent))
 
 from rockcli.models import LinearIsolation, Rigid, column  # noqa: E402
 from rockcli.pulses import make_pulse  # noqa: E402
 from rockcli.records import read_record  # noqa: E402
+from rockcli.reference import reference_simulate  # noqa: E402
 from rockcli.solve import simulate  # noqa: E402
 from rockcli.units import G  # noqa: E402
 

@@ -5,10 +5,3 @@ Kept as a thin re-export so that tests (and branches) importing ``naive`` keep w
 """
 
 from rockcli.reference import *  # noqa: F401,F403
-from rockcli.reference import (  # noqa: F401  (names tests import explicitly)
-    Bearing,
-    RefResult,
-    ground_function,
-    impact_map_linear_system,
-    reference_simulate,
-)

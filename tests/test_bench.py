@@ -38,12 +38,15 @@ def test_reference_module_never_imports_numba_or_the_kernels():
     assert out == ["False", "False"]
 
 
-def test_naive_is_a_thin_reexport_of_the_reference():
+def test_naive_and_naive_sliding_are_thin_reexports_of_the_reference():
     import naive
     import rockcli.reference as ref
 
     assert naive.reference_simulate is ref.reference_simulate
     assert naive.impact_map_linear_system is ref.impact_map_linear_system
+    import naive_sliding
+
+    assert naive_sliding.reference_sliding is ref.reference_sliding and naive_sliding.Bearing is ref.Bearing
 
 
 @pytest.mark.parametrize("method", METHODS)

@@ -1,0 +1,146 @@
+"""A block on a rigid foundation (Eq 3) or on linear bearings (Eqs 7-11): the stuck phases.
+
+On a rigid foundation the block lifts when ``|a_g| = g tan(alpha)``: the ground motion is scanned on a
+fine grid and the crossing solved by ``brentq``; after the excitation it rests for good. On linear
+bearings a stuck block rides the base oscillator: the free base is integrated and its acceleration
+``|F(u, u')|`` searched for the first crossing of ``g tan(alpha)`` on the dense output; after the
+excitation the run ends once the oscillator's energy bounds ``|F|`` below the threshold. The rocking
+phases, impacts and rests are those of :class:`rockcli.reference.phases.Phases`.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from rockcli.models import LinearIsolation
+from rockcli.reference.equations import ground_function, rocking_on_base
+from rockcli.reference.phases import Phases
+from rockcli.reference.result import RefResult
+from rockcli.units import G
+
+
+def reference_linear(block, foundation, excitation, work, *, horizon, rest_tol, max_phases) -> RefResult:
+    """Rigid foundation (``foundation`` not a LinearIsolation) or linear bearings."""
+    from scipy.optimize import brentq, minimize_scalar
+
+    ag, t_exc_end, scan_step, max_step = ground_function(excitation)
+    g = G
+    p2 = block.p ** 2
+    alpha = block.alpha
+    R = block.R
+    thr = g * math.tan(alpha)
+    isolated = isinstance(foundation, LinearIsolation)
+    gamma = foundation.gamma if isolated else 0.0
+    wb = foundation.omega_b if isolated else 0.0
+    xi = foundation.xi if isolated else 0.0
+    t_max_end = t_exc_end + horizon
+
+    def F(u, ud):
+        return -wb * wb * u - 2 * xi * wb * ud
+
+    def free_bound(u, ud):
+        # free base: (ud^2 + wb^2 u^2)/2 never grows and |a| <= wb sqrt(1 + 4 xi^2) sqrt(ud^2 + wb^2 u^2)
+        return wb * math.hypot(1.0, 2.0 * xi) * math.hypot(ud, wb * u)
+
+    def rock_rhs(s):
+        def f(t, y):
+            th, thd = y[0], y[1]
+            if not isolated:
+                A = alpha * s - th
+                return [thd, -p2 * (math.sin(A) + ag(t) / g * math.cos(A))]  # Eq (3)
+            thdd, a_abs = rocking_on_base(th, thd, s, F(y[2], y[3]), alpha=alpha, p2=p2, gamma=gamma, R=R)
+            return [thd, thdd, y[3], a_abs - ag(t)]
+        return f
+
+    def stuck_rhs(t, y):
+        return [y[1], F(y[0], y[1]) - ag(t)]
+
+    def ground_uplift(ph: Phases) -> bool:
+        # scan the ground motion on a fine grid, bracket and solve |ag| = thr
+        t = ph.t
+        grid = np.arange(t, t_exc_end + scan_step, scan_step / 4)
+        grid = grid[grid <= t_exc_end]
+        if grid.size == 0 or grid[-1] < t_exc_end:
+            grid = np.append(grid, t_exc_end)
+        vals = np.array([abs(ag(x)) for x in grid]) - thr
+        idx = np.nonzero(vals > 0)[0]
+        if idx.size == 0:
+            ph.t = t_exc_end
+            return True
+        k = idx[0]
+        ph.t = grid[0] if k == 0 else brentq(lambda x: abs(ag(x)) - thr, grid[k - 1], grid[k], xtol=1e-14)
+        ph.lift(-math.copysign(1.0, ag(grid[k])))
+        return True
+
+    def base_uplift(ph: Phases) -> bool:
+        t, y = ph.t, ph.y
+        a_now = F(y[2], y[3])
+        if abs(a_now) > thr:
+            ph.lift(-math.copysign(1.0, a_now))
+            return True
+        # integrate the free base, then look for the first |a| > thr on the dense output:
+        # a fine grid, every sampled local maximum near thr refined by a bounded search
+        ev_settle = lambda tt, yy: free_bound(yy[0], yy[1]) - thr  # noqa: E731
+        ev_settle.terminal, ev_settle.direction = True, -1
+        after = t >= t_exc_end
+        t_end = t_max_end if after else t_exc_end
+        sol = work.ivp(stuck_rhs, (t, t_end), y[2:4], max_step=max_step, events=(ev_settle,) if after else None,
+                       dense_output=True)
+        T = sol.t[-1]
+        fine = min(2 * math.pi / wb, 4 * scan_step) / 2000.0
+        grid = np.union1d(np.linspace(t, T, max(3, int((T - t) / fine) + 1)), sol.t)
+        yy = sol.sol(grid)
+        absa = np.abs(F(yy[0], yy[1]))
+        # the first sample above thr, unless a sampled local maximum near thr before it
+        # (checked in order) peaks above thr between the samples
+        hit = None
+        over = np.nonzero(absa[1:] > thr)[0]
+        k_over = int(over[0]) + 1 if over.size else grid.size
+        inner = absa[1:-1]
+        cand = np.nonzero((inner >= absa[:-2]) & (inner >= absa[2:]) & (inner > 0.99 * thr))[0] + 1
+        for k in cand[cand < k_over]:
+            def neg(x):
+                z = sol.sol(x)
+                return -abs(F(z[0], z[1]))
+            m = minimize_scalar(neg, bounds=(grid[k - 1], grid[k + 1]), method="bounded", options={"xatol": 1e-14})
+            if -m.fun > thr:
+                hit = (grid[k - 1], m.x)
+                break
+        if hit is None and k_over < grid.size:
+            hit = (grid[k_over - 1], grid[k_over])
+        if hit is None:
+            ph.u_max = max(ph.u_max, float(np.max(np.abs(yy[0]))))
+            y[2:4] = sol.y[:, -1]
+            ph.t = T
+            if not after:
+                return True
+            # settled (P3) or at the horizon; the free base may still reach a larger |u|
+            if T < t_max_end - 1e-12:
+                tail_sol = work.ivp(stuck_rhs, (T, T + 4 * math.pi / wb), y[2:4], dense_output=True)
+                tt = np.linspace(T, tail_sol.t[-1], 4000)
+                ph.u_max = max(ph.u_max, float(np.max(np.abs(tail_sol.sol(tt)[0]))))
+            return False
+
+        def excess(x):
+            z = sol.sol(x)
+            return abs(F(z[0], z[1])) - thr
+
+        tu = brentq(excess, hit[0], hit[1], xtol=1e-15)
+        z = sol.sol(tu)
+        ph.u_max = max(ph.u_max, float(np.max(np.abs(sol.sol(np.linspace(t, tu, 200))[0]))))
+        y[2:4] = z
+        ph.t = tu
+        ph.lift(-math.copysign(1.0, F(z[0], z[1])))
+        return True
+
+    def stuck(ph: Phases) -> bool:
+        if ph.t >= t_exc_end and (not isolated or free_bound(ph.y[2], ph.y[3]) < thr):
+            return False
+        return base_uplift(ph) if isolated else ground_uplift(ph)
+
+    base_acc = (lambda t, y: F(y[2], y[3])) if isolated else (lambda t, y: ag(t))
+    ph = Phases(block, gamma, 4, t_exc_end=t_exc_end, horizon=horizon, rest_tol=rest_tol,
+                n_rock=4 if isolated else 2, base_acc=base_acc, u_grid=4000 if isolated else 0)
+    return ph.chain(stuck, rock_rhs, work, max_step, max_phases)
