@@ -12,7 +12,6 @@ Notation follows Vassiliou & Makris (2012): ``R`` semi-diagonal, ``alpha`` slend
 from __future__ import annotations
 
 import math
-import re
 from dataclasses import dataclass
 
 from rockcli.errors import RockcliInputError
@@ -69,11 +68,10 @@ XI_MAX = 10.0
 
 
 def _num(x) -> str:
-    """A number for a message: plain float formatting (never ``np.float64(...)``)."""
-    try:
-        return f"{float(x):g}"
-    except (TypeError, ValueError):
-        return repr(x)
+    """A number for a message: plain float formatting (never ``np.float64(...)``), never rounded."""
+    from rockcli.inputs import format_number
+
+    return format_number(x)
 
 
 def _check(cond: bool, message: str) -> None:
@@ -173,8 +171,9 @@ def _check_block(R, alpha, source: str = "") -> None:
     _check(_finite(alpha) and 0 < float(alpha) < math.pi / 2,
            f"block slenderness alpha must lie strictly between 0 and 90 degrees, got {_num(alpha)} rad")
     lo, hi = R_RANGE_M
+    shown = _num(R) if not source else f"{float(R):g}"  # a derived R: the source quotes what was given
     _check(lo <= float(R) <= hi,
-           f"block size R = {_num(R)} m{source} lies outside the supported {lo:g} m to {hi:g} m (a figurine 2 cm "
+           f"block size R = {shown} m{source} lies outside the supported {lo:g} m to {hi:g} m (a figurine 2 cm "
            f"tall to a 140 m monolith; smaller bodies rock too fast to integrate, p = sqrt(3 g/4 R))")
     deg = math.degrees(float(alpha))
     _check(deg >= ALPHA_MIN_DEG * (1 - 1e-12),
@@ -637,19 +636,18 @@ def parse_isolation_spec(text: str):
         return Rigid()
     if kind not in _SPEC_KEYS:
         raise RockcliInputError(f"unknown isolation {kind!r} in {raw!r} (use {_SPEC_EXAMPLES})")
+    from rockcli.inputs import parse_number, spec_items
+
     keys = _SPEC_KEYS[kind]
     values = {}
-    for item in filter(None, (s.strip() for s in rest.split(","))):
-        key, eq, val = item.partition("=")
-        k = key.strip().lower()
+    for key, val, eq in spec_items(rest, f"isolation {raw!r}"):
+        k = key.lower()
         if not eq or k not in keys:
+            item = f"{key}={val}" if eq else key
             raise RockcliInputError(
                 f"isolation {raw!r}: {item!r} is not one of {', '.join(k + '=...' for k in keys)}")
-        if not re.fullmatch(r"\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*", val):
-            raise RockcliInputError(f"isolation {raw!r}: {key.strip()} must be a number, got {val.strip()!r}")
-        if keys[k] in values:
-            raise RockcliInputError(f"isolation {raw!r}: {key.strip()} is given twice")
-        values[keys[k]] = float(val)
+        values[keys[k]] = parse_number(val, f"isolation {raw!r}: {key}",
+                                       bad=f"isolation {raw!r}: {key} must be a number, got {val!r}")
     if "beta" in values and "gamma_bw" not in values:  # A = 1: one of them fixes the other
         values["gamma_bw"] = 1.0 - values["beta"]
     elif "gamma_bw" in values and "beta" not in values:

@@ -8,6 +8,7 @@ import click
 
 from rockcli.cli.errors import InputError, user_errors
 from rockcli.cli.options import check_outputs, horizon_option, progress_bar
+from rockcli.cli.types import NUMBER, SEED, Number
 
 
 @click.group(name="assess")
@@ -18,13 +19,13 @@ def assess():
 def _block_options(func):
     """``--R``/``--alpha`` or ``--height``/``--width`` and ``--name``: one more (custom) block."""
     for opt in reversed((
-            click.option("--R", "R", type=float, default=None, metavar="M",
+            click.option("--R", "R", type=NUMBER, default=None, metavar="M",
                          help="Custom block: semi-diagonal R [m] (with --alpha)."),
-            click.option("--alpha", type=float, default=None, metavar="DEG",
+            click.option("--alpha", type=NUMBER, default=None, metavar="DEG",
                          help="Custom block: slenderness [deg] (with --R)."),
-            click.option("--height", type=float, default=None, metavar="M",
+            click.option("--height", type=NUMBER, default=None, metavar="M",
                          help="Custom block: full height [m] (with --width)."),
-            click.option("--width", type=float, default=None, metavar="M",
+            click.option("--width", type=NUMBER, default=None, metavar="M",
                          help="Custom block: base width or drum diameter [m] (with --height)."),
             click.option("--name", default="custom", show_default=True, help="Name of the custom block."))):
         func = opt(func)
@@ -33,7 +34,7 @@ def _block_options(func):
 
 def _headerless_options(func):
     """``--units`` and ``--dt`` for record files that do not state them (headerless text, SAC, ...)."""
-    func = click.option("--dt", type=float, default=None, metavar="SECONDS",
+    func = click.option("--dt", type=NUMBER, default=None, metavar="SECONDS",
                         help="Time step [s] of the record files that state none; a file that states "
                              "another one is an error row. Catalogue files are read as the catalogue says.")(func)
     return click.option("--units", default=None, metavar="UNITS",
@@ -46,6 +47,17 @@ def _warn_failed(failed, n_total: int):
         click.echo(f"Warning: {len(failed)} of {n_total} records could not be read or run; they have "
                    f"error rows: {', '.join(x.label for x in failed[:5])}{' ...' if len(failed) > 5 else ''}",
                    err=True)
+
+
+def _warn_pulses(result, mode: str):
+    """A catalogued pulse run in place of a record the user did not ask to replace changes the question:
+    said on stderr too (the rows say "(pulse)" and the count line how many)."""
+    if mode != "auto" or not result.idealised:
+        return
+    n, total = len(result.idealised), len(result.excitations)
+    click.echo(f"Warning: {n} of {total} records ran as their catalogued pulse, not as the record (file not found "
+               f"on ROCKCLI_RECORDS or in the repository's records/): the answer is about pulses; "
+               f"--excitation record refuses this, --excitation pulse asks for it", err=True)
 
 
 def _refuse_if_none_can_run(excitations):
@@ -146,6 +158,7 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
     click.echo("")
     click.echo(format_notes(result))
     _warn_failed(result.failed, len(result.excitations))
+    _warn_pulses(result, excitation)
     failed_runs = [r for r in result.rows if r.error and not any(x.label == r.record for x in result.failed)]
     if failed_runs:
         r = failed_runs[0]
@@ -250,9 +263,9 @@ def _write_histories(result, hist_dir, plot_dir):
 @click.option("--im", type=click.Choice(["pga", "pgv", "ap"]), default="pga", show_default=True,
               help="Intensity measure: pga [g]; pgv [m/s] (trapezoid rule from rest, as 'records show'); "
                    "ap [g], the amplitude of the record's fitted Ricker pulse.")
-@click.option("--bootstrap", "n_boot", type=click.IntRange(0, 100000), default=1000, show_default=True,
+@click.option("--bootstrap", "n_boot", type=Number(integer=True, lo=0, hi=100000), default=1000, show_default=True,
               help="Bootstrap resamples over records for the confidence intervals (0: none).")
-@click.option("--seed", type=int, default=13, show_default=True, help="Seed of the bootstrap resamples.")
+@click.option("--seed", type=SEED, default=13, show_default=True, help="Seed of the bootstrap resamples.")
 @click.option("--csv", "csv_path", type=click.Path(), default=None,
               help="Write one row per column x record x configuration (IM, scale, capacity, censoring, error) "
                    "with the fit of its column and configuration.")

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import click
+from rockcli.cli.types import NUMBER, WHOLE
 
 
 def record_options(func=None, *, column_flag: str = "--column"):
@@ -18,12 +19,12 @@ def record_options(func=None, *, column_flag: str = "--column"):
             click.option("--units", default=None, metavar="UNITS",
                          help="Units of the values in the file (g, m/s^2, cm/s^2, gal, mm/s^2, g/10); "
                               "needed when the file does not state them."),
-            click.option("--dt", type=float, default=None, metavar="SECONDS",
+            click.option("--dt", type=NUMBER, default=None, metavar="SECONDS",
                          help="Time step [s]; needed when the file states none (single-column text)."),
             click.option("--format", "fmt", default=None, metavar="NAME",
                          help="File format (PEER_AT2, TEXT, ESM, ITACA, COSMOS, GEONET_V2A, or an ObsPy "
                               "format such as SAC, MSEED, KNET); detected when omitted."),
-            click.option(column_flag, "column", type=int, default=None, metavar="N",
+            click.option(column_flag, "column", type=WHOLE, default=None, metavar="N",
                          help="1-based column of a multi-column text file (a time column counts), or "
                               "component/trace of a multi-component file."),
         ]
@@ -48,12 +49,12 @@ def block_options(func):
     options = [
         click.option("--column", "column_name", default=None, metavar="NAME",
                      help="A temple column preset: bassae (5.95 m x 1.11 m) or nemea (10.33 m x 1.52 m)."),
-        click.option("--R", "R", type=float, default=None, metavar="METRES",
+        click.option("--R", "R", type=NUMBER, default=None, metavar="METRES",
                      help="Semi-diagonal of the block (centre of mass to a base corner) [m]."),
-        click.option("--alpha", type=float, default=None, metavar="DEGREES",
+        click.option("--alpha", type=NUMBER, default=None, metavar="DEGREES",
                      help="Slenderness atan(b/h) [degrees], with --R."),
-        click.option("--height", type=float, default=None, metavar="METRES", help="Full height [m], with --width."),
-        click.option("--width", type=float, default=None, metavar="METRES",
+        click.option("--height", type=NUMBER, default=None, metavar="METRES", help="Full height [m], with --width."),
+        click.option("--width", type=NUMBER, default=None, metavar="METRES",
                      help="Base width (a column's base drum diameter) [m], with --height."),
         click.option("--name", default=None, help="Label of a custom block in reports."),
     ]
@@ -65,7 +66,7 @@ def block_options(func):
 def horizon_option(func):
     """``--horizon S``: the solver's horizon, the longest free motion followed after the excitation to
     prove a verdict. The command checks it (:func:`rockcli.solve.validate_options`) before any work."""
-    return click.option("--horizon", type=float, default=600.0, show_default=True, metavar="S",
+    return click.option("--horizon", type=NUMBER, default=600.0, show_default=True, metavar="S",
                         help="Longest free motion followed after the excitation to prove a verdict [s] (at most "
                              "3600); a run still moving then is reported NOT PROVEN.")(func)
 

@@ -7,6 +7,7 @@ import click
 from rockcli.cli.errors import user_errors
 from rockcli.cli.options import (block_from_options, block_options, check_outputs, horizon_option, record_kwargs,
                                  record_options)
+from rockcli.cli.types import NUMBER
 
 
 @click.command(context_settings={"show_default": True})
@@ -23,11 +24,11 @@ from rockcli.cli.options import (block_from_options, block_options, check_output
 @click.option("--pulse", default=None, metavar="SPEC",
               help="Ground motion: an analytic pulse, e.g. 'ricker-sym:ap=0.3,Tp=0.6' (ap in g, Tp in s); "
                    "shapes ricker-sym, ricker-anti, sine, cosine.")
-@click.option("--scale", type=float, default=1.0, help="Multiply the record's acceleration by this factor.")
+@click.option("--scale", type=NUMBER, default=1.0, help="Multiply the record's acceleration by this factor.")
 @click.option("--flip", is_flag=True, help="Reverse the sign of the ground motion.")
-@click.option("--rtol", type=float, default=None,
+@click.option("--rtol", type=NUMBER, default=None,
               help="Relative tolerance of the integrator [default: 5e-9; 2e-9 on sliding and lead-rubber bearings].")
-@click.option("--tail", type=float, default=10.0,
+@click.option("--tail", type=NUMBER, default=10.0,
               help="Free motion shown after the excitation in --history/--plot [s]; never changes the verdict.")
 @horizon_option
 @click.option("--check-tolerance", "check", is_flag=True,
