@@ -28,6 +28,8 @@ from rockcli.inputs import format_number, parse_number, spec_items
 from rockcli.pulses import RickerSymmetric
 from rockcli.records import read_record
 from rockcli.units import G
+from test_bad_input import assert_one_sentence as _one_sentence
+from test_bad_input import snapshot
 
 DT = 0.01
 #: a symmetric Ricker of 0.697 g (the Kobe record's PGA in the issue), 6 s of record [g]
@@ -46,23 +48,13 @@ def text_record(samples, comments=("units: g", "dt=0.01 sec")) -> str:
     return "".join(f"# {c}\n" for c in comments) + "".join(f"{s}\n" for s in samples)
 
 
-def snapshot(folder: Path) -> dict:
-    return {str(p.relative_to(folder)): (p.stat().st_size, p.stat().st_mtime_ns) if p.is_file() else "folder"
-            for p in sorted(folder.rglob("*"))}
-
-
 def run_cli(args, env=None):
     return CliRunner().invoke(main, [str(a) for a in args], env=env)
 
 
 def assert_one_sentence(res, *words):
-    out = res.output
-    assert "Traceback" not in out, out
-    lines = [ln for ln in out.splitlines() if ln.strip()]
-    assert res.exit_code == 2, out
-    assert len(lines) == 1 and lines[0].startswith("Error: "), out
-    for w in words:
-        assert w in lines[0], (w, out)
+    """Exit 2, one line ``Error: ...`` holding every one of ``words``, no traceback (as in test_bad_input)."""
+    _one_sentence(res, words)
 
 
 @pytest.fixture
@@ -403,3 +395,20 @@ def test_fragility_over_two_records_warns():
     assert "fitted over 3 records only" in _thin_fit_note(_curve(3, 0.4))
     assert _thin_fit_note(_curve(MIN_RECORDS_FOR_BETA, 0.4)) == ""
     assert math.isnan(_curve(2, math.nan).beta)  # no fit: no note of this kind (the "no fit" note says it)
+
+
+def test_records_folder_without_read_permission_one_sentence(work, monkeypatch):
+    """``assess column --records DIR`` on a folder it may not list (simulated: the tests may run as root)."""
+    (work / "locked").mkdir()
+
+    def denied(self):
+        raise PermissionError(13, "Permission denied", str(self))
+
+    monkeypatch.setattr(Path, "iterdir", denied)
+    assert_one_sentence(run_cli(["assess", "column", "bassae", "--records", "locked", "--isolation", "none"]),
+                        "--records locked: the folder cannot be read (permission denied)")
+
+
+def test_catalogue_id_with_a_broken_catalogue_names_the_catalogue(work):
+    env = _catalogue(work, lambda good: good.replace(b"Parkfield", "Parkfi\u00e9ld".encode("latin-1"), 1))
+    assert_one_sentence(run_cli(["records", "show", KOBE], env=env), "record catalogue", "is not UTF-8")

@@ -305,7 +305,11 @@ def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto"
         src = str(src)
         path = Path(src).expanduser()
         if path.is_dir():
-            files = sorted(p for p in path.iterdir() if p.is_file() and not p.name.startswith("."))
+            try:
+                files = sorted(p for p in path.iterdir() if p.is_file() and not p.name.startswith("."))
+            except OSError as exc:
+                raise RockcliInputError(f"--records {src}: the folder cannot be read "
+                                        f"({(exc.strerror or str(exc)).lower()})") from None
             if not files:
                 raise RockcliInputError(f"--records {src}: the folder holds no files")
             for p in files:

@@ -112,9 +112,10 @@ def read_record(source, *, format=None, units=None, dt=None, column=None) -> Rec
     if isinstance(source, Record):
         return source
     if isinstance(source, str) and not Path(source).exists():
-        from rockcli.records.catalog import find_file, get_entry, is_catalog_id, search_path
+        from rockcli.records.catalog import find_file, get_entry, load_catalog, search_path
 
-        if is_catalog_id(source):
+        # a catalogue that cannot be read is said as such, not as "no such file, nor a catalogue id"
+        if os.sep not in source and "/" not in source and any(e.id == source for e in load_catalog()):
             entry = get_entry(source)
             if not entry.available:
                 raise RockcliInputError(f"catalogue record {entry.id!r} has no public file ({entry.notes})")

@@ -119,6 +119,12 @@ def _is_number(token: str) -> bool:
     return True
 
 
+def _is_name(token: str) -> bool:
+    """A column name (``time``, ``acc_g``): starts with an ASCII letter and is not a number word (``nan``,
+    ``inf``). A malformed first sample (``0x1``, ``1_0``) is a data row, refused there, not a header."""
+    return re.match(r"[A-Za-z]", token) is not None and not _is_number(token)
+
+
 def parse_text_table(text: str, filename: str = "text file") -> dict[str, Any]:
     """Split a text accelerogram into comments, optional column names and a numeric table.
 
@@ -145,7 +151,7 @@ def parse_text_table(text: str, filename: str = "text file") -> dict[str, Any]:
             comments.append(line.lstrip(COMMENT_CHARS + "/").strip())
             continue
         tokens = [t for t in _SEP_RE.split(line) if t]
-        if not rows and names is None and not any(_is_number(t) for t in tokens):
+        if not rows and names is None and all(_is_name(t) for t in tokens):
             names = tokens
             continue
         rows.append(tokens)
