@@ -120,9 +120,9 @@ def _is_number(token: str) -> bool:
 
 
 def _is_name(token: str) -> bool:
-    """A column name (``time``, ``acc_g``): starts with an ASCII letter and is not a number word (``nan``,
-    ``inf``). A malformed first sample (``0x1``, ``1_0``) is a data row, refused there, not a header."""
-    return re.match(r"[A-Za-z]", token) is not None and not _is_number(token)
+    """A column name (``time``, ``acc_g``, ``[s]``): not a number, and not starting like one. A malformed
+    first sample (``0x1``, ``1.2.3``) is a data row, refused there, not taken as a header."""
+    return not _is_number(token) and re.match(r"[-+]?\.?[0-9]", token) is None
 
 
 def parse_text_table(text: str, filename: str = "text file") -> dict[str, Any]:
