@@ -140,6 +140,8 @@ OPTION_CASES = {
                              "linear:TbTp=2,TbTp=3"], ["TbTp is given twice"]),
     "spectrum-param-twice": (["spectrum", "min-overturning", "--alpha", "10", "--isolation",
                               "linear:TbTp=2,xi=0.1,xi=0.2"], ["xi is given twice"]),
+    "spectrum-ap-1e306": (["spectrum", "overturning", "--alpha", "10", "--ap", "1e306:1e306:1"],
+                          ["--ap '1e306:1e306:1' reaches a_p = 1.76e+305 g at alpha = 10 deg", "supported 100 g"]),
     "periods-underscore": (["fit-pulse", "x.AT2", "--periods", "0.1:1_0"], ["--periods '0.1:1_0'", "underscores"]),
 }
 

@@ -52,6 +52,20 @@ def _scene_options(isolation_help: str, isolation_default, multiple_isolation: b
     return decorate
 
 
+def _check_ap_reach(text: str, y_max: float, alphas) -> None:
+    """The grid's largest a_p = y g tan(alpha) within the pulses' supported 100 g (a grid reaching 1e306 g
+    overflowed inside the solver and its cells were reported as not overturning)."""
+    import math
+
+    from rockcli.pulses import A_P_MAX_G
+
+    a = max(alphas)
+    reach = y_max * math.tan(math.radians(a))
+    if reach > A_P_MAX_G:
+        raise InputError(f"--ap {text!r} reaches a_p = {reach:.3g} g at alpha = {a:g} deg, beyond the supported "
+                         f"{A_P_MAX_G:g} g (recorded peaks reach about 4 g); lower the grid's stop")
+
+
 def _check_outputs(csv_path, plot_path):
     from rockcli.cli.options import check_outputs
 
@@ -132,6 +146,7 @@ def overturning(alpha, pulses, records, isolations, csv_path, plot_path, schedul
     alphas = parse_list(alpha, "--alpha", lo=0, hi=90, lo_open=True, hi_open=True)
     wp_grid = parse_grid(wp_p, "--wp-p", positive=True)
     ap_grid = parse_grid(ap, "--ap")
+    _check_ap_reach(ap, ap_grid.stop, alphas)
     isos = [parse_isolation(s) for s in isolations]
     _check_outputs(csv_path, plot_path)
     runner = _runner(scheduler, horizon)
