@@ -414,3 +414,15 @@ def test_records_folder_without_read_permission_one_sentence(work, monkeypatch):
 def test_catalogue_id_with_a_broken_catalogue_names_the_catalogue(work):
     env = _catalogue(work, lambda good: good.replace(b"Parkfield", "Parkfi\u00e9ld".encode("latin-1"), 1))
     assert_one_sentence(run_cli(["records", "show", KOBE], env=env), "record catalogue", "is not UTF-8")
+
+
+@pytest.mark.parametrize("interval, ndata, ok", [("0.01", "4", True), ("0_01", "4", False), ("0.01", "1_0", False),
+                                                 ("1.0D-02", "4", True)])
+def test_esm_header_numbers_as_written(work, interval, ndata, ok):
+    (work / "r.esm").write_text(f"EVENT_NAME: test\nSAMPLING_INTERVAL_S: {interval}\nNDATA: {ndata}\nUNITS: cm/s^2\n"
+                                f"DATA_TYPE: ACCELERATION\n0.1\n-0.2\n0.3\n0.1\n")
+    if ok:
+        rec = read_record("r.esm")
+        assert rec.meta["format"] == "ESM" and rec.dt == 0.01 and rec.npts == 4
+    else:
+        assert_one_sentence(run_cli(["records", "show", "r.esm"]), "r.esm: ESM header lacks a valid")
