@@ -165,7 +165,7 @@ CLI_CASES = {
     "show-missing": (["records", "show", "missing.AT2"], ["missing.AT2: no such file"]),
     "show-folder": (["records", "show", "adir"], ["adir: is a folder, not a record file"]),
     "show-under-file": (["records", "show", "afile/x.AT2"], ["afile/x.AT2: no such file"]),
-    "show-dt0": (["records", "show", "nounits.txt", "--units", "g", "--dt", "0"], ["dt=0.0 s must be a positive"]),
+    "show-dt0": (["records", "show", "nounits.txt", "--units", "g", "--dt", "0"], ["dt=0 s must be a positive"]),
     "show-units": (["records", "show", "nodt.txt", "--units", "furlongs", "--dt", "0.01"],
                    ["unknown acceleration unit 'furlongs'", "known: g"]),
     "show-column0": (["records", "show", "good.AT2", "--column", "0"], ["column 0 must be a whole number >= 1"]),

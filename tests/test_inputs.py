@@ -426,3 +426,10 @@ def test_esm_header_numbers_as_written(work, interval, ndata, ok):
         assert rec.meta["format"] == "ESM" and rec.dt == 0.01 and rec.npts == 4
     else:
         assert_one_sentence(run_cli(["records", "show", "r.esm"]), "r.esm: ESM header lacks a valid")
+
+
+def test_time_step_conflict_quotes_both_values_unrounded(work):
+    (work / "k.AT2").write_bytes(at2_bytes())
+    with pytest.raises(RockcliInputError, match=r"states dt=0.01 s but dt=0.0100001 s was given"):
+        read_record("k.AT2", dt=0.0100001)
+    assert_one_sentence(run_cli(["records", "show", "k.AT2", "--dt", "0"]), "dt=0 s must be a positive")

@@ -310,7 +310,9 @@ def parse_at2(filename, headonly: bool = False) -> tuple[np.ndarray, dict[str, A
     if header["npts"] <= 0:
         raise RockcliInputError(f"{filename}, line 4: the AT2 header states NPTS={header['npts']}; it must be positive")
     if not header["dt"] > 0:
-        raise RockcliInputError(f"{filename}, line 4: the AT2 header states DT={header['dt']:g} s; "
+        from rockcli.inputs import format_number
+
+        raise RockcliInputError(f"{filename}, line 4: the AT2 header states DT={format_number(header['dt'])} s; "
                                 f"the time step must be positive")
     if headonly:
         return np.empty(0), header

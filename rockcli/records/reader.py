@@ -37,6 +37,13 @@ def _check_units(units):
     return str(units)
 
 
+def _num(x) -> str:
+    """A number in a message exactly as it reads back (never rounded: 0.0100001 stays 0.0100001)."""
+    from rockcli.inputs import format_number
+
+    return format_number(x)
+
+
 def _check_dt(dt):
     if dt is None:
         return None
@@ -45,7 +52,7 @@ def _check_dt(dt):
     except (TypeError, ValueError):
         raise RockcliInputError(f"time step dt={dt!r} is not a number") from None
     if not math.isfinite(value) or value <= 0:
-        raise RockcliInputError(f"time step dt={value!r} s must be a positive finite number")
+        raise RockcliInputError(f"time step dt={_num(value)} s must be a positive finite number")
     return value
 
 
@@ -356,9 +363,9 @@ def _finish(path: Path, out: dict[str, Any], units, dt, given_by: str) -> Record
     stated_dt = out.get("dt")
     if stated_dt is not None:
         if not stated_dt > 0:
-            raise RockcliInputError(f"{name}: the file states a time step of {stated_dt:g} s; it must be positive")
+            raise RockcliInputError(f"{name}: the file states a time step of {_num(stated_dt)} s; it must be positive")
         if dt is not None and not math.isclose(dt, stated_dt, rel_tol=1e-6):
-            raise RockcliInputError(f"{name}: the file states dt={stated_dt:g} s but dt={dt:g} s was given")
+            raise RockcliInputError(f"{name}: the file states dt={_num(stated_dt)} s but dt={_num(dt)} s was given")
         used_dt, dt_source = float(stated_dt), out.get("dt_source") or "file"
     elif dt is not None:
         used_dt, dt_source = dt, given_by
@@ -367,10 +374,8 @@ def _finish(path: Path, out: dict[str, Any], units, dt, given_by: str) -> Record
 
     lo, hi = DT_RANGE_S
     if not lo <= used_dt <= hi:
-        from rockcli.inputs import format_number
-
         said = {"caller": "given", "catalogue": "from the catalogue"}.get(dt_source, f"from the {dt_source}")
-        raise RockcliInputError(f"{name}: time step dt = {format_number(used_dt)} s ({said}) lies outside the "
+        raise RockcliInputError(f"{name}: time step dt = {_num(used_dt)} s ({said}) lies outside the "
                                 f"supported {lo:g} s to {hi:g} s (strong-motion records are sampled at 50 Hz to "
                                 f"a few kHz); check its unit")
     values = np.asarray(out["values"], dtype=np.float64)
@@ -378,11 +383,9 @@ def _finish(path: Path, out: dict[str, Any], units, dt, given_by: str) -> Record
         raise RockcliInputError(f"{name}: the record has {values.size} sample(s); at least 2 are needed")
     peak = float(np.max(np.abs(values)))
     if not np.isfinite(peak * factor) or peak * factor > PGA_MAX_G * G:
-        from rockcli.inputs import format_number
-
         i = int(np.argmax(np.abs(values)))
         said = {"caller": "given", "catalogue": "from the catalogue"}.get(units_source, f"from the {units_source}")
-        raise RockcliInputError(f"{name}: sample {i + 1} is {format_number(values[i])} {used_units} (units {said}), "
+        raise RockcliInputError(f"{name}: sample {i + 1} is {_num(values[i])} {used_units} (units {said}), "
                                 f"a peak beyond the supported {PGA_MAX_G:g} g (recorded peaks reach about 4 g); "
                                 f"check the units")
     meta = dict(out.get("meta", {}))

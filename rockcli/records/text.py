@@ -301,8 +301,10 @@ def parse_text(text: str, filename: str = "text file", column: int | None = None
     if time_col:
         dt, t0 = check_time_column(table[:, 0], row_lines, filename)
         if stated["dt"] is not None and not np.isclose(stated["dt"], dt, rtol=1e-3):
-            raise RockcliInputError(
-                f"{filename}: a comment states dt={stated['dt']:g} s but the time column has steps of {dt:g} s")
+            from rockcli.inputs import format_number
+
+            raise RockcliInputError(f"{filename}: a comment states dt={format_number(stated['dt'])} s but the time "
+                                    f"column has steps of {format_number(dt)} s")
         out.update(dt=dt, dt_source="time column", t_start=t0)
     return out
 
