@@ -157,15 +157,6 @@ def range_words(lo, hi, lo_open=False, hi_open=False, unit="") -> str:
     return f"must be {'<' if hi_open else '<='} {hi}{u}"
 
 
-def check_finite_after(value: float, factor: float, what: str, unit_from: str) -> float:
-    """``value * factor``, refused when the product leaves double precision (``1e308 g`` -> inf m/s^2)."""
-    out = value * factor
-    if not math.isfinite(out):
-        raise RockcliInputError(f"{what} {format_number(value)} {unit_from} is too large: converted to SI it "
-                                f"exceeds double precision")
-    return out
-
-
 def spec_items(rest: str, what: str) -> list[tuple[str, str, bool]]:
     """The items of ``key=value,key=value``: ``(key, value, has_equals)``, blanks stripped, empty items skipped.
 
