@@ -88,7 +88,7 @@ TABLE_I_GAMMA = 0.01
 #: x grid on which the curves are compared before the crossing is refined.
 CROSSING_GRID = (0.5, 12.0, 47)
 
-_NUMBER = r"[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?"
+_NUMBER = r"[-+]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][-+]?[0-9]+)?"  # ASCII digits (\d also takes other scripts)
 
 
 # --------------------------------------------------------------------------------------------------
@@ -182,14 +182,15 @@ def parse_pulse_choice(text: str) -> PulseChoice:
     shape = {"one-sine": "sine", "one-cosine": "cosine"}.get(shape, shape)
     if shape not in SHAPES:
         raise RockcliInputError(f"pulse {raw!r}: unknown shape {shape!r} (use {', '.join(SHAPES)})")
+    from rockcli.inputs import parse_number, spec_items
+
     T_p = None
-    for item in filter(None, (s.strip() for s in rest.split(","))):
-        key, eq, val = item.partition("=")
-        if key.strip().lower() != "tp" or not eq:
+    for key, val, eq in spec_items(rest, f"pulse {raw!r}"):
+        if key.lower() != "tp" or not eq:
+            item = f"{key}={val}" if eq else key
             raise RockcliInputError(f"pulse {raw!r}: {item!r} is not Tp=<period in s> (the amplitude is swept)")
-        if not re.fullmatch(r"\s*" + _NUMBER + r"\s*", val) or not float(val) > 0 or not math.isfinite(float(val)):
-            raise RockcliInputError(f"pulse {raw!r}: Tp must be a positive period in s, got {val.strip()!r}")
-        T_p = float(val)
+        T_p = parse_number(val, f"pulse {raw!r}: Tp", lo=0.0, lo_open=True, unit="s",
+                           bad=f"pulse {raw!r}: Tp must be a positive period in s, got {val!r}")
     return PulseChoice(shape, T_p)
 
 
@@ -271,20 +272,19 @@ def parse_isolation(text: str) -> Isolation:
     kind = kind.strip().lower()
     if kind in ("none", "rigid", "fixed") and not rest.strip():
         return Isolation("none")
+    from rockcli.inputs import parse_number, spec_items
+
     ratio = None
     params = []
-    for item in filter(None, (s.strip() for s in rest.split(","))):
-        key, eq, val = item.partition("=")
-        key, val = key.strip(), val.strip()
+    for key, val, eq in spec_items(rest, f"isolation {raw!r}"):
         if not eq:
-            raise RockcliInputError(f"isolation {raw!r}: {item!r} is not key=value")
+            raise RockcliInputError(f"isolation {raw!r}: {key!r} is not key=value")
         if key.lower() == "tb":
             raise RockcliInputError(f"isolation {raw!r}: spectra keep T_b/T_p fixed over the map; "
                                     f"write TbTp=<ratio> instead of Tb=")
         if key.lower() == "tbtp":
-            if not re.fullmatch(_NUMBER, val) or not (math.isfinite(float(val)) and float(val) > 0):
-                raise RockcliInputError(f"isolation {raw!r}: TbTp must be a positive number, got {val!r}")
-            ratio = float(val)
+            ratio = parse_number(val, f"isolation {raw!r}: TbTp", lo=0.0, lo_open=True,
+                                 bad=f"isolation {raw!r}: TbTp must be a positive number, got {val!r}")
         else:
             params.append((key, val))
     if ratio is None:

@@ -475,6 +475,23 @@ def run_fragility(columns: Sequence[Block], excitations: Sequence[Excitation],
                      int(seed), float(level), (lo_f, hi_f), list(unavailable), timings)
 
 
+#: Fewer records than this leave the dispersion beta undetermined: the fit is reported with a warning.
+MIN_RECORDS_FOR_BETA = 5
+#: A fitted beta below this is a step function, not a measured dispersion.
+BETA_STEP = 0.01
+
+
+def _thin_fit_note(curve) -> str:
+    """A warning when a fit stands on too few records or its beta is a step (empty when the fit is sound)."""
+    if curve.beta < BETA_STEP:
+        return (f"WARNING: beta = {curve.beta:.2g}: the capacities of the {curve.n_records} records coincide, so the "
+                f"curve is a step, not a measured dispersion; run more (and more different) records")
+    if curve.n_records < MIN_RECORDS_FOR_BETA:
+        return (f"WARNING: fitted over {curve.n_records} records only: beta is not determined by so few (at least "
+                f"{MIN_RECORDS_FOR_BETA}, better 10 or more); read the curve as indicative")
+    return ""
+
+
 def _fit_curves(columns, configurations, excitations, rows, n_boot, seed, level) -> list:
     labels = [x.label for x in excitations if x.motion is not None and not x.error]
     n = len(labels)
@@ -517,6 +534,8 @@ def _fit_curves(columns, configurations, excitations, rows, n_boot, seed, level)
                 if curve.n_boot_ok >= 2:
                     curve.median_ci = tuple(float(v) for v in np.percentile(curve.boot_median[okb], q))
                     curve.beta_ci = tuple(float(v) for v in np.percentile(sig_b[okb], q))
+            if math.isfinite(curve.median):
+                curve.note = _thin_fit_note(curve)
             if not c.isolated and rigid is None:
                 rigid = curve
             curves.append(curve)

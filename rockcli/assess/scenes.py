@@ -13,7 +13,6 @@ every combination. This module turns what the user wrote into those three lists:
 from __future__ import annotations
 
 import math
-import re
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Sequence
@@ -39,9 +38,6 @@ EXCITATION_MODES = ("auto", "record", "pulse")
 # columns
 # --------------------------------------------------------------------------------------------------
 
-_NUMBER = re.compile(r"\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*")
-
-
 def parse_column_spec(text: str) -> Block:
     """A column from a preset name or a custom spec.
 
@@ -60,17 +56,18 @@ def parse_column_spec(text: str) -> Block:
         return column(name)
     if not name:
         raise RockcliInputError(f"column {raw!r} needs a name before ':' (e.g. statue:R=1.2,alpha=14)")
+    from rockcli.inputs import parse_number, spec_items
+
     values = {}
     keys = {"r": "R", "alpha": "alpha", "height": "height", "width": "width"}
-    for item in filter(None, (s.strip() for s in rest.split(","))):
-        key, eq, val = item.partition("=")
-        k = key.strip().lower()
+    for key, val, eq in spec_items(rest, f"column {raw!r}"):
+        k = key.lower()
         if not eq or k not in keys:
+            item = f"{key}={val}" if eq else key
             raise RockcliInputError(f"column {raw!r}: {item!r} is not one of R=<m>, alpha=<deg>, "
                                     f"height=<m>, width=<m>")
-        if not _NUMBER.fullmatch(val):
-            raise RockcliInputError(f"column {raw!r}: {key.strip()} must be a number, got {val.strip()!r}")
-        values[keys[k]] = float(val)
+        values[keys[k]] = parse_number(val, f"column {raw!r}: {key}",
+                                       bad=f"column {raw!r}: {key} must be a number, got {val!r}")
     return custom_column(name, **values)
 
 
@@ -308,7 +305,11 @@ def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto"
         src = str(src)
         path = Path(src).expanduser()
         if path.is_dir():
-            files = sorted(p for p in path.iterdir() if p.is_file() and not p.name.startswith("."))
+            try:
+                files = sorted(p for p in path.iterdir() if p.is_file() and not p.name.startswith("."))
+            except OSError as exc:
+                raise RockcliInputError(f"--records {src}: the folder cannot be read "
+                                        f"({(exc.strerror or str(exc)).lower()})") from None
             if not files:
                 raise RockcliInputError(f"--records {src}: the folder holds no files")
             for p in files:

@@ -71,10 +71,9 @@ def _block(spec: str):
     spec = spec.strip()
     if "=" not in spec:
         return build_block(preset=spec)
-    kv = {}
-    for item in spec.split(","):
-        k, _, v = item.partition("=")
-        kv[k.strip().lower()] = float(v)
+    from rockcli.inputs import parse_number, spec_items
+
+    kv = {k.lower(): parse_number(v, f"block {spec!r}: {k}") for k, v, _ in spec_items(spec, f"block {spec!r}")}
     if "r" in kv:
         return build_block(R=kv["r"], alpha_deg=kv["alpha"])
     return build_block(height=kv["height"], width=kv["width"])

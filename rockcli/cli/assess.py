@@ -10,6 +10,7 @@ import click
 from rockcli.cli.errors import InputError, user_errors
 from rockcli.cli.options import (cap_ratio_option, check_outputs, command_line, custom_block_options,
                                  horizon_option, progress_bar, report_option, restitution_option)
+from rockcli.cli.types import NUMBER, SEED, Number
 
 
 @click.group(name="assess")
@@ -40,7 +41,7 @@ def _cap_ratio_kw(cap_ratio, configurations) -> dict:
 
 def _headerless_options(func):
     """``--units`` and ``--dt`` for record files that do not state them (headerless text, SAC, ...)."""
-    func = click.option("--dt", type=float, default=None, metavar="SECONDS",
+    func = click.option("--dt", type=NUMBER, default=None, metavar="SECONDS",
                         help="Time step [s] of the record files that state none; a file that states "
                              "another one is an error row. Catalogue files are read as the catalogue says.")(func)
     return click.option("--units", default=None, metavar="UNITS",
@@ -71,6 +72,17 @@ def _echo_result(result, table: str, notes: str, plain: str | None = None):
         click.echo(f"Warning: {len(failed)} of {len(result.excitations)} records could not be read or run; they "
                    f"have error rows: {', '.join(x.label for x in failed[:5])}{' ...' if len(failed) > 5 else ''}",
                    err=True)
+
+
+def _warn_pulses(result, mode: str):
+    """A catalogued pulse run in place of a record the user did not ask to replace changes the question:
+    said on stderr too (the rows say "(pulse)" and the count line how many)."""
+    if mode != "auto" or not result.idealised:
+        return
+    n, total = len(result.idealised), len(result.excitations)
+    click.echo(f"Warning: {n} of {total} records ran as their catalogued pulse, not as the record (file not found "
+               f"on ROCKCLI_RECORDS or in the repository's records/): the answer is about pulses; "
+               f"--excitation record refuses this, --excitation pulse asks for it", err=True)
 
 
 def _refuse_if_none_can_run(excitations):
@@ -188,6 +200,7 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
     from rockcli.assess.verdicts import format_verdicts
 
     _echo_result(result, format_matrix(result), format_notes(result), format_verdicts(result))
+    _warn_pulses(result, excitation)
     failed_runs = [r for r in result.rows if r.error and not any(x.label == r.record for x in result.failed)]
     if failed_runs:
         r = failed_runs[0]
@@ -308,10 +321,9 @@ def _write_histories(result, hist_dir, plot_dir):
 @click.option("--im", type=click.Choice(["pga", "pgv", "ap"]), default="pga", show_default=True,
               help="Intensity measure: pga [g]; pgv [m/s] (trapezoid rule from rest, as 'records show'); "
                    "ap [g], the amplitude of the record's fitted Ricker pulse.")
-@click.option("--bootstrap", "n_boot", type=click.IntRange(0, 100000), default=1000, show_default=True,
+@click.option("--bootstrap", "n_boot", type=Number(integer=True, lo=0, hi=100000), default=1000, show_default=True,
               help="Bootstrap resamples over records for the confidence intervals (0: none).")
-@click.option("--seed", type=click.IntRange(min=0), default=13, show_default=True,
-              help="Seed of the bootstrap resamples (a whole number >= 0).")
+@click.option("--seed", type=SEED, default=13, show_default=True, help="Seed of the bootstrap resamples.")
 @click.option("--csv", "csv_path", type=click.Path(), default=None,
               help="Write one row per column x record x configuration (IM, scale, capacity, censoring, error) "
                    "with the fit of its column and configuration.")

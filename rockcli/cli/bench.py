@@ -7,6 +7,7 @@ import sys
 import click
 
 from rockcli.cli.errors import InputError, user_errors
+from rockcli.cli.types import SEED, Number
 
 _METHODS = ("RK45", "DOP853", "Radau", "LSODA", "BDF", "RK45-free")
 
@@ -27,11 +28,14 @@ def _rtols(text, opt):
     if text is None:
         return None
     out = []
+    from rockcli.errors import RockcliInputError
+    from rockcli.inputs import parse_number
+
     for item in filter(None, (s.strip() for s in text.split(","))):
         try:
-            v = float(item)
-        except ValueError:
-            raise InputError(f"{opt}: {item!r} is not a number") from None
+            v = parse_number(item, f"{opt}: {item!r}", bad=f"{opt}: {item!r} is not a number")
+        except RockcliInputError as exc:
+            raise InputError(str(exc)) from None
         if not 1e-14 <= v <= 1e-2:
             raise InputError(f"{opt}: tolerances must lie between 1e-14 and 1e-2, got {item}")
         out.append(v)
@@ -74,7 +78,7 @@ def _scene_list(catalogue) -> str:
 @click.option("--methods", default=",".join(_METHODS), show_default=True, metavar="LIST",
               help="SciPy methods, comma-separated, or 'none'. Steps are aligned to a record's samples, as "
                    "rockcli's; RK45-free (records only) lets RK45 step across them (max_step = dt).")
-@click.option("--repeat", type=click.IntRange(1, 50), default=None,
+@click.option("--repeat", type=Number(integer=True, lo=1, hi=50), default=None,
               help="Timing repeats of a SciPy run (median; runs over 2 s are timed once). Default 1, --full 3.")
 @click.option("--full", is_flag=True,
               help="Longer SciPy ladders (RK45 1e-4..1e-10, DOP853 1e-4..1e-12, the implicit methods 1e-4..1e-8, "
@@ -160,11 +164,10 @@ def work_precision(scenes, csv_path, plot_path, kernel_rtol, scipy_rtol, methods
 @click.option("--csv", "csv_path", default=None, metavar="FILE", help="Write one row per scene.")
 @click.option("--list", "list_only", is_flag=True, help="List the scenes and exit.")
 @click.option("--verbose", "-v", is_flag=True, help="Print every check of every scene.")
-@click.option("--random", "n_random", type=click.IntRange(0, 100000), default=0, metavar="N",
+@click.option("--random", "n_random", type=Number(integer=True, lo=0, hi=100000), default=0, metavar="N",
               help="Instead of the named scenes, N random extreme pulse scenes (alpha 1-45 deg, R 0.2-20 m, rigid "
                    "or linear bearings with xi 0-1 and gamma 0-0.99, T_p 0.05-10 s, a_p up to 5 g).")
-@click.option("--seed", type=click.IntRange(min=0), default=1, show_default=True,
-              help="Seed of --random (a whole number >= 0).")
+@click.option("--seed", type=SEED, default=1, show_default=True, help="Seed of --random.")
 @user_errors
 def stability(scenes, csv_path, list_only, verbose, n_random, seed):
     """Stiff and extreme scenes, each run at rtol 1e-6 and 1e-10 within a wall-time and step budget.

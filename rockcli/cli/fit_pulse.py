@@ -6,6 +6,7 @@ import click
 
 from rockcli.cli.errors import InputError, user_errors
 from rockcli.cli.options import add_inputs, catalog_file, check_outputs, record_kwargs, record_options
+from rockcli.cli.types import Number
 
 #: Pulse columns of records/catalog.csv that ``--update-catalog`` fills, and their rounding.
 _CATALOG_DIGITS = {"a_p_g": 4, "T_p_s": 4, "t0_s": 3, "pulse_energy": 4}
@@ -119,7 +120,7 @@ def _update_catalog(fits):
 @click.option("--json", "as_json", is_flag=True, help="Print the fits as JSON instead of a table.")
 @click.option("--plot", "plot_path", type=click.Path(), default=None,
               help="Overlay each fitted pulse on its record (one panel per record) in this image, e.g. FILE.png.")
-@click.option("--candidates", "n_candidates", type=click.IntRange(1, 20), default=None, metavar="N",
+@click.option("--candidates", "n_candidates", type=Number(integer=True, lo=1, hi=20), default=None, metavar="N",
               help="List the N strongest distinct pulses of each record (local maxima of the wavelet transform, "
                    "both shapes, each refined like the fit), with the energy each explains alone.")
 @click.option("--update-catalog", is_flag=True,

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import click
 
+from rockcli.cli.types import NUMBER, WHOLE
+
 
 def record_options(func=None, *, column_flag: str = "--column"):
     """Add ``--units``, ``--dt``, ``--format`` and ``--column``: what ``read_record`` takes.
@@ -18,12 +20,12 @@ def record_options(func=None, *, column_flag: str = "--column"):
             click.option("--units", default=None, metavar="UNITS",
                          help="Units of the values in the file (g, m/s^2, cm/s^2, gal, mm/s^2, g/10); "
                               "needed when the file does not state them."),
-            click.option("--dt", type=float, default=None, metavar="SECONDS",
+            click.option("--dt", type=NUMBER, default=None, metavar="SECONDS",
                          help="Time step [s]; needed when the file states none (single-column text)."),
             click.option("--format", "fmt", default=None, metavar="NAME",
                          help="File format (PEER_AT2, TEXT, ESM, ITACA, COSMOS, GEONET_V2A, or an ObsPy "
                               "format such as SAC, MSEED, KNET); detected when omitted."),
-            click.option(column_flag, "column", type=int, default=None, metavar="N",
+            click.option(column_flag, "column", type=WHOLE, default=None, metavar="N",
                          help="1-based column of a multi-column text file (a time column counts), or "
                               "component/trace of a multi-component file."),
         ]
@@ -46,12 +48,12 @@ def block_options(func):
     options = [
         click.option("--column", "column_name", default=None, metavar="NAME",
                      help="A temple column preset: bassae (5.95 m x 1.11 m) or nemea (10.33 m x 1.52 m)."),
-        click.option("--R", "R", type=float, default=None, metavar="METRES",
+        click.option("--R", "R", type=NUMBER, default=None, metavar="METRES",
                      help="Semi-diagonal of the block (centre of mass to a base corner) [m]."),
-        click.option("--alpha", type=float, default=None, metavar="DEGREES",
+        click.option("--alpha", type=NUMBER, default=None, metavar="DEGREES",
                      help="Slenderness atan(b/h) [degrees], with --R."),
-        click.option("--height", type=float, default=None, metavar="METRES", help="Full height [m], with --width."),
-        click.option("--width", type=float, default=None, metavar="METRES",
+        click.option("--height", type=NUMBER, default=None, metavar="METRES", help="Full height [m], with --width."),
+        click.option("--width", type=NUMBER, default=None, metavar="METRES",
                      help="Base width (a column's base drum diameter) [m], with --height."),
         click.option("--name", default=None, help="Label of a custom block in reports."),
     ]
@@ -65,13 +67,13 @@ def custom_block_options(func):
     The command receives ``R``, ``alpha``, ``height``, ``width`` and ``name`` (``rockcli assess``).
     """
     options = [
-        click.option("--R", "R", type=float, default=None, metavar="M",
+        click.option("--R", "R", type=NUMBER, default=None, metavar="M",
                      help="Custom block: semi-diagonal R [m] (with --alpha)."),
-        click.option("--alpha", type=float, default=None, metavar="DEG",
+        click.option("--alpha", type=NUMBER, default=None, metavar="DEG",
                      help="Custom block: slenderness [deg] (with --R)."),
-        click.option("--height", type=float, default=None, metavar="M",
+        click.option("--height", type=NUMBER, default=None, metavar="M",
                      help="Custom block: full height [m] (with --width)."),
-        click.option("--width", type=float, default=None, metavar="M",
+        click.option("--width", type=NUMBER, default=None, metavar="M",
                      help="Custom block: base width or drum diameter [m] (with --height)."),
         click.option("--name", default="custom", show_default=True, help="Name of the custom block."),
     ]
@@ -88,7 +90,7 @@ def _stacked(func, options):
 def horizon_option(func):
     """``--horizon S``: the solver's horizon, the longest free motion followed after the excitation to
     prove a verdict. The command checks it (:func:`rockcli.solve.validate_options`) before any work."""
-    return click.option("--horizon", type=float, default=600.0, show_default=True, metavar="S",
+    return click.option("--horizon", type=NUMBER, default=600.0, show_default=True, metavar="S",
                         help="Longest free motion followed after the excitation to prove a verdict [s] (at most "
                              "3600); a run still moving then is reported NOT PROVEN.")(func)
 
@@ -96,7 +98,7 @@ def horizon_option(func):
 def restitution_option(func):
     """``--restitution E``: the coefficient of restitution of every impact (``restitution`` keyword of
     :func:`rockcli.solve.simulate`); the command checks it (:func:`rockcli.impact.check_restitution`)."""
-    return click.option("--restitution", type=float, default=None, metavar="E",
+    return click.option("--restitution", type=NUMBER, default=None, metavar="E",
                         help="Coefficient of restitution, 0 < E <= 1: theta_dot after / before an impact on a rigid "
                              "foundation [default: Housner's 1 - 1.5 sin^2 alpha]. On an isolated base the impact "
                              "keeps the horizontal momentum and theta_dot+ = (1 - 4 (1 - E)/(4 - 3 gamma cos^2 "
@@ -106,7 +108,7 @@ def restitution_option(func):
 def cap_ratio_option(func):
     """``--cap-ratio GAMMA_C``: a capped colonnade of the columns (``cap_ratio`` keyword of
     :func:`rockcli.solve.simulate`), rigid foundation only (:mod:`rockcli.colonnade`)."""
-    return click.option("--cap-ratio", "cap_ratio", type=float, default=0.0, metavar="GAMMA_C",
+    return click.option("--cap-ratio", "cap_ratio", type=NUMBER, default=0.0, metavar="GAMMA_C",
                         help="A capped colonnade of N such columns carrying a rigid beam (Makris & Vassiliou 2013), "
                              "rigid foundation only: beam mass over the columns' total mass; they rock as one column "
                              "with p times sqrt((1 + 2 gamma_c)/(1 + 3 gamma_c)) (docs/physics-colonnade.md). "

@@ -10,6 +10,7 @@ from rockcli.cli.errors import user_errors
 from rockcli.cli.options import (add_inputs, block_from_options, block_options, cap_ratio_option, check_outputs,
                                  command_line, horizon_option, record_kwargs, record_options, report_option,
                                  restitution_option)
+from rockcli.cli.types import NUMBER
 
 
 @click.command(context_settings={"show_default": True})
@@ -26,16 +27,16 @@ from rockcli.cli.options import (add_inputs, block_from_options, block_options, 
 @click.option("--pulse", default=None, metavar="SPEC",
               help="Ground motion: an analytic pulse, e.g. 'ricker-sym:ap=0.3,Tp=0.6' (ap in g, Tp in s); "
                    "shapes ricker-sym, ricker-anti, sine, cosine.")
-@click.option("--theta0", type=float, default=0.0, metavar="RAD",
+@click.option("--theta0", type=NUMBER, default=0.0, metavar="RAD",
               help="Start rocking from this tilt [rad] (|theta0| < pi/2; > 0 on the right corner) instead of at rest; "
                    "without --record/--pulse the block rocks freely on still ground.")
-@click.option("--theta-dot0", "theta_dot0", type=float, default=0.0, metavar="RAD/S",
+@click.option("--theta-dot0", "theta_dot0", type=NUMBER, default=0.0, metavar="RAD/S",
               help="Start with this angular velocity [rad/s] (with or without --theta0).")
-@click.option("--scale", type=float, default=1.0, help="Multiply the record's acceleration by this factor.")
+@click.option("--scale", type=NUMBER, default=1.0, help="Multiply the record's acceleration by this factor.")
 @click.option("--flip", is_flag=True, help="Reverse the sign of the ground motion.")
-@click.option("--rtol", type=float, default=None,
+@click.option("--rtol", type=NUMBER, default=None,
               help="Relative tolerance of the integrator [default: 5e-9; 2e-9 on sliding and lead-rubber bearings].")
-@click.option("--tail", type=float, default=10.0,
+@click.option("--tail", type=NUMBER, default=10.0,
               help="Free motion shown after the excitation in --history/--plot [s]; never changes the verdict.")
 @horizon_option
 @restitution_option

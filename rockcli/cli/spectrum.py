@@ -8,6 +8,7 @@ import click
 from rockcli.cli.errors import InputError, user_errors
 from rockcli.cli.options import (add_inputs, cap_ratio_option, horizon_option, progress_bar, record_kwargs,
                                  record_options, restitution_option)
+from rockcli.cli.types import NUMBER
 
 _SHAPES = "ricker-sym|ricker-anti|sine|cosine"
 
@@ -54,6 +55,20 @@ def _scene_options(isolation_help: str, isolation_default, multiple_isolation: b
         return f
 
     return decorate
+
+
+def _check_ap_reach(text: str, y_max: float, alphas) -> None:
+    """The grid's largest a_p = y g tan(alpha) within the pulses' supported 100 g (a grid reaching 1e306 g
+    overflowed inside the solver and its cells were reported as not overturning)."""
+    import math
+
+    from rockcli.pulses import A_P_MAX_G
+
+    a = max(alphas)
+    reach = y_max * math.tan(math.radians(a))
+    if reach > A_P_MAX_G:
+        raise InputError(f"--ap {text!r} reaches a_p = {reach:.3g} g at alpha = {a:g} deg, beyond the supported "
+                         f"{A_P_MAX_G:g} g (recorded peaks reach about 4 g); lower the grid's stop")
 
 
 def _check_outputs(csv_path, plot_path):
@@ -161,6 +176,7 @@ def overturning(alpha, pulses, records, isolations, csv_path, plot_path, schedul
     alphas = parse_list(alpha, "--alpha", lo=0, hi=90, lo_open=True, hi_open=True)
     wp_grid = parse_grid(wp_p, "--wp-p", positive=True)
     ap_grid = parse_grid(ap, "--ap")
+    _check_ap_reach(ap, ap_grid.stop, alphas)
     isos = [parse_isolation(s) for s in isolations]
     _check_outputs(csv_path, plot_path)
     runner = _runner(scheduler, horizon, restitution, cap_ratio, isos)
@@ -201,12 +217,12 @@ def overturning(alpha, pulses, records, isolations, csv_path, plot_path, schedul
               help="Mass ratios m/(m + m_b): each isolated --isolation is run once per value (Figure 8).")
 @click.option("--wp-p", "wp_p", default="0.5:12:93", show_default=True, metavar="START:STOP:COUNT",
               help="omega_p/p values, both ends included.")
-@click.option("--ap-max", type=float, default=20.0, show_default=True,
+@click.option("--ap-max", type=NUMBER, default=20.0, show_default=True,
               help="Largest a_p/(g tan alpha) tried; above it the curve is left empty.")
-@click.option("--step", type=float, default=0.01, show_default=True,
+@click.option("--step", type=NUMBER, default=0.01, show_default=True,
               help="Relative step of the scan up from the uplift threshold (overturning windows narrower "
                    "than this can be missed).")
-@click.option("--tol", type=float, default=0.001, show_default=True,
+@click.option("--tol", type=NUMBER, default=0.001, show_default=True,
               help="Relative resolution of the bisection after the scan.")
 @user_errors
 def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, scheduler, units, dt, fmt, column,
@@ -274,9 +290,9 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
               help="Isolation periods as T_b/T_p (Table I: 2, 3, 4).")
 @click.option("--isolation", "bearing", default="linear", show_default=True, metavar="KIND[:k=v,...]",
               help="Bearing kind and its parameters other than the period (T_b = ratio x T_p).")
-@click.option("--xi", type=float, default=None,
+@click.option("--xi", type=NUMBER, default=None,
               help="Damping ratio of linear bearings [default 0.05, as in Figures 6-7].")
-@click.option("--gamma", type=float, default=0.01, show_default=True,
+@click.option("--gamma", type=NUMBER, default=0.01, show_default=True,
               help="Mass ratio m/(m + m_b) (heavy base, as in Figures 6-7).")
 @click.option("--pulse", "pulses", multiple=True, metavar="SHAPE:Tp=S",
               help="A pulse with its period [s], repeatable. Default: the paper's Table I pulses, "
@@ -286,12 +302,12 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
 @record_options(column_flag="--record-column")
 @click.option("--wp-p", "wp_p", default="0.5:12:47", show_default=True, metavar="START:STOP:COUNT",
               help="omega_p/p grid on which the curves are compared before the crossing is refined.")
-@click.option("--xtol", type=float, default=1e-3, show_default=True,
+@click.option("--xtol", type=NUMBER, default=1e-3, show_default=True,
               help="Relative resolution of the crossing in omega_p/p.")
-@click.option("--ap-max", type=float, default=50.0, show_default=True,
+@click.option("--ap-max", type=NUMBER, default=50.0, show_default=True,
               help="Largest a_p/(g tan alpha) tried (above it: no overturning).")
-@click.option("--step", type=float, default=0.01, show_default=True, help="Relative scan step (see min-overturning).")
-@click.option("--tol", type=float, default=0.001, show_default=True, help="Relative bisection tolerance.")
+@click.option("--step", type=NUMBER, default=0.01, show_default=True, help="Relative scan step (see min-overturning).")
+@click.option("--tol", type=NUMBER, default=0.001, show_default=True, help="Relative bisection tolerance.")
 @click.option("--csv", "csv_path", type=click.Path(), default=None,
               help="Write the table as CSV (source, pulse, T_p_s, alpha_deg, Tb_over_Tp, Tb_s, "
                    "wp_over_p_cross, R_critical_m).")

@@ -98,8 +98,9 @@ def _check_block(R, alpha, source: str = "") -> None:
     _check(_finite(alpha) and 0 < float(alpha) < math.pi / 2,
            f"block slenderness alpha must lie strictly between 0 and 90 degrees, got {_num(alpha)} rad")
     lo, hi = R_RANGE_M
+    shown = _num(R) if not source else f"{float(R):g}"  # a derived R: the source quotes what was given
     _check(lo <= float(R) <= hi,
-           f"block size R = {_num(R)} m{source} lies outside the supported {lo:g} m to {hi:g} m (a figurine 2 cm "
+           f"block size R = {shown} m{source} lies outside the supported {lo:g} m to {hi:g} m (a figurine 2 cm "
            f"tall to a 140 m monolith; smaller bodies rock too fast to integrate, p = sqrt(3 g/4 R))")
     deg = math.degrees(float(alpha))
     _check(deg >= ALPHA_MIN_DEG * (1 - 1e-12),

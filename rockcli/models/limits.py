@@ -66,11 +66,10 @@ UY_RANGE_M = (1e-6, 0.1)
 
 
 def _num(x) -> str:
-    """A number for a message: plain float formatting (never ``np.float64(...)``)."""
-    try:
-        return f"{float(x):g}"
-    except (TypeError, ValueError):
-        return repr(x)
+    """A number for a message: plain float formatting (never ``np.float64(...)``), never rounded."""
+    from rockcli.inputs import format_number
+
+    return format_number(x)
 
 
 def _check(cond: bool, message: str) -> None:

@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import re
-
 from rockcli.errors import RockcliInputError
 from rockcli.models.foundations import DoubleConcaveSliding, LeadRubber, LinearIsolation, Rigid, SingleConcaveSliding
 
@@ -44,19 +42,18 @@ def parse_isolation_spec(text: str):
         return Rigid()
     if kind not in _SPEC_KEYS:
         raise RockcliInputError(f"unknown isolation {kind!r} in {raw!r} (use {_SPEC_EXAMPLES})")
+    from rockcli.inputs import parse_number, spec_items
+
     keys = _SPEC_KEYS[kind]
     values = {}
-    for item in filter(None, (s.strip() for s in rest.split(","))):
-        key, eq, val = item.partition("=")
-        k = key.strip().lower()
+    for key, val, eq in spec_items(rest, f"isolation {raw!r}"):
+        k = key.lower()
         if not eq or k not in keys:
+            item = f"{key}={val}" if eq else key
             raise RockcliInputError(
                 f"isolation {raw!r}: {item!r} is not one of {', '.join(k + '=...' for k in keys)}")
-        if not re.fullmatch(r"\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*", val):
-            raise RockcliInputError(f"isolation {raw!r}: {key.strip()} must be a number, got {val.strip()!r}")
-        if keys[k] in values:
-            raise RockcliInputError(f"isolation {raw!r}: {key.strip()} is given twice")
-        values[keys[k]] = float(val)
+        values[keys[k]] = parse_number(val, f"isolation {raw!r}: {key}",
+                                       bad=f"isolation {raw!r}: {key} must be a number, got {val!r}")
     if "beta" in values and "gamma_bw" not in values:  # A = 1: one of them fixes the other
         values["gamma_bw"] = 1.0 - values["beta"]
     elif "gamma_bw" in values and "beta" not in values:

@@ -139,10 +139,12 @@ def parse_periods(text: str) -> Tuple[float, float]:
     parts = str(text).split(":")
     if len(parts) != 2:
         raise RockcliInputError(f"--periods {text!r} must be MIN:MAX in seconds, e.g. 0.1:6")
-    try:
-        lo, hi = float(parts[0]), float(parts[1])
-    except ValueError:
-        raise RockcliInputError(f"--periods {text!r} must be two numbers MIN:MAX in seconds, e.g. 0.1:6") from None
+    from rockcli.inputs import parse_number
+
+    bad = f"--periods {text!r} must be two numbers MIN:MAX in seconds, e.g. 0.1:6"
+    if any(p.strip().lower().lstrip("+-") in ("nan", "inf", "infinity") for p in parts):
+        raise RockcliInputError(f"--periods {text!r} must satisfy 0 < min < max (seconds) with finite ends")
+    lo, hi = (parse_number(p, f"--periods {text!r}: {name}", bad=bad) for p, name in zip(parts, ("MIN", "MAX")))
     return _check_periods((lo, hi), what=f"--periods {text!r}")
 
 

@@ -141,8 +141,10 @@ class Pulse:
             raise RockcliInputError(f"pulse period T_p must be > 0 s, got {T_p:g}")
         lo, hi = T_P_RANGE_S
         if not lo <= T_p <= hi:
-            raise RockcliInputError(f"pulse period T_p = {T_p:g} s lies outside the supported {lo:g} s to {hi:g} s "
-                                    f"(no earthquake pulse is shorter or longer)")
+            from rockcli.inputs import format_number
+
+            raise RockcliInputError(f"pulse period T_p = {format_number(T_p)} s lies outside the supported {lo:g} s "
+                                    f"to {hi:g} s (no earthquake pulse is shorter or longer)")
         if abs(a_p) > A_P_MAX_G * G:
             raise RockcliInputError(f"pulse amplitude a_p = {a_p / G:g} g is beyond the supported {A_P_MAX_G:g} g "
                                     f"(recorded peaks reach about 4 g; check the units: a_p is in g on the "

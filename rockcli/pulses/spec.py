@@ -10,7 +10,7 @@ import math
 from typing import Optional, Union
 
 from rockcli.errors import RockcliInputError
-from rockcli.pulses.shapes import PULSE_SHAPES, OneCosine, OneSine, RickerAntisymmetric, RickerSymmetric
+from rockcli.pulses.shapes import A_P_MAX_G, PULSE_SHAPES, OneCosine, OneSine, RickerAntisymmetric, RickerSymmetric
 from rockcli.units import G
 
 __all__ = ["PulseLike", "make_pulse", "parse_pulse_spec"]
@@ -66,25 +66,25 @@ def parse_pulse_spec(text: str) -> PulseLike:
         shape, _, rest = raw.partition(":")
     else:
         shape, rest = raw, ""
+    from rockcli.inputs import parse_number, spec_items
+
     cls = _shape_class(shape)
-    values = {}
+    values, texts = {}, {}
     names = {"ap": "ap", "tp": "Tp", "t0": "t0"}
-    for item in filter(None, (s.strip() for s in rest.split(","))):
-        key, eq, val = item.partition("=")
-        k = key.strip().lower()
+    for key, val, eq in spec_items(rest, f"pulse spec {raw!r}"):
+        k = key.lower()
         if not eq or k not in names:
             raise RockcliInputError(
-                f"pulse spec {raw!r}: unknown parameter {key.strip()!r} (expected ap=<g>, Tp=<s>, optional t0=<s>)"
+                f"pulse spec {raw!r}: unknown parameter {key!r} (expected ap=<g>, Tp=<s>, optional t0=<s>)"
             )
-        if names[k] in values:
-            raise RockcliInputError(f"pulse spec {raw!r}: parameter {names[k]} is given twice")
-        try:
-            v = float(val)
-        except ValueError:
-            raise RockcliInputError(f"pulse spec {raw!r}: {names[k]}={val.strip()!r} is not a number") from None
-        if not math.isfinite(v):
-            raise RockcliInputError(f"pulse spec {raw!r}: {names[k]} must be finite")
-        values[names[k]] = v
+        if val.lower().lstrip("+-") in ("nan", "inf", "infinity"):
+            raise RockcliInputError(f"pulse spec {raw!r}: {names[k]} must be finite, got {val!r}")
+        values[names[k]] = parse_number(val, f"pulse spec {raw!r}: {names[k]}",
+                                        bad=f"pulse spec {raw!r}: {names[k]}={val!r} is not a number")
+        texts[names[k]] = val
+    if "ap" in values and abs(values["ap"]) > A_P_MAX_G:  # said here as written: g -> m/s^2 -> g may round
+        raise RockcliInputError(f"pulse spec {raw!r}: pulse amplitude a_p = {texts['ap']} g is beyond the supported "
+                                f"{A_P_MAX_G:g} g (recorded peaks reach about 4 g)")
     missing = [k for k in ("ap", "Tp") if k not in values]
     if missing:
         raise RockcliInputError(

@@ -32,7 +32,7 @@ from rockcli.errors import RockcliInputError
 
 #: Header line with the number of points and the time step, one regex per layout met in the
 #: PEER databases and in files that imitate them. Groups: ``npts`` and ``dt`` [s].
-_NUM = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[EeDd][-+]?\d+)?"
+_NUM = r"[-+]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[EeDd][-+]?[0-9]+)?"
 NPTS_DT_PATTERNS: tuple[tuple[str, re.Pattern], ...] = (
     # NGA-West2: "NPTS=   4096  DT=   .0100 SEC," and "NPTS=   4172, DT=   .0100 SEC,"
     ("nga-west2", re.compile(rf"^\s*NPTS\s*=\s*(?P<npts>\d+)\s*[,;]?\s*DT\s*=\s*(?P<dt>{_NUM})\s*(?:SEC|S)?\b", re.I)),
@@ -48,6 +48,8 @@ _QUANTITY_RE = re.compile(r"\b(ACCELERATION|VELOCITY|DISPLACEMENT)\b", re.I)
 _DATE_RE = re.compile(r"^\d{1,2}/\d{1,2}/\d{2,4}$")
 _TIME_RE = re.compile(r"^\d{1,2}:\d{2}(?::\d{2})?$")
 _FLOAT_RE = re.compile(_NUM)
+#: Text made only of what plain decimal numbers are written with (the fast path of :func:`parse_numbers`).
+_PLAIN_CHARS = re.compile(r"[0-9eE.+\-\s]*")
 
 #: Number of header lines before the samples.
 HEADER_LINES = 4
@@ -183,29 +185,37 @@ def parse_numbers(lines: list[str], first_line: int, filename: str) -> np.ndarra
         On a token that is not a number, or a NaN or infinite value (naming the line).
     """
     text = " ".join(lines)
-    try:
-        values = np.array(text.split(), dtype=np.float64)
-    except ValueError:
-        values = None
+    values = None
+    if _PLAIN_CHARS.fullmatch(text):  # numpy's parser also takes 1_0 (as 10) and other scripts' digits
+        try:
+            values = np.array(text.split(), dtype=np.float64)
+        except ValueError:
+            values = None
     if values is None:
+        from rockcli.inputs import parse_number
+
         out: list[float] = []
         for k, line in enumerate(lines):
+            where = f"{filename}, line {first_line + k}:"
             for token in line.split():
-                try:
-                    out.append(float(token))
+                if token.lower().lstrip("+-") in ("nan", "inf", "infinity"):
+                    out.append(float(token))  # named with its sample number below
                     continue
-                except ValueError:
-                    pass
                 pieces = _FLOAT_RE.findall(token)
                 if not pieces or "".join(pieces) != token:
-                    raise RockcliInputError(
-                        f"{filename}, line {first_line + k}: {token!r} is not a number") from None
-                out.extend(float(p.replace("D", "E").replace("d", "e")) for p in pieces)
+                    parse_number(token, f"{where} value", fortran=True, bad=f"{where} {token!r} is not a number")
+                out.extend(parse_number(p, f"{where} value", fortran=True) for p in pieces)
         values = np.array(out, dtype=np.float64)
     bad = ~np.isfinite(values)
     if bad.any():
         i = int(np.argmax(bad))
         line = _line_of_value(lines, i)
+        tokens = lines[line].split()
+        token = next((t for t in tokens if not np.isfinite(float(t.replace("D", "E").replace("d", "e")))), None) \
+            if _PLAIN_CHARS.fullmatch(lines[line]) else None
+        if token is not None:  # written as a number, e.g. 1e999: said as written
+            raise RockcliInputError(f"{filename}, line {first_line + line}: sample {i + 1} is {token}, too large for "
+                                    f"double precision")
         raise RockcliInputError(
             f"{filename}, line {first_line + line}: sample {i + 1} is {float(values[i])!r}, not a finite number")
     return values
@@ -256,7 +266,16 @@ def read_text(filename) -> str:
         raise RockcliInputError(f"{filename}: is a folder, not a record file") from None
     except OSError as exc:
         raise RockcliInputError(f"{filename}: cannot be read ({(exc.strerror or str(exc)).lower()})") from None
-    return raw.decode("latin-1")
+    return strip_bom(raw).decode("latin-1")
+
+
+#: The UTF-8 byte order mark some editors put before the first line.
+UTF8_BOM = b"\xef\xbb\xbf"
+
+
+def strip_bom(raw: bytes) -> bytes:
+    """``raw`` without a leading UTF-8 byte order mark (it would hide the first header word)."""
+    return raw[len(UTF8_BOM):] if raw.startswith(UTF8_BOM) else raw
 
 
 def parse_at2(filename, headonly: bool = False) -> tuple[np.ndarray, dict[str, Any]]:
@@ -291,7 +310,9 @@ def parse_at2(filename, headonly: bool = False) -> tuple[np.ndarray, dict[str, A
     if header["npts"] <= 0:
         raise RockcliInputError(f"{filename}, line 4: the AT2 header states NPTS={header['npts']}; it must be positive")
     if not header["dt"] > 0:
-        raise RockcliInputError(f"{filename}, line 4: the AT2 header states DT={header['dt']:g} s; "
+        from rockcli.inputs import format_number
+
+        raise RockcliInputError(f"{filename}, line 4: the AT2 header states DT={format_number(header['dt'])} s; "
                                 f"the time step must be positive")
     if headonly:
         return np.empty(0), header
@@ -325,6 +346,7 @@ def _is_at2(filename) -> bool:
                 raw = fh.read(4096)
         if isinstance(raw, str):
             raw = raw.encode("latin-1", "replace")
+        raw = strip_bom(raw)
         if b"\x00" in raw:
             return False
         lines = _split_lines(raw.decode("latin-1"))

@@ -97,10 +97,10 @@ def _parse_cell(name: str, text: str, where: str):
     if name in _FLOATS or name in _INTS:
         if not text:
             return None
-        try:
-            return int(text) if name in _INTS else float(text)
-        except ValueError:
-            raise RockcliInputError(f"{where}: column {name!r} holds {text!r}, not a number") from None
+        from rockcli.inputs import parse_number
+
+        return parse_number(text, f"{where}: column {name!r} holds", integer=name in _INTS,
+                            bad=f"{where}: column {name!r} holds {text!r}, not a number")
     if name in _OPTIONAL_STR:
         return text or None
     return text
@@ -135,10 +135,7 @@ def load_catalog(path: str | os.PathLike | None = None) -> list[CatalogEntry]:
         If the file is missing, a column is missing, a cell is malformed, or an id repeats.
     """
     path = Path(path) if path is not None else catalog_path()
-    try:
-        text = path.read_text(encoding="utf-8")
-    except OSError:
-        raise RockcliInputError(f"record catalogue {path} cannot be read") from None
+    text = _read_catalog_text(path)
     reader = csv.DictReader(io.StringIO(text))
     missing = [c for c in COLUMNS if c not in (reader.fieldnames or [])]
     if missing:
@@ -152,6 +149,32 @@ def load_catalog(path: str | os.PathLike | None = None) -> list[CatalogEntry]:
         seen.add(entry.id)
         entries.append(entry)
     return entries
+
+
+def _read_catalog_text(path: Path) -> str:
+    """The catalogue's text (UTF-8, a BOM allowed); one sentence when it is missing, not a regular file
+    (a FIFO would block the read), unreadable or not UTF-8."""
+    import stat
+
+    try:
+        st = os.stat(path)
+    except OSError as exc:
+        raise RockcliInputError(f"record catalogue {path} cannot be read ({(exc.strerror or str(exc)).lower()})"
+                                ) from None
+    if not stat.S_ISREG(st.st_mode):
+        kind = "a folder" if stat.S_ISDIR(st.st_mode) else "not a regular file (a pipe, device or socket)"
+        raise RockcliInputError(f"record catalogue {path} is {kind}; ROCKCLI_CATALOG must name a CSV file")
+    try:
+        raw = path.read_bytes()
+    except OSError as exc:
+        raise RockcliInputError(f"record catalogue {path} cannot be read ({(exc.strerror or str(exc)).lower()})"
+                                ) from None
+    try:
+        return raw.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        line = raw[:exc.start].count(b"\n") + 1
+        raise RockcliInputError(f"record catalogue {path}, line {line}: byte 0x{raw[exc.start]:02x} is not UTF-8; "
+                                f"save the catalogue as UTF-8") from None
 
 
 def format_catalog(entries) -> str:
@@ -205,12 +228,34 @@ def is_catalog_id(source) -> bool:
 def search_path() -> list[Path]:
     """Folders searched for record files: ``ROCKCLI_RECORDS`` entries, then the repository's ``records/``."""
     folders = [Path(p).expanduser() for p in os.environ.get("ROCKCLI_RECORDS", "").split(os.pathsep) if p.strip()]
+    for folder in folders:
+        _check_records_folder(folder)
     folders.append(REPO_RECORDS)
     out = []
     for f in folders:
         if f not in out:
             out.append(f)
     return out
+
+
+def _check_records_folder(folder: Path) -> None:
+    """One sentence when a ``ROCKCLI_RECORDS`` entry is not a readable folder: a typo there must not
+    quietly turn every catalogue record into "file not found" (and ``assess`` into its pulses)."""
+    import stat
+
+    where = f"ROCKCLI_RECORDS names {folder}"
+    try:
+        st = os.stat(folder)
+    except FileNotFoundError:
+        raise RockcliInputError(f"{where}, which does not exist (set it to the folders holding the record files, "
+                                f"separated by '{os.pathsep}')") from None
+    except OSError as exc:
+        raise RockcliInputError(f"{where}, which cannot be read ({(exc.strerror or str(exc)).lower()})") from None
+    if not stat.S_ISDIR(st.st_mode):
+        raise RockcliInputError(f"{where}, which is not a folder (set it to the folders holding the record files, "
+                                f"separated by '{os.pathsep}')")
+    if not os.access(folder, os.R_OK | os.X_OK):
+        raise RockcliInputError(f"{where}, which cannot be read (permission denied)")
 
 
 def find_file(entry: CatalogEntry) -> Path | None:

@@ -50,8 +50,8 @@ def _read_esm(lines: list[str], filename: str, column: int | None) -> dict[str, 
     if dtype and dtype != "ACCELERATION":
         raise RockcliInputError(f"{filename}: ESM file holds {dtype.lower()}, not acceleration")
     try:
-        dt = float(header["SAMPLING_INTERVAL_S"])
-        npts = int(header["NDATA"])
+        dt = _header_number(header["SAMPLING_INTERVAL_S"])
+        npts = _header_number(header["NDATA"], integer=True)
     except (KeyError, ValueError):
         raise RockcliInputError(f"{filename}: ESM header lacks a valid SAMPLING_INTERVAL_S or NDATA") from None
     values = parse_numbers(lines[start:], start + 1, filename)
@@ -89,8 +89,8 @@ def _read_itaca(lines: list[str], filename: str, column: int | None) -> dict[str
         start = i
         break
     try:
-        dt = float(header["Time Increment (s)"])
-        npts = int(header["Number of Data"])
+        dt = _header_number(header["Time Increment (s)"])
+        npts = _header_number(header["Number of Data"], integer=True)
     except (KeyError, ValueError):
         raise RockcliInputError(f"{filename}: ITACA header lacks a valid 'Time Increment (s)' or 'Number of Data'") from None
     values = parse_numbers(lines[start:], start + 1, filename)
@@ -181,6 +181,14 @@ def _read_geonet(lines: list[str], filename: str, column: int | None) -> dict[st
 # --------------------------------------------------------------------------------------------
 # helpers
 # --------------------------------------------------------------------------------------------
+
+def _header_number(text: str, integer: bool = False):
+    """A header value as a plain number (:func:`rockcli.inputs.parse_number`: ``1_0`` is not 10); raises
+    ``RockcliInputError``, a ``ValueError``, which the readers turn into their sentence on the header."""
+    from rockcli.inputs import parse_number
+
+    return parse_number(text, "header value", integer=integer, fortran=True)
+
 
 def _check_count(values: np.ndarray, npts: int, filename: str, key: str) -> None:
     if values.size < npts:

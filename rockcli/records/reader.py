@@ -12,12 +12,20 @@ import numpy as np
 
 from rockcli.errors import RockcliInputError
 from rockcli.records.record import Record
+from rockcli.units import G
 
 #: Format names rockcli parses itself (anything else is handed to ``obspy.read``).
 TEXT_FORMATS = {"TEXT", "TXT", "ASCII"}
 AT2_FORMATS = {"PEER_AT2", "AT2"}
 #: Bytes probed to tell text formats apart.
 _PROBE_BYTES = 8192
+#: Supported time step of a record [s]: 1 us (1 MHz) to 10 s. Strong-motion records are sampled at 50 Hz
+#: to a few kHz; a step outside this range is a unit mistake (``dt=10`` meant as ms), and ``dt=1e-300``
+#: would make every time a denormal.
+DT_RANGE_S = (1e-6, 10.0)
+#: Largest peak of a record [g], as for pulses (:data:`rockcli.pulses.A_P_MAX_G`): recorded peaks reach
+#: about 4 g; a record in cm/s^2 read as g peaks in the hundreds.
+PGA_MAX_G = 100.0
 
 
 def _check_units(units):
@@ -29,6 +37,13 @@ def _check_units(units):
     return str(units)
 
 
+def _num(x) -> str:
+    """A number in a message exactly as it reads back (never rounded: 0.0100001 stays 0.0100001)."""
+    from rockcli.inputs import format_number
+
+    return format_number(x)
+
+
 def _check_dt(dt):
     if dt is None:
         return None
@@ -37,7 +52,7 @@ def _check_dt(dt):
     except (TypeError, ValueError):
         raise RockcliInputError(f"time step dt={dt!r} is not a number") from None
     if not math.isfinite(value) or value <= 0:
-        raise RockcliInputError(f"time step dt={value!r} s must be a positive finite number")
+        raise RockcliInputError(f"time step dt={_num(value)} s must be a positive finite number")
     return value
 
 
@@ -104,9 +119,10 @@ def read_record(source, *, format=None, units=None, dt=None, column=None) -> Rec
     if isinstance(source, Record):
         return source
     if isinstance(source, str) and not Path(source).exists():
-        from rockcli.records.catalog import find_file, get_entry, is_catalog_id, search_path
+        from rockcli.records.catalog import find_file, get_entry, load_catalog, search_path
 
-        if is_catalog_id(source):
+        # a catalogue that cannot be read is said as such, not as "no such file, nor a catalogue id"
+        if os.sep not in source and "/" not in source and any(e.id == source for e in load_catalog()):
             entry = get_entry(source)
             if not entry.available:
                 raise RockcliInputError(f"catalogue record {entry.id!r} has no public file ({entry.notes})")
@@ -139,6 +155,14 @@ def _read_path(path: Path, fmt, units, dt, column, given_by: str = "caller") -> 
             head = fh.read(_PROBE_BYTES)
     except OSError as exc:
         raise RockcliInputError(f"{name}: cannot be read ({(exc.strerror or str(exc)).lower()})") from None
+    kind = compression(head)
+    if kind is not None:
+        from rockcli.records.compressed import read_compressed
+
+        return read_compressed(path, kind, lambda inner: _read_path(inner, fmt, units, dt, column, given_by))
+    from rockcli.records.at2 import strip_bom
+
+    head = strip_bom(head)
     is_text = b"\x00" not in head
     head_lines = head.decode("latin-1").splitlines() if is_text else []
 
@@ -163,6 +187,16 @@ def _read_path(path: Path, fmt, units, dt, column, given_by: str = "caller") -> 
             out = _from_obspy(path, fmt, column)
     out.setdefault("format", fmt)
     return _finish(path, out, units, dt, given_by)
+
+
+def compression(head: bytes) -> str | None:
+    """``gzip``, ``bzip2``, ``zip`` or ``xz`` when the first bytes of a file say it is compressed, else None."""
+    from rockcli.records.compressed import MAGIC
+
+    for magic, kind in MAGIC.items():
+        if head.startswith(magic):
+            return kind
+    return None
 
 
 def _looks_like_text_table(lines: list[str]) -> bool:
@@ -272,6 +306,10 @@ def _from_obspy(path: Path, fmt: str, column) -> dict[str, Any]:
     meta: dict[str, Any] = {"station": ".".join(x for x in (stats.network, stats.station) if x),
                             "component": stats.channel, "trace_id": tr.id, "starttime": str(stats.starttime)}
     units = None
+    if "peer_at2" in stats:  # rockcli's own ObsPy plugin already converted the file's units: never twice
+        units = str(stats.peer_at2.get("data_units", "m/s^2"))
+        meta["units_note"] = (f"the file states {stats.peer_at2.get('units')}; ObsPy's PEER_AT2 reader converted "
+                              f"them to m/s^2")
     if fmt_name == "KNET":
         # ObsPy's calib converts counts to m/s^2 from the stated "Scale Factor ...(gal)/..."; the
         # NIED peak ("Max. Acc.") is measured after removing the mean, so we remove it too.
@@ -325,18 +363,31 @@ def _finish(path: Path, out: dict[str, Any], units, dt, given_by: str) -> Record
     stated_dt = out.get("dt")
     if stated_dt is not None:
         if not stated_dt > 0:
-            raise RockcliInputError(f"{name}: the file states a time step of {stated_dt:g} s; it must be positive")
+            raise RockcliInputError(f"{name}: the file states a time step of {_num(stated_dt)} s; it must be positive")
         if dt is not None and not math.isclose(dt, stated_dt, rel_tol=1e-6):
-            raise RockcliInputError(f"{name}: the file states dt={stated_dt:g} s but dt={dt:g} s was given")
+            raise RockcliInputError(f"{name}: the file states dt={_num(stated_dt)} s but dt={_num(dt)} s was given")
         used_dt, dt_source = float(stated_dt), out.get("dt_source") or "file"
     elif dt is not None:
         used_dt, dt_source = dt, given_by
     else:
         raise RockcliInputError(f"{name}: the file does not state its time step; give it with --dt (seconds)")
 
+    lo, hi = DT_RANGE_S
+    if not lo <= used_dt <= hi:
+        said = {"caller": "given", "catalogue": "from the catalogue"}.get(dt_source, f"from the {dt_source}")
+        raise RockcliInputError(f"{name}: time step dt = {_num(used_dt)} s ({said}) lies outside the "
+                                f"supported {lo:g} s to {hi:g} s (strong-motion records are sampled at 50 Hz to "
+                                f"a few kHz); check its unit")
     values = np.asarray(out["values"], dtype=np.float64)
     if values.size < 2:
         raise RockcliInputError(f"{name}: the record has {values.size} sample(s); at least 2 are needed")
+    peak = float(np.max(np.abs(values)))
+    if not np.isfinite(peak * factor) or peak * factor > PGA_MAX_G * G:
+        i = int(np.argmax(np.abs(values)))
+        said = {"caller": "given", "catalogue": "from the catalogue"}.get(units_source, f"from the {units_source}")
+        raise RockcliInputError(f"{name}: sample {i + 1} is {_num(values[i])} {used_units} (units {said}), "
+                                f"a peak beyond the supported {PGA_MAX_G:g} g (recorded peaks reach about 4 g); "
+                                f"check the units")
     meta = dict(out.get("meta", {}))
     meta.update(units=used_units, units_source=units_source, factor=factor, dt_source=dt_source,
                 format=out.get("format"), path=str(path))

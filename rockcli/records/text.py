@@ -26,8 +26,21 @@ from rockcli.errors import RockcliInputError
 
 COMMENT_CHARS = "#%!;"
 _SEP_RE = re.compile(r"[\s,;]+")
-_DT_RE = re.compile(r"\b(?:dt|time\s*step|delta|sampling\s*interval)\s*(?:=|:|is)?\s*"
-                    r"(?P<dt>[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(?P<unit>ms|s|sec|secs|seconds)?\b", re.I)
+#: A time step stated in a comment: the keyword, then the number as written (a Fortran ``D``
+#: exponent or a decimal comma are caught so that they are parsed or refused, never misread), then
+#: an optional unit word (bare numbers are seconds).
+_DT_RE = re.compile(r"\b(?:dt|time\s*step|delta|sampling\s*interval|sample\s*interval)\s*(?:=|:|is|of)?\s*"
+                    r"(?P<dt>[-+]?[0-9.][0-9_.,]*(?:[eEdD][-+]?[0-9_]+)?)"
+                    r"\s*[\[(]?\s*(?P<unit>[^\s\d,;:=()\[\]]+)?", re.I)
+#: Time units of a stated time step -> factor to seconds.
+TIME_UNITS = {"s": 1.0, "sec": 1.0, "secs": 1.0, "second": 1.0, "seconds": 1.0,
+              "ms": 1e-3, "msec": 1e-3, "msecs": 1e-3, "millisecond": 1e-3, "milliseconds": 1e-3,
+              "us": 1e-6, "usec": 1e-6, "usecs": 1e-6, "microsecond": 1e-6, "microseconds": 1e-6}
+#: Spellings of the micro sign (also as UTF-8 bytes read as latin-1), read as ``u``.
+_MICRO = ("\u00c2\u00b5", "\u00ce\u00bc", "\u00b5", "\u03bc")
+#: Words after a time step that are units, but not of a time step rockcli can use as stated.
+_REFUSED_TIME_WORDS = {"min", "mins", "minute", "minutes", "h", "hr", "hrs", "hour", "hours", "hz", "khz",
+                       "ns", "nsec", "nanosecond", "nanoseconds", "sps"}
 _UNITS_RE = re.compile(r"(?:\bunits?\s*(?:are|of|in)?\s*[:=]?|\bacc(?:eleration|el)?\.?\s*(?:\[|\(|in\b|:))\s*\(?\s*"
                        r"(?P<units>[A-Za-z][A-Za-z0-9/^*]*)", re.I)
 #: Fraction of increasing steps above which the first column is taken as time.
@@ -42,14 +55,14 @@ def _known_unit(word: str) -> bool:
     return word.strip().lower().replace(" ", "").rstrip(".") in ACCEL_UNITS
 
 
-def parse_comments(comments: list[str]) -> dict[str, Any]:
+def parse_comments(comments: list[str], filename: str = "text file") -> dict[str, Any]:
     """Time step [s] and units stated in comment lines (None when not stated)."""
     dt = units = None
     for line in comments:
         if dt is None:
             m = _DT_RE.search(line)
             if m:
-                dt = float(m.group("dt")) * (1e-3 if (m.group("unit") or "").lower() == "ms" else 1.0)
+                dt = _comment_dt(m, line, filename)
         if units is None:
             for m in _UNITS_RE.finditer(line):
                 word = m.group("units").rstrip(".")
@@ -57,6 +70,27 @@ def parse_comments(comments: list[str]) -> dict[str, Any]:
                     units = word
                     break
     return {"dt": dt, "units": units}
+
+
+def _comment_dt(m: re.Match, line: str, filename: str) -> float:
+    """The time step [s] of a ``_DT_RE`` match: its number as written, times its unit (seconds when bare)."""
+    from rockcli.inputs import parse_number
+
+    what = f"{filename}: a comment states the time step as {line.strip()[:80]!r}:"
+    value = parse_number(m.group("dt").rstrip(",."), f"{what} the number", fortran=True)
+    written = (m.group("unit") or "").rstrip(".")
+    word = written
+    for micro in _MICRO:
+        word = word.replace(micro, "u")
+    word = word.lower()
+    if word in TIME_UNITS:
+        return value * TIME_UNITS[word]
+    # a following word that is a unit but not a usable one, or a short unknown token, is refused; a plain
+    # word ("dt = 0.01 sampling ...") leaves the number bare: seconds, as documented
+    if word in _REFUSED_TIME_WORDS or (word and (len(word) <= 3 or not word.isascii() or not word.isalpha())):
+        raise RockcliInputError(f"{what} {written!r} is not a unit of a time step rockcli reads (s, ms, us); "
+                                f"give the time step with --dt in seconds")
+    return value
 
 
 #: An explicit statement of units in a comment: ``units: furlongs``, ``unit = g``.
@@ -85,6 +119,12 @@ def _is_number(token: str) -> bool:
     return True
 
 
+def _is_name(token: str) -> bool:
+    """A column name (``time``, ``acc_g``, ``[s]``): not a number, and not starting like one. A malformed
+    first sample (``0x1``, ``1.2.3``) is a data row, refused there, not taken as a header."""
+    return not _is_number(token) and re.match(r"[-+]?\.?[0-9]", token) is None
+
+
 def parse_text_table(text: str, filename: str = "text file") -> dict[str, Any]:
     """Split a text accelerogram into comments, optional column names and a numeric table.
 
@@ -111,7 +151,7 @@ def parse_text_table(text: str, filename: str = "text file") -> dict[str, Any]:
             comments.append(line.lstrip(COMMENT_CHARS + "/").strip())
             continue
         tokens = [t for t in _SEP_RE.split(line) if t]
-        if not rows and names is None and not any(_is_number(t) for t in tokens):
+        if not rows and names is None and all(_is_name(t) for t in tokens):
             names = tokens
             continue
         rows.append(tokens)
@@ -119,11 +159,13 @@ def parse_text_table(text: str, filename: str = "text file") -> dict[str, Any]:
     if not rows:
         raise RockcliInputError(f"{filename}: the file holds no numbers" if text.strip()
                                 else f"{filename}: the file is empty")
+    _refuse_decimal_commas(text, row_lines, filename)
     ncol = len(rows[0])
     for tokens, number in zip(rows, row_lines):
         if len(tokens) != ncol:
             raise RockcliInputError(
                 f"{filename}, line {number}: {len(tokens)} values where the first data row has {ncol}")
+    _check_plain_numbers(rows, row_lines, filename)
     try:
         table = np.array(rows, dtype=np.float64)
     except ValueError:
@@ -135,9 +177,46 @@ def parse_text_table(text: str, filename: str = "text file") -> dict[str, Any]:
     bad = ~np.isfinite(table)
     if bad.any():
         r, c = np.argwhere(bad)[0]
-        raise RockcliInputError(
-            f"{filename}, line {row_lines[r]}: value {float(table[r, c])!r} in column {c + 1} is not a finite number")
+        token = rows[r][c]
+        why = ("is not a finite number" if token.lower().lstrip("+-") in _NON_FINITE
+               else "is too large for double precision")
+        raise RockcliInputError(f"{filename}, line {row_lines[r]}: value {token} in column {c + 1} {why}")
     return {"table": table, "comments": comments, "names": names, "row_lines": row_lines}
+
+
+_PLAIN_CHARS = re.compile(r"[0-9eE.+\-]*")
+_NON_FINITE = ("nan", "inf", "infinity")
+
+
+def _check_plain_numbers(rows: list[list[str]], row_lines: list[int], filename: str) -> None:
+    """Refuse what numpy's parser would take but is no plain number (``1_0`` read as 10, other scripts'
+    digits); NaN and infinities pass here and are named with their column below."""
+    if _PLAIN_CHARS.fullmatch("".join("".join(r) for r in rows)):
+        return
+    from rockcli.inputs import parse_number
+
+    for tokens, number in zip(rows, row_lines):
+        for token in tokens:
+            if not _PLAIN_CHARS.fullmatch(token) and token.lower().lstrip("+-") not in _NON_FINITE:
+                parse_number(token, f"{filename}, line {number}: value",
+                             bad=f"{filename}, line {number}: {token!r} is not a number")
+
+
+def _refuse_decimal_commas(text: str, row_lines: list[int], filename: str) -> None:
+    """One sentence when the numbers are written with decimal commas (``0,123``): no data row holds a point
+    and some hold a comma between digits. Read as a column separator, the comma would turn 0,123 into
+    two columns, 0 and 123 (the advice to pick a column then reads every sample a thousand times too big)."""
+    lines = text.splitlines()
+    data = [(n, lines[n - 1].strip()) for n in row_lines]
+    if any("." in line for _, line in data):
+        return
+    for n, line in data:
+        m = re.search(r"[0-9],[0-9]", line)
+        if m:
+            raise RockcliInputError(
+                f"{filename}, line {n}: {line[:60]!r} is written with decimal commas (no value in the file has "
+                f"a decimal point); rockcli reads a point as the decimal mark and a comma as a column separator: "
+                f"write the numbers with points (0,123 -> 0.123)")
 
 
 def looks_like_time(col: np.ndarray) -> bool:
@@ -198,7 +277,7 @@ def parse_text(text: str, filename: str = "text file", column: int | None = None
     parsed = parse_text_table(text, filename)
     table, row_lines = parsed["table"], parsed["row_lines"]
     nrow, ncol = table.shape
-    stated = parse_comments(parsed["comments"])
+    stated = parse_comments(parsed["comments"], filename)
     if stated["units"] is None:  # "units: furlongs" is a statement too: reported, not ignored
         stated["units"] = stated_unknown_units(parsed["comments"])
     time_col = ncol >= 2 and looks_like_time(table[:, 0])
@@ -222,8 +301,10 @@ def parse_text(text: str, filename: str = "text file", column: int | None = None
     if time_col:
         dt, t0 = check_time_column(table[:, 0], row_lines, filename)
         if stated["dt"] is not None and not np.isclose(stated["dt"], dt, rtol=1e-3):
-            raise RockcliInputError(
-                f"{filename}: a comment states dt={stated['dt']:g} s but the time column has steps of {dt:g} s")
+            from rockcli.inputs import format_number
+
+            raise RockcliInputError(f"{filename}: a comment states dt={format_number(stated['dt'])} s but the time "
+                                    f"column has steps of {format_number(dt)} s")
         out.update(dt=dt, dt_source="time column", t_start=t0)
     return out
 

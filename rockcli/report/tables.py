@@ -63,7 +63,8 @@ def format_matrix(assessment) -> str:
         for x in xs:
             label = x.label + (" (pulse)" if x.kind == "pulse" else "")
             table.append([label] + [format_cell(assessment.row(b.name, x.label, c.header), margin, assessment.neighbourhood) for c in confs])
-        counts = ["survives"]
+        n_pulses = sum(x.kind == "pulse" for x in xs)  # a pulse in place of a record: said on the count too
+        counts = ["survives" + (f" ({n_pulses} of {len(xs)} are pulses)" if n_pulses else "")]
         for c in confs:
             rows = [assessment.row(b.name, x.label, c.header) for x in xs]
             ran = [r for r in rows if not r.error]
