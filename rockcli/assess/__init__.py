@@ -20,12 +20,15 @@ The library behind ``rockcli assess`` (no click, no pandas). Read it in this ord
     ``assess fragility``: each record's overturning capacity (smallest overturning scale x the
     record's intensity measure) and a lognormal fragility per column x configuration fitted by
     maximum likelihood with right-censoring, with a bootstrap confidence band.
+:mod:`rockcli.assess.lognormal`
+    The statistics of the fragility: the censored (Tobit) maximum-likelihood lognormal fit, its
+    paired bootstrap over records, and the fragility function ``Phi(ln(x/theta)/beta)``.
 
 Every public name is importable from ``rockcli.assess``.
 """
 
-from rockcli.assess.fragility import (IMS, Fragility, FragilityCurve, FragilityRow, fit_lognormal,
-                                      fragility_probability, intensity_measure, run_fragility)
+from rockcli.assess.fragility import IMS, Fragility, FragilityCurve, FragilityRow, intensity_measure, run_fragility
+from rockcli.assess.lognormal import bootstrap_lognormal, fit_lognormal, fragility_probability
 from rockcli.assess.margin import (MARGIN_GRID, MARGIN_RTOL, NEIGHBOURHOOD, find_overturn_scales, map_chunks,
                                    overturn_scales_chunked, overturn_shares, run_local)
 from rockcli.assess.scenes import (DEFAULT_ISOLATION, EXCITATION_MODES, EXCITATION_PULSE, EXCITATION_RECORD,
@@ -37,6 +40,7 @@ from rockcli.assess.verdicts import body_noun, configuration_sentence, format_ve
 
 __all__ = ["DEFAULT_ISOLATION", "EXCITATION_MODES", "EXCITATION_PULSE", "EXCITATION_RECORD", "IMS", "MARGIN_GRID",
            "MARGIN_RTOL", "NEIGHBOURHOOD", "ROW_FIELDS", "Assessment", "AssessmentRow", "Configuration", "Excitation",
+           "bootstrap_lognormal",
            "Fragility", "FragilityCurve", "FragilityRow", "Unavailable", "body_noun", "column_title",
            "configuration_sentence", "count_runs", "format_verdicts", "scene_sentence",
            "custom_column", "find_overturn_scales", "fit_lognormal", "fragility_probability", "history_runs",
