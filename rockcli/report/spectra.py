@@ -62,6 +62,14 @@ def _save(fig, path, dpi):
     return save_figure(fig, path, dpi=dpi)
 
 
+def _finish(fig, path, dpi, title, *, bottom, top):
+    """Title (if any), tight layout leaving ``bottom`` for a legend and ``top`` for the title, save."""
+    if title:
+        fig.suptitle(title, fontsize=9)
+    fig.tight_layout(rect=(0, bottom, 1, top if title else 1))
+    return _save(fig, path, dpi)
+
+
 def _pyplot():
     import matplotlib
 
@@ -185,10 +193,7 @@ def plot_maps(maps, path, *, n_cols: int | None = None, title: str | None = None
         handles = [Patch(facecolor=c, edgecolor="0.5", label=lab)
                    for c, lab in zip(MAP_COLOURS, ("no uplift", "no overturning", "overturning"))]
         fig.legend(handles=handles, loc="lower center", ncol=3, fontsize=8, frameon=False)
-        if title:
-            fig.suptitle(title, fontsize=9)
-        fig.tight_layout(rect=(0, 0.05, 1, 0.97 if title else 1))
-        return _save(fig, path, dpi)
+        return _finish(fig, path, dpi, title, bottom=0.05, top=0.97)
     finally:
         plt.close(fig)
 
@@ -215,6 +220,13 @@ def write_min_csv(curves, path) -> Path:
     return _write_rows(path, MIN_COLUMNS, min_rows(curves))
 
 
+def _panels(curves) -> list:
+    """``[(alpha_deg, shape, curves of that panel), ...]`` in the order the panels first appear."""
+    curves = list(curves)
+    keys = dict.fromkeys((c.alpha_deg, c.pulse.shape) for c in curves)
+    return [(a, sh, [c for c in curves if (c.alpha_deg, c.pulse.shape) == (a, sh)]) for a, sh in keys]
+
+
 def plot_min_curves(curves, path, *, crossings=None, title: str | None = None, y_max: float | None = None,
                     dpi: int = 100) -> Path:
     """Minimum overturning acceleration like the paper's Figures 7, 8, 11: one panel per
@@ -227,18 +239,16 @@ def plot_min_curves(curves, path, *, crossings=None, title: str | None = None, y
 
     _check_image_path(path)
     plt = _pyplot()
-    curves = list(curves)
-    panels = list(dict.fromkeys((c.alpha_deg, c.pulse.shape) for c in curves))
-    alphas = list(dict.fromkeys(a for a, _ in panels))
-    shapes = list(dict.fromkeys(s for _, s in panels))
+    panels = _panels(curves)
+    alphas = list(dict.fromkeys(a for a, _, _ in panels))
+    shapes = list(dict.fromkeys(s for _, s, _ in panels))
     fig, axes = _panel_grid(len(alphas), len(shapes), plt, width=4.2, height=3.3)
     styles = ["-", "--", "-.", ":"]
     try:
-        for (a, sh) in panels:
+        for (a, sh, mine) in panels:
             ax = axes[alphas.index(a), shapes.index(sh)]
             k = 0
             top = 0.0
-            mine = [c for c in curves if (c.alpha_deg, c.pulse.shape) == (a, sh)]
             labels, common = _curve_labels([c.isolation for c in mine])
             for c in mine:
                 y = np.asarray(c.ap_min, dtype=float)
@@ -263,10 +273,7 @@ def plot_min_curves(curves, path, *, crossings=None, title: str | None = None, y
             ax.tick_params(labelsize=7)
             ax.legend(fontsize=6, frameon=False, loc="upper left")
             _r_axis(ax, T_p)
-        if title:
-            fig.suptitle(title, fontsize=9)
-        fig.tight_layout(rect=(0, 0, 1, 0.96 if title else 1))
-        return _save(fig, path, dpi)
+        return _finish(fig, path, dpi, title, bottom=0.0, top=0.96)
     finally:
         plt.close(fig)
 
@@ -298,13 +305,8 @@ def format_min_table(curves, n_rows: int = 12) -> str:
     """The curves at about ``n_rows`` values of omega_p/p, aligned (units of g tan alpha)."""
     import numpy as np
 
-    curves = list(curves)
-    if not curves:
-        return ""
     lines = []
-    panels = list(dict.fromkeys((c.alpha_deg, c.pulse.shape) for c in curves))
-    for (a, sh) in panels:
-        cs = [c for c in curves if (c.alpha_deg, c.pulse.shape) == (a, sh)]
+    for (a, sh, cs) in _panels(curves):
         x = cs[0].wp_over_p
         idx = np.unique(np.linspace(0, x.size - 1, min(n_rows, x.size)).round().astype(int))
         head = ["wp/p"] + [c.isolation.label for c in cs]
