@@ -21,7 +21,7 @@ MAP_COLUMNS = ("alpha_deg", "pulse", "isolation", "T_p_s", "R_m", "wp_over_p", "
 #: Columns of ``rockcli spectrum min-overturning --csv`` (one row per omega_p/p of every curve).
 MIN_COLUMNS = ("alpha_deg", "pulse", "isolation", "T_p_s", "R_m", "wp_over_p", "ap_min_over_g_tan_alpha",
                "ap_safe_over_g_tan_alpha", "ap_uplift_over_g_tan_alpha", "ap_min_g", "scan_step", "tolerance",
-               "ap_max_over_g_tan_alpha")
+               "ap_max_over_g_tan_alpha", "refine_step", "refine_band", "stepped_over_by_scan")
 #: Columns of ``rockcli spectrum critical-size --csv`` (the paper's Table I layout, one row per entry).
 CRITICAL_COLUMNS = ("source", "pulse", "T_p_s", "alpha_deg", "Tb_over_Tp", "Tb_s", "wp_over_p_cross", "R_critical_m")
 
@@ -212,7 +212,9 @@ def min_rows(curves):
                    "wp_over_p": float(x), "ap_min_over_g_tan_alpha": float(c.ap_min[j]),
                    "ap_safe_over_g_tan_alpha": float(c.ap_safe[j]),
                    "ap_uplift_over_g_tan_alpha": float(c.ap_uplift[j]), "ap_min_g": float(c.ap_min[j]) * tan_a,
-                   "scan_step": c.step, "tolerance": c.tol, "ap_max_over_g_tan_alpha": c.ap_max}
+                   "scan_step": c.step, "tolerance": c.tol, "ap_max_over_g_tan_alpha": c.ap_max,
+                   "refine_step": c.refine, "refine_band": c.refine_band,
+                   "stepped_over_by_scan": bool(c.refined[j]) if c.refined is not None else False}
 
 
 def write_min_csv(curves, path) -> Path:
@@ -233,7 +235,9 @@ def plot_min_curves(curves, path, *, crossings=None, title: str | None = None, y
     ``(alpha, pulse)``, one curve per configuration, the rigid foundation as a heavy dark line.
 
     ``crossings``: optional ``{(alpha_deg, shape): [(x, y, label), ...]}`` points to mark.
-    A curve is drawn only where something overturns up to its ``ap_max``.
+    A curve is drawn only where something overturns up to its ``ap_max``. A note under the panels
+    says how the minima were found (:attr:`rockcli.spectra.MinCurve.found_by`) and how many of them
+    lie in a window the first scan stepped over (marked with a small cross).
     """
     import numpy as np
 
@@ -260,6 +264,9 @@ def plot_min_curves(curves, path, *, crossings=None, title: str | None = None, y
                     ax.plot(c.wp_over_p, y, ls=styles[k % len(styles)], lw=1.3, color=f"C{k % 10}",
                             label=labels[c.isolation])
                     k += 1
+                if c.refined is not None and c.refined.any():
+                    ax.plot(c.wp_over_p[c.refined], y[c.refined], "x", ms=3.5, mew=0.8,
+                            color="k" if c.isolation.rigid else f"C{(k - 1) % 10}", zorder=4)
                 T_p = c.pulse.T_p
             for (xc, yc, lab) in (crossings or {}).get((a, sh), []):
                 ax.plot([xc], [yc], "o", ms=5, mfc="none", mec="k")
@@ -273,9 +280,21 @@ def plot_min_curves(curves, path, *, crossings=None, title: str | None = None, y
             ax.tick_params(labelsize=7)
             ax.legend(fontsize=6, frameon=False, loc="upper left")
             _r_axis(ax, T_p)
-        return _finish(fig, path, dpi, title, bottom=0.0, top=0.96)
+        fig.text(0.01, 0.005, _search_note(curves), fontsize=6, va="bottom", ha="left", wrap=True)
+        return _finish(fig, path, dpi, title, bottom=0.035, top=0.96)
     finally:
         plt.close(fig)
+
+
+def _search_note(curves) -> str:
+    """How the minima of ``curves`` were found, and how many the refinement found (the figure note)."""
+    ways = list(dict.fromkeys(c.found_by for c in curves))
+    points = sum(c.wp_over_p.size for c in curves)
+    refined = sum(int(c.refined.sum()) for c in curves if c.refined is not None)
+    note = "minimum: " + "; ".join(ways)
+    if any(c.refine > 0 for c in curves):
+        note += f"; x: in a window the first scan stepped over ({refined} of {points} points)"
+    return note
 
 
 def _curve_labels(isolations):
@@ -310,7 +329,7 @@ def format_min_table(curves, n_rows: int = 12) -> str:
         x = cs[0].wp_over_p
         idx = np.unique(np.linspace(0, x.size - 1, min(n_rows, x.size)).round().astype(int))
         head = ["wp/p"] + [c.isolation.label for c in cs]
-        table = [head, ["uplift"] + [_num(c.ap_uplift[0]) for c in cs]]
+        table = [head, ["uplift"] + [_range(c.ap_uplift) for c in cs]]
         for i in idx:
             table.append([f"{x[i]:.3g}"] + [_num(c.ap_min[i], c.ap_max) for c in cs])
         widths = [max(len(r[j]) for r in table) for j in range(len(head))]
@@ -319,6 +338,19 @@ def format_min_table(curves, n_rows: int = 12) -> str:
             lines.append("  ".join(v.rjust(w) for v, w in zip(r, widths)))
         lines.append("")
     return "\n".join(lines).rstrip()
+
+
+def _range(values) -> str:
+    """The uplift thresholds of a curve: one value, or ``lo..hi`` when they vary with omega_p/p
+    (sliding bearings); ``-`` when the block never uplifts."""
+    import numpy as np
+
+    v = np.asarray(values, dtype=float)
+    v = v[np.isfinite(v)]
+    if not v.size:
+        return "-"
+    lo, hi = _num(float(v.min())), _num(float(v.max()))
+    return lo if lo == hi else f"{lo}..{hi}"
 
 
 def _num(v, ap_max=None):

@@ -17,7 +17,8 @@ import numpy as np
 
 from rockcli.errors import RockcliInputError
 from rockcli.spectra.grids import Grid
-from rockcli.spectra.minimum import DEFAULT_STEP, DEFAULT_TOL, MinCurve, search_min_overturning
+from rockcli.spectra.minimum import (DEFAULT_REFINE, DEFAULT_REFINE_BAND, DEFAULT_STEP, DEFAULT_TOL, curves_of,
+                                     search_min_overturning)
 from rockcli.spectra.runner import Runner
 from rockcli.spectra.scenes import REFERENCE_R, Family, Isolation, PulseChoice, parse_isolation
 from rockcli.units import G
@@ -72,7 +73,8 @@ class CriticalResult:
 
 def critical_sizes(pulses: Sequence[PulseChoice], alphas_deg: Sequence[float], isolations: Sequence[Isolation], *,
                    wp_grid: Grid = Grid(*CROSSING_GRID), xtol: float = 1e-3, ap_max: float = 50.0,
-                   step: float = DEFAULT_STEP, tol: float = DEFAULT_TOL, R: float = REFERENCE_R,
+                   step: float = DEFAULT_STEP, tol: float = DEFAULT_TOL, refine: float = DEFAULT_REFINE,
+                   refine_band: float = DEFAULT_REFINE_BAND, R: float = REFERENCE_R,
                    runner: Optional[Runner] = None, progress=None) -> CriticalResult:
     """Where the rigid and isolated minimum-overturning curves cross, as a block size (Table I).
 
@@ -97,14 +99,12 @@ def critical_sizes(pulses: Sequence[PulseChoice], alphas_deg: Sequence[float], i
     families = [Family(math.radians(a), sh, iso, R) for a, sh, iso in fam_keys]
     findex = {k: i for i, k in enumerate(fam_keys)}
     fam = np.repeat(np.arange(len(families)), xs.size)
-    res = search_min_overturning(families, fam, np.tile(xs, len(families)), ap_max=ap_max, step=step, tol=tol,
-                                 runner=runner, progress=progress)
+    search = dict(ap_max=ap_max, step=step, tol=tol, refine=refine, refine_band=refine_band)
+    res = search_min_overturning(families, fam, np.tile(xs, len(families)), runner=runner, progress=progress,
+                                 **search)
     runs = res.runs
     grid_min = {k: res.ap_min[i * xs.size:(i + 1) * xs.size] for k, i in findex.items()}
-    curves = [MinCurve(a, PulseChoice(sh), iso, xs, grid_min[(a, sh, iso)],
-                       res.ap_safe[findex[(a, sh, iso)] * xs.size:(findex[(a, sh, iso)] + 1) * xs.size],
-                       res.ap_uplift[findex[(a, sh, iso)] * xs.size:(findex[(a, sh, iso)] + 1) * xs.size],
-                       ap_max, step, tol) for a, sh, iso in fam_keys]
+    curves = curves_of(res, [(a, PulseChoice(sh), iso) for a, sh, iso in fam_keys], xs, **search)
 
     def better_rigid(yr, yi):
         # no overturning up to ap_max counts as infinitely high; when neither overturns, isolation
@@ -154,8 +154,7 @@ def critical_sizes(pulses: Sequence[PulseChoice], alphas_deg: Sequence[float], i
             m = 0.5 * (lo[k] + hi[k])
             fams += [findex[(a, sh, rigid)], findex[(a, sh, iso)]]
             xv += [m, m]
-        r = search_min_overturning(families, np.array(fams), np.array(xv), ap_max=ap_max, step=step, tol=tol,
-                                   runner=runner)
+        r = search_min_overturning(families, np.array(fams), np.array(xv), runner=runner, **search)
         runs += r.runs
         for j, k in enumerate(act):
             m = xv[2 * j]
