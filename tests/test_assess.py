@@ -153,9 +153,9 @@ def test_pulse_idealisation_without_files(tmp_path, monkeypatch):
 # margin
 # --------------------------------------------------------------------------------------------------
 
-#: Every 8th factor of the margin grid (ratio 1.083, 1x included): the pruned scan and the bisection below
+#: Every 8th factor of the margin grid and 4x (ratios up to 1.083, 1x included): the pruned scan and the bisection below
 #: the first overturning factor, checked against every factor, at a ninth of the runs of the full grid.
-COARSE_GRID = MARGIN_GRID[::8]
+COARSE_GRID = np.append(MARGIN_GRID[:-1:8], MARGIN_GRID[-1])
 
 
 def _naive_first_overturn(scenes, grid=COARSE_GRID):
