@@ -7,6 +7,7 @@ ROCKCLI_RECORDS; the tests on the paper's records skip cleanly without it.
 from __future__ import annotations
 
 import math
+import types
 
 import numpy as np
 import pytest
@@ -152,14 +153,19 @@ def test_pulse_idealisation_without_files(tmp_path, monkeypatch):
 # margin
 # --------------------------------------------------------------------------------------------------
 
-def _naive_first_overturn(scenes):
+#: Every 8th factor of the margin grid and 4x (ratios up to 1.083, 1x included): the pruned scan and the bisection below
+#: the first overturning factor, checked against every factor, at a ninth of the runs of the full grid.
+COARSE_GRID = np.append(MARGIN_GRID[:-1:8], MARGIN_GRID[-1])
+
+
+def _naive_first_overturn(scenes, grid=COARSE_GRID):
     """Every grid factor for every scene (no pruning): index of the first overturning factor or None."""
     jobs = []
     for b, f, m in scenes:
-        for s in MARGIN_GRID:
+        for s in grid:
             jobs.append((b, f, m, float(s)) if hasattr(m, "acc") else (b, f, m.scaled(float(s))))
     res = simulate_many(jobs)
-    over = np.array([r.overturned for r in res]).reshape(len(scenes), MARGIN_GRID.size)
+    over = np.array([r.overturned for r in res]).reshape(len(scenes), grid.size)
     return [int(np.flatnonzero(o)[0]) if o.any() else None for o in over]
 
 
@@ -170,7 +176,8 @@ def test_margin_agrees_with_the_full_scan_and_brackets_the_boundary(pulse_record
     blocks = [parse_column_spec("a:R=0.8,alpha=12"), parse_column_spec("b:R=2.5,alpha=9")]
     confs = parse_configurations(["none", "linear:Tb=2,xi=0.1", "linear:Tb=3,xi=0.1"])
     scenes = [(b, c.foundation, m) for b in blocks for m in (rec, pulse) for c in confs]
-    found = find_overturn_scales(scenes)
+    assert np.isclose(COARSE_GRID, 1.0).sum() == 1
+    found = find_overturn_scales(scenes, grid=COARSE_GRID)
     naive = _naive_first_overturn(scenes)
     finite = 0
     for (b, f, m), (hi, lo, note), k in zip(scenes, found, naive):
@@ -179,12 +186,40 @@ def test_margin_agrees_with_the_full_scan_and_brackets_the_boundary(pulse_record
             continue
         assert k > 0
         # the bisection stays inside the grid interval below the first overturning factor
-        assert MARGIN_GRID[k - 1] * (1 - 1e-12) <= lo < hi <= MARGIN_GRID[k] * (1 + 1e-12)
+        assert COARSE_GRID[k - 1] * (1 - 1e-12) <= lo < hi <= COARSE_GRID[k] * (1 + 1e-12)
         assert hi / lo - 1 <= 0.01 and note == ""
         over = lambda s: simulate(b, f, m.scaled(s)).overturned  # noqa: E731 (public path: scaled copy)
         assert over(hi) and not over(lo)
         finite += 1
     assert finite >= 4
+
+
+def test_margin_grid_does_not_step_over_a_planted_window(monkeypatch):
+    """A synthetic response (issue 28): a pulse scene overturns for scale factors in a 1.5 % window
+    between two factors of the old 40-value grid (ratio 1.1), and from 2x on. The old grid reports
+    the band at 2x; the default 1 % grid finds the window (to MARGIN_RTOL)."""
+    import rockcli.solve as solve
+
+    lo, hi = 0.7 * 1.02, 0.7 * 1.035
+    base = make_pulse("ricker-sym", 0.3 * G, 0.8)
+
+    def fake(jobs, **kwargs):
+        out = []
+        for job in jobs:
+            s = job[2].a_p / base.a_p
+            over = lo <= s <= hi or s >= 2.0
+            out.append(types.SimpleNamespace(verdict="overturned" if over else "rocked", overturned=over,
+                                             settled=True, error=""))
+        return out
+
+    monkeypatch.setattr(solve, "simulate_many", fake)
+    scene = (parse_column_spec("c:R=1.0,alpha=10"), LinearIsolation(2.0), base)
+    old_grid = np.unique(np.concatenate([np.geomspace(0.1, 1.0, 25), np.geomspace(1.0, 4.0, 16)]))
+    assert not np.any((old_grid >= lo) & (old_grid <= hi))
+    (old_hi, old_lo, _), = find_overturn_scales([scene], grid=old_grid)
+    assert old_hi >= 2.0  # the window is stepped over
+    (new_hi, new_lo, note), = find_overturn_scales([scene])
+    assert new_lo < lo <= new_hi <= new_lo * 1.01 * (1 + 1e-12) and note == ""
 
 
 def test_margin_rows_and_survivor_below_overturn(pulse_records):

@@ -144,6 +144,71 @@ def test_min_search_finds_overturning_below_a_safe_island():
     assert s.ap_min[0] <= ys[first] * 1.001
 
 
+class _PlantedWindow:
+    """A runner whose 'response' is synthetic: on a rigid foundation (uplift threshold 1) the block
+    overturns in a narrow window ``[lo, hi]`` and from ``band`` on."""
+
+    def __init__(self, lo, hi, band):
+        self.lo, self.hi, self.band = lo, hi, band
+        self.calls = []
+
+    def __call__(self, families, fam, x, y, early=False):
+        from rockcli.spectra import Cells
+
+        y = np.asarray(y, dtype=float)
+        self.calls.append(y.copy())
+        over = ((y >= self.lo) & (y <= self.hi)) | (y >= self.band)
+        n = y.size
+        return Cells(over, y > 1.0, np.where(over, 1.5, 0.5), ~over, np.ones(n, bool), np.ones(n, np.int64))
+
+
+def test_second_scan_finds_a_planted_window_the_first_scan_steps_over():
+    """A 0.3 % window between two values of the 1 % scan, 2 % below the band where the scan first
+    overturns: the scan alone (refine=0, the old search) reports the band's edge; the second scan
+    (0.1 % steps over the 10 % below the scan's first overturning value) finds the window, to the
+    bisection tolerance. A window further below is left to the first scan (the stated limit)."""
+    fam = Family(math.radians(16.0), "ricker-sym", Isolation("none"))
+    y20 = 1.01 ** 20
+    lo, hi = y20 * 1.003, y20 * 1.006  # strictly between the scan values 1.01^20 and 1.01^21
+    band = 1.01 ** 22 * 1.005
+    old = search_min_overturning([fam], [0], [3.0], step=0.01, tol=1e-3, refine=0.0,
+                                 runner=_PlantedWindow(lo, hi, band))
+    assert old.ap_min[0] >= band and not old.refined.any()  # stepped over: 2 % too high
+    planted = _PlantedWindow(lo, hi, band)
+    new = search_min_overturning([fam], [0], [3.0], step=0.01, tol=1e-3, runner=planted)
+    assert new.ap_safe[0] < lo <= new.ap_min[0] <= new.ap_safe[0] * (1 + 1e-3) * (1 + 1e-12)
+    assert new.refined[0]
+    tried = np.concatenate(planted.calls)
+    # more than 10 % below the first overturning scan value 1.01^23: the first scan only
+    assert not np.any((tried > 1.01 ** 12 * 1.0001) & (tried < 1.01 ** 12 * 1.0099))
+    # the stated limit: a window further below than the band is left to the first scan
+    far = _PlantedWindow(lo, hi, 1.01 ** 31 * 1.005)  # first scan overturns at 1.01^32: floor 1.01^22.4
+    s = search_min_overturning([fam], [0], [3.0], step=0.01, tol=1e-3, runner=far)
+    assert s.ap_min[0] >= 1.01 ** 31
+
+
+@pytest.mark.parametrize("iso, x, stepped_over", [("dcss:TbTp=3,mu1=0.03,mu2=0.07,r=1", 2.0, True),
+                                                  ("dcss:TbTp=2,mu1=0.03,mu2=0.06,r=2", 6.0, True),
+                                                  ("scss:TbTp=3,mu=0.05", 1.0, False)])
+def test_issue_28_sliding_cases_report_the_first_overturning_value(iso, x, stepped_over):
+    """Figure 11 (alpha = 16 deg, symmetric Ricker): narrow overturning windows below the band the
+    1 % scan finds (and, for SCSS, a ragged band edge on which the old bisection stopped 0.4 % too
+    high). At the default settings the minimum is the first overturning value of a 0.1 % brute-force
+    grid to within the bisection tolerance; the scan alone (refine=0) overstates it."""
+    fam = Family(math.radians(16.0), "ricker-sym", parse_isolation(iso))
+    new = search_min_overturning([fam], [0], [x])
+    old = search_min_overturning([fam], [0], [x], refine=0.0)
+    y_u = new.ap_uplift[0]
+    ys = y_u * 1.001 ** np.arange(1, int(math.log(old.ap_min[0] / y_u) / math.log(1.001)) + 1)
+    res = run_cells_local([fam], np.zeros(ys.size, np.int64), np.full(ys.size, x), ys, early=True)
+    first = ys[np.argmax(res.overturned)]
+    assert res.overturned.any()
+    assert old.ap_min[0] > first * 1.003  # the window the issue reports is stepped over by the scan alone
+    assert new.ap_min[0] <= first * (1 + 1e-3) and new.refined[0] == stepped_over
+    one = run_cells_local([fam], [0, 0], [x, x], [new.ap_safe[0], new.ap_min[0]], early=True)
+    assert not one.overturned[0] and one.overturned[1]
+
+
 def test_isolated_uplift_threshold_approaches_the_decoupled_limit():
     """T_b/T_p -> large: the base barely moves in absolute terms during the pulse, so the block
     sees the bearing force only, a_base -> omega_b^2 u_g + 2 xi omega_b v_g (ground displacement
@@ -355,3 +420,13 @@ def test_help_and_the_sweeps_library_import_nothing_heavy():
             "             if m in sys.modules))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.strip() == "[]"
+
+
+def test_cli_search_defaults_are_the_library_defaults():
+    """The CLI writes the search defaults out (``--help`` imports no numpy): they must not drift."""
+    from rockcli.cli.spectrum import critical_size, min_overturning
+    from rockcli.spectra import DEFAULT_REFINE, DEFAULT_REFINE_BAND, DEFAULT_STEP, DEFAULT_TOL
+
+    want = {"step": DEFAULT_STEP, "tol": DEFAULT_TOL, "refine": DEFAULT_REFINE, "refine_band": DEFAULT_REFINE_BAND}
+    for command in (min_overturning, critical_size):
+        assert {p.name: p.default for p in command.params if p.name in want} == want

@@ -8,7 +8,8 @@ The library behind ``rockcli assess`` (no click, no pandas). Read it in this ord
     with its ``error``). A scene is one column on one configuration under one excitation.
 :mod:`rockcli.assess.margin`
     The margin search: the smallest scale factor of a record that overturns a scene (a scan of
-    40 log-spaced factors 0.1..4, then a bisection below the first overturning factor), the
+    373 log-spaced factors 0.1..4 in steps just under 1 %, then a bisection below the first
+    overturning factor if the grid is coarser than the tolerance), the
     neighbourhood share, and :func:`map_chunks`, the seam for running the search elsewhere.
 :mod:`rockcli.assess.table`
     ``assess column``: every scene verdict-only, with its margin -> :class:`Assessment` rows.

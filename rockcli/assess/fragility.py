@@ -4,7 +4,8 @@ Method
 ------
 For each column, configuration and record, the record's **overturning capacity** is the smallest
 scale factor that overturns the column (the margin search of :mod:`rockcli.assess.margin`: a scan
-of 40 log-spaced factors 0.1..4, then a bisection to 1 % below the first overturning factor)
+of 373 log-spaced factors 0.1..4 in steps just under 1 %, the first overturning one and the one below
+it bracketing the capacity to 1 %)
 times the record's intensity measure (IM): the IM at which that record, scaled, first topples the
 column. This is incremental dynamic analysis (IDA) reduced to its collapse point ("IDA-like").
 The capacities of the records are taken as a sample of a lognormal variable, and the fragility is

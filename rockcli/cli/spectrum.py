@@ -208,6 +208,26 @@ def overturning(alpha, pulses, records, isolations, csv_path, plot_path, schedul
         click.echo(f"wrote {plot_path}")
 
 
+def _search_options(f):
+    """--step, --refine, --refine-band, --tol of the minimum-overturning search (defaults: those of
+    :mod:`rockcli.spectra.minimum`, written out so that ``--help`` imports no numpy)."""
+    options = [
+        click.option("--step", type=NUMBER, default=0.01, show_default=True,
+                     help="Relative step of the scan up from the uplift threshold."),
+        click.option("--refine", type=NUMBER, default=0.001, show_default=True,
+                     help="Relative step of the second scan below the scan's first overturning value (see "
+                          "--refine-band); 0: none (overturning windows narrower than --step can then be "
+                          "missed)."),
+        click.option("--refine-band", "refine_band", type=NUMBER, default=0.1, show_default=True,
+                     help="How far below the scan's first overturning value the second scan starts (relative)."),
+        click.option("--tol", type=NUMBER, default=0.001, show_default=True,
+                     help="Relative resolution of the bisection after the scans."),
+    ]
+    for option in reversed(options):
+        f = option(f)
+    return f
+
+
 @spectrum.command(name="min-overturning")
 @_scene_options("Foundation (repeatable, one curve each): none, or KIND:TbTp=<T_b/T_p>,... "
                 "Default: none and linear TbTp = 2, 3, 4 with xi = 0.05, gamma = 0.01 (Figure 7).",
@@ -219,20 +239,19 @@ def overturning(alpha, pulses, records, isolations, csv_path, plot_path, schedul
               help="omega_p/p values, both ends included.")
 @click.option("--ap-max", type=NUMBER, default=20.0, show_default=True,
               help="Largest a_p/(g tan alpha) tried; above it the curve is left empty.")
-@click.option("--step", type=NUMBER, default=0.01, show_default=True,
-              help="Relative step of the scan up from the uplift threshold (overturning windows narrower "
-                   "than this can be missed).")
-@click.option("--tol", type=NUMBER, default=0.001, show_default=True,
-              help="Relative resolution of the bisection after the scan.")
+@_search_options
 @user_errors
 def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, scheduler, units, dt, fmt, column,
-                    gammas, wp_p, ap_max, step, tol, horizon, restitution, cap_ratio):
+                    gammas, wp_p, ap_max, step, tol, refine, refine_band, horizon, restitution,
+                    cap_ratio):
     """Minimum overturning acceleration over omega_p/p, like the paper's Figures 7, 8, 9 and 11.
 
     For each omega_p/p: the smallest a_p that overturns, found by scanning up from the uplift
-    threshold in steps of --step (relative) and bisecting to --tol between the last safe and the
-    first overturning value, so overturning below a safe island is not missed (windows narrower
-    than one step can be). One curve per configuration; the rigid foundation as a heavy line.
+    threshold in steps of --step (relative), scanning again in steps of --refine over the
+    --refine-band below the first overturning value (where narrow overturning windows lie), and
+    bisecting to --tol between the first overturning value scanned and the value below it, so
+    overturning below a safe island is not missed. One curve per configuration; the rigid
+    foundation as a heavy line.
 
     \b
     Examples:
@@ -260,16 +279,18 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
     t0 = time.perf_counter()
     with runner, progress_bar(n, "columns") as bar:
         update = bar.update if bar else None
-        curves = min_overturning_curves(alphas, pcs, isos, xs, ap_max=ap_max, step=step, tol=tol, runner=runner,
-                                        progress=update)
+        curves = min_overturning_curves(alphas, pcs, isos, xs, ap_max=ap_max, step=step, tol=tol, refine=refine,
+                                        refine_band=refine_band, runner=runner, progress=update)
     elapsed = time.perf_counter() - t0
 
     from rockcli.report.spectra import format_min_table
 
     _echo_notes(pcs)
     click.echo(format_min_table(curves))
+    refined = sum(int(c.refined.sum()) for c in curves)
     click.echo(f"{len(curves)} curves x {xs.size} values of omega_p/p: {runner.cells_run} runs in {elapsed:.2f} s "
-               f"(scan step {step:g}, tolerance {tol:g}, up to {ap_max:g} g tan alpha)")
+               f"({curves[0].found_by}, up to {ap_max:g} g tan alpha)"
+               + (f"; {refined} minima lie in windows the first scan stepped over" if refine > 0 else ""))
     _echo_unproven(runner)
     if csv_path:
         from rockcli.report.spectra import write_min_csv
@@ -306,8 +327,7 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
               help="Relative resolution of the crossing in omega_p/p.")
 @click.option("--ap-max", type=NUMBER, default=50.0, show_default=True,
               help="Largest a_p/(g tan alpha) tried (above it: no overturning).")
-@click.option("--step", type=NUMBER, default=0.01, show_default=True, help="Relative scan step (see min-overturning).")
-@click.option("--tol", type=NUMBER, default=0.001, show_default=True, help="Relative bisection tolerance.")
+@_search_options
 @click.option("--csv", "csv_path", type=click.Path(), default=None,
               help="Write the table as CSV (source, pulse, T_p_s, alpha_deg, Tb_over_Tp, Tb_s, "
                    "wp_over_p_cross, R_critical_m).")
@@ -319,7 +339,7 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
 @restitution_option
 @user_errors
 def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, fmt, column, wp_p, xtol, ap_max,
-                  step, tol, csv_path, plot_path, scheduler, horizon, restitution):
+                  step, tol, refine, refine_band, csv_path, plot_path, scheduler, horizon, restitution):
     """Block size beyond which a block is safer without isolation, like the paper's Table I.
 
     Where the minimum overturning curves of the rigid foundation and of the isolated base cross
@@ -365,7 +385,7 @@ def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, 
     with runner, progress_bar(n, "columns") as bar:
         update = bar.update if bar else None
         result = critical_sizes(pcs, alphas, isos, wp_grid=grid, xtol=xtol, ap_max=ap_max, step=step, tol=tol,
-                                runner=runner, progress=update)
+                                refine=refine, refine_band=refine_band, runner=runner, progress=update)
     elapsed = time.perf_counter() - t0
 
     from rockcli.report.spectra import format_critical_table
@@ -379,7 +399,7 @@ def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, 
     for note in result.notes:
         click.echo(f"note: {note}")
     click.echo(f"{len(result.rows)} crossings: {result.runs} runs in {elapsed:.2f} s (omega_p/p grid {grid}, "
-               f"refined to {xtol:g})")
+               f"refined to {xtol:g}; minima: {result.curves[0].found_by})")
     _echo_unproven(runner)
     if csv_path:
         from rockcli.report.spectra import write_critical_csv

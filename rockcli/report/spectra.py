@@ -21,7 +21,7 @@ MAP_COLUMNS = ("alpha_deg", "pulse", "isolation", "T_p_s", "R_m", "wp_over_p", "
 #: Columns of ``rockcli spectrum min-overturning --csv`` (one row per omega_p/p of every curve).
 MIN_COLUMNS = ("alpha_deg", "pulse", "isolation", "T_p_s", "R_m", "wp_over_p", "ap_min_over_g_tan_alpha",
                "ap_safe_over_g_tan_alpha", "ap_uplift_over_g_tan_alpha", "ap_min_g", "scan_step", "tolerance",
-               "ap_max_over_g_tan_alpha")
+               "ap_max_over_g_tan_alpha", "refine_step", "refine_band", "stepped_over_by_scan")
 #: Columns of ``rockcli spectrum critical-size --csv`` (the paper's Table I layout, one row per entry).
 CRITICAL_COLUMNS = ("source", "pulse", "T_p_s", "alpha_deg", "Tb_over_Tp", "Tb_s", "wp_over_p_cross", "R_critical_m")
 
@@ -74,6 +74,14 @@ def _check_image_path(path) -> Path:
 
 def _save(fig, path, dpi):
     return save_figure(fig, path, dpi=dpi)
+
+
+def _finish(fig, path, dpi, title, *, bottom, top):
+    """Title (if any), tight layout leaving ``bottom`` for a legend and ``top`` for the title, save."""
+    if title:
+        fig.suptitle(title, fontsize=9)
+    fig.tight_layout(rect=(0, bottom, 1, top if title else 1))
+    return _save(fig, path, dpi)
 
 
 def _pyplot():
@@ -200,10 +208,7 @@ def plot_maps(maps, path, *, n_cols: int | None = None, title: str | None = None
         handles = [Patch(facecolor=c, edgecolor="0.5", label=lab)
                    for c, lab in zip(MAP_COLOURS, ("no uplift", "no overturning", "overturning"))]
         fig.legend(handles=handles, loc="lower center", ncol=3, fontsize=8, frameon=False)
-        if title:
-            fig.suptitle(title, fontsize=9)
-        fig.tight_layout(rect=(0, 0.05, 1, 0.97 if title else 1))
-        return _save(fig, path, dpi)
+        return _finish(fig, path, dpi, title, bottom=0.05, top=0.97)
     finally:
         plt.close(fig)
 
@@ -222,12 +227,21 @@ def min_rows(curves):
                    "wp_over_p": float(x), "ap_min_over_g_tan_alpha": float(c.ap_min[j]),
                    "ap_safe_over_g_tan_alpha": float(c.ap_safe[j]),
                    "ap_uplift_over_g_tan_alpha": float(c.ap_uplift[j]), "ap_min_g": float(c.ap_min[j]) * tan_a,
-                   "scan_step": c.step, "tolerance": c.tol, "ap_max_over_g_tan_alpha": c.ap_max}
+                   "scan_step": c.step, "tolerance": c.tol, "ap_max_over_g_tan_alpha": c.ap_max,
+                   "refine_step": c.refine, "refine_band": c.refine_band,
+                   "stepped_over_by_scan": bool(c.refined[j]) if c.refined is not None else False}
 
 
 def write_min_csv(curves, path, extra: dict | None = None) -> Path:
     """Write the minimum-overturning curves as CSV (:data:`MIN_COLUMNS`; ``extra`` appended), atomically."""
     return _write_rows(path, MIN_COLUMNS, min_rows(curves), extra)
+
+
+def _panels(curves) -> list:
+    """``[(alpha_deg, shape, curves of that panel), ...]`` in the order the panels first appear."""
+    curves = list(curves)
+    keys = dict.fromkeys((c.alpha_deg, c.pulse.shape) for c in curves)
+    return [(a, sh, [c for c in curves if (c.alpha_deg, c.pulse.shape) == (a, sh)]) for a, sh in keys]
 
 
 def plot_min_curves(curves, path, *, crossings=None, title: str | None = None, y_max: float | None = None,
@@ -236,24 +250,24 @@ def plot_min_curves(curves, path, *, crossings=None, title: str | None = None, y
     ``(alpha, pulse)``, one curve per configuration, the rigid foundation as a heavy dark line.
 
     ``crossings``: optional ``{(alpha_deg, shape): [(x, y, label), ...]}`` points to mark.
-    A curve is drawn only where something overturns up to its ``ap_max``.
+    A curve is drawn only where something overturns up to its ``ap_max``. A note under the panels
+    says how the minima were found (:attr:`rockcli.spectra.MinCurve.found_by`) and how many of them
+    lie in a window the first scan stepped over (marked with a small cross).
     """
     import numpy as np
 
     _check_image_path(path)
     plt = _pyplot()
-    curves = list(curves)
-    panels = list(dict.fromkeys((c.alpha_deg, c.pulse.shape) for c in curves))
-    alphas = list(dict.fromkeys(a for a, _ in panels))
-    shapes = list(dict.fromkeys(s for _, s in panels))
+    panels = _panels(curves)
+    alphas = list(dict.fromkeys(a for a, _, _ in panels))
+    shapes = list(dict.fromkeys(s for _, s, _ in panels))
     fig, axes = _panel_grid(len(alphas), len(shapes), plt, width=4.2, height=3.3)
     styles = ["-", "--", "-.", ":"]
     try:
-        for (a, sh) in panels:
+        for (a, sh, mine) in panels:
             ax = axes[alphas.index(a), shapes.index(sh)]
             k = 0
             top = 0.0
-            mine = [c for c in curves if (c.alpha_deg, c.pulse.shape) == (a, sh)]
             labels, common = _curve_labels([c.isolation for c in mine])
             for c in mine:
                 y = np.asarray(c.ap_min, dtype=float)
@@ -265,6 +279,9 @@ def plot_min_curves(curves, path, *, crossings=None, title: str | None = None, y
                     ax.plot(c.wp_over_p, y, ls=styles[k % len(styles)], lw=1.3, color=f"C{k % 10}",
                             label=labels[c.isolation])
                     k += 1
+                if c.refined is not None and c.refined.any():
+                    ax.plot(c.wp_over_p[c.refined], y[c.refined], "x", ms=3.5, mew=0.8,
+                            color="k" if c.isolation.rigid else f"C{(k - 1) % 10}", zorder=4)
                 T_p = c.pulse.T_p
             for (xc, yc, lab) in (crossings or {}).get((a, sh), []):
                 ax.plot([xc], [yc], "o", ms=5, mfc="none", mec="k")
@@ -278,12 +295,21 @@ def plot_min_curves(curves, path, *, crossings=None, title: str | None = None, y
             ax.tick_params(labelsize=7)
             ax.legend(fontsize=6, frameon=False, loc="upper left")
             _r_axis(ax, T_p)
-        if title:
-            fig.suptitle(title, fontsize=9)
-        fig.tight_layout(rect=(0, 0, 1, 0.96 if title else 1))
-        return _save(fig, path, dpi)
+        fig.text(0.01, 0.005, _search_note(curves), fontsize=6, va="bottom", ha="left", wrap=True)
+        return _finish(fig, path, dpi, title, bottom=0.035, top=0.96)
     finally:
         plt.close(fig)
+
+
+def _search_note(curves) -> str:
+    """How the minima of ``curves`` were found, and how many the refinement found (the figure note)."""
+    ways = list(dict.fromkeys(c.found_by for c in curves))
+    points = sum(c.wp_over_p.size for c in curves)
+    refined = sum(int(c.refined.sum()) for c in curves if c.refined is not None)
+    note = "minimum: " + "; ".join(ways)
+    if any(c.refine > 0 for c in curves):
+        note += f"; x: in a window the first scan stepped over ({refined} of {points} points)"
+    return note
 
 
 def _curve_labels(isolations):
@@ -313,17 +339,12 @@ def format_min_table(curves, n_rows: int = 12) -> str:
     """The curves at about ``n_rows`` values of omega_p/p, aligned (units of g tan alpha)."""
     import numpy as np
 
-    curves = list(curves)
-    if not curves:
-        return ""
     lines = []
-    panels = list(dict.fromkeys((c.alpha_deg, c.pulse.shape) for c in curves))
-    for (a, sh) in panels:
-        cs = [c for c in curves if (c.alpha_deg, c.pulse.shape) == (a, sh)]
+    for (a, sh, cs) in _panels(curves):
         x = cs[0].wp_over_p
         idx = np.unique(np.linspace(0, x.size - 1, min(n_rows, x.size)).round().astype(int))
         head = ["wp/p"] + [c.isolation.label for c in cs]
-        table = [head, ["uplift"] + [_num(c.ap_uplift[0]) for c in cs]]
+        table = [head, ["uplift"] + [_range(c.ap_uplift) for c in cs]]
         for i in idx:
             table.append([f"{x[i]:.3g}"] + [_num(c.ap_min[i], c.ap_max) for c in cs])
         widths = [max(len(r[j]) for r in table) for j in range(len(head))]
@@ -332,6 +353,19 @@ def format_min_table(curves, n_rows: int = 12) -> str:
             lines.append("  ".join(v.rjust(w) for v, w in zip(r, widths)))
         lines.append("")
     return "\n".join(lines).rstrip()
+
+
+def _range(values) -> str:
+    """The uplift thresholds of a curve: one value, or ``lo..hi`` when they vary with omega_p/p
+    (sliding bearings); ``-`` when the block never uplifts."""
+    import numpy as np
+
+    v = np.asarray(values, dtype=float)
+    v = v[np.isfinite(v)]
+    if not v.size:
+        return "-"
+    lo, hi = _num(float(v.min())), _num(float(v.max()))
+    return lo if lo == hi else f"{lo}..{hi}"
 
 
 def _num(v, ap_max=None):

@@ -107,7 +107,7 @@ def format_notes(assessment) -> str:
         lines.append("xS: smallest scale factor of the record that overturns the body in that configuration "
                      "(S > 1: survival margin; S < 1 on an overturn: it overturns already at S times the record; "
                      "S < 1 on a survivor: a weaker record overturns it, 1x sits on a safe island; x>4: nothing "
-                     "up to 4x overturns). Found on a 0.1x..4x grid (10 % steps) refined to 1 %; where the "
+                     "up to 4x overturns). Found on a 0.1x..4x grid in 1 % steps; where the "
                      "boundary is ragged the value is indicative.")
     if assessment.neighbourhood:
         lines.append("[P%]: share of the scale factors 0.90x, 0.91x, ..., 1.10x of the record that overturn "

@@ -1,0 +1,157 @@
+"""Running cells: :class:`Cells` (the outcome arrays) and the :class:`Runner` (here or on Dask).
+
+A cell is one run of a :class:`~rockcli.spectra.scenes.Family` at ``(x, y)``. Runs go through
+:func:`rockcli.solve.simulate_verdicts`, all columns in one batch; ``early=True`` stops each run as
+soon as its verdict is proven (the same verdicts; the peak then only a lower bound for runs stopped
+during the pulse, ``peak_final`` False).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable, Optional, Sequence
+
+import numpy as np
+
+from rockcli.spectra.scenes import Family
+
+
+@dataclass(frozen=True)
+class Cells:
+    """Outcome of cells: arrays in the order of the cells asked for."""
+
+    overturned: np.ndarray
+    uplifted: np.ndarray
+    theta_max_over_alpha: np.ndarray
+    settled: np.ndarray
+    peak_final: np.ndarray
+    nfev: np.ndarray
+
+    @staticmethod
+    def concatenate(parts: Sequence["Cells"]) -> "Cells":
+        if not parts:
+            return Cells(*(np.zeros(0, dt) for dt in (bool, bool, float, bool, bool, np.int64)))
+        return Cells(*(np.concatenate([getattr(p, f) for p in parts])
+                       for f in ("overturned", "uplifted", "theta_max_over_alpha", "settled", "peak_final", "nfev")))
+
+
+def run_cells_local(families: Sequence[Family], fam: np.ndarray, x: np.ndarray, y: np.ndarray,
+                    progress: Optional[Callable[[int], None]] = None, early: bool = False,
+                    horizon: float | None = None, restitution: float | None = None, cap_ratio: float = 0.0) -> Cells:
+    """Run cells ``(families[fam[i]], x[i], y[i])`` with :func:`rockcli.solve.simulate_verdicts` (all cores).
+
+    ``progress(n)`` is called with the number of cells finished since the last call; ``early``: stop
+    each run once its verdict is proven (the same verdicts; peaks may be lower bounds); ``horizon``:
+    the solver's horizon [s] (None: its default, 600 s); ``restitution``: the coefficient of
+    restitution of every impact (None: Housner's); ``cap_ratio``: capped colonnades (0: solitary blocks).
+    """
+    from rockcli.solve import DEFAULT_HORIZON, simulate_verdicts
+
+    n = len(x)
+    if n == 0:
+        return Cells.concatenate([])
+    jobs = []
+    columns = {}  # (family, x) -> the scene at y = 1 (a_p = g tan alpha), built once per column
+    for i in range(n):
+        key = (int(fam[i]), float(x[i]))
+        col = columns.get(key)
+        if col is None:
+            col = columns[key] = families[key[0]].scene(key[1], 1.0)
+        # the kernel scales the unit pulse's a_p by y: the same run as Family.scene(x, y)
+        jobs.append((col[0], col[1], col[2], float(y[i])))
+    done = [0]
+
+    def step(k):
+        progress(k - done[0])
+        done[0] = k
+
+    # The scenes run in contiguous pieces, one thread each, and a map's cost grows with a_p (rows):
+    # run the cells in a fixed shuffled order so that every piece carries a fair share, and put the
+    # results back. Cells are independent: the order changes no result.
+    order = np.random.default_rng(0).permutation(n)
+    v = simulate_verdicts([jobs[i] for i in order], early=early, progress=step if progress else None,
+                          horizon=DEFAULT_HORIZON if horizon is None else horizon, restitution=restitution,
+                          cap_ratio=cap_ratio)
+    back = np.empty(n, np.int64)
+    back[order] = np.arange(n)
+    return Cells(v.overturned[back], v.uplifted[back], v.theta_max_over_alpha[back], v.settled[back],
+                 v.peak_final[back], v.nfev[back])
+
+
+def _run_cells_task(args) -> Cells:
+    """One chunk on a Dask worker (module-level so that it pickles by reference)."""
+    families, fam, x, y, early, horizon, restitution, cap_ratio = args
+    return run_cells_local(families, fam, x, y, early=early, horizon=horizon, restitution=restitution,
+                           cap_ratio=cap_ratio)
+
+
+class Runner:
+    """Runs batches of cells here (``scheduler=None``) or in chunks on a Dask cluster.
+
+    Parameters
+    ----------
+    scheduler : str or dask.distributed.Client, optional
+        ``None`` (this machine, numba on all cores), ``"local"`` (a Dask LocalCluster),
+        ``"tcp://HOST:PORT"`` (an existing scheduler; its workers need rockcli installed), or a
+        ``Client``.
+    chunk : int
+        Cells per Dask task.
+    horizon : float, optional
+        The solver's horizon [s] for every run (None: its default, 600 s).
+    restitution : float, optional
+        The coefficient of restitution of every impact (None: Housner's; :mod:`rockcli.impact`).
+    cap_ratio : float
+        Capped colonnades of the blocks, rigid foundation only (:mod:`rockcli.colonnade`; 0: none).
+    """
+
+    def __init__(self, scheduler=None, *, chunk: int = 2000, horizon: float | None = None,
+                 restitution: float | None = None, cap_ratio: float = 0.0):
+        self.scheduler = scheduler
+        self.chunk = int(chunk)
+        self.horizon = horizon
+        self.restitution = restitution
+        self.cap_ratio = cap_ratio
+        self._client = None
+        self._close = None
+        self.cells_run = 0
+        self.nfev = 0
+        self.unproven = 0  # runs that reached the solver's horizon with the verdict unproven
+
+    def __enter__(self):
+        if self.scheduler is not None:
+            from rockcli.distributed import open_client
+
+            self._close = open_client(self.scheduler)
+            self._client = self._close.__enter__()
+        return self
+
+    def __exit__(self, *exc):
+        if self._close is not None:
+            self._close.__exit__(*exc)
+            self._close = self._client = None
+        return False
+
+    def __call__(self, families, fam, x, y, progress=None, early: bool = False) -> Cells:
+        fam = np.asarray(fam, dtype=np.int64)
+        x = np.asarray(x, dtype=float)
+        y = np.asarray(y, dtype=float)
+        if self.scheduler is None:
+            out = run_cells_local(families, fam, x, y, progress, early, self.horizon, self.restitution,
+                                  self.cap_ratio)
+        else:
+            if self._client is None:
+                raise RuntimeError("use the Runner as a context manager to run on a scheduler")
+            from rockcli.distributed import map_chunks
+
+            n = len(x)
+            bounds = [(lo, min(n, lo + self.chunk)) for lo in range(0, n, self.chunk)]
+            tasks = [(tuple(families), fam[lo:hi], x[lo:hi], y[lo:hi], early, self.horizon, self.restitution,
+                      self.cap_ratio) for lo, hi in bounds]
+            sizes = [hi - lo for lo, hi in bounds]
+            parts = map_chunks(self._client, _run_cells_task, tasks,
+                               progress=(lambda i: progress(sizes[i])) if progress else None)
+            out = Cells.concatenate(parts)
+        self.cells_run += len(x)
+        self.nfev += int(out.nfev.sum())
+        self.unproven += int(np.count_nonzero(~out.settled & ~out.overturned))
+        return out

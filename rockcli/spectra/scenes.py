@@ -1,0 +1,204 @@
+"""What a spectrum is run on: the pulse choice, the isolation with ``T_b / T_p`` fixed, and the family.
+
+Dimensionless presentation
+--------------------------
+A map is drawn over ``x = omega_p / p`` and ``y = a_p / (g tan alpha)`` for a block of slenderness
+``alpha``. Written in the time ``p t``, Eq (3) (rigid foundation) depends only on ``alpha``,
+``a_p / g`` and ``omega_p / p``; Eqs (7)-(11) (isolated base) in addition on ``omega_b / omega_p =
+T_p / T_b``, ``xi`` and ``gamma`` (``gamma R p^2 / g = 0.75 gamma``). So a map does not depend on the
+block size as long as ``T_b / T_p`` is kept fixed over the map, as the paper does. rockcli runs
+every cell on one reference block, ``R = REFERENCE_R = 1 m`` (``p = 2.712 rad/s``) unless told
+otherwise, and sets ``T_p = 2 pi / (x p)`` for each column; ``tests/test_spectra.py`` checks that
+another ``R`` gives the same map. The solver's tolerances are scaled by ``alpha``, ``p alpha`` and
+``g tan(alpha) / max(omega_b, p)^2`` and its first step by ``1/p`` and ``T_p``, and a verdict-only run
+ends when its verdict is proven (the theorems of :func:`rockcli.kernels.simulate_core`), which does not
+depend on the block size either: the dimensionless result is the same to rounding. (A run still
+unproven at the solver's horizon, 600 s after the pulse, would end there: such cells are counted and
+reported as "still moving", ``settled`` False.)
+
+Pulses have ``a_p > 0`` (the larger lobe first for the antisymmetric Ricker). Reversing the sign
+mirrors theta and leaves every verdict unchanged (the block is symmetric).
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass, replace
+from typing import Optional
+
+from rockcli.errors import RockcliInputError
+from rockcli.models import Block, Rigid, parse_isolation_spec
+from rockcli.pulses import make_pulse
+from rockcli.spectra.grids import _NUMBER
+from rockcli.units import G
+
+#: Semi-diagonal of the reference block every cell is run on [m] (``p = sqrt(3 g / 4) = 2.712 rad/s``).
+REFERENCE_R = 1.0
+#: Pulse shapes of the spectra.
+SHAPES = ("ricker-sym", "ricker-anti", "sine", "cosine")
+
+
+@dataclass(frozen=True)
+class PulseChoice:
+    """The pulse of a spectrum: a shape, optionally its period, and where it comes from.
+
+    ``T_p`` [s] only matters for the conversion to block sizes (critical size, the R axis);
+    the dimensionless spectra do not depend on it.
+    """
+
+    shape: str
+    T_p: Optional[float] = None
+    source: str = "pulse"
+    note: str = ""
+
+    @property
+    def label(self) -> str:
+        return self.shape if self.T_p is None else f"{self.shape} T_p={self.T_p:g}s"
+
+
+def parse_pulse_choice(text: str) -> PulseChoice:
+    """``ricker-sym`` or ``ricker-sym:Tp=0.6`` (shape, optional period in s)."""
+    raw = str(text).strip()
+    shape, _, rest = raw.partition(":")
+    shape = shape.strip().lower()
+    shape = {"one-sine": "sine", "one-cosine": "cosine"}.get(shape, shape)
+    if shape not in SHAPES:
+        raise RockcliInputError(f"pulse {raw!r}: unknown shape {shape!r} (use {', '.join(SHAPES)})")
+    from rockcli.inputs import parse_number, spec_items
+
+    T_p = None
+    for key, val, eq in spec_items(rest, f"pulse {raw!r}"):
+        if key.lower() != "tp" or not eq:
+            item = f"{key}={val}" if eq else key
+            raise RockcliInputError(f"pulse {raw!r}: {item!r} is not Tp=<period in s> (the amplitude is swept)")
+        T_p = parse_number(val, f"pulse {raw!r}: Tp", lo=0.0, lo_open=True, unit="s",
+                           bad=f"pulse {raw!r}: Tp must be a positive period in s, got {val!r}")
+    return PulseChoice(shape, T_p)
+
+
+def pulse_from_record(record, *, wavelet: str = "best") -> PulseChoice:
+    """Shape and ``T_p`` of a record's fitted pulse (:func:`rockcli.pulses_fit.fit_pulse`)."""
+    from rockcli.pulses_fit import fit_pulse
+
+    fit = fit_pulse(record, wavelet)
+    note = (f"T_p and shape from the pulse fitted to record {fit.record_name}: {fit.shape}, "
+            f"a_p = {fit.a_p_g:+.3f} g, T_p = {fit.T_p_s:.3f} s, energy fraction {fit.energy_fraction:.2f}"
+            + (" (T_p on the end of the searched period range)" if fit.at_period_bound else ""))
+    return PulseChoice(fit.shape, float(fit.T_p_s), f"record {fit.record_name} (fitted pulse)", note)
+
+
+@dataclass(frozen=True)
+class Isolation:
+    """A foundation with ``T_b / T_p`` fixed, for any pulse period.
+
+    ``kind`` is ``none`` (rigid foundation) or a bearing kind of
+    :func:`rockcli.models.parse_isolation_spec`; ``params`` its other ``key=value`` items;
+    ``ratio`` is ``T_b / T_p``. :meth:`foundation` substitutes ``Tb = ratio * T_p`` and parses the
+    spec, so every bearing kind that takes ``Tb=`` works.
+    """
+
+    kind: str
+    ratio: Optional[float] = None
+    params: tuple = ()
+
+    @property
+    def rigid(self) -> bool:
+        return self.kind == "none"
+
+    def spec(self, T_p: float) -> str:
+        items = [f"Tb={float(self.ratio) * float(T_p)!r}"] + [f"{k}={v}" for k, v in self.params]
+        return f"{self.kind}:{','.join(items)}"
+
+    def foundation(self, T_p: float):
+        if self.rigid:
+            return Rigid()
+        return parse_isolation_spec(self.spec(T_p))
+
+    def param(self, key: str):
+        for k, v in self.params:
+            if k.lower() == key.lower():
+                return v
+        return None
+
+    def with_param(self, key: str, value) -> "Isolation":
+        """The same isolation with ``key=value`` set (added or replaced)."""
+        params = [(k, v) for k, v in self.params if k.lower() != key.lower()] + [(key, f"{value:g}")]
+        return replace(self, params=tuple(params))
+
+    @property
+    def label(self) -> str:
+        """The spec with every parameter resolved (defaults included), ``TbTp=`` for ``Tb=``."""
+        if self.rigid:
+            return "none"
+        resolved = self.foundation(1.0).label
+        if re.search(r"\bTb=[^,]*", resolved):
+            return re.sub(r"\bTb=[^,]*", f"TbTp={self.ratio:g}", resolved, count=1)
+        return ",".join([f"{self.kind}:TbTp={self.ratio:g}"] + [f"{k}={v}" for k, v in self.params])
+
+    @property
+    def short_label(self) -> str:
+        if self.rigid:
+            return "rigid foundation"
+        extras = ", ".join(f"{k} = {v}" for k, v in self.params)
+        return f"{self.kind}, $T_b/T_p$ = {self.ratio:g}" + (f", {extras}" if extras else "")
+
+
+def parse_isolation(text: str) -> Isolation:
+    """Parse ``none`` or ``KIND:TbTp=<T_b/T_p>,...`` (e.g. ``linear:TbTp=2,xi=0.05,gamma=0.01``).
+
+    Spectra keep ``T_b / T_p`` fixed over the map, as the paper does, so ``Tb=`` (a period in s) is
+    refused. The spec is checked once (with ``T_p = 1 s``) so that errors surface before any run.
+    """
+    raw = str(text).strip()
+    kind, _, rest = raw.partition(":")
+    kind = kind.strip().lower()
+    if kind in ("none", "rigid", "fixed") and not rest.strip():
+        return Isolation("none")
+    from rockcli.inputs import parse_number, spec_items
+
+    ratio = None
+    params = []
+    for key, val, eq in spec_items(rest, f"isolation {raw!r}"):
+        if not eq:
+            raise RockcliInputError(f"isolation {raw!r}: {key!r} is not key=value")
+        if key.lower() == "tb":
+            raise RockcliInputError(f"isolation {raw!r}: spectra keep T_b/T_p fixed over the map; "
+                                    f"write TbTp=<ratio> instead of Tb=")
+        if key.lower() == "tbtp":
+            ratio = parse_number(val, f"isolation {raw!r}: TbTp", lo=0.0, lo_open=True,
+                                 bad=f"isolation {raw!r}: TbTp must be a positive number, got {val!r}")
+        else:
+            params.append((key, val))
+    if ratio is None:
+        raise RockcliInputError(f"isolation {raw!r} needs TbTp=<T_b/T_p> (e.g. linear:TbTp=2,xi=0.05,gamma=0.01)")
+    iso = Isolation(kind, ratio, tuple(params))
+    iso.foundation(1.0)  # raises with the parser's own sentence if anything else is wrong
+    return iso
+
+
+@dataclass(frozen=True)
+class Family:
+    """Scenes that differ only in ``x = omega_p/p`` and ``y = a_p/(g tan alpha)``: one map or one curve."""
+
+    alpha: float  # [rad]
+    shape: str
+    isolation: Isolation
+    R: float = REFERENCE_R
+
+    @property
+    def alpha_deg(self) -> float:
+        return math.degrees(self.alpha)
+
+    @property
+    def block(self) -> Block:
+        return Block(self.R, self.alpha, "reference")
+
+    def T_p(self, x: float) -> float:
+        """Pulse period [s] of column ``x`` on the reference block."""
+        return 2.0 * math.pi / (x * self.block.p)
+
+    def scene(self, x: float, y: float):
+        """``(block, foundation, pulse)`` of cell ``(x, y)``."""
+        T_p = self.T_p(x)
+        return self.block, self.isolation.foundation(T_p), make_pulse(self.shape, y * (G * math.tan(self.alpha)), T_p)
