@@ -430,3 +430,45 @@ def test_cli_search_defaults_are_the_library_defaults():
     want = {"step": DEFAULT_STEP, "tol": DEFAULT_TOL, "refine": DEFAULT_REFINE, "refine_band": DEFAULT_REFINE_BAND}
     for command in (min_overturning, critical_size):
         assert {p.name: p.default for p in command.params if p.name in want} == want
+
+
+# --------------------------------------------------------------------------------------------------
+# floors and caps: a search that cannot end, or a grid that cannot fit, is refused before any run
+# --------------------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("args, words", [
+    (["min-overturning", "--alpha", "16", "--isolation", "none", "--wp-p", "2:2:1", "--tol", "1e-16"],
+     "tolerance must lie in [1e-12, step]"),
+    (["min-overturning", "--alpha", "16", "--isolation", "none", "--wp-p", "2:2:1", "--refine", "1e-17"],
+     "refinement step must be 0"),
+    (["min-overturning", "--alpha", "16", "--isolation", "none", "--wp-p", "2:2:1", "--step", "1e-18"],
+     "scan step must lie in [0.0001, 0.5]"),
+    (["critical-size", "--alpha", "10", "--tb-tp", "2", "--pulse", "ricker-sym:Tp=0.6", "--wp-p", "0.5:12:6",
+      "--xtol", "0"], "xtol must lie in [1e-12, 0.5]"),
+    (["overturning", "--alpha", "10", "--wp-p", "1:8:100000", "--ap", "1:6:100000"],
+     "the maps have 10,000,000,000 cells"),
+])
+def test_search_floors_and_grid_cap_refused_in_one_sentence(args, words, monkeypatch):
+    """Before: --tol 1e-16 and --xtol 0 bisected forever (the midpoint of two neighbouring doubles is one of
+    them), --refine 1e-17 divided by zero, and a 1e10-cell map tried to allocate 75 GiB. Now: refused before
+    any run (the runner is never called), one sentence, exit 2."""
+    from rockcli.spectra import runner as runner_mod
+
+    def no_runs(*a, **k):
+        raise AssertionError("a refused search must not run anything")
+
+    monkeypatch.setattr(runner_mod.Runner, "__call__", no_runs)
+    res = CliRunner().invoke(main, ["spectrum", *args])
+    assert res.exit_code == 2, res.output
+    assert words in res.output
+    assert "Traceback" not in res.output and len(res.output.strip().splitlines()) == 1
+
+
+def test_tolerance_at_its_floor_ends():
+    """At the floor itself the bisection ends: 1e-12 relative is ~4,500 doubles wide, so every midpoint is new."""
+    from rockcli.spectra import Family, parse_isolation, search_min_overturning
+
+    fam = Family(math.radians(16.0), "ricker-sym", parse_isolation("none"))
+    res = search_min_overturning([fam], np.array([0]), np.array([2.0]), tol=1e-12, refine=0.0)
+    lo, hi = float(res.ap_safe[0]), float(res.ap_min[0])
+    assert lo < hi and (hi - lo) <= 1e-12 * hi

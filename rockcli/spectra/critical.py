@@ -17,8 +17,8 @@ import numpy as np
 
 from rockcli.errors import RockcliInputError
 from rockcli.spectra.grids import Grid
-from rockcli.spectra.minimum import (DEFAULT_REFINE, DEFAULT_REFINE_BAND, DEFAULT_STEP, DEFAULT_TOL, curves_of,
-                                     search_min_overturning)
+from rockcli.spectra.minimum import (DEFAULT_REFINE, DEFAULT_REFINE_BAND, DEFAULT_STEP, DEFAULT_TOL, TOL_MIN,
+                                     curves_of, search_min_overturning)
 from rockcli.spectra.runner import Runner
 from rockcli.spectra.scenes import REFERENCE_R, Family, Isolation, PulseChoice, parse_isolation
 from rockcli.units import G
@@ -84,6 +84,9 @@ def critical_sizes(pulses: Sequence[PulseChoice], alphas_deg: Sequence[float], i
     better": isolation brings nothing there), refined by bisection in ``x`` to ``xtol`` (relative).
     Rows come in the order pulse, alpha, isolation.
     """
+    if not (math.isfinite(xtol) and TOL_MIN <= xtol <= 0.5):
+        raise RockcliInputError(f"xtol must lie in [{TOL_MIN:g}, 0.5] (relative; double precision cannot bisect "
+                                f"finer), got {xtol!r}")
     for pc in pulses:
         if pc.T_p is None:
             raise RockcliInputError(f"pulse {pc.shape}: critical size needs its period, e.g. {pc.shape}:Tp=0.6")

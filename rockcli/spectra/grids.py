@@ -17,6 +17,11 @@ from rockcli.errors import RockcliInputError
 _NUMBER = r"[-+]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][-+]?[0-9]+)?"  # ASCII digits (\d also takes other scripts)
 
 
+#: Most cells one overturning-maps run takes (about 10,000 verdict-only runs a second on 2 cores, so up to
+#: about 20 minutes; the arrays of the cells then take about 1 GB).
+MAX_CELLS = 10_000_000
+
+
 @dataclass(frozen=True)
 class Grid:
     """``count`` values from ``start`` to ``stop``, both ends included (``numpy.linspace``)."""

@@ -13,7 +13,8 @@ from typing import Optional, Sequence
 
 import numpy as np
 
-from rockcli.spectra.grids import Grid
+from rockcli.errors import RockcliInputError
+from rockcli.spectra.grids import MAX_CELLS, Grid
 from rockcli.spectra.runner import Runner
 from rockcli.spectra.scenes import REFERENCE_R, Family, Isolation, PulseChoice, parse_isolation, parse_pulse_choice
 
@@ -50,6 +51,11 @@ def overturning_maps(alphas_deg: Sequence[float], pulses: Sequence[PulseChoice],
     ``early``: stop each run once its verdict is proven (faster; the same verdicts and uplift flags,
     ``theta_max_over_alpha`` then a lower bound where ``peak_final`` is False).
     """
+    cells = len(alphas_deg) * len(pulses) * len(isolations) * wp_grid.count * ap_grid.count
+    if cells > MAX_CELLS:
+        raise RockcliInputError(f"the maps have {cells:,} cells (slenderness x pulse x foundation x omega_p/p x "
+                                f"a_p); at most {MAX_CELLS:,} are run at once (about 20 minutes on 2 cores): use "
+                                "coarser grids or fewer configurations")
     runner = runner or Runner()
     xs, ys = wp_grid.values, ap_grid.values
     families = [Family(math.radians(a), pc.shape, iso, R) for a in alphas_deg for pc in pulses for iso in isolations]

@@ -97,13 +97,25 @@ def describe_search(step: float, tol: float, refine: float, refine_band: float) 
     return f"{scan}, bisection to {100 * tol:.3g} %"
 
 
+#: Floors of the search's settings. A relative bisection tolerance below TOL_MIN approaches the spacing of
+#: double-precision numbers (2.2e-16 relative), where the midpoint equals an end and the bisection could not
+#: end; a scan step below STEP_MIN (REFINE_MIN for the second scan) would take more than about 30,000
+#: (10,000) runs per column from the uplift threshold to ap_max = 20 (over the 10 % band).
+TOL_MIN = 1e-12
+STEP_MIN = 1e-4
+REFINE_MIN = 1e-5
+
+
 def _check(step, tol, refine, refine_band, ap_max):
-    if not (math.isfinite(step) and 0 < step <= 0.5):
-        raise RockcliInputError(f"scan step must lie in (0, 0.5] (relative), got {step!r}")
-    if not (math.isfinite(tol) and 0 < tol <= step):
-        raise RockcliInputError(f"tolerance must lie in (0, step], got {tol!r}")
-    if not (math.isfinite(refine) and 0 <= refine < step):
-        raise RockcliInputError(f"refinement step must lie in [0, step) (0: no refinement), got {refine!r}")
+    if not (math.isfinite(step) and STEP_MIN <= step <= 0.5):
+        raise RockcliInputError(f"scan step must lie in [{STEP_MIN:g}, 0.5] (relative; a finer scan takes more "
+                                f"than ~30,000 runs per column), got {step!r}")
+    if not (math.isfinite(tol) and TOL_MIN <= tol <= step):
+        raise RockcliInputError(f"tolerance must lie in [{TOL_MIN:g}, step] (relative; double precision cannot "
+                                f"bisect finer), got {tol!r}")
+    if not (math.isfinite(refine) and (refine == 0 or REFINE_MIN <= refine < step)):
+        raise RockcliInputError(f"refinement step must be 0 (no refinement) or lie in [{REFINE_MIN:g}, step) "
+                                f"(relative), got {refine!r}")
     if not (math.isfinite(refine_band) and 0 < refine_band <= 10):
         raise RockcliInputError(f"refinement band must lie in (0, 10] (relative, below the first overturning "
                                 f"scanned value), got {refine_band!r}")
