@@ -61,12 +61,12 @@ def write_history_csv(response, block, path: str | os.PathLike) -> Path:
     (hysteretic bearings add ``z`` (``z1, z2``) and the bearing force over the weight), and last an
     ``event`` column.
 
-    Plain rows (``event`` empty) are every integrator step end, or with ``simulate(...,
-    history_dt=...)`` the uniform grid; the event rows are among them in time order: ``uplift``,
-    ``impact`` (two rows at the same time, just before and just after it; the row after it is
-    ``rest`` when the block comes to rest there), ``peak`` (a turning point of theta, theta_dot = 0;
-    the bearing columns are NaN) and ``overturn``. At the steps, every event but a peak is a step
-    row, so the plain rows are those of a run without the column.
+    Rows are every integrator step end, or with ``simulate(..., history_dt=...)`` the uniform grid
+    with the event rows among them in time order. Events: ``uplift``, ``impact`` (two rows at the
+    same time, just before and just after it; the row after it is ``rest`` when the block comes to
+    rest there), ``peak`` (a turning point of theta, theta_dot = 0, the bearing columns NaN; grid
+    only: at the steps the peaks fall between rows, and the rows stay those of a run without the
+    column) and ``overturn``.
     """
     table, events = history_csv_table(response, block)
     buf = io.StringIO()

@@ -70,9 +70,10 @@ class History:
 
     ``events`` lists the run's :class:`HistoryEvent` in time order. ``rows`` (columns ``t, ag, theta,
     theta_dot, u, u_dot, z, z2, bearing force``) and ``row_event`` (the event's name, ``""`` for a plain
-    row) are the rows of the history CSV: the plain rows above with the event rows among them, in
-    time order (at the steps: the rows at an uplift, an impact, a rest or the overturn are step rows
-    already; peaks are added, with NaN bearing variables).
+    row) are the rows of the history CSV. On the grid: the grid rows with every event row among them
+    in time order (peaks with NaN bearing variables). At the steps: the step rows above, unchanged,
+    those at an uplift, an impact, a rest or the overturn named (the peaks, between steps, are in
+    ``events`` and ``peak_t``/``peak_theta`` only).
     """
 
     t: np.ndarray
@@ -243,8 +244,8 @@ def _history(k, H, fkind: int, grid_dt: float | None) -> History:
     step_rows = (kinds != k.HK_PEAK) & (kinds != k.HK_GRID)
     if grid_dt:
         plain, shown = kinds == k.HK_GRID, kinds != k.HK_STATE
-    else:
-        plain, shown = step_rows, kinds != k.HK_GRID
+    else:  # the step rows, as without the event column: the peaks (between steps) only in ``events``
+        plain, shown = step_rows, step_rows
     shown_rows = H[shown]
     order = np.argsort(shown_rows[:, k.H_T], kind="stable")
     shown_rows = shown_rows[order]
