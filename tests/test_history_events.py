@@ -119,6 +119,11 @@ def test_grid_rows_agree_with_the_steps_and_a_tighter_run(scene):
     step = simulate(BLOCK, foundation, rec, **kw)
     grid = simulate(BLOCK, foundation, rec, history_dt=rec.dt, **kw)
     assert step.verdict == grid.verdict == "rocked" and step.theta_max == grid.theta_max  # the same run
+    for r in (step, grid):  # one event per uplift, impact and rest the run counted, the same in both
+        names = [e.event for e in r.history.events]
+        assert (names.count("uplift"), names.count("impact"), names.count("rest")) == (
+            r.n_uplifts, r.n_impacts_total, r.n_rests)
+    assert step.history.events == grid.history.events
     g = grid.history
     n = int(math.floor(g.t[-1] / rec.dt + 1e-9)) + 1
     np.testing.assert_allclose(g.t, rec.dt * np.arange(n), rtol=0, atol=1e-12)  # the uniform grid

@@ -519,7 +519,10 @@ def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, ta
     H : float64[n, N_HIST]
         History rows ``t, ag, theta, theta_dot, u, u_dot, z1, z2, bearing force, kind`` (empty when not
         wanted); ``kind`` ``HK_PEAK`` marks the turning points of theta (theta_dot = 0, z's and force
-        NaN), ``HK_STATE`` every other row.
+        NaN), ``HK_GRID`` the rows on the uniform grid ``k prm[P_HDT]`` (when ``P_HDT > 0``: each
+        step's dense output at the grid times inside it, written before its events move the state),
+        ``HK_UPLIFT``, ``HK_IMPACT``, ``HK_IMPACT_AFTER``, ``HK_REST``, ``HK_OVERTURN`` the step rows at
+        those events, ``HK_STATE`` every other step row (``rockcli.kernels.layout``).
 
     The start: at rest, or rocking from ``prm[P_TH0], prm[P_THD0]``
     (:func:`rockcli.kernels.steps._initial_state`); the proofs above argue from the current state
