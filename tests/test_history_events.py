@@ -60,7 +60,7 @@ def test_free_rocking_peak_events_follow_housners_decay_law(restitution, history
     eta = impact_ratio(ALPHA, 0.0, restitution)
     for e in impacts:  # the impact map, both sides, at theta = 0
         assert e.theta_rad == 0.0 and e.theta_dot_after == pytest.approx(eta * e.theta_dot_before, rel=1e-14)
-    # one peak between two impacts, and the decay law from each to the next (measured below 1e-8)
+    # one peak between two impacts, and the decay law from each to the next (measured 6.6e-9, 8.8e-9 relative)
     t_pk, t_imp = [e.t_s for e in _events(h, "peak")], [e.t_s for e in impacts]
     assert np.all(np.searchsorted(t_imp, t_pk) == np.arange(len(t_pk)))
     np.testing.assert_allclose(peaks[1:], _housner_next(ALPHA, eta, peaks[:-1]), rtol=1e-6, atol=0)
