@@ -44,8 +44,8 @@ def test_flip_mirrors_the_response(tmp_path):
     a = run(*args, "--history", str(tmp_path / "a.csv"))
     b = run(*args, "--flip", "--history", str(tmp_path / "b.csv"))
     assert a.exit_code == 0 and b.exit_code == 0
-    A = np.loadtxt(tmp_path / "a.csv", delimiter=",", skiprows=1)
-    B = np.loadtxt(tmp_path / "b.csv", delimiter=",", skiprows=1)
+    A = np.loadtxt(tmp_path / "a.csv", delimiter=",", skiprows=1, usecols=range(8))  # the last column: event names
+    B = np.loadtxt(tmp_path / "b.csv", delimiter=",", skiprows=1, usecols=range(8))
     assert A.shape == B.shape and A.shape[1] == 8
     np.testing.assert_allclose(B[:, 3], -A[:, 3], atol=1e-12)
     np.testing.assert_allclose(B[:, 1], -A[:, 1], atol=1e-12)
@@ -57,8 +57,8 @@ def test_history_and_plot_files(tmp_path):
               "--history", str(hist), "--plot", str(fig))
     assert res.exit_code == 0, res.output
     header = hist.read_text().splitlines()[0]
-    assert header == "t_s,ag_mps2,ag_g,theta_rad,theta_over_alpha,theta_dot_radps,u_m,u_dot_mps"
-    data = np.loadtxt(hist, delimiter=",", skiprows=1)
+    assert header == "t_s,ag_mps2,ag_g,theta_rad,theta_over_alpha,theta_dot_radps,u_m,u_dot_mps,event"
+    data = np.loadtxt(hist, delimiter=",", skiprows=1, usecols=range(8))
     assert np.all(np.diff(data[:, 0]) >= 0) and data[0, 0] == 0.0
     assert fig.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 

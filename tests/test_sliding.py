@@ -539,8 +539,8 @@ def test_simulate_on_sliding_bearings_writes_history_and_loop_plot(tmp_path):
     assert res.exit_code == 0, res.output
     assert "scss:Tb=1.8,mu=0.05,uy=0.00025,gamma=0.01" in res.output
     header = hist.read_text().splitlines()[0]
-    assert header.endswith("u_m,u_dot_mps,z,bearing_force_over_W")
-    data = np.loadtxt(hist, delimiter=",", skiprows=1)
+    assert header.endswith("u_m,u_dot_mps,z,bearing_force_over_W,event")
+    data = np.loadtxt(hist, delimiter=",", skiprows=1, usecols=range(10))
     assert np.all(np.abs(data[:, 8]) <= 1.0)
     # bearing force over W = u/R_eff + mu z
     R_eff = G * (1.8 / (2 * math.pi)) ** 2
@@ -551,7 +551,7 @@ def test_simulate_on_sliding_bearings_writes_history_and_loop_plot(tmp_path):
                                    "--history", str(tmp_path / "d.csv")])
     assert dc.exit_code == 0, dc.output
     assert json.loads(dc.output)["isolation"].startswith("dcss:R1=")
-    assert (tmp_path / "d.csv").read_text().splitlines()[0].endswith("z1,z2,bearing_force_over_W")
+    assert (tmp_path / "d.csv").read_text().splitlines()[0].endswith("z1,z2,bearing_force_over_W,event")
 
 
 @pytest.mark.parametrize("spec, words", [("scss:Tb=2,mu=0", "mu"), ("scss:Tb=2,mu=0.05,uy=0", "uy"),

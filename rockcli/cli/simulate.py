@@ -49,6 +49,10 @@ from rockcli.cli.types import NUMBER
 @click.option("--history", "history_path", type=click.Path(), default=None,
               help="Write the time history (t, ground acceleration, theta, theta_dot, u, u_dot; on sliding and "
                    "lead-rubber bearings also z and the bearing force over the weight) as CSV.")
+@click.option("--history-dt", "history_dt", type=NUMBER, default=None, metavar="SECONDS",
+              help="Write the history (--history, --plot, --report) on a uniform grid of this spacing, from the "
+                   "solver's dense output, instead of at its steps; the event rows (uplift, impact, peak, rest, "
+                   "overturn) stay exact either way.")
 @click.option("--plot", "plot_path", type=click.Path(), default=None,
               help="Draw ground acceleration, theta/alpha, theta_dot/p (and base displacement u(t); on sliding "
                    "and lead-rubber bearings also their force-displacement loop) to an image.")
@@ -56,7 +60,7 @@ from rockcli.cli.types import NUMBER
 @user_errors
 def simulate(column_name, R, alpha, height, width, name, isolation, record_source, units, dt, fmt, column,
              pulse, theta0, theta_dot0, scale, flip, rtol, tail, horizon, restitution, cap_ratio, check, as_json,
-             history_path, plot_path, report_path):
+             history_path, history_dt, plot_path, report_path):
     """Rocking response of one block to one ground motion, on a rigid or an isolated base.
 
     \b
@@ -65,6 +69,7 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
       rockcli simulate --column nemea --record northridge-1994-jensen-022 --isolation linear:Tb=3
       rockcli simulate --R 1 --alpha 16 --pulse ricker-sym:ap=0.5,Tp=0.6 --isolation scss:Tb=1.8,mu=0.05 --plot f.png
       rockcli simulate --R 2.5 --alpha 11.5 --theta0 0.1 --restitution 0.9 --history free.csv
+      rockcli simulate --R 1 --alpha 14 --theta0 0.2 --history-dt 0.01 --history free.csv --json
     """
     import json
     import math
@@ -75,6 +80,10 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     from rockcli.units import G
 
     check_outputs((history_path, "--history", False), (plot_path, "--plot", True), (report_path, "--report", False))
+    if history_dt is not None:
+        from rockcli.solve.single import check_history_dt
+
+        history_dt = check_history_dt(history_dt, "--history-dt")
     block = block_from_options(column_name, R, alpha, height, width, name)
     foundation = parse_isolation_spec(isolation)
     restitution = check_restitution(restitution, "--restitution")
@@ -125,7 +134,7 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     from rockcli.solve import simulate as run
 
     res = run(block, foundation, excitation, rtol=rtol, tail=tail, horizon=horizon,
-              history=bool(history_path or plot_path or report_path), **solver)
+              history=bool(history_path or plot_path or report_path), history_dt=history_dt, **solver)
     if res.status < 0:  # a genuine numerical failure: no result is printed or written as if it were valid
         raise click.ClickException(
             f"the integrator stopped at its safety cap of {res.steps + res.rejected_steps:,} steps at "
@@ -152,6 +161,8 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
                **_impact_keys(block, foundation, restitution, cap_ratio),
                **({"theta0": theta0, "theta_dot0": theta_dot0} if moving else {}),
                **res.summary()}
+        if res.history is not None:  # a history run (--history, --history-dt, --plot, --report): its events
+            out["events"] = [e.as_dict() for e in res.history.events]
         if checked:
             out.update({k: (None if isinstance(v, float) and v != v else v) for k, v in checked.items()})
         click.echo(json.dumps(out, allow_nan=False))

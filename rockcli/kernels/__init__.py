@@ -13,6 +13,7 @@ Files (data flows down this list):
 ``rhs``                   right-hand sides (rigid, isolated: stuck and rocking)
 ``dopri``                 the Dormand-Prince 5(4) step, its error norm and dense output
 ``events``                impact map, rest rule, uplift on a hysteretic base, reversals, history rows
+                          (step, peak and uniform-grid rows)
 ``steps``                 what both drivers share: run record, segments, step-size control, the
                           events of a rocking step in theta, impact bookkeeping
 ``rigid``                 :func:`simulate_rigid`: a block on a rigid foundation (two states; the

@@ -23,13 +23,14 @@ import math
 import numpy as np
 from numba import njit
 
-from rockcli.kernels.bearings import (base_force, bearing_energy, element_states, free_disp_bound, free_force_bound,
+from rockcli.kernels.bearings import (base_force, bearing_energy, free_disp_bound, free_force_bound,
                                       force_rate, initial_anchor, knee_ratio, knee_step, reanchor, z_sensitivity)
 from rockcli.kernels.dopri import _dense, _dp5_step, _restep_rows, _shift_event, _state_at
-from rockcli.kernels.events import (REV_AT, REV_WRONG_START, _count_uplift, _hist_peak, _hist_push, _u_extremum,
-                                    hysteretic_uplift, impact_map, reversal_check)
+from rockcli.kernels.events import (REV_AT, REV_WRONG_START, _count_uplift, _hist_grid, _hist_grid_cut, _hist_peak,
+                                    _hist_state, _u_extremum, hysteretic_uplift, impact_map, reversal_check)
 from rockcli.kernels.ground import ground_at
-from rockcli.kernels.layout import (FOUNDATION_BILINEAR, FOUNDATION_LINEAR, HK_STATE, O_T_SETTLED, P_ALPHA, P_COSA, P_G,
+from rockcli.kernels.layout import (FOUNDATION_BILINEAR, FOUNDATION_LINEAR, H_KIND, H_T, HK_IMPACT, HK_STATE, HK_UPLIFT,
+                                    O_T_SETTLED, P_ALPHA, P_COSA, P_G, P_HDT,
                                     P_GAMMA, P_H, P_R, P_RTOL, P_SC0, P_TH0, P_THD0, P_THR, P_W, P_XI, PHASE_ROCKING,
                                     PHASE_STUCK, RS_DIR, RS_FRESH, RS_NREV, RS_NRHS, RS_PHASE, RS_PK_ON, RS_PK_SIG,
                                     RS_PK_T, RS_REJ, RS_S, RS_SEG_END, RS_SETTLED,
@@ -38,8 +39,8 @@ from rockcli.kernels.layout import (FOUNDATION_BILINEAR, FOUNDATION_LINEAR, HK_S
 from rockcli.kernels.polynomials import _first_exceed, _poly
 from rockcli.kernels.rhs import _rhs_into
 from rockcli.kernels.steps import (EV_FAILED, EV_IMPACT, EV_OVERTURN, _advance_segment, _bounce, _close_step,
-                                   _finish, _grown, _initial_state, _out_of_time, _rocking_events, _seg, _shrink,
-                                   _start, _step_start, _to_impact, _to_overturn, _to_step_end)
+                                   _finish, _grown, _initial_state, _out_of_time, _rocking_events, _row_kind, _seg,
+                                   _shrink, _start, _step_start, _to_impact, _to_overturn, _to_step_end)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -79,18 +80,17 @@ def _direction(rs, ud):
 
 
 @njit(cache=True)
-def _history_row(H, nh, fkind, prm, rs, epar, W, row):
+def _history_row(H, nh, fkind, prm, rs, epar, W, row, kind):
     """Append the state ``W[row]`` at ``rs[RS_T]`` to the history, with the bearing's z and force."""
     t = rs[RS_T]
-    ag = ground_at(t, _seg(rs), epar)
-    z1 = 0.0
-    z2 = 0.0
-    u = W[row, 2]
-    hy = _hy(rs)
-    fb = -base_force(fkind, prm, u, W[row, 3], hy)
-    if fkind >= FOUNDATION_BILINEAR:
-        z1, z2, _ = element_states(fkind, prm, hy, u)
-    return _hist_push(H, nh, t, ag, W, row, z1, z2, fb, HK_STATE)
+    return _hist_state(H, nh, t, ground_at(t, _seg(rs), epar), fkind, prm, _hy(rs), W, row, kind)
+
+
+@njit(cache=True)
+def _mark_uplift(H, nh, t):
+    """Mark the last history row as the uplift when it is a plain step row at ``t``."""
+    if nh > 0 and H[nh - 1, H_KIND] == HK_STATE and H[nh - 1, H_T] == t:
+        H[nh - 1, H_KIND] = HK_UPLIFT
 
 
 @njit(cache=True)
@@ -519,7 +519,10 @@ def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, ta
     H : float64[n, N_HIST]
         History rows ``t, ag, theta, theta_dot, u, u_dot, z1, z2, bearing force, kind`` (empty when not
         wanted); ``kind`` ``HK_PEAK`` marks the turning points of theta (theta_dot = 0, z's and force
-        NaN), ``HK_STATE`` every other row.
+        NaN), ``HK_GRID`` the rows on the uniform grid ``k prm[P_HDT]`` (when ``P_HDT > 0``: each
+        step's dense output at the grid times inside it, written before its events move the state),
+        ``HK_UPLIFT``, ``HK_IMPACT``, ``HK_IMPACT_AFTER``, ``HK_REST``, ``HK_OVERTURN`` the step rows at
+        those events, ``HK_STATE`` every other step row (``rockcli.kernels.layout``).
 
     The start: at rest, or rocking from ``prm[P_TH0], prm[P_THD0]``
     (:func:`rockcli.kernels.steps._initial_state`); the proofs above argue from the current state
@@ -533,8 +536,14 @@ def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, ta
         _set_hy(rs, initial_anchor(fkind, prm))
     t_show_end = t_exc_end + tail
     t_horizon = t_exc_end + max(horizon, tail)
+    hdt = prm[P_HDT]
+    grid = want_history and hdt > 0.0
+    kg = np.int64(math.ceil(rs[RS_T] / hdt)) if grid else np.int64(0)  # the next grid time is kg hdt
     if want_history:
-        H, nh = _history_row(H, nh, fkind, prm, rs, epar, W, W_Y)
+        H, nh = _history_row(H, nh, fkind, prm, rs, epar, W, W_Y, HK_STATE)
+        if grid:
+            H, nh, kg = _hist_grid(H, nh, kg, hdt, rs[RS_T], 0.0, rs[RS_T], fkind, prm, _hy(rs), _seg(rs), epar, W,
+                                   np.int64(0), nst)
         if prm[P_TH0] != 0.0 and prm[P_THD0] == 0.0:  # released from rest at a tilt: its first peak
             H, nh = _hist_peak(H, nh, rs[RS_T], ground_at(rs[RS_T], _seg(rs), epar), W, W_Y)
 
@@ -553,6 +562,8 @@ def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, ta
             if abs(a_now) > prm[P_THR]:
                 rs[RS_S] = -1.0 if a_now > 0.0 else 1.0
                 rs[RS_PHASE] = PHASE_ROCKING
+                if want_history:  # the uplift is at the time of the last row (the end of the last step)
+                    _mark_uplift(H, nh, rs[RS_T])
                 _count_uplift(out, rs[RS_T])
                 rs[RS_FRESH] = 1.0
                 continue
@@ -562,22 +573,32 @@ def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, ta
             rs[RS_STATUS] = STATUS_MAX_STEPS
             break
         t_new = t_stop if last else rs[RS_T] + sig_lim * hs
+        n0 = nh
+        if grid:  # the step's grid rows, before its events move W[W_Y] (those past an event are dropped below)
+            i0 = np.int64(2) if rs[RS_PHASE] == PHASE_STUCK else np.int64(0)  # stuck: theta = theta_dot = 0
+            H, nh, kg = _hist_grid(H, nh, kg, hdt, rs[RS_T], hs, t_new, fkind, prm, _hy(rs), _seg(rs), epar, W, i0,
+                                   nst)
 
         if rs[RS_PHASE] == PHASE_STUCK:
             _after_stuck_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, epar)
+            if grid:
+                nh, kg = _hist_grid_cut(H, n0, nh, kg, rs[RS_T])
             if want_history:
-                H, nh = _history_row(H, nh, fkind, prm, rs, epar, W, W_Y)
+                H, nh = _history_row(H, nh, fkind, prm, rs, epar, W, W_Y,
+                                     HK_UPLIFT if rs[RS_PHASE] == PHASE_ROCKING else HK_STATE)
             continue
 
         code = _after_rocking_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, nst, epar)
+        if grid:
+            nh, kg = _hist_grid_cut(H, n0, nh, kg, rs[RS_T])
         if want_history and rs[RS_PK_ON] != 0.0 and code != EV_OVERTURN:  # a turning point inside the step
             H, nh = _hist_peak(H, nh, rs[RS_PK_T], ground_at(rs[RS_PK_T], _seg(rs), epar), W, W_TMP)
         if code == EV_IMPACT:
             if want_history:  # the state just before the impact, then (below) just after
-                H, nh = _history_row(H, nh, fkind, prm, rs, epar, W, W_Y)
+                H, nh = _history_row(H, nh, fkind, prm, rs, epar, W, W_Y, HK_IMPACT)
             _impact(fkind, prm, rs, W, out, t_exc_end)
         if want_history:
-            H, nh = _history_row(H, nh, fkind, prm, rs, epar, W, W_Y)
+            H, nh = _history_row(H, nh, fkind, prm, rs, epar, W, W_Y, _row_kind(code, rs))
         if code == EV_OVERTURN:
             break
 

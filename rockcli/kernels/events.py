@@ -11,11 +11,12 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from rockcli.kernels.bearings import base_force, u_at_force
+from rockcli.kernels.bearings import base_force, element_states, u_at_force
 from rockcli.kernels.dopri import _dense
-from rockcli.kernels.layout import (H_AG, H_FB, H_KIND, H_T, H_TH, H_THD, H_U, H_UD, H_Z, H_Z2, HK_PEAK, N_HIST,
-                                    O_N_UPLIFTS,
-                                    O_T_UPLIFT, O_UPLIFTED, P_COSA, P_DU, P_ETA, P_G, P_P2, P_REST, W_Y)
+from rockcli.kernels.ground import ground_at
+from rockcli.kernels.layout import (FOUNDATION_BILINEAR, FOUNDATION_RIGID, H_AG, H_FB, H_KIND, H_T, H_TH, H_THD, H_U,
+                                    H_UD, H_Z, H_Z2, HK_GRID, HK_PEAK, N_HIST, O_N_UPLIFTS, O_T_UPLIFT, O_UPLIFTED,
+                                    P_COSA, P_DU, P_ETA, P_G, P_P2, P_REST, W_TMP, W_Y)
 from rockcli.kernels.polynomials import _first_down, _first_exceed, _poly
 
 
@@ -146,7 +147,7 @@ def _count_uplift(out, t):
 @njit(cache=True)
 def _hist_push(H, n, t, ag, W, row, z1, z2, fb, kind):
     """Append the row ``t, ag, theta, theta_dot, u, u_dot, z1, z2, bearing force, kind`` (grows ``H``;
-    ``kind`` is ``HK_STATE`` or ``HK_PEAK``)."""
+    ``kind`` is one of the ``HK_*`` row kinds)."""
     if n >= H.shape[0]:
         H2 = np.empty((2 * H.shape[0], N_HIST))
         for i in range(n):  # an explicit copy: a slice assignment compiles numba's generic broadcasting
@@ -174,3 +175,58 @@ def _hist_peak(H, n, t, ag, W, row):
     H[n - 1, H_THD] = 0.0
     return H, n
 
+
+
+@njit(cache=True)
+def _hist_state(H, n, t, ag, fkind, prm, hy, W, row, kind):
+    """Append the state ``W[row]`` at ``t`` with the bearings' z's and force for the anchor ``hy``
+    (zeros on a rigid foundation)."""
+    z1 = 0.0
+    z2 = 0.0
+    fb = 0.0
+    if fkind != FOUNDATION_RIGID:
+        u = W[row, 2]
+        fb = -base_force(fkind, prm, u, W[row, 3], hy)
+        if fkind >= FOUNDATION_BILINEAR:
+            z1, z2, _ = element_states(fkind, prm, hy, u)
+    return _hist_push(H, n, t, ag, W, row, z1, z2, fb, kind)
+
+
+@njit(cache=True)
+def _hist_grid(H, n, kg, hdt, t0, hs, t_end, fkind, prm, hy, seg, epar, W, i0, nst):
+    """Append the grid rows (``HK_GRID``) at the times ``kg hdt, (kg + 1) hdt, ... <= t_end`` of the
+    last step (from ``t0``, length ``hs``; ``hs = 0``: the state ``W[W_Y]`` held, a block stuck on a
+    rigid foundation): the step's dense output of the states ``i0 .. nst - 1`` (those below ``i0``, not
+    integrated, held at ``W[W_Y]``: theta = theta_dot = 0 of a block stuck on its base), the ground
+    acceleration of the excitation segment
+    itself, the bearings' variables on the step's anchor ``hy`` (a step never crosses a reversal of
+    the base, nor a segment end). Returns ``(H, n, kg)`` with ``kg`` the next grid index.
+
+    Call it before the step's events move ``W[W_Y]`` (the dense output needs it); a step cut short
+    by an event drops its grid rows past the event with :func:`_hist_grid_cut`."""
+    while kg * hdt <= t_end:
+        tg = kg * hdt
+        sig = (tg - t0) / hs if hs > 0.0 else 0.0
+        for i in range(i0):
+            W[W_TMP, i] = W[W_Y, i]
+        for i in range(i0, nst):
+            W[W_TMP, i] = _poly(_dense(W, hs, i, 1.0), max(sig, 0.0))
+        H, n = _hist_state(H, n, tg, ground_at(tg, seg, epar), fkind, prm, hy, W, W_TMP, HK_GRID)
+        kg += 1
+    return H, n, kg
+
+
+@njit(cache=True)
+def _hist_grid_cut(H, n0, n, kg, t_cut):
+    """Drop the grid rows appended from row ``n0`` on that lie after ``t_cut`` (the event that
+    ended the step early), keeping the other rows in order: ``(n, kg)``."""
+    m = n0
+    for i in range(n0, n):
+        if H[i, H_KIND] == HK_GRID and H[i, H_T] > t_cut:
+            kg -= 1
+            continue
+        if m != i:
+            for j in range(N_HIST):
+                H[m, j] = H[i, j]
+        m += 1
+    return m, kg

@@ -48,7 +48,8 @@ P_UY2 = 26  # DCSS: yield displacement of surface 2 [m]
 # the initial state (rockcli.kernels.steps._initial_state): 0, 0 is a start at rest
 P_TH0 = 27  # theta at the start [rad], |theta0| < pi/2
 P_THD0 = 28  # theta_dot at the start [rad/s]
-N_PRM = 29
+P_HDT = 29  # spacing of the history's uniform grid [s] (0: no grid rows; rockcli.kernels.events._hist_grid)
+N_PRM = 30
 
 # ---------------------------------------------------------------------------------------------
 # The output vector
@@ -67,10 +68,14 @@ STATUS_MAX_STEPS = -1
 # History columns (z, z2 and the bearing force are filled for hysteretic bearings only)
 # ---------------------------------------------------------------------------------------------
 H_T, H_AG, H_TH, H_THD, H_U, H_UD, H_Z, H_Z2, H_FB = 0, 1, 2, 3, 4, 5, 6, 7, 8
-# row kind: HK_STATE a state at a step end or event; HK_PEAK a turning point of theta while rocking
-# (theta_dot = 0, located on the step's dense output; z, z2 and the force NaN)
+# row kind: HK_STATE a state at a step end; HK_PEAK a turning point of theta while rocking
+# (theta_dot = 0, located on the step's dense output; z, z2 and the force NaN); HK_GRID a state on
+# the uniform grid (the step's dense output); the other kinds are step rows at an event: the uplift,
+# the states just before (HK_IMPACT) and just after an impact (HK_IMPACT_AFTER, or HK_REST when the
+# block comes to rest there), the overturn (s theta = pi/2)
 H_KIND = 9
-HK_STATE, HK_PEAK = 0.0, 1.0
+HK_STATE, HK_PEAK, HK_GRID, HK_UPLIFT, HK_IMPACT, HK_IMPACT_AFTER, HK_REST, HK_OVERTURN = (
+    0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0)
 N_HIST = 10
 
 PHASE_STUCK = 0

@@ -69,17 +69,17 @@ import numpy as np
 from numba import njit
 
 from rockcli.kernels.dopri import _dp5_step, _restep_rows, _state_at
-from rockcli.kernels.events import _count_uplift, _hist_peak, _hist_push, impact_map
+from rockcli.kernels.events import _count_uplift, _hist_grid, _hist_grid_cut, _hist_peak, _hist_push, impact_map
 from rockcli.kernels.ground import _impulse_left, _rigid_uplift, ground_at
-from rockcli.kernels.layout import (EXC_RECORD, HK_STATE, O_T_SETTLED, O_T_THETA_MAX, O_UPLIFTED, P_ALPHA, P_COSA,
-                                    P_ETA, P_G, P_P2, P_SINA, P_TH0, P_THD0, P_THR, PHASE_ROCKING, PHASE_STUCK,
+from rockcli.kernels.layout import (EXC_RECORD, HK_IMPACT, HK_STATE, HK_UPLIFT, O_T_SETTLED, O_T_THETA_MAX, O_UPLIFTED, P_ALPHA, P_COSA,
+                                    P_ETA, P_G, P_HDT, P_P2, P_SINA, P_TH0, P_THD0, P_THR, PHASE_ROCKING, PHASE_STUCK,
                                     RIGID_RECORD_SUBSTEPS, RS_FRESH, RS_NRHS, RS_PK_ON, RS_PK_SIG, RS_PK_T,
                                     RS_PEAK_FINAL, RS_PHASE, RS_REJ, RS_S, RS_SEG_END, RS_SETTLED, RS_STATUS,
                                     RS_STEPS, RS_T, RS_THMAX, STATUS_MAX_STEPS, STATUS_OVERTURNED, W_RE, W_TMP, W_Y)
 from rockcli.kernels.rhs import _rhs_rigid_into
 from rockcli.kernels.steps import (EV_FAILED, EV_IMPACT, EV_OVERTURN, _advance_segment, _bounce, _close_step,
-                                   _finish, _grown, _initial_state, _out_of_time, _rocking_events, _seg, _shrink,
-                                   _start, _step_start, _to_impact, _to_overturn, _to_step_end)
+                                   _finish, _grown, _initial_state, _out_of_time, _rocking_events, _row_kind, _seg,
+                                   _shrink, _start, _step_start, _to_impact, _to_overturn, _to_step_end)
 
 _NO_HY = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)  # no hysteretic elements
 
@@ -205,9 +205,9 @@ def _restep_rigid(fkind, phase, s, prm, seg, epar, hy, t, h, W, i0, i1):
 
 
 @njit(cache=True, inline='always')
-def _history_rigid(H, nh, rs, epar, W):
+def _history_rigid(H, nh, rs, epar, W, kind):
     t = rs[RS_T]
-    return _hist_push(H, nh, t, ground_at(t, _seg(rs), epar), W, W_Y, 0.0, 0.0, 0.0, HK_STATE)
+    return _hist_push(H, nh, t, ground_at(t, _seg(rs), epar), W, W_Y, 0.0, 0.0, 0.0, kind)
 
 
 @njit(cache=True, inline='always')
@@ -233,8 +233,13 @@ def simulate_rigid(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, t
     nh = np.int64(0)
     t_show_end = t_exc_end + tail
     t_horizon = t_exc_end + max(horizon, tail)
+    hdt = prm[P_HDT]
+    grid = want_history and hdt > 0.0
+    kg = np.int64(math.ceil(rs[RS_T] / hdt)) if grid else np.int64(0)  # the next grid time is kg hdt
     if want_history:
-        H, nh = _history_rigid(H, nh, rs, epar, W)
+        H, nh = _history_rigid(H, nh, rs, epar, W, HK_STATE)
+        if grid:
+            H, nh, kg = _hist_grid(H, nh, kg, hdt, rs[RS_T], 0.0, rs[RS_T], 0, prm, _NO_HY, _seg(rs), epar, W, 0, 2)
         if prm[P_TH0] != 0.0 and prm[P_THD0] == 0.0:  # released from rest at a tilt: its first peak
             H, nh = _hist_peak(H, nh, rs[RS_T], ground_at(rs[RS_T], _seg(rs), epar), W, W_Y)
 
@@ -249,9 +254,12 @@ def simulate_rigid(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, t
             break
 
         if rs[RS_PHASE] == PHASE_STUCK:
+            t0 = rs[RS_T]
             _stuck_rigid(prm, rs, epar, t_stop, out)
+            if grid:  # at rest on the ground: theta = theta_dot = 0 up to the end (or the uplift)
+                H, nh, kg = _hist_grid(H, nh, kg, hdt, t0, 0.0, rs[RS_T], 0, prm, _NO_HY, _seg(rs), epar, W, 0, 2)
             if want_history:
-                H, nh = _history_rigid(H, nh, rs, epar, W)
+                H, nh = _history_rigid(H, nh, rs, epar, W, HK_UPLIFT if rs[RS_PHASE] == PHASE_ROCKING else HK_STATE)
             continue
 
         if ekind == EXC_RECORD:  # at most 1/RIGID_RECORD_SUBSTEPS of a sample per step (module notes)
@@ -266,6 +274,9 @@ def simulate_rigid(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, t
         if want_history and rs[RS_PK_ON] != 0.0:  # a turning point of theta inside the step
             _state_at(W, hs, rs[RS_PK_SIG], np.int64(2))
             H, nh = _hist_peak(H, nh, rs[RS_PK_T], ground_at(rs[RS_PK_T], _seg(rs), epar), W, W_TMP)
+        n0 = nh
+        if grid:  # the step's grid rows (those past an event inside it are dropped below)
+            H, nh, kg = _hist_grid(H, nh, kg, hdt, rs[RS_T], hs, t_new, 0, prm, _NO_HY, _seg(rs), epar, W, 0, 2)
         if code == EV_OVERTURN:
             _to_overturn(rs, W, out, hs, sig, 2)
         elif code == EV_FAILED:
@@ -279,16 +290,20 @@ def simulate_rigid(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, t
             rs[RS_FRESH] = 1.0
         elif code == EV_IMPACT:
             _to_impact(_restep_rigid, 0, prm, rs, W, epar, _NO_HY, hs, sig, 2)
+            if grid:
+                nh, kg = _hist_grid_cut(H, n0, nh, kg, rs[RS_T])
             if want_history:  # the state just before the impact, then (below) just after
-                H, nh = _history_rigid(H, nh, rs, epar, W)
+                H, nh = _history_rigid(H, nh, rs, epar, W, HK_IMPACT)
             thd1 = W[W_Y, 1]
             thd2, _ = impact_map(prm, thd1)
             rs[RS_S] = -rs[RS_S]
             _bounce(prm, rs, W, out, thd1, t_exc_end, ground_at(rs[RS_T], _seg(rs), epar), thd2)
         else:
             _to_step_end(rs, W, t_new, 2)
+        if grid and code == EV_OVERTURN:
+            nh, kg = _hist_grid_cut(H, n0, nh, kg, rs[RS_T])
         if want_history:
-            H, nh = _history_rigid(H, nh, rs, epar, W)
+            H, nh = _history_rigid(H, nh, rs, epar, W, _row_kind(code, rs))
         if code == EV_OVERTURN:
             break
 

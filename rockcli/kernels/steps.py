@@ -26,7 +26,7 @@ from numba import njit
 from rockcli.kernels.dopri import _dense, _shift_event, _state_at
 from rockcli.kernels.events import _count_uplift, comes_to_rest
 from rockcli.kernels.ground import _pulse_segment
-from rockcli.kernels.layout import (E_AP, E_TP, EXC_RECORD, N_HIST, N_OUT, N_RS, N_W, O_N_IMPACTS, O_N_IMPACTS_ALL,
+from rockcli.kernels.layout import (E_AP, E_TP, EXC_RECORD, HK_IMPACT_AFTER, HK_OVERTURN, HK_REST, HK_STATE, N_HIST, N_OUT, N_RS, N_W, O_N_IMPACTS, O_N_IMPACTS_ALL,
                                     O_N_RESTS, O_N_REVERSALS, O_NRHS, O_PEAK_FINAL, O_REJECTED, O_SETTLED, O_STATUS,
                                     O_STEPS, O_T_END, O_T_EXCEED, O_T_OVERTURN, O_T_THETA_MAX, O_T_UPLIFT,
                                     O_THETA_END, O_THETA_MAX, O_U_END, O_U_MAX, P_ALPHA, P_P2, P_TH0, P_THD0, P_THR,
@@ -273,6 +273,16 @@ def _rocking_events(prm, rs, W, out, hs, t_new, sig_lim):
     if impact:
         return EV_IMPACT, sig_end
     return EV_NONE, sig_lim
+
+
+@njit(cache=True, inline='always')
+def _row_kind(code, rs):
+    """The history kind (``HK_*``) of the row at the end of a rocking step whose event was ``code``."""
+    if code == EV_IMPACT:
+        return HK_REST if rs[RS_PHASE] == PHASE_STUCK else HK_IMPACT_AFTER
+    if code == EV_OVERTURN:
+        return HK_OVERTURN
+    return HK_STATE
 
 
 @njit(cache=True, inline='always')

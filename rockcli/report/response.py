@@ -42,17 +42,39 @@ def history_table(response, block) -> np.ndarray:
     return np.column_stack(cols)
 
 
+def history_csv_table(response, block) -> tuple[np.ndarray, np.ndarray]:
+    """The rows of the history CSV: ``(numbers in the order of history_columns, event names)``, the
+    plain rows and the event rows in time order (:attr:`rockcli.solve.History.rows`)."""
+    H = response.history
+    if H is None:
+        raise ValueError("this response was computed without history (simulate(..., history=True))")
+    R = H.rows
+    t, ag, th, thd, u, ud, z, z2, fb = (R[:, j] for j in range(9))
+    cols = [t, ag, ag / G, th, th / block.alpha, thd, u, ud]
+    if H.z is not None:
+        cols += [z] + ([z2] if H.z2 is not None else []) + [fb / G]
+    return np.column_stack(cols), H.row_event
+
+
 def write_history_csv(response, block, path: str | os.PathLike) -> Path:
     """Write ``t, ground acceleration, theta, theta_dot, u, u_dot`` of a run as CSV, atomically
-    (hysteretic bearings add ``z`` (``z1, z2``) and the bearing force over the weight).
+    (hysteretic bearings add ``z`` (``z1, z2``) and the bearing force over the weight), and last an
+    ``event`` column.
 
-    Rows are every integrator step end and event; an impact appears as two rows at the same time
-    (just before and just after it).
+    Rows are every integrator step end, or with ``simulate(..., history_dt=...)`` the uniform grid
+    with the event rows among them in time order. Events: ``uplift``, ``impact`` (two rows at the
+    same time, just before and just after it; the row after it is ``rest`` when the block comes to
+    rest there), ``peak`` (a turning point of theta, theta_dot = 0, the bearing columns NaN; grid
+    only: at the steps the peaks fall between rows, and the rows stay those of a run without the
+    column) and ``overturn``.
     """
-    table = history_table(response, block)
+    table, events = history_csv_table(response, block)
     buf = io.StringIO()
-    np.savetxt(buf, table, delimiter=",", header=",".join(history_columns(response)), comments="", fmt="%.10g")
-    return write_text(path, buf.getvalue())
+    np.savetxt(buf, table, delimiter=",", comments="", fmt="%.10g")
+    lines = buf.getvalue().splitlines()
+    header = ",".join(history_columns(response) + ("event",))
+    body = "".join(f"{line},{ev}\n" for line, ev in zip(lines, events))
+    return write_text(path, header + "\n" + body)
 
 
 def plot_response(response, block, foundation, title: str, path: str | os.PathLike, *, dpi: int = 120) -> Path:

@@ -22,14 +22,58 @@ VERDICT_OVERTURNED = "overturned"
 VERDICT_ERROR = "error"
 
 
+#: The events of a history, by the kernel's row kind (``HK_*``): the name a row carries in the history
+#: CSV's ``event`` column. An impact is two rows at the same time, the state just before it and just
+#: after; when the block comes to rest there, the row after it is the ``rest``.
+EVENT_KINDS = (("HK_UPLIFT", "uplift"), ("HK_IMPACT", "impact"), ("HK_IMPACT_AFTER", "impact"), ("HK_REST", "rest"),
+               ("HK_OVERTURN", "overturn"), ("HK_PEAK", "peak"))
+
+
+@dataclass(frozen=True)
+class HistoryEvent:
+    """An event of a run [SI units]: ``event`` is ``uplift``, ``impact``, ``rest`` (after an impact that
+    ends the rocking), ``peak`` (a turning point of theta, located on the step's dense output:
+    ``theta_dot`` = 0, ``theta`` its exact value) or ``overturn`` (``|theta|`` = pi/2).
+
+    For an impact, ``theta_dot_rad_s`` and ``u_dot_mps`` are the velocities just before it and
+    ``theta_dot_before``/``theta_dot_after`` both sides of the impact map.
+    """
+
+    event: str
+    t_s: float
+    theta_rad: float
+    theta_dot_rad_s: float
+    u_m: float
+    u_dot_mps: float
+    ag_mps2: float
+    theta_dot_before: float | None = None
+    theta_dot_after: float | None = None
+
+    def as_dict(self) -> dict[str, Any]:
+        """The event as a plain dict (JSON-ready; the impact velocities only for impacts)."""
+        d = {k: getattr(self, k) for k in ("event", "t_s", "theta_rad", "theta_dot_rad_s", "u_m", "u_dot_mps",
+                                           "ag_mps2")}
+        if self.event == "impact":
+            d.update(theta_dot_before=self.theta_dot_before, theta_dot_after=self.theta_dot_after)
+        return d
+
+
 @dataclass(frozen=True)
 class History:
-    """Time history of a run: arrays at every step end and event [SI units].
+    """Time history of a run: arrays at every step end and event [SI units], or with ``grid_dt`` at
+    the times ``k grid_dt`` (the steps' dense output; ``simulate(..., history_dt=...)``).
 
     ``z``, ``z2`` (Bouc-Wen variables; ``z2`` of the second surface of a double concave bearing)
     and ``bearing_force`` (the bearings' restoring force per unit total mass, ``k_b u + Q z`` over
     ``m + m_b`` [m/s^2]; linear bearings: ``k_b u + c_b u_dot`` over ``m + m_b``) are None where the
     foundation has none.
+
+    ``events`` lists the run's :class:`HistoryEvent` in time order. ``rows`` (columns ``t, ag, theta,
+    theta_dot, u, u_dot, z, z2, bearing force``) and ``row_event`` (the event's name, ``""`` for a plain
+    row) are the rows of the history CSV. On the grid: the grid rows with every event row among them
+    in time order (peaks with NaN bearing variables). At the steps: the step rows above, unchanged,
+    those at an uplift, an impact, a rest or the overturn named (the peaks, between steps, are in
+    ``events`` and ``peak_t``/``peak_theta`` only).
     """
 
     t: np.ndarray
@@ -44,6 +88,10 @@ class History:
     #: the turning points of theta while rocking (theta_dot = 0, on the dense output): times [s] and angles [rad]
     peak_t: np.ndarray | None = None
     peak_theta: np.ndarray | None = None
+    events: tuple[HistoryEvent, ...] = ()
+    rows: np.ndarray | None = field(default=None, repr=False)
+    row_event: np.ndarray | None = field(default=None, repr=False)
+    grid_dt: float | None = None
 
 
 @dataclass(frozen=True)
@@ -165,7 +213,56 @@ class Verdicts:
         return int(self.overturned.size)
 
 
-def _response(out: np.ndarray, H, block, out_fkind: int = 0) -> Response:
+def _history_events(k, H) -> tuple[HistoryEvent, ...]:
+    """The events of the kernel's history rows ``H`` (in time order): an impact is read from its
+    row before and the row after it (the impact map's two sides)."""
+    events = []
+    kinds = H[:, k.H_KIND]
+    for i in np.flatnonzero((kinds != k.HK_STATE) & (kinds != k.HK_GRID) & (kinds != k.HK_IMPACT_AFTER)):
+        r = H[i]
+        kind = r[k.H_KIND]
+        state = dict(t_s=float(r[k.H_T]), theta_rad=float(r[k.H_TH]), theta_dot_rad_s=float(r[k.H_THD]),
+                     u_m=float(r[k.H_U]), u_dot_mps=float(r[k.H_UD]), ag_mps2=float(r[k.H_AG]))
+        if kind == k.HK_IMPACT:
+            after = H[i + 1]  # the kernel writes the state just after an impact next
+            events.append(HistoryEvent("impact", theta_dot_before=state["theta_dot_rad_s"],
+                                       theta_dot_after=float(after[k.H_THD]), **state))
+        elif kind == k.HK_REST:
+            events.append(HistoryEvent("rest", **state))
+        else:
+            name = {k.HK_UPLIFT: "uplift", k.HK_OVERTURN: "overturn", k.HK_PEAK: "peak"}[kind]
+            events.append(HistoryEvent(name, **state))
+    order = np.argsort([e.t_s for e in events], kind="stable")
+    return tuple(events[j] for j in order)
+
+
+def _history(k, H, fkind: int, grid_dt: float | None) -> History:
+    """The :class:`History` of the kernel's rows ``H`` (kinds ``HK_*``) on a foundation ``fkind``."""
+    hyst = fkind in (k.FOUNDATION_BILINEAR, k.FOUNDATION_DCSS)
+    kinds = H[:, k.H_KIND]
+    peaks = H[kinds == k.HK_PEAK]
+    step_rows = (kinds != k.HK_PEAK) & (kinds != k.HK_GRID)
+    if grid_dt:
+        plain, shown = kinds == k.HK_GRID, kinds != k.HK_STATE
+    else:  # the step rows, as without the event column: the peaks (between steps) only in ``events``
+        plain, shown = step_rows, step_rows
+    shown_rows = H[shown]
+    order = np.argsort(shown_rows[:, k.H_T], kind="stable")
+    shown_rows = shown_rows[order]
+    names = dict((getattr(k, code), name) for code, name in EVENT_KINDS)
+    labels = np.array([names.get(kind, "") for kind in shown_rows[:, k.H_KIND]], dtype=object)
+    P = H[plain]
+    return History(t=P[:, k.H_T].copy(), ag=P[:, k.H_AG].copy(), theta=P[:, k.H_TH].copy(),
+                   theta_dot=P[:, k.H_THD].copy(), u=P[:, k.H_U].copy(), u_dot=P[:, k.H_UD].copy(),
+                   z=P[:, k.H_Z].copy() if hyst else None,
+                   z2=P[:, k.H_Z2].copy() if fkind == k.FOUNDATION_DCSS else None,
+                   bearing_force=P[:, k.H_FB].copy() if fkind != k.FOUNDATION_RIGID else None,
+                   peak_t=peaks[:, k.H_T].copy(), peak_theta=peaks[:, k.H_TH].copy(),
+                   events=_history_events(k, H[step_rows | (kinds == k.HK_PEAK)]),
+                   rows=shown_rows[:, :k.H_KIND].copy(), row_event=labels, grid_dt=grid_dt or None)
+
+
+def _response(out: np.ndarray, H, block, out_fkind: int = 0, grid_dt: float | None = None) -> Response:
     k = _kernel()
     alpha = block.alpha if isinstance(block, Block) else float(block)
     status = int(out[k.O_STATUS])
@@ -191,18 +288,7 @@ def _response(out: np.ndarray, H, block, out_fkind: int = 0) -> Response:
                "the block was at rest but its base could still lift it (lightly damped base)")
         message += (f"; NOT PROVEN: at t = {out[k.O_T_END]:.1f} s (the horizon) {why}, so it could still be lifted "
                     f"or overturn; lengthen the horizon to follow it")
-    hist = None
-    if H is not None:
-        fkind = out_fkind
-        hyst = fkind in (k.FOUNDATION_BILINEAR, k.FOUNDATION_DCSS)
-        peaks = H[H[:, k.H_KIND] == k.HK_PEAK]
-        H = H[H[:, k.H_KIND] == k.HK_STATE]
-        hist = History(t=H[:, k.H_T].copy(), ag=H[:, k.H_AG].copy(), theta=H[:, k.H_TH].copy(),
-                       theta_dot=H[:, k.H_THD].copy(), u=H[:, k.H_U].copy(), u_dot=H[:, k.H_UD].copy(),
-                       z=H[:, k.H_Z].copy() if hyst else None,
-                       z2=H[:, k.H_Z2].copy() if fkind == k.FOUNDATION_DCSS else None,
-                       bearing_force=H[:, k.H_FB].copy() if fkind != k.FOUNDATION_RIGID else None,
-                       peak_t=peaks[:, k.H_T].copy(), peak_theta=peaks[:, k.H_TH].copy())
+    hist = None if H is None else _history(k, H, out_fkind, grid_dt)
     return Response(
         verdict=verdict, status=status, message=message,
         t_uplift_s=float(out[k.O_T_UPLIFT]), t_overturn_s=float(out[k.O_T_OVERTURN]),

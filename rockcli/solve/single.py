@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from rockcli.errors import RockcliInputError
@@ -20,7 +22,7 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float | No
              history: bool = False, tail: float = DEFAULT_TAIL, rest_tol: float = DEFAULT_REST_TOL,
              horizon: float = DEFAULT_HORIZON, max_steps: int = DEFAULT_MAX_STEPS, early: bool = False,
              restitution: float | None = None, theta0: float = 0.0, theta_dot0: float = 0.0,
-             cap_ratio: float = 0.0) -> Response:
+             cap_ratio: float = 0.0, history_dt: float | None = None) -> Response:
     """Rocking response of ``block`` on ``foundation`` under ``excitation``.
 
     Parameters
@@ -61,6 +63,11 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float | No
     cap_ratio : float
         A capped colonnade of such columns on a rigid foundation: beam mass over the columns' total
         mass, >= 0 (0: the solitary column; :mod:`rockcli.colonnade`).
+    history_dt : float, optional
+        The history on a uniform grid: rows at the times ``k history_dt`` [s] (the steps' dense
+        output, exact to the integrator's tolerance; the ground acceleration from the excitation
+        itself) instead of at the step ends; implies ``history``. The events stay exact either way
+        (:attr:`History.events`).
 
     Returns
     -------
@@ -75,6 +82,9 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float | No
         raise RockcliInputError("simulate needs an excitation (a record or a pulse), or a start away from rest "
                                 "(theta0 or theta_dot0)")
     validate_options(rtol, tail, rest_tol, horizon, max_steps)
+    if history_dt is not None:
+        history_dt = check_history_dt(history_dt)
+        history = True
     restitution = check_restitution(restitution)
     if early and history:
         raise RockcliInputError("early stopping is for verdict-only runs; it cannot be combined with history")
@@ -83,10 +93,36 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float | No
     ekind, epar, acc, jtab, dt, t_begin, t_exc_end = prepared
     fkind, prm = _parameters(block, foundation, rtol, float(rest_tol), restitution, cap_ratio)
     prm[k.P_TH0], prm[k.P_THD0] = theta0, theta_dot0
+    if history_dt is not None:
+        prm[k.P_HDT] = history_dt
+        _check_grid_rows(history_dt, t_begin, t_exc_end + float(tail))
     _check_work(block, foundation, prepared, rtol, float(tail), float(rest_tol), float(horizon),
                 int(max_steps), bool(history), restitution)
     out = np.zeros(k.N_OUT)
     kernel = k.simulate_rigid if fkind == k.FOUNDATION_RIGID else k.simulate_core
     H = kernel(fkind, tuple(float(v) for v in prm), ekind, tuple(float(v) for v in epar), acc, jtab, dt,
                t_begin, t_exc_end, float(tail), float(horizon), int(max_steps), bool(history), bool(early), out)
-    return _response(out, H if history else None, block, fkind)
+    return _response(out, H if history else None, block, fkind, history_dt)
+
+
+#: The most rows a uniform history grid may have (about 0.8 GB of rows).
+HISTORY_GRID_ROWS_MAX = 10_000_000
+
+
+def check_history_dt(history_dt, name: str = "history_dt") -> float:
+    """``history_dt`` as a float, or one sentence why it cannot be a grid spacing [s]."""
+    try:
+        v = float(history_dt)
+    except (TypeError, ValueError):
+        raise RockcliInputError(f"{name} must be a number of seconds, got {history_dt!r}") from None
+    if not (math.isfinite(v) and v > 0.0):
+        raise RockcliInputError(f"{name} must be a positive number of seconds, got {history_dt!r}")
+    return v
+
+
+def _check_grid_rows(history_dt: float, t_begin: float, t_end: float) -> None:
+    """Refuse a grid of more than :data:`HISTORY_GRID_ROWS_MAX` rows over the excitation and its tail."""
+    n = (t_end - t_begin) / history_dt
+    if n > HISTORY_GRID_ROWS_MAX:
+        raise RockcliInputError(f"a history every {history_dt:g} s over {t_end - t_begin:.4g} s would be {n:.3g} rows, "
+                                f"more than the {HISTORY_GRID_ROWS_MAX:,} allowed: choose a coarser grid")

@@ -1,0 +1,68 @@
+"""The Python entry point (issue 26 item 4): the main names importable from ``rockcli`` itself,
+lazily (PEP 562), so that ``import rockcli`` imports none of the heavy dependencies; and
+``docs/python.md``, whose code blocks run here in order, in one namespace."""
+
+from __future__ import annotations
+
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+HEAVY = ("numba", "obspy", "pandas", "matplotlib", "scipy")
+
+
+def _fresh(code: str) -> str:
+    """Run ``code`` in a fresh interpreter on this tree; its stdout."""
+    env = {"PYTHONPATH": str(ROOT), "PATH": "/usr/bin:/bin"}
+    out = subprocess.run([sys.executable, "-c", code], cwd=ROOT, env=env, capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    return out.stdout
+
+
+def test_import_rockcli_imports_no_heavy_dependency():
+    loaded = _fresh("import sys, rockcli; print(' '.join(sorted(m for m in sys.modules if m.split('.')[0] in "
+                    f"{HEAVY!r})))")
+    assert loaded.split() == []
+
+
+def test_every_advertised_name_resolves_and_stays_light():
+    code = ("import sys, rockcli\n"
+            "names = [n for n in rockcli.__all__ if n != '__version__']\n"
+            "objs = [getattr(rockcli, n) for n in names]\n"
+            "assert set(names) <= set(dir(rockcli))\n"
+            f"print(len(names), ' '.join(sorted(m for m in sys.modules if m.split('.')[0] in {HEAVY!r})))")
+    n, *heavy = _fresh(code).split()
+    assert int(n) >= 25
+    assert "numba" not in heavy and "matplotlib" not in heavy and "pandas" not in heavy  # no run yet, no report
+
+
+def test_names_are_the_library_objects():
+    import rockcli
+    from rockcli.models import Block
+    from rockcli.solve import simulate, simulate_many
+
+    assert rockcli.Block is Block and rockcli.simulate is simulate and rockcli.simulate_many is simulate_many
+    from rockcli import make_pulse, read_record  # noqa: F401  (the from-import form)
+    with pytest.raises(AttributeError, match="no attribute 'nonsense'"):
+        rockcli.nonsense  # noqa: B018
+
+
+def _blocks(page: Path) -> list[str]:
+    return re.findall(r"^```python\n(.*?)^```", page.read_text(), flags=re.S | re.M)
+
+
+def test_the_python_page_runs(records_dirs, capsys):
+    blocks = _blocks(ROOT / "docs" / "python.md")
+    assert len(blocks) >= 4
+    ns: dict = {}
+    for code in blocks:
+        exec(compile(code, "docs/python.md", "exec"), ns)  # noqa: S102
+    out = capsys.readouterr().out
+    res, peaks = ns["res"], ns["peaks"]
+    assert res.verdict == "rocked" and "impact:" in out
+    assert max(abs(e.theta_rad) for e in peaks) == pytest.approx(res.theta_max, rel=1e-8)
+    assert ns["m"].overturned.shape == (5, 5) and ns["m"].overturned.any() and not ns["m"].overturned.all()
