@@ -191,10 +191,8 @@ def _pulse_excitation(entry) -> Excitation:
 
 
 def _read_excitation(label: str, path: Path, read_kwargs: dict) -> Excitation:
-    from rockcli.records import read_record
-
     try:
-        rec = read_record(path, **read_kwargs)
+        rec = _read_suite_record(path, dict(read_kwargs))
     except RockcliInputError as exc:
         return Excitation(label, EXCITATION_RECORD, None, str(path), error=str(exc))
     except Exception as exc:  # a file the reader chokes on: report it in its rows, keep the others
@@ -203,6 +201,20 @@ def _read_excitation(label: str, path: Path, read_kwargs: dict) -> Excitation:
         return Excitation(label, EXCITATION_RECORD, None, str(path),
                           error=f"{path}: not a usable record (needs >= 2 finite samples and dt > 0)")
     return Excitation(label, EXCITATION_RECORD, rec, str(path), rec.pga_g)
+
+
+def _read_suite_record(path: Path, kwargs: dict):
+    """A suite's record: ``component`` picks one of a multi-component file (a one-component file is taken as
+    it is); ``units``/``dt`` fill in only what the file does not state."""
+    from rockcli.records import read_record
+    from rockcli.records.components import select_component
+    from rockcli.records.reader import read_components
+
+    component = kwargs.pop("component", None)
+    if component is None:
+        return read_record(path, **kwargs)
+    comps = read_components(path, **{k: v for k, v in kwargs.items() if k != "column"})
+    return comps[0] if len(comps) == 1 else select_component(comps, component, str(path))
 
 
 def _entry_read_kwargs(entry) -> dict:
@@ -241,7 +253,7 @@ def table_ii_entries() -> list:
 
 
 def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto", *, units: str | None = None,
-                        dt: float | None = None):
+                        dt: float | None = None, component: str | None = None):
     """Turn record sources into excitations.
 
     Parameters
@@ -254,9 +266,12 @@ def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto"
         only (``record``); the catalogued pulses (``pulse``).
     units, dt : optional
         Units of the values and time step [s] of the files that do not state them (headerless
-        text, SAC, ...), passed to :func:`rockcli.records.read_record`: a file that states other
-        units or another time step gets the loader's error in its rows. Files the catalogue lists
-        are read as the catalogue says.
+        text, SAC, ...), passed to :func:`rockcli.records.read_record` with ``fill_in=True``: they
+        fill in only what a file does not state (a file that states others is read as it states
+        them). Files the catalogue lists are read as the catalogue says.
+    component : str, optional
+        The component of each multi-component file (channel code, ``N``/``E``/``UP`` or azimuth);
+        one-component files are taken as they are.
 
     Returns
     -------
@@ -279,6 +294,8 @@ def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto"
     if mode not in EXCITATION_MODES:
         raise RockcliInputError(f"excitation mode {mode!r} is not one of {', '.join(EXCITATION_MODES)}")
     file_kwargs = _file_read_kwargs(units, dt)
+    if component is not None:
+        file_kwargs["component"] = str(component)
     entries = load_catalog()
     by_id = {e.id: e for e in entries}
     by_file = {e.file: e for e in entries if e.file}
@@ -345,6 +362,8 @@ def _file_read_kwargs(units, dt) -> dict:
         if not (isinstance(dt, (int, float)) and math.isfinite(dt) and dt > 0):
             raise RockcliInputError(f"--dt {dt!r}: the time step must be a positive number of seconds")
         kwargs["dt"] = float(dt)
+    if kwargs:
+        kwargs["fill_in"] = True
     return kwargs
 
 

@@ -8,7 +8,7 @@ from functools import partial
 import click
 
 from rockcli.cli.errors import InputError, user_errors
-from rockcli.cli.options import (cap_ratio_option, check_outputs, command_line, custom_block_options,
+from rockcli.cli.options import (cap_ratio_option, check_outputs, command_line, custom_block_options, given_component,
                                  horizon_option, progress_bar, report_option, restitution_option)
 from rockcli.cli.types import NUMBER, SEED, Number
 
@@ -41,12 +41,15 @@ def _cap_ratio_kw(cap_ratio, configurations) -> dict:
 
 def _headerless_options(func):
     """``--units`` and ``--dt`` for record files that do not state them (headerless text, SAC, ...)."""
+    from rockcli.cli.options import component_option
+
+    func = component_option(func)
     func = click.option("--dt", type=NUMBER, default=None, metavar="SECONDS",
-                        help="Time step [s] of the record files that state none; a file that states "
-                             "another one is an error row. Catalogue files are read as the catalogue says.")(func)
+                        help="Time step [s] of the record files that state none (it fills in only what a file "
+                             "does not state). Catalogue files are read as the catalogue says.")(func)
     return click.option("--units", default=None, metavar="UNITS",
                         help="Units of the record files that do not state them (g, m/s^2, cm/s^2, gal, "
-                             "mm/s^2, g/10); a file that states other units is an error row.")(func)
+                             "mm/s^2, g/10; they fill in only what a file does not state).")(func)
 
 
 def _run_counted(total: int, run):
@@ -183,7 +186,8 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
     solver.update(_cap_ratio_kw(cap_ratio, configurations))
     check_outputs((csv_path, "--csv", False), (report_path, "--report", False),
                   folders=((hist_dir, "--histories"), (plot_dir, "--plot")))
-    excitations, unavailable = resolve_excitations(records, excitation, units=units, dt=dt)
+    excitations, unavailable = resolve_excitations(records, excitation, units=units, dt=dt,
+                                                   component=given_component())
     if not excitations:
         raise InputError("no record to run: " + "; ".join(f"{u.label}: {u.reason}" for u in unavailable))
     _refuse_if_none_can_run(excitations)
@@ -369,7 +373,8 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
         from rockcli.distributed import check_scheduler
 
         check_scheduler(scheduler)
-    excitations, unavailable = resolve_excitations(records, "record", units=units, dt=dt)
+    excitations, unavailable = resolve_excitations(records, "record", units=units, dt=dt,
+                                                   component=given_component())
     _refuse_if_none_can_run(excitations)
     _add_record_inputs(excitations)
 

@@ -28,15 +28,39 @@ def record_options(func=None, *, column_flag: str = "--column"):
             click.option(column_flag, "column", type=WHOLE, default=None, metavar="N",
                          help="1-based column of a multi-column text file (a time column counts), or "
                               "component/trace of a multi-component file."),
+            component_option,
         ]
         return _stacked(f, options)
 
     return decorate(func) if func is not None else decorate
 
 
+def _remember(key):
+    def callback(ctx, param, value):
+        if value is not None:
+            ctx.meta[key] = value
+        return value
+
+    return callback
+
+
+#: ``--component NAME``: one component of a multi-component file. Not passed to the command: it is kept
+#: on the click context and :func:`record_kwargs` adds it (every command that reads records takes it).
+component_option = click.option(
+    "--component", default=None, metavar="NAME", expose_value=False, callback=_remember("rockcli.component"),
+    help="Component of a multi-component file: its channel code (HN1, HNE, HNZ, EW2, N28W, ...), N, E or UP, "
+         "or an azimuth in degrees ('rockcli records show FILE' lists them).")
+
+
+def given_component():
+    """The ``--component`` of the running command (None when not given)."""
+    ctx = click.get_current_context(silent=True)
+    return None if ctx is None else ctx.meta.get("rockcli.component")
+
+
 def record_kwargs(units, dt, fmt, column) -> dict:
-    """The keyword arguments of ``read_record`` from the values of :func:`record_options`."""
-    return {"units": units, "dt": dt, "format": fmt, "column": column}
+    """The keyword arguments of ``read_record`` from the values of :func:`record_options` (and ``--component``)."""
+    return {"units": units, "dt": dt, "format": fmt, "column": column, "component": given_component()}
 
 
 def block_options(func):

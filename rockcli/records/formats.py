@@ -160,9 +160,11 @@ def _read_geonet(lines: list[str], filename: str, column: int | None) -> dict[st
         m = re.match(r"^Component\s+(\S+)", lines[s + 12]) if s + 12 < len(lines) else None
         comps.append(m.group(1) if m else "?")
     if column is None:
-        raise RockcliInputError(
+        from rockcli.records.components import MultiComponent
+
+        raise MultiComponent(
             f"{filename}: GeoNet V2A file holds {len(starts)} components ({', '.join(comps)}); "
-            f"choose one with --column 1-{len(starts)}")
+            f"choose one with --component NAME (or --column 1-{len(starts)})", len(starts))
     if not 1 <= column <= len(starts):
         raise RockcliInputError(f"{filename}: column {column} does not exist (the file holds {len(starts)} components)")
     s = starts[column - 1]

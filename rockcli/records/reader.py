@@ -11,6 +11,7 @@ from typing import Any
 import numpy as np
 
 from rockcli.errors import RockcliInputError
+from rockcli.records.components import MultiComponent
 from rockcli.records.record import Record
 from rockcli.units import G
 
@@ -68,7 +69,8 @@ def _check_column(column):
     return value
 
 
-def read_record(source, *, format=None, units=None, dt=None, column=None) -> Record:
+def read_record(source, *, format=None, units=None, dt=None, column=None, component=None,
+                fill_in: bool = False) -> Record:
     """Read a ground-acceleration record from a file or the catalogue.
 
     Parameters
@@ -89,6 +91,13 @@ def read_record(source, *, format=None, units=None, dt=None, column=None) -> Rec
     column : int, optional
         1-based column of a multi-column text file (a time column counts), or component of a
         multi-component file (GeoNet V2A) or trace of a multi-trace ObsPy stream.
+    component : str, optional
+        Component of a multi-component file by name: its channel code (``HN1``, ``HNE``, ``N28W``,
+        ``EW2``), ``N``/``E``/``UP`` or an azimuth in degrees (see
+        :func:`rockcli.records.components.select_component`).
+    fill_in : bool
+        ``units`` and ``dt`` only fill in what the file does not state (a suite's defaults): a file
+        that states other ones is read as it states them, not refused.
 
     Returns
     -------
@@ -115,6 +124,13 @@ def read_record(source, *, format=None, units=None, dt=None, column=None) -> Rec
     dt = _check_dt(dt)
     column = _check_column(column)
     fmt = str(format).strip().upper() if format else None
+    if component is not None:
+        if column is not None:
+            raise RockcliInputError("give the component either by --component NAME or by --column N, not both")
+        from rockcli.records.components import select_component
+
+        comps = read_components(source, format=format, units=units, dt=dt, fill_in=fill_in)
+        return select_component(comps, component, _label(source, comps))
 
     if isinstance(source, Record):
         return source
@@ -134,13 +150,32 @@ def read_record(source, *, format=None, units=None, dt=None, column=None) -> Rec
                     f"(set ROCKCLI_RECORDS to the folder holding it)")
             rec = _read_path(path, fmt or entry.format or None, units or entry.units, dt or entry.dt,
                              column or entry.column, given_by="caller" if units else "catalogue")
+            from rockcli.records.components import orientation_meta
+
+            orient = orientation_meta(entry.component, "catalogue")
+            if orient["azimuth_deg"] is None and not orient["vertical"]:
+                orient = {k: rec.meta.get(k) for k in ("azimuth_deg", "vertical", "orientation_source")}
             meta = {**rec.meta, "catalog_id": entry.id, "event": entry.event, "year": entry.year,
-                    "station": entry.station, "component": entry.component,
+                    "station": entry.station, "component": entry.component, **orient,
                     "file_meta": {k: rec.meta.get(k) for k in ("event", "station", "component")}}
             return Record(acc=rec.acc, dt=rec.dt, name=entry.id, t_start=rec.t_start, meta=meta)
         if os.sep not in source and "/" not in source:
             raise RockcliInputError(f"{source}: no such file, nor a catalogue id (see 'rockcli records list')")
-    return _read_path(Path(source), fmt, units, dt, column)
+    return _read_path(Path(source), fmt, units, dt, column, given_by="suite" if fill_in else "caller")
+
+
+def _label(source, comps) -> str:
+    return str(comps[0].meta.get("path") or source) if comps else str(source)
+
+
+def read_components(source, *, format=None, units=None, dt=None, fill_in: bool = False) -> list[Record]:
+    """Every component of a record file (or catalogue id), each a :class:`Record` with its name and
+    orientation in ``meta`` (``component``, ``azimuth_deg``, ``vertical``); one for a one-component file."""
+    try:
+        return [read_record(source, format=format, units=units, dt=dt, fill_in=fill_in)]
+    except MultiComponent as multi:
+        return [read_record(source, format=format, units=units, dt=dt, column=k, fill_in=fill_in)
+                for k in range(1, multi.count + 1)]
 
 
 def _read_path(path: Path, fmt, units, dt, column, given_by: str = "caller") -> Record:
@@ -295,7 +330,8 @@ def _from_obspy(path: Path, fmt: str, column) -> dict[str, Any]:
         raise RockcliInputError(f"{path}: the file holds no traces")
     if len(st) > 1 and column is None:
         ids = ", ".join(tr.id for tr in st)
-        raise RockcliInputError(f"{path}: the file holds {len(st)} traces ({ids}); choose one with --column 1-{len(st)}")
+        raise MultiComponent(f"{path}: the file holds {len(st)} traces ({ids}); choose one with --component "
+                             f"CHANNEL (or --column 1-{len(st)})", len(st))
     index = (column or 1) - 1
     if index >= len(st):
         raise RockcliInputError(f"{path}: trace {column} does not exist (the file holds {len(st)})")
@@ -322,6 +358,11 @@ def _from_obspy(path: Path, fmt: str, column) -> dict[str, Any]:
         # SAC's IDEP says what the quantity is, not its units (and writers rarely follow its nm
         # convention): the units are not stated.
         meta["sac_idep"] = int(stats.sac.get("idep", -12345))
+        cmpaz, cmpinc = float(stats.sac.get("cmpaz", -12345.0)), float(stats.sac.get("cmpinc", -12345.0))
+        if cmpinc == 0.0 or cmpinc == 180.0:
+            meta.update(vertical=True, azimuth_deg=None, orientation_source="SAC header CMPINC")
+        elif cmpinc == 90.0 and cmpaz != -12345.0:
+            meta.update(vertical=False, azimuth_deg=cmpaz % 360.0, orientation_source="SAC header CMPAZ")
     if float(stats.calib) != 1.0 and fmt_name != "KNET":
         meta["calib"] = float(stats.calib)
     if values.size and not np.all(np.isfinite(values)):
@@ -334,6 +375,21 @@ def _from_obspy(path: Path, fmt: str, column) -> dict[str, Any]:
 def _first_line(exc: Exception) -> str:
     text = str(exc).strip().splitlines()
     return text[0].rstrip(".") if text else type(exc).__name__
+
+
+def _orientation(path: Path, fmt, component) -> dict:
+    """Orientation from the component name the file gives; for an AT2 file whose header names none, from
+    the PEER file name (station code and a three-digit azimuth: ``RSN181_IMPVALL.H_H-E06140.AT2``: 140)."""
+    from rockcli.records.components import orientation_meta
+
+    where = "AT2 header line 2" if fmt == "PEER_AT2" else f"{fmt} header"
+    found = orientation_meta(component, where)
+    if found["azimuth_deg"] is None and not found["vertical"] and fmt == "PEER_AT2":
+        # PEER NGA names end in station code + three-digit azimuth: ..._H-E06140, ..._TAZ000, ..._A-STU270
+        m = re.search(r"[-_.][A-Z][A-Z0-9]*?(\d{3})$", re.sub(r"(?i)\.at2$", "", path.name).upper())
+        if m and int(m.group(1)) <= 360:
+            found = orientation_meta(m.group(1), "AT2 file name")
+    return found
 
 
 def _finish(path: Path, out: dict[str, Any], units, dt, given_by: str) -> Record:
@@ -350,7 +406,7 @@ def _finish(path: Path, out: dict[str, Any], units, dt, given_by: str) -> Record
 
             raise RockcliInputError(f"{name}: the file states units {stated_units!r}, which rockcli does not know "
                                     f"(known: {KNOWN_UNITS}; give the file's units in one of these words)") from None
-        if units is not None and not math.isclose(accel_factor(units), factor, rel_tol=1e-9):
+        if units is not None and given_by != "suite" and not math.isclose(accel_factor(units), factor, rel_tol=1e-9):
             raise RockcliInputError(f"{name}: the file states units {stated_units!r} but {units!r} was given")
         used_units, units_source = stated_units, "file"
     elif units is not None:
@@ -364,7 +420,7 @@ def _finish(path: Path, out: dict[str, Any], units, dt, given_by: str) -> Record
     if stated_dt is not None:
         if not stated_dt > 0:
             raise RockcliInputError(f"{name}: the file states a time step of {_num(stated_dt)} s; it must be positive")
-        if dt is not None and not math.isclose(dt, stated_dt, rel_tol=1e-6):
+        if dt is not None and given_by != "suite" and not math.isclose(dt, stated_dt, rel_tol=1e-6):
             raise RockcliInputError(f"{name}: the file states dt={_num(stated_dt)} s but dt={_num(dt)} s was given")
         used_dt, dt_source = float(stated_dt), out.get("dt_source") or "file"
     elif dt is not None:
@@ -374,7 +430,7 @@ def _finish(path: Path, out: dict[str, Any], units, dt, given_by: str) -> Record
 
     lo, hi = DT_RANGE_S
     if not lo <= used_dt <= hi:
-        said = {"caller": "given", "catalogue": "from the catalogue"}.get(dt_source, f"from the {dt_source}")
+        said = {"caller": "given", "suite": "given", "catalogue": "from the catalogue"}.get(dt_source, f"from the {dt_source}")
         raise RockcliInputError(f"{name}: time step dt = {_num(used_dt)} s ({said}) lies outside the "
                                 f"supported {lo:g} s to {hi:g} s (strong-motion records are sampled at 50 Hz to "
                                 f"a few kHz); check its unit")
@@ -384,11 +440,13 @@ def _finish(path: Path, out: dict[str, Any], units, dt, given_by: str) -> Record
     peak = float(np.max(np.abs(values)))
     if not np.isfinite(peak * factor) or peak * factor > PGA_MAX_G * G:
         i = int(np.argmax(np.abs(values)))
-        said = {"caller": "given", "catalogue": "from the catalogue"}.get(units_source, f"from the {units_source}")
+        said = {"caller": "given", "suite": "given", "catalogue": "from the catalogue"}.get(units_source, f"from the {units_source}")
         raise RockcliInputError(f"{name}: sample {i + 1} is {_num(values[i])} {used_units} (units {said}), "
                                 f"a peak beyond the supported {PGA_MAX_G:g} g (recorded peaks reach about 4 g); "
                                 f"check the units")
     meta = dict(out.get("meta", {}))
+    if "azimuth_deg" not in meta:
+        meta.update(_orientation(path, out.get("format"), meta.get("component")))
     meta.update(units=used_units, units_source=units_source, factor=factor, dt_source=dt_source,
                 format=out.get("format"), path=str(path))
     return Record(acc=values * factor, dt=used_dt, name=path.name, t_start=float(out.get("t_start", 0.0)), meta=meta)
