@@ -172,6 +172,11 @@ class Excitation:
     error: str = ""
     a_p_g: float = math.nan
     T_p_s: float = math.nan
+    #: two horizontal components (checked, :func:`rockcli.records.orientation.check_pair`) when an azimuth
+    #: was asked for: ``motion`` is their projection onto ``azimuth_deg`` (``--azimuth worst``: onto 0 deg,
+    #: and :mod:`rockcli.assess.azimuth` runs every orientation)
+    pair: tuple | None = None
+    azimuth_deg: float = math.nan
 
 
 @dataclass(frozen=True)
@@ -217,6 +222,34 @@ def _read_suite_record(path: Path, kwargs: dict):
     return comps[0] if len(comps) == 1 else select_component(comps, component, str(path))
 
 
+def _pair_label(first: str, second: str) -> str:
+    """``RSN181_IMPVALL.H_H-E06140.AT2+230.AT2``: the second name without the prefix both share."""
+    import os
+
+    common = os.path.commonprefix([first, second])
+    return f"{first}+{second[len(common):] or second}"
+
+
+def _pair_excitation(label: str, first, second, read_kwargs: dict, azimuth) -> Excitation:
+    """Two horizontal components (``second`` None: those of the multi-component file ``first``) projected
+    onto ``azimuth`` [deg] (``"worst"``: onto 0 deg, every orientation run later); a pair that cannot be
+    read or checked is kept with its ``error``."""
+    from rockcli.records.orientation import project, read_pair
+
+    kwargs = {k: v for k, v in read_kwargs.items() if k != "component"}
+    try:
+        pair = read_pair(first, second, **kwargs)
+    except RockcliInputError as exc:
+        return Excitation(label, EXCITATION_RECORD, None, f"{first} + {second}" if second else str(first),
+                          error=str(exc))
+    theta = 0.0 if azimuth == "worst" else float(azimuth)
+    rec = project(*pair, theta)
+    source = " + ".join(f"{r.meta.get('path')} ({r.meta['azimuth_deg']:g} deg)" for r in pair)
+    if azimuth != "worst":
+        label = f"{label}@{theta:g}"
+    return Excitation(label, EXCITATION_RECORD, rec, source, rec.pga_g, pair=pair, azimuth_deg=theta)
+
+
 def _entry_read_kwargs(entry) -> dict:
     return {"format": entry.format or None, "units": entry.units, "dt": entry.dt, "column": entry.column}
 
@@ -253,7 +286,7 @@ def table_ii_entries() -> list:
 
 
 def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto", *, units: str | None = None,
-                        dt: float | None = None, component: str | None = None):
+                        dt: float | None = None, component: str | None = None, azimuth=None):
     """Turn record sources into excitations.
 
     Parameters
@@ -272,6 +305,10 @@ def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto"
     component : str, optional
         The component of each multi-component file (channel code, ``N``/``E``/``UP`` or azimuth);
         one-component files are taken as they are.
+    azimuth : float or "worst", optional
+        Project two horizontal components onto this azimuth (the normal to the rocking axis, degrees
+        clockwise from north): a source ``A+B`` names the two files (each ``FILE`` or ``FILE@DEG``), a
+        multi-component file gives its own two; anything else is an error row.
 
     Returns
     -------
@@ -318,9 +355,21 @@ def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto"
             (unavailable.append(x) if isinstance(x, Unavailable) else add(x))
         return out, unavailable
 
+    if azimuth is not None and component is not None:
+        raise RockcliInputError("--component picks one component; --azimuth projects two: give one of them")
     for src in sources:
         src = str(src)
         path = Path(src).expanduser()
+        if azimuth is not None and "+" in src and not path.exists():
+            from rockcli.records.orientation import split_source
+
+            first, _, second = src.partition("+")
+            names = [Path(split_source(f)[0]).name for f in (first, second)]
+            add(_pair_excitation(_pair_label(*names), first, second, file_kwargs, azimuth))
+            continue
+        if azimuth is not None and (path.is_file() or src in by_id):
+            add(_pair_excitation(path.name if path.is_file() else src, src, None, file_kwargs, azimuth), path)
+            continue
         if path.is_dir():
             try:
                 files = sorted(p for p in path.iterdir() if p.is_file() and not p.name.startswith("."))
@@ -330,7 +379,8 @@ def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto"
             if not files:
                 raise RockcliInputError(f"--records {src}: the folder holds no files")
             for p in files:
-                add(_file_excitation(p, by_file, file_kwargs), p)
+                add(_file_excitation(p, by_file, file_kwargs) if azimuth is None else
+                    _pair_excitation(p.name, str(p), None, file_kwargs, azimuth), p)
         elif path.is_file():
             add(_file_excitation(path, by_file, file_kwargs), path)
         elif src in by_id:

@@ -52,6 +52,52 @@ component_option = click.option(
          "or an azimuth in degrees ('rockcli records show FILE' lists them).")
 
 
+def azimuth_options(func=None, *, suite: bool = False):
+    """``--record-2``, ``--azimuth`` and ``--azimuth-step`` (``simulate``; ``suite=True``: without
+    ``--record-2``, for ``assess``, whose pairs are ``A+B`` sources): kept on the click context, read with
+    :func:`given_azimuth` (so the command's signature does not change)."""
+    if func is None:
+        return lambda f: azimuth_options(f, suite=suite)
+    pair_help = ("the pair A+B of --records (each FILE or FILE@DEG) or the two horizontal components of a "
+                 "multi-component file" if suite else "the two horizontal components (of --record, or --record "
+                 "and --record-2)")
+    options = [] if suite else [
+        click.option("--record-2", "record_2", default=None, metavar="SOURCE", expose_value=False,
+                     callback=_remember("rockcli.record_2"),
+                     help="The other horizontal component of --record (FILE, or FILE@DEG when the file states no "
+                          "orientation), for --azimuth."),
+    ]
+    options += [
+        click.option("--azimuth", default=None, metavar="DEG|worst", expose_value=False,
+                     callback=_remember("rockcli.azimuth"),
+                     help=f"Normal to the body's rocking axis, degrees clockwise from north: {pair_help} are "
+                          "projected onto it. 'worst' runs every orientation 0-179 deg and reports the most "
+                          "adverse."),
+        click.option("--azimuth-step", "azimuth_step", type=NUMBER, default=None, metavar="DEG", expose_value=False,
+                     callback=_remember("rockcli.azimuth_step"),
+                     help="Step of --azimuth worst [deg; default 5]."),
+    ]
+    return _stacked(func, options)
+
+
+def given_azimuth() -> dict:
+    """``record_2``, ``azimuth`` (None, ``"worst"`` or degrees) and ``step`` of :func:`azimuth_options`."""
+    from rockcli.records.orientation import AZIMUTH_STEP, parse_azimuth
+
+    ctx = click.get_current_context(silent=True)
+    meta = {} if ctx is None else ctx.meta
+    step = meta.get("rockcli.azimuth_step")
+    azimuth = parse_azimuth(meta.get("rockcli.azimuth"))
+    record_2 = meta.get("rockcli.record_2")
+    from rockcli.errors import RockcliInputError
+
+    if azimuth is None and record_2 is not None:
+        raise RockcliInputError("--record-2 is the second horizontal component for --azimuth: give --azimuth DEG|worst")
+    if step is not None and azimuth != "worst":
+        raise RockcliInputError("--azimuth-step applies to --azimuth worst")
+    return {"record_2": record_2, "azimuth": azimuth, "step": AZIMUTH_STEP if step is None else step}
+
+
 def given_component():
     """The ``--component`` of the running command (None when not given)."""
     ctx = click.get_current_context(silent=True)
