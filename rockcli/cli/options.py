@@ -98,6 +98,29 @@ def given_azimuth() -> dict:
     return {"record_2": record_2, "azimuth": azimuth, "step": AZIMUTH_STEP if step is None else step}
 
 
+def suite_options(func):
+    """``--glob`` and ``--exclude`` (multiple) for folder suites: kept on the click context, read with
+    :func:`given_suite`."""
+    options = [
+        click.option("--glob", "glob", multiple=True, metavar="PATTERN", expose_value=False,
+                     callback=_remember("rockcli.glob"),
+                     help="Take only the files of a --records folder whose names match this shell pattern "
+                          "(e.g. '*.AT2'; repeatable)."),
+        click.option("--exclude", "exclude", multiple=True, metavar="PATTERN", expose_value=False,
+                     callback=_remember("rockcli.exclude"),
+                     help="Leave out the files of a --records folder whose names match this shell pattern "
+                          "(repeatable)."),
+    ]
+    return _stacked(func, options)
+
+
+def given_suite() -> dict:
+    """``glob`` and ``exclude`` of :func:`suite_options` (tuples)."""
+    ctx = click.get_current_context(silent=True)
+    meta = {} if ctx is None else ctx.meta
+    return {"glob": tuple(meta.get("rockcli.glob") or ()), "exclude": tuple(meta.get("rockcli.exclude") or ())}
+
+
 def given_component():
     """The ``--component`` of the running command (None when not given)."""
     ctx = click.get_current_context(silent=True)

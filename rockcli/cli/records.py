@@ -148,3 +148,27 @@ def _list_components(source, kwargs) -> None:
     for r in rows:
         click.echo("  ".join(c.ljust(w) for c, w in zip(r, widths)).rstrip())
     click.echo("pick one with --component NAME (a channel code as listed, N, E, UP, or an azimuth in degrees)")
+
+
+@records.command(name="export")
+@click.argument("source")
+@click.argument("out", type=click.Path())
+@record_options
+@user_errors
+def export(source, out, units, dt, fmt, column):
+    """Write one component of SOURCE as a plain text record OUT (m/s^2, its dt in a comment), which rockcli
+    reads back sample for sample: ``rockcli records show OUT``.
+
+    \b
+    Example:
+      rockcli records export 20161113_110259_WTMC_20.V2A wtmc-n28w.txt --component N28W
+    """
+    from rockcli.files import write_text
+    from rockcli.records import read_record
+    from rockcli.records.components import record_text
+
+    check_outputs((out, "OUT", False))
+    rec = read_record(source, **record_kwargs(units, dt, fmt, column))
+    add_inputs([rec.meta.get("path")], "the record")
+    write_text(out, record_text(rec))
+    click.echo(f"wrote {out} ({rec.npts} samples, dt = {rec.dt:g} s, m/s^2; component {_component_text(rec)})")

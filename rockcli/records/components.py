@@ -34,6 +34,10 @@ class MultiComponent(RockcliInputError):
         self.count = count
 
 
+class NotARecord(RockcliInputError):
+    """No reader recognises the file's content (a README, a CSV of sources, a picture): a folder suite skips it."""
+
+
 _VERTICAL_WORDS = {"UP", "DWN", "DOWN", "UD", "V", "VER", "VERT", "VERTICAL", "Z"}
 _LETTERS = {"N": 0.0, "E": 90.0, "S": 180.0, "W": 270.0, "NS": 0.0, "EW": 90.0, "SN": 180.0, "WE": 270.0}
 
@@ -139,3 +143,16 @@ def check_angle(value, what: str) -> float:
     if not math.isfinite(v):
         raise RockcliInputError(f"{what} must be a finite angle in degrees, got {value!r}")
     return v
+
+
+def record_text(rec) -> str:
+    """``rec`` as a plain text record that rockcli reads back identically: comments with its source, time step
+    and units (m/s^2), then one sample per line written with 17 significant digits (a float64 round trip)."""
+    from rockcli.inputs import format_number
+
+    head = [f"# rockcli export of {rec.meta.get('path') or rec.name}",
+            f"# component: {component_name(rec)} ({orientation_text(rec)})",
+            f"# dt={format_number(rec.dt)} sec", "# units: m/s^2"]
+    if rec.t_start:
+        head.append(f"# start time {format_number(rec.t_start)} s (not read back: the record starts at 0)")
+    return "\n".join(head + [format(float(v), ".17g") for v in rec.acc]) + "\n"

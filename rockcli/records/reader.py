@@ -11,7 +11,7 @@ from typing import Any
 import numpy as np
 
 from rockcli.errors import RockcliInputError
-from rockcli.records.components import MultiComponent
+from rockcli.records.components import MultiComponent, NotARecord
 from rockcli.records.record import Record
 from rockcli.units import G
 
@@ -307,6 +307,16 @@ def _from_text(path: Path, column) -> dict[str, Any]:
             "comments": parsed["comments"]}
     if parsed["names"]:
         meta["column_names"] = parsed["names"]
+    for line in parsed["comments"] or ():  # "# component: N28W (332 deg)", as `records export` writes it
+        m = re.search(r"component:\s*(\S+)\s*\((vertical|[\d.]+ deg)\)", str(line))
+        if m:
+            from rockcli.records.components import orientation_meta
+
+            az = None if m.group(2) == "vertical" else float(m.group(2).split()[0])
+            meta.update(component=m.group(1), **orientation_meta(m.group(1), "comment", azimuth=az))
+            if az is None:
+                meta.update(vertical=True, azimuth_deg=None, orientation_source="comment: vertical")
+            break
     return {"values": parsed["values"], "dt": parsed["dt"], "dt_source": parsed["dt_source"],
             "units": parsed["units"], "t_start": parsed["t_start"], "meta": meta, "format": "TEXT"}
 
@@ -321,8 +331,8 @@ def _from_obspy(path: Path, fmt: str, column) -> dict[str, Any]:
             raise RockcliInputError(
                 f"{path}: unknown format {fmt!r} (rockcli reads PEER_AT2, TEXT, ESM, ITACA, COSMOS, GEONET_V2A "
                 f"and ObsPy's formats such as SAC, MSEED, KNET)") from None
-        raise RockcliInputError(f"{path}: format not recognised ({_first_line(exc)}); "
-                                f"give it with --format, or convert the record to text") from None
+        raise NotARecord(f"{path}: format not recognised ({_first_line(exc)}); "
+                         f"give it with --format, or convert the record to text") from None
     except Exception as exc:  # noqa: BLE001 -- ObsPy readers raise many kinds; one sentence for the user
         raise RockcliInputError(f"{path}: format not recognised, or a damaged file (ObsPy: {_first_line(exc)}); "
                                 f"give the format with --format, or convert the record to text") from None

@@ -131,8 +131,9 @@ def format_notes(assessment) -> str:
         lines.append("Idealised (record file not found; its catalogued Ricker pulse was run instead): "
                      + ", ".join(assessment.idealised) + ". A single pulse lacks the record's other cycles: "
                      "with the paper's records it misses many overturns, above all on isolators (see README).")
-    for u in assessment.unavailable:
-        lines.append(f"Not available: {u.label} ({u.reason}).")
+    from rockcli.assess.scenes import unavailable_notes
+
+    lines += unavailable_notes(assessment.unavailable)
     for x in assessment.failed:
         lines.append(f"Could not run {x.label}: {x.error}")
     other = [r for r in assessment.rows if r.error and not any(x.label == r.record for x in assessment.failed)]
