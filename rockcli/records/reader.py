@@ -210,16 +210,30 @@ def _read_path(path: Path, fmt, units, dt, column, given_by: str = "caller") -> 
     else:
         from rockcli.records import formats
 
-        if fmt in formats.REFUSED:
-            raise formats.refusal(fmt, name)
-        if fmt in formats.READERS:
+        from rockcli.records import extra
+
+        if fmt in formats.REFUSED or fmt in formats.EXTRA_FIRST:
+            if not extra.available():
+                if fmt in formats.EXTRA_FIRST:
+                    raise RockcliInputError(f"{name}: format {fmt} is read by the optional extra: pip install "
+                                            f"\"rockcli[formats]\" (without it, read it as TEXT with --column)")
+                raise formats.refusal(fmt, name)
+            out = extra.read_with_extra(path, column, recognised=fmt)
+        elif fmt in formats.READERS:
             from rockcli.records.at2 import read_text
 
             lines = read_text(path).splitlines()
             out = formats.READERS[fmt][1](lines, name, column)
             out.setdefault("dt_source", "header")
         else:
-            out = _from_obspy(path, fmt, column)
+            try:
+                out = _from_obspy(path, fmt, column)
+            except NotARecord as exc:
+                if fmt != "OBSPY":
+                    raise
+                if not extra.available():
+                    raise NotARecord(f"{exc}; if it is an agency format, {extra.INSTALL_HINT}") from None
+                out = extra.read_with_extra(path, column)  # imported only now: rockcli's readers and ObsPy failed
     out.setdefault("format", fmt)
     return _finish(path, out, units, dt, given_by)
 
@@ -418,7 +432,7 @@ def _finish(path: Path, out: dict[str, Any], units, dt, given_by: str) -> Record
                                     f"(known: {KNOWN_UNITS}; give the file's units in one of these words)") from None
         if units is not None and given_by != "suite" and not math.isclose(accel_factor(units), factor, rel_tol=1e-9):
             raise RockcliInputError(f"{name}: the file states units {stated_units!r} but {units!r} was given")
-        used_units, units_source = stated_units, "file"
+        used_units, units_source = stated_units, out.get("units_source", "file")
     elif units is not None:
         used_units, units_source = units, given_by
         factor = accel_factor(units)
