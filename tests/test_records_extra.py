@@ -27,19 +27,6 @@ def formats_rows(records_dirs):
     pytest.skip("records/formats not found in ROCKCLI_RECORDS")
 
 
-def _own(path) -> bool:
-    """rockcli's own readers (and ObsPy) read the file without the extra."""
-    from rockcli.records import reader
-
-    try:
-        read_components(path)
-        return True
-    except RockcliInputError as exc:
-        return "choose one with --column" in str(exc)  # a text table: read, with --column
-    finally:
-        reader  # noqa: B018
-
-
 def test_refusals_name_the_extra(formats_rows):
     if available():
         pytest.skip("the formats extra is installed: these files load")

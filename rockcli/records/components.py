@@ -38,6 +38,19 @@ class NotARecord(RockcliInputError):
     """No reader recognises the file's content (a README, a CSV of sources, a picture): a folder suite skips it."""
 
 
+def pick_trace(traces, column, path, names: str, what: str = "traces"):
+    """The ``column``-th (1-based) of a file's ``traces``; several without ``column``: :class:`MultiComponent`."""
+    if not traces:
+        raise RockcliInputError(f"{path}: the file holds no traces")
+    if len(traces) > 1 and column is None:
+        raise MultiComponent(f"{path}: the file holds {len(traces)} {what} ({names}); choose one with --component "
+                             f"CHANNEL (or --column 1-{len(traces)})", len(traces))
+    index = (column or 1) - 1
+    if index >= len(traces):
+        raise RockcliInputError(f"{path}: trace {column} does not exist (the file holds {len(traces)})")
+    return traces[index]
+
+
 _VERTICAL_WORDS = {"UP", "DWN", "DOWN", "UD", "V", "VER", "VERT", "VERTICAL", "Z"}
 _LETTERS = {"N": 0.0, "E": 90.0, "S": 180.0, "W": 270.0, "NS": 0.0, "EW": 90.0, "SN": 180.0, "WE": 270.0}
 

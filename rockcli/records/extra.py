@@ -40,7 +40,7 @@ def read_with_extra(path: Path, column, recognised: str | None = None) -> dict[s
     import logging
     import warnings
 
-    from rockcli.records.components import MultiComponent, NotARecord, orientation_meta
+    from rockcli.records.components import NotARecord, orientation_meta, pick_trace
 
     logging.getLogger().setLevel(max(logging.getLogger().level, logging.ERROR))  # gmprocess logs every file
     with warnings.catch_warnings():
@@ -57,16 +57,7 @@ def read_with_extra(path: Path, column, recognised: str | None = None) -> dict[s
             raise NotARecord(f"{path}: format not recognised by rockcli, ObsPy or gmprocess "
                              f"({text[0] if text else type(exc).__name__})") from None
     traces = [tr for st in streams for tr in st]
-    if not traces:
-        raise RockcliInputError(f"{path}: gmprocess read no traces")
-    if len(traces) > 1 and column is None:
-        names = ", ".join(tr.stats.channel for tr in traces)
-        raise MultiComponent(f"{path}: the file holds {len(traces)} components ({names}); choose one with "
-                             f"--component CHANNEL (or --column 1-{len(traces)})", len(traces))
-    index = (column or 1) - 1
-    if index >= len(traces):
-        raise RockcliInputError(f"{path}: component {column} does not exist (the file holds {len(traces)})")
-    tr = traces[index]
+    tr = pick_trace(traces, column, path, ", ".join(t.stats.channel for t in traces), "components")
     std = tr.stats.get("standard", {})
     if str(std.get("units_type", "acc")) != "acc":
         raise RockcliInputError(f"{path}: gmprocess reads {std.get('units_type')}, not acceleration")

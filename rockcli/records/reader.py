@@ -350,16 +350,9 @@ def _from_obspy(path: Path, fmt: str, column) -> dict[str, Any]:
     except Exception as exc:  # noqa: BLE001 -- ObsPy readers raise many kinds; one sentence for the user
         raise RockcliInputError(f"{path}: format not recognised, or a damaged file (ObsPy: {_first_line(exc)}); "
                                 f"give the format with --format, or convert the record to text") from None
-    if len(st) == 0:
-        raise RockcliInputError(f"{path}: the file holds no traces")
-    if len(st) > 1 and column is None:
-        ids = ", ".join(tr.id for tr in st)
-        raise MultiComponent(f"{path}: the file holds {len(st)} traces ({ids}); choose one with --component "
-                             f"CHANNEL (or --column 1-{len(st)})", len(st))
-    index = (column or 1) - 1
-    if index >= len(st):
-        raise RockcliInputError(f"{path}: trace {column} does not exist (the file holds {len(st)})")
-    tr = st[index]
+    from rockcli.records.components import pick_trace
+
+    tr = pick_trace(list(st), column, path, ", ".join(tr.id for tr in st))
     stats = tr.stats
     fmt_name = str(stats.get("_format", fmt))
     values = np.asarray(tr.data, dtype=np.float64)
