@@ -12,7 +12,6 @@ import sys
 
 import pytest
 
-from rockcli.records import read_record
 from rockcli.records.extra import available
 from rockcli.records.reader import read_components
 from rockcli.errors import RockcliInputError

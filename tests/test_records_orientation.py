@@ -162,7 +162,7 @@ def test_assess_column_worst_azimuth(pair_files, tmp_path):
 
     df = pd.read_csv(tmp_path / "a.csv")
     assert len(df) == 1 and df.azimuths_run[0] == 6 and df.azimuth_deg[0] == 60.0
-    assert f"@60" in res.output and "most adverse orientation" in res.output
+    assert "@60" in res.output and "most adverse orientation" in res.output
     # the worst row is the run at that azimuth: its margin equals a fixed --azimuth 60 run's
     res60 = CliRunner().invoke(main, ["assess", "column", "small:R=0.8,alpha=14", "--isolation", "none",
                                       "--records", f"{north}@0+{east}@90", "--azimuth", "60",
