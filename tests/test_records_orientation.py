@@ -183,3 +183,18 @@ def test_read_pair_from_one_file(find_record):
     np.testing.assert_array_equal(project(a, b, 242.0).acc, b.acc)
     with pytest.raises(RockcliInputError, match="--component/--column do not apply with --azimuth"):
         read_pair(str(path), component="N28W")
+
+
+def test_fragility_takes_one_azimuth(pair_files, tmp_path):
+    north, east = pair_files
+    args = ["assess", "fragility", "small:R=0.8,alpha=14", "--isolation", "none", "--bootstrap", "0",
+            "--records", f"{north}@0+{east}@90"]
+    res = CliRunner().invoke(main, [*args, "--azimuth", "60", "--csv", str(tmp_path / "f.csv")])
+    assert res.exit_code == 0, res.output
+    import pandas as pd
+
+    df = pd.read_csv(tmp_path / "f.csv")
+    # the motion along 60 deg is the 0.32 g pulse itself
+    assert df.record[0] == "n.txt+e.txt@60" and df.pga_g[0] == pytest.approx(0.32, rel=1e-3)
+    res = CliRunner().invoke(main, [*args, "--azimuth", "worst"])
+    assert res.exit_code == 2 and "--azimuth worst is not supported here yet" in res.output

@@ -339,6 +339,7 @@ def _write_histories(result, hist_dir, plot_dir):
               help="The suite (repeatable, required): folders (every non-hidden file), catalogue ids, files. "
                    "A file that cannot be read becomes an error row; the others carry on.")
 @_headerless_options
+@azimuth_options(suite=True)
 @click.option("--isolation", "isolation", multiple=True, metavar="SPEC",
               help="Foundation (repeatable): 'none', 'linear:Tb=2.5,xi=0.1,gamma=0.01', 'scss:Tb=2,mu=0.05', "
                    "'lrb:...' or 'dcss:...' (see 'rockcli simulate --help'). Default: none and "
@@ -394,7 +395,11 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
         from rockcli.distributed import check_scheduler
 
         check_scheduler(scheduler)
-    excitations, unavailable = resolve_excitations(records, "record", units=units, dt=dt,
+    azimuth = given_azimuth()["azimuth"]
+    if azimuth == "worst":
+        raise InputError("assess fragility takes one --azimuth DEG (the rocking plane of every pair); "
+                         "--azimuth worst is not supported here yet (run 'assess column --azimuth worst')")
+    excitations, unavailable = resolve_excitations(records, "record", units=units, dt=dt, azimuth=azimuth,
                                                    component=given_component(), **given_suite())
     _refuse_if_none_can_run(excitations)
     _add_record_inputs(excitations)
