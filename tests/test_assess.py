@@ -67,9 +67,12 @@ def test_configuration_headers_stay_unambiguous():
 
 def test_sources_files_folders_and_errors(pulse_records, tmp_path):
     (pulse_records / "junk.dat").write_text("this is not a record\n")
+    (pulse_records / "broken.AT2").write_text("PEER NGA STRONG MOTION DATABASE RECORD\nx\ny\nNPTS=-4\n")
     xs, unavailable = resolve_excitations([str(pulse_records)])
-    assert [x.label for x in xs] == ["anti.txt", "junk.dat", "sym.txt"] and not unavailable
-    assert xs[1].motion is None and "junk.dat" in xs[1].error
+    # a damaged record is an error row; a file that is not a record by its content is skipped (issue 24)
+    assert [x.label for x in xs] == ["anti.txt", "broken.AT2", "sym.txt"]
+    assert [(u.label, type(u).__name__) for u in unavailable] == [("junk.dat", "Skipped")]
+    assert xs[1].motion is None and "broken.AT2" in xs[1].error
     assert xs[2].pga_g == pytest.approx(0.45, rel=1e-3) and xs[2].kind == "record"
     with pytest.raises(RockcliInputError, match="no such file or folder, nor a catalogue id"):
         resolve_excitations([str(tmp_path / "missing.AT2")])

@@ -77,16 +77,21 @@ def test_no_progress_bar_when_piped_and_no_margin(pulse_records):
 
 
 def test_junk_file_in_folder_is_reported_in_its_rows(pulse_records, tmp_path):
+    # a damaged record is an error row; a file that is not a record by its content is skipped and counted (issue 24)
     (pulse_records / "notes.md").write_text("# a note, not a record\nhello\n")
+    (pulse_records / "bad.AT2").write_text("PEER NGA STRONG MOTION DATABASE RECORD\nx\ny\nNPTS=-4\n")
     out = tmp_path / "t.csv"
     res = invoke("s:R=1,alpha=10", "--records", pulse_records, "--isolation", "none", "--no-margin", "--csv", out)
     assert res.exit_code == 0, res.output
     df = read_assessment_csv(out)
-    bad = df[df.record == "notes.md"]
-    assert len(bad) == 1 and "notes.md" in bad.error.iloc[0] and pd.isna(bad.overturned.iloc[0])
-    assert (df[df.record != "notes.md"].error == "").all() and df[df.record != "notes.md"].overturned.notna().all()
-    assert "ERROR" in res.output and "Could not run notes.md" in res.output
-    survivors = int((~df[df.record != "notes.md"].overturned.astype(bool)).sum())
+    assert "notes.md" not in set(df.record)
+    assert "Skipped 1 file(s) of the folder(s) that are not records (no reader recognises their content): notes.md." \
+        in res.output
+    bad = df[df.record == "bad.AT2"]
+    assert len(bad) == 1 and "bad.AT2" in bad.error.iloc[0] and pd.isna(bad.overturned.iloc[0])
+    assert (df[df.record != "bad.AT2"].error == "").all() and df[df.record != "bad.AT2"].overturned.notna().all()
+    assert "ERROR" in res.output and "Could not run bad.AT2" in res.output
+    survivors = int((~df[df.record != "bad.AT2"].overturned.astype(bool)).sum())
     assert res.output.splitlines()[7].split() == ["survives", str(survivors), "of", "2"]  # junk not counted
 
 

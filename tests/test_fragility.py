@@ -352,7 +352,9 @@ def test_cli_units_and_dt_for_headerless_files(suite, tmp_path):
     df = pd.read_csv(tmp_path / "u.csv", keep_default_na=False, na_values=[""])
     err = df.set_index("record").error
     assert pd.isna(err["a_cms2.txt"]) and pd.isna(err["b_cms2.txt"])
-    assert "states units" in err["states_g.txt"]  # a file that states other units is an error row
+    # --units/--dt fill in only what a file does not state: a file that states g is read in g (issue 24)
+    assert pd.isna(err["states_g.txt"])
+    assert df.set_index("record").pga_g["states_g.txt"] == pytest.approx(read_record(suite / "c.txt").pga_g, rel=1e-12)
     assert df.set_index("record").pga_g["a_cms2.txt"] == pytest.approx(rec.pga_g, rel=1e-6)
     res = _invoke("small:R=0.6,alpha=12", "--records", bare, "--units", "furlongs")
     assert res.exit_code == 2 and "unknown acceleration unit" in res.output

@@ -62,6 +62,12 @@ class AssessmentRow:
     margin_note: str = ""
     overturn_share_pm10: float = math.nan
     error: str = ""
+    #: the azimuth of the rocking plane's normal [deg from north] when two components were projected onto it
+    #: (``--azimuth``; with ``worst``, the most adverse orientation, see :mod:`rockcli.assess.azimuth`)
+    azimuth_deg: float = math.nan
+    #: ``--azimuth worst``: the orientations [deg] that overturn at 1x (``none``), of ``azimuths_run`` run
+    overturning_azimuths: str = ""
+    azimuths_run: int | None = None
 
 
 #: CSV column order (every field of :class:`AssessmentRow`).
@@ -115,7 +121,7 @@ def _base_row(block: Block, x: Excitation, conf: Configuration) -> AssessmentRow
         record=x.label, excitation=x.kind, source=x.source, pga_g=x.pga_g, a_p_g=x.a_p_g, T_p_s=x.T_p_s,
         isolation=conf.label, configuration=conf.header, Tb_s=_nan(getattr(f, "T_b", None)),
         xi=_nan(getattr(f, "xi", None)), mu=_nan(getattr(f, "mu", None)), gamma=float(getattr(f, "gamma", 0.0)),
-        error=x.error)
+        error=x.error, azimuth_deg=x.azimuth_deg)
 
 
 def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],

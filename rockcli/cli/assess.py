@@ -8,7 +8,8 @@ from functools import partial
 import click
 
 from rockcli.cli.errors import InputError, user_errors
-from rockcli.cli.options import (cap_ratio_option, check_outputs, command_line, custom_block_options,
+from rockcli.cli.options import (azimuth_options, cap_ratio_option, check_outputs, command_line, custom_block_options,
+                                 given_azimuth, given_component, given_suite,
                                  horizon_option, progress_bar, report_option, restitution_option)
 from rockcli.cli.types import NUMBER, SEED, Number
 
@@ -41,12 +42,15 @@ def _cap_ratio_kw(cap_ratio, configurations) -> dict:
 
 def _headerless_options(func):
     """``--units`` and ``--dt`` for record files that do not state them (headerless text, SAC, ...)."""
+    from rockcli.cli.options import component_option, suite_options
+
+    func = suite_options(component_option(func))
     func = click.option("--dt", type=NUMBER, default=None, metavar="SECONDS",
-                        help="Time step [s] of the record files that state none; a file that states "
-                             "another one is an error row. Catalogue files are read as the catalogue says.")(func)
+                        help="Time step [s] of the record files that state none (it fills in only what a file "
+                             "does not state). Catalogue files are read as the catalogue says.")(func)
     return click.option("--units", default=None, metavar="UNITS",
                         help="Units of the record files that do not state them (g, m/s^2, cm/s^2, gal, "
-                             "mm/s^2, g/10); a file that states other units is an error row.")(func)
+                             "mm/s^2, g/10; they fill in only what a file does not state).")(func)
 
 
 def _run_counted(total: int, run):
@@ -98,7 +102,8 @@ def _add_record_inputs(excitations):
     from rockcli.assess import EXCITATION_RECORD
     from rockcli.cli.options import add_inputs
 
-    add_inputs([x.source for x in excitations if x.kind == EXCITATION_RECORD], "the record")
+    add_inputs([x.source for x in excitations if x.kind == EXCITATION_RECORD and x.pair is None]
+               + [r.meta.get("path") for x in excitations if x.pair for r in x.pair], "the record")
 
 
 def _columns(names, R, alpha, height, width, name):
@@ -125,6 +130,7 @@ def _columns(names, R, alpha, height, width, name):
               help="Records to run (repeatable): catalogue ids, files, folders. Default: the catalogue's "
                    "Table II records (file where found on ROCKCLI_RECORDS, else the catalogued pulse).")
 @_headerless_options
+@azimuth_options(suite=True)
 @click.option("--excitation", type=click.Choice(["auto", "record", "pulse"]), default="auto", show_default=True,
               help="Catalogue records: the file where found else its fitted Ricker pulse (auto), files only "
                    "(record), or the pulses only (pulse).")
@@ -183,17 +189,36 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
     solver.update(_cap_ratio_kw(cap_ratio, configurations))
     check_outputs((csv_path, "--csv", False), (report_path, "--report", False),
                   folders=((hist_dir, "--histories"), (plot_dir, "--plot")))
-    excitations, unavailable = resolve_excitations(records, excitation, units=units, dt=dt)
+    azimuth = given_azimuth()
+    if azimuth["azimuth"] is not None and not records:
+        raise InputError("--azimuth needs pairs of horizontal components: give them with --records A+B "
+                         "(or multi-component files)")
+    excitations, unavailable = resolve_excitations(records, excitation, units=units, dt=dt,
+                                                   component=given_component(), azimuth=azimuth["azimuth"],
+                                                   **given_suite())
     if not excitations:
         raise InputError("no record to run: " + "; ".join(f"{u.label}: {u.reason}" for u in unavailable))
     _refuse_if_none_can_run(excitations)
     _add_record_inputs(excitations)
+    run_excitations, groups = excitations, {}
+    if azimuth["azimuth"] == "worst":
+        from rockcli.assess.azimuth import expand
+        from rockcli.records.orientation import sweep_azimuths
+
+        if hist_dir or plot_dir or check_tolerance:
+            raise InputError("--azimuth worst keeps the most adverse orientation of each pair: --histories, --plot "
+                             "and --check-tolerance need one --azimuth DEG")
+        run_excitations, groups = expand(excitations, sweep_azimuths(azimuth["step"]))
     if hist_dir or plot_dir:
         _plan_run_files(columns, excitations, configurations, hist_dir, plot_dir)
 
-    result = _run_counted(count_runs(columns, excitations, configurations, margin, neighbourhood),
-                          partial(run_assessment, columns, excitations, configurations, margin=margin,
+    result = _run_counted(count_runs(columns, run_excitations, configurations, margin, neighbourhood),
+                          partial(run_assessment, columns, run_excitations, configurations, margin=margin,
                                   neighbourhood=neighbourhood, unavailable=unavailable, horizon=horizon, **solver))
+    if groups:
+        from rockcli.assess.azimuth import collapse
+
+        result = collapse(result, excitations, groups)
 
     from rockcli.report.tables import format_matrix, format_notes
 
@@ -314,6 +339,7 @@ def _write_histories(result, hist_dir, plot_dir):
               help="The suite (repeatable, required): folders (every non-hidden file), catalogue ids, files. "
                    "A file that cannot be read becomes an error row; the others carry on.")
 @_headerless_options
+@azimuth_options(suite=True)
 @click.option("--isolation", "isolation", multiple=True, metavar="SPEC",
               help="Foundation (repeatable): 'none', 'linear:Tb=2.5,xi=0.1,gamma=0.01', 'scss:Tb=2,mu=0.05', "
                    "'lrb:...' or 'dcss:...' (see 'rockcli simulate --help'). Default: none and "
@@ -369,7 +395,12 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
         from rockcli.distributed import check_scheduler
 
         check_scheduler(scheduler)
-    excitations, unavailable = resolve_excitations(records, "record", units=units, dt=dt)
+    azimuth = given_azimuth()["azimuth"]
+    if azimuth == "worst":
+        raise InputError("assess fragility takes one --azimuth DEG (the rocking plane of every pair); "
+                         "--azimuth worst is not supported here yet (run 'assess column --azimuth worst')")
+    excitations, unavailable = resolve_excitations(records, "record", units=units, dt=dt, azimuth=azimuth,
+                                                   component=given_component(), **given_suite())
     _refuse_if_none_can_run(excitations)
     _add_record_inputs(excitations)
 

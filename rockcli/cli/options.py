@@ -28,15 +28,108 @@ def record_options(func=None, *, column_flag: str = "--column"):
             click.option(column_flag, "column", type=WHOLE, default=None, metavar="N",
                          help="1-based column of a multi-column text file (a time column counts), or "
                               "component/trace of a multi-component file."),
+            component_option,
         ]
         return _stacked(f, options)
 
     return decorate(func) if func is not None else decorate
 
 
+def _remember(key):
+    def callback(ctx, param, value):
+        if value is not None:
+            ctx.meta[key] = value
+        return value
+
+    return callback
+
+
+#: ``--component NAME``: one component of a multi-component file. Not passed to the command: it is kept
+#: on the click context and :func:`record_kwargs` adds it (every command that reads records takes it).
+component_option = click.option(
+    "--component", default=None, metavar="NAME", expose_value=False, callback=_remember("rockcli.component"),
+    help="Component of a multi-component file: its channel code (HN1, HNE, HNZ, EW2, N28W, ...), N, E or UP, "
+         "or an azimuth in degrees ('rockcli records show FILE' lists them).")
+
+
+def azimuth_options(func=None, *, suite: bool = False):
+    """``--record-2``, ``--azimuth`` and ``--azimuth-step`` (``simulate``; ``suite=True``: without
+    ``--record-2``, for ``assess``, whose pairs are ``A+B`` sources): kept on the click context, read with
+    :func:`given_azimuth` (so the command's signature does not change)."""
+    if func is None:
+        return lambda f: azimuth_options(f, suite=suite)
+    pair_help = ("the pair A+B of --records (each FILE or FILE@DEG) or the two horizontal components of a "
+                 "multi-component file" if suite else "the two horizontal components (of --record, or --record "
+                 "and --record-2)")
+    options = [] if suite else [
+        click.option("--record-2", "record_2", default=None, metavar="SOURCE", expose_value=False,
+                     callback=_remember("rockcli.record_2"),
+                     help="The other horizontal component of --record (FILE, or FILE@DEG when the file states no "
+                          "orientation), for --azimuth."),
+    ]
+    options += [
+        click.option("--azimuth", default=None, metavar="DEG|worst", expose_value=False,
+                     callback=_remember("rockcli.azimuth"),
+                     help=f"Normal to the body's rocking axis, degrees clockwise from north: {pair_help} are "
+                          "projected onto it. 'worst' runs every orientation 0-179 deg and reports the most "
+                          "adverse."),
+        click.option("--azimuth-step", "azimuth_step", type=NUMBER, default=None, metavar="DEG", expose_value=False,
+                     callback=_remember("rockcli.azimuth_step"),
+                     help="Step of --azimuth worst [deg; default 5]."),
+    ]
+    return _stacked(func, options)
+
+
+def given_azimuth() -> dict:
+    """``record_2``, ``azimuth`` (None, ``"worst"`` or degrees) and ``step`` of :func:`azimuth_options`."""
+    from rockcli.records.orientation import AZIMUTH_STEP, parse_azimuth
+
+    ctx = click.get_current_context(silent=True)
+    meta = {} if ctx is None else ctx.meta
+    step = meta.get("rockcli.azimuth_step")
+    azimuth = parse_azimuth(meta.get("rockcli.azimuth"))
+    record_2 = meta.get("rockcli.record_2")
+    from rockcli.errors import RockcliInputError
+
+    if azimuth is None and record_2 is not None:
+        raise RockcliInputError("--record-2 is the second horizontal component for --azimuth: give --azimuth DEG|worst")
+    if step is not None and azimuth != "worst":
+        raise RockcliInputError("--azimuth-step applies to --azimuth worst")
+    return {"record_2": record_2, "azimuth": azimuth, "step": AZIMUTH_STEP if step is None else step}
+
+
+def suite_options(func):
+    """``--glob`` and ``--exclude`` (multiple) for folder suites: kept on the click context, read with
+    :func:`given_suite`."""
+    options = [
+        click.option("--glob", "glob", multiple=True, metavar="PATTERN", expose_value=False,
+                     callback=_remember("rockcli.glob"),
+                     help="Take only the files of a --records folder whose names match this shell pattern "
+                          "(e.g. '*.AT2'; repeatable)."),
+        click.option("--exclude", "exclude", multiple=True, metavar="PATTERN", expose_value=False,
+                     callback=_remember("rockcli.exclude"),
+                     help="Leave out the files of a --records folder whose names match this shell pattern "
+                          "(repeatable)."),
+    ]
+    return _stacked(func, options)
+
+
+def given_suite() -> dict:
+    """``glob`` and ``exclude`` of :func:`suite_options` (tuples)."""
+    ctx = click.get_current_context(silent=True)
+    meta = {} if ctx is None else ctx.meta
+    return {"glob": tuple(meta.get("rockcli.glob") or ()), "exclude": tuple(meta.get("rockcli.exclude") or ())}
+
+
+def given_component():
+    """The ``--component`` of the running command (None when not given)."""
+    ctx = click.get_current_context(silent=True)
+    return None if ctx is None else ctx.meta.get("rockcli.component")
+
+
 def record_kwargs(units, dt, fmt, column) -> dict:
-    """The keyword arguments of ``read_record`` from the values of :func:`record_options`."""
-    return {"units": units, "dt": dt, "format": fmt, "column": column}
+    """The keyword arguments of ``read_record`` from the values of :func:`record_options` (and ``--component``)."""
+    return {"units": units, "dt": dt, "format": fmt, "column": column, "component": given_component()}
 
 
 def block_options(func):

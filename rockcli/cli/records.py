@@ -78,8 +78,15 @@ def show(source, units, dt, fmt, column, plot_path):
     from rockcli.records import read_record
     from rockcli.records.motion import calc_peaks
 
+    from rockcli.records.components import MultiComponent
+
     check_outputs((plot_path, "--plot", True))
-    rec = read_record(source, **record_kwargs(units, dt, fmt, column))
+    kwargs = record_kwargs(units, dt, fmt, column)
+    try:
+        rec = read_record(source, **kwargs)
+    except MultiComponent:
+        _list_components(source, kwargs)
+        return
     add_inputs([rec.meta.get("path")], "the record")
     peaks = calc_peaks(rec)
     meta = rec.meta
@@ -87,9 +94,10 @@ def show(source, units, dt, fmt, column, plot_path):
     if meta.get("path"):
         lines.append(("file", meta["path"]))
     lines.append(("format", str(meta.get("format", ""))))
-    for key in ("event", "station", "component"):
+    for key in ("event", "station"):
         if meta.get(key):
             lines.append((key, str(meta[key])))
+    lines.append(("component", _component_text(rec)))
     lines += [
         ("units in file", f"{meta.get('units')} (from the {meta.get('units_source')}; x{meta.get('factor'):.6g} to m/s^2)"),
         ("npts", str(rec.npts)),
@@ -111,3 +119,56 @@ def show(source, units, dt, fmt, column, plot_path):
 
         plot_record(rec, plot_path, baseline="linear")
         click.echo(f"wrote {plot_path} (velocity and displacement with the linear baseline)")
+
+
+def _component_text(rec) -> str:
+    from rockcli.records.components import component_name, orientation_text
+
+    source = rec.meta.get("orientation_source")
+    return f"{component_name(rec)} ({orientation_text(rec)}" + (f"; from the {source})" if source else ")")
+
+
+def _list_components(source, kwargs) -> None:
+    """A multi-component file: one line per component (name, orientation, npts, dt, PGA)."""
+    from rockcli.records.reader import read_components
+
+    kwargs = {k: v for k, v in kwargs.items() if k not in ("column", "component")}
+    comps = read_components(source, **kwargs)
+    add_inputs([comps[0].meta.get("path")], "the record")
+    first = comps[0]
+    click.echo(f"{first.meta.get('path', source)}: {len(comps)} components ({first.meta.get('format')}"
+               + (f", station {first.meta['station']}" if first.meta.get("station") else "") + ")")
+    rows = [("component", "orientation", "npts", "dt [s]", "PGA [g]", "PGA [m/s^2]")]
+    for rec in comps:
+        from rockcli.records.components import component_name, orientation_text
+
+        rows.append((component_name(rec), orientation_text(rec), str(rec.npts), f"{rec.dt:.6g}",
+                     f"{rec.pga_g:.4f}", f"{rec.pga:.4f}"))
+    widths = [max(len(r[i]) for r in rows) for i in range(len(rows[0]))]
+    for r in rows:
+        click.echo("  ".join(c.ljust(w) for c, w in zip(r, widths)).rstrip())
+    click.echo("pick one with --component NAME (a channel code as listed, N, E, UP, or an azimuth in degrees)")
+
+
+@records.command(name="export")
+@click.argument("source")
+@click.argument("out", type=click.Path())
+@record_options
+@user_errors
+def export(source, out, units, dt, fmt, column):
+    """Write one component of SOURCE as a plain text record OUT (m/s^2, its dt in a comment), which rockcli
+    reads back sample for sample: ``rockcli records show OUT``.
+
+    \b
+    Example:
+      rockcli records export 20161113_110259_WTMC_20.V2A wtmc-n28w.txt --component N28W
+    """
+    from rockcli.files import write_text
+    from rockcli.records import read_record
+    from rockcli.records.components import record_text
+
+    check_outputs((out, "OUT", False))
+    rec = read_record(source, **record_kwargs(units, dt, fmt, column))
+    add_inputs([rec.meta.get("path")], "the record")
+    write_text(out, record_text(rec))
+    click.echo(f"wrote {out} ({rec.npts} samples, dt = {rec.dt:g} s, m/s^2; component {_component_text(rec)})")

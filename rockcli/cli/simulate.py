@@ -7,7 +7,8 @@ import math
 import click
 
 from rockcli.cli.errors import user_errors
-from rockcli.cli.options import (add_inputs, block_from_options, block_options, cap_ratio_option, check_outputs,
+from rockcli.cli.options import (azimuth_options, block_from_options, block_options, cap_ratio_option,
+                                 check_outputs,
                                  command_line, horizon_option, record_kwargs, record_options, report_option,
                                  restitution_option)
 from rockcli.cli.types import NUMBER
@@ -24,6 +25,7 @@ from rockcli.cli.types import NUMBER
 @click.option("--record", "record_source", default=None, metavar="SOURCE",
               help="Ground motion: a record file or a catalogue id (see 'rockcli records list').")
 @record_options(column_flag="--record-column")
+@azimuth_options
 @click.option("--pulse", default=None, metavar="SPEC",
               help="Ground motion: an analytic pulse, e.g. 'ricker-sym:ap=0.3,Tp=0.6' (ap in g, Tp in s); "
                    "shapes ricker-sym, ricker-anti, sine, cosine.")
@@ -109,6 +111,10 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     if not math.isfinite(scale) or scale == 0:
         raise RockcliInputError(f"--scale must be a finite non-zero number, got {scale!r}")
     factor = -scale if flip else scale
+    if record_source is None:
+        from rockcli.cli.azimuth import refuse_without_record
+
+        refuse_without_record()
     if record_source is None and pulse is None:
         if any(v is not None for v in (units, dt, fmt, column)):
             raise RockcliInputError("--units, --dt, --format and --record-column apply to --record")
@@ -123,13 +129,18 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
             excitation = excitation.scaled(factor)
         label = f"{excitation.shape} pulse"
     else:
-        from rockcli.records import read_record
+        from rockcli.cli.azimuth import read_excitation, run_worst, wants_worst
 
-        excitation = read_record(record_source, **record_kwargs(units, dt, fmt, column))
-        add_inputs([excitation.meta.get("path")], "the record")
+        excitation, pair = read_excitation(record_source, record_kwargs(units, dt, fmt, column))
+        label = f"record {excitation.name}" + (f" x {factor:g}" if factor != 1.0 else "")
+        if pair is not None and wants_worst():
+            if history_path or plot_path or report_path or check or moving:
+                raise RockcliInputError("--azimuth worst runs every orientation verdict-only: --history, --plot, "
+                                        "--report, --check-tolerance and --theta0 need one --azimuth DEG")
+            return run_worst(block, foundation, pair, factor, as_json=as_json, label=label.split("@")[0],
+                             rtol=rtol, tail=tail, horizon=horizon, **solver)
         if factor != 1.0:
             excitation = excitation.scaled(factor)
-        label = f"record {excitation.name}" + (f" x {factor:g}" if factor != 1.0 else "")
 
     from rockcli.solve import simulate as run
 

@@ -160,9 +160,11 @@ def _read_geonet(lines: list[str], filename: str, column: int | None) -> dict[st
         m = re.match(r"^Component\s+(\S+)", lines[s + 12]) if s + 12 < len(lines) else None
         comps.append(m.group(1) if m else "?")
     if column is None:
-        raise RockcliInputError(
+        from rockcli.records.components import MultiComponent
+
+        raise MultiComponent(
             f"{filename}: GeoNet V2A file holds {len(starts)} components ({', '.join(comps)}); "
-            f"choose one with --column 1-{len(starts)}")
+            f"choose one with --component NAME (or --column 1-{len(starts)})", len(starts))
     if not 1 <= column <= len(starts):
         raise RockcliInputError(f"{filename}: column {column} does not exist (the file holds {len(starts)} components)")
     s = starts[column - 1]
@@ -254,11 +256,25 @@ REFUSED: dict[str, tuple[Callable, str]] = {
 }
 
 
+def _is_cwb(lines):
+    return any(l.startswith("#StationCode:") for l in lines[:20]) and any(l.startswith("#Earthquake Information")
+                                                                          for l in lines[:3])
+
+
+#: name -> probe: text tables rockcli reads column by column (``--column``, ``--units``), which the
+#: ``formats`` extra reads with their units and orientations when it is installed.
+EXTRA_FIRST: dict[str, Callable] = {"CWB": _is_cwb}
+
+
 def probe(lines: list[str]) -> str | None:
     """Name of the format of a text file from its first lines (None when not recognised)."""
-    for name, (is_fmt, _) in {**READERS, **REFUSED}.items():
+    for name, is_fmt in {**{k: v[0] for k, v in {**READERS, **REFUSED}.items()}, **EXTRA_FIRST}.items():
         try:
             if is_fmt(lines):
+                if name in EXTRA_FIRST:
+                    from rockcli.records.extra import available
+
+                    return name if available() else None  # without the extra: a text table, as before
                 return name
         except Exception:  # noqa: BLE001 -- a probe answers, never raises
             continue
@@ -267,4 +283,6 @@ def probe(lines: list[str]) -> str | None:
 
 def refusal(name: str, filename: str) -> RockcliInputError:
     """The error for a recognised but refused format."""
-    return RockcliInputError(f"{filename}: {REFUSED[name][1]}")
+    from rockcli.records.extra import INSTALL_HINT
+
+    return RockcliInputError(f"{filename}: {REFUSED[name][1]}; or {INSTALL_HINT}")

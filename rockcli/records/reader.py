@@ -11,6 +11,7 @@ from typing import Any
 import numpy as np
 
 from rockcli.errors import RockcliInputError
+from rockcli.records.components import MultiComponent, NotARecord
 from rockcli.records.record import Record
 from rockcli.units import G
 
@@ -68,7 +69,8 @@ def _check_column(column):
     return value
 
 
-def read_record(source, *, format=None, units=None, dt=None, column=None) -> Record:
+def read_record(source, *, format=None, units=None, dt=None, column=None, component=None,
+                fill_in: bool = False) -> Record:
     """Read a ground-acceleration record from a file or the catalogue.
 
     Parameters
@@ -89,6 +91,13 @@ def read_record(source, *, format=None, units=None, dt=None, column=None) -> Rec
     column : int, optional
         1-based column of a multi-column text file (a time column counts), or component of a
         multi-component file (GeoNet V2A) or trace of a multi-trace ObsPy stream.
+    component : str, optional
+        Component of a multi-component file by name: its channel code (``HN1``, ``HNE``, ``N28W``,
+        ``EW2``), ``N``/``E``/``UP`` or an azimuth in degrees (see
+        :func:`rockcli.records.components.select_component`).
+    fill_in : bool
+        ``units`` and ``dt`` only fill in what the file does not state (a suite's defaults): a file
+        that states other ones is read as it states them, not refused.
 
     Returns
     -------
@@ -115,6 +124,13 @@ def read_record(source, *, format=None, units=None, dt=None, column=None) -> Rec
     dt = _check_dt(dt)
     column = _check_column(column)
     fmt = str(format).strip().upper() if format else None
+    if component is not None:
+        if column is not None:
+            raise RockcliInputError("give the component either by --component NAME or by --column N, not both")
+        from rockcli.records.components import select_component
+
+        comps = read_components(source, format=format, units=units, dt=dt, fill_in=fill_in)
+        return select_component(comps, component, _label(source, comps))
 
     if isinstance(source, Record):
         return source
@@ -134,13 +150,32 @@ def read_record(source, *, format=None, units=None, dt=None, column=None) -> Rec
                     f"(set ROCKCLI_RECORDS to the folder holding it)")
             rec = _read_path(path, fmt or entry.format or None, units or entry.units, dt or entry.dt,
                              column or entry.column, given_by="caller" if units else "catalogue")
+            from rockcli.records.components import orientation_meta
+
+            orient = orientation_meta(entry.component, "catalogue")
+            if orient["azimuth_deg"] is None and not orient["vertical"]:
+                orient = {k: rec.meta.get(k) for k in ("azimuth_deg", "vertical", "orientation_source")}
             meta = {**rec.meta, "catalog_id": entry.id, "event": entry.event, "year": entry.year,
-                    "station": entry.station, "component": entry.component,
+                    "station": entry.station, "component": entry.component, **orient,
                     "file_meta": {k: rec.meta.get(k) for k in ("event", "station", "component")}}
             return Record(acc=rec.acc, dt=rec.dt, name=entry.id, t_start=rec.t_start, meta=meta)
         if os.sep not in source and "/" not in source:
             raise RockcliInputError(f"{source}: no such file, nor a catalogue id (see 'rockcli records list')")
-    return _read_path(Path(source), fmt, units, dt, column)
+    return _read_path(Path(source), fmt, units, dt, column, given_by="suite" if fill_in else "caller")
+
+
+def _label(source, comps) -> str:
+    return str(comps[0].meta.get("path") or source) if comps else str(source)
+
+
+def read_components(source, *, format=None, units=None, dt=None, fill_in: bool = False) -> list[Record]:
+    """Every component of a record file (or catalogue id), each a :class:`Record` with its name and
+    orientation in ``meta`` (``component``, ``azimuth_deg``, ``vertical``); one for a one-component file."""
+    try:
+        return [read_record(source, format=format, units=units, dt=dt, fill_in=fill_in)]
+    except MultiComponent as multi:
+        return [read_record(source, format=format, units=units, dt=dt, column=k, fill_in=fill_in)
+                for k in range(1, multi.count + 1)]
 
 
 def _read_path(path: Path, fmt, units, dt, column, given_by: str = "caller") -> Record:
@@ -175,16 +210,30 @@ def _read_path(path: Path, fmt, units, dt, column, given_by: str = "caller") -> 
     else:
         from rockcli.records import formats
 
-        if fmt in formats.REFUSED:
-            raise formats.refusal(fmt, name)
-        if fmt in formats.READERS:
+        from rockcli.records import extra
+
+        if fmt in formats.REFUSED or fmt in formats.EXTRA_FIRST:
+            if not extra.available():
+                if fmt in formats.EXTRA_FIRST:
+                    raise RockcliInputError(f"{name}: format {fmt} is read by the optional extra: pip install "
+                                            f"\"rockcli[formats]\" (without it, read it as TEXT with --column)")
+                raise formats.refusal(fmt, name)
+            out = extra.read_with_extra(path, column, recognised=fmt)
+        elif fmt in formats.READERS:
             from rockcli.records.at2 import read_text
 
             lines = read_text(path).splitlines()
             out = formats.READERS[fmt][1](lines, name, column)
             out.setdefault("dt_source", "header")
         else:
-            out = _from_obspy(path, fmt, column)
+            try:
+                out = _from_obspy(path, fmt, column)
+            except NotARecord as exc:
+                if fmt != "OBSPY":
+                    raise
+                if not extra.available():
+                    raise NotARecord(f"{exc}; if it is an agency format, {extra.INSTALL_HINT}") from None
+                out = extra.read_with_extra(path, column)  # imported only now: rockcli's readers and ObsPy failed
     out.setdefault("format", fmt)
     return _finish(path, out, units, dt, given_by)
 
@@ -272,6 +321,16 @@ def _from_text(path: Path, column) -> dict[str, Any]:
             "comments": parsed["comments"]}
     if parsed["names"]:
         meta["column_names"] = parsed["names"]
+    for line in parsed["comments"] or ():  # "# component: N28W (332 deg)", as `records export` writes it
+        m = re.search(r"component:\s*(\S+)\s*\((vertical|[\d.]+ deg)\)", str(line))
+        if m:
+            from rockcli.records.components import orientation_meta
+
+            az = None if m.group(2) == "vertical" else float(m.group(2).split()[0])
+            meta.update(component=m.group(1), **orientation_meta(m.group(1), "comment", azimuth=az))
+            if az is None:
+                meta.update(vertical=True, azimuth_deg=None, orientation_source="comment: vertical")
+            break
     return {"values": parsed["values"], "dt": parsed["dt"], "dt_source": parsed["dt_source"],
             "units": parsed["units"], "t_start": parsed["t_start"], "meta": meta, "format": "TEXT"}
 
@@ -286,20 +345,14 @@ def _from_obspy(path: Path, fmt: str, column) -> dict[str, Any]:
             raise RockcliInputError(
                 f"{path}: unknown format {fmt!r} (rockcli reads PEER_AT2, TEXT, ESM, ITACA, COSMOS, GEONET_V2A "
                 f"and ObsPy's formats such as SAC, MSEED, KNET)") from None
-        raise RockcliInputError(f"{path}: format not recognised ({_first_line(exc)}); "
-                                f"give it with --format, or convert the record to text") from None
+        raise NotARecord(f"{path}: format not recognised ({_first_line(exc)}); "
+                         f"give it with --format, or convert the record to text") from None
     except Exception as exc:  # noqa: BLE001 -- ObsPy readers raise many kinds; one sentence for the user
         raise RockcliInputError(f"{path}: format not recognised, or a damaged file (ObsPy: {_first_line(exc)}); "
                                 f"give the format with --format, or convert the record to text") from None
-    if len(st) == 0:
-        raise RockcliInputError(f"{path}: the file holds no traces")
-    if len(st) > 1 and column is None:
-        ids = ", ".join(tr.id for tr in st)
-        raise RockcliInputError(f"{path}: the file holds {len(st)} traces ({ids}); choose one with --column 1-{len(st)}")
-    index = (column or 1) - 1
-    if index >= len(st):
-        raise RockcliInputError(f"{path}: trace {column} does not exist (the file holds {len(st)})")
-    tr = st[index]
+    from rockcli.records.components import pick_trace
+
+    tr = pick_trace(list(st), column, path, ", ".join(tr.id for tr in st))
     stats = tr.stats
     fmt_name = str(stats.get("_format", fmt))
     values = np.asarray(tr.data, dtype=np.float64)
@@ -322,6 +375,11 @@ def _from_obspy(path: Path, fmt: str, column) -> dict[str, Any]:
         # SAC's IDEP says what the quantity is, not its units (and writers rarely follow its nm
         # convention): the units are not stated.
         meta["sac_idep"] = int(stats.sac.get("idep", -12345))
+        cmpaz, cmpinc = float(stats.sac.get("cmpaz", -12345.0)), float(stats.sac.get("cmpinc", -12345.0))
+        if cmpinc == 0.0 or cmpinc == 180.0:
+            meta.update(vertical=True, azimuth_deg=None, orientation_source="SAC header CMPINC")
+        elif cmpinc == 90.0 and cmpaz != -12345.0:
+            meta.update(vertical=False, azimuth_deg=cmpaz % 360.0, orientation_source="SAC header CMPAZ")
     if float(stats.calib) != 1.0 and fmt_name != "KNET":
         meta["calib"] = float(stats.calib)
     if values.size and not np.all(np.isfinite(values)):
@@ -334,6 +392,21 @@ def _from_obspy(path: Path, fmt: str, column) -> dict[str, Any]:
 def _first_line(exc: Exception) -> str:
     text = str(exc).strip().splitlines()
     return text[0].rstrip(".") if text else type(exc).__name__
+
+
+def _orientation(path: Path, fmt, component) -> dict:
+    """Orientation from the component name the file gives; for an AT2 file whose header names none, from
+    the PEER file name (station code and a three-digit azimuth: ``RSN181_IMPVALL.H_H-E06140.AT2``: 140)."""
+    from rockcli.records.components import orientation_meta
+
+    where = "AT2 header line 2" if fmt == "PEER_AT2" else f"{fmt} header"
+    found = orientation_meta(component, where)
+    if found["azimuth_deg"] is None and not found["vertical"] and fmt == "PEER_AT2":
+        # PEER NGA names end in station code + three-digit azimuth: ..._H-E06140, ..._TAZ000, ..._A-STU270
+        m = re.search(r"[-_.][A-Z][A-Z0-9]*?(\d{3})$", re.sub(r"(?i)\.at2$", "", path.name).upper())
+        if m and int(m.group(1)) <= 360:
+            found = orientation_meta(m.group(1), "AT2 file name")
+    return found
 
 
 def _finish(path: Path, out: dict[str, Any], units, dt, given_by: str) -> Record:
@@ -350,9 +423,9 @@ def _finish(path: Path, out: dict[str, Any], units, dt, given_by: str) -> Record
 
             raise RockcliInputError(f"{name}: the file states units {stated_units!r}, which rockcli does not know "
                                     f"(known: {KNOWN_UNITS}; give the file's units in one of these words)") from None
-        if units is not None and not math.isclose(accel_factor(units), factor, rel_tol=1e-9):
+        if units is not None and given_by != "suite" and not math.isclose(accel_factor(units), factor, rel_tol=1e-9):
             raise RockcliInputError(f"{name}: the file states units {stated_units!r} but {units!r} was given")
-        used_units, units_source = stated_units, "file"
+        used_units, units_source = stated_units, out.get("units_source", "file")
     elif units is not None:
         used_units, units_source = units, given_by
         factor = accel_factor(units)
@@ -364,7 +437,7 @@ def _finish(path: Path, out: dict[str, Any], units, dt, given_by: str) -> Record
     if stated_dt is not None:
         if not stated_dt > 0:
             raise RockcliInputError(f"{name}: the file states a time step of {_num(stated_dt)} s; it must be positive")
-        if dt is not None and not math.isclose(dt, stated_dt, rel_tol=1e-6):
+        if dt is not None and given_by != "suite" and not math.isclose(dt, stated_dt, rel_tol=1e-6):
             raise RockcliInputError(f"{name}: the file states dt={_num(stated_dt)} s but dt={_num(dt)} s was given")
         used_dt, dt_source = float(stated_dt), out.get("dt_source") or "file"
     elif dt is not None:
@@ -374,7 +447,7 @@ def _finish(path: Path, out: dict[str, Any], units, dt, given_by: str) -> Record
 
     lo, hi = DT_RANGE_S
     if not lo <= used_dt <= hi:
-        said = {"caller": "given", "catalogue": "from the catalogue"}.get(dt_source, f"from the {dt_source}")
+        said = {"caller": "given", "suite": "given", "catalogue": "from the catalogue"}.get(dt_source, f"from the {dt_source}")
         raise RockcliInputError(f"{name}: time step dt = {_num(used_dt)} s ({said}) lies outside the "
                                 f"supported {lo:g} s to {hi:g} s (strong-motion records are sampled at 50 Hz to "
                                 f"a few kHz); check its unit")
@@ -384,11 +457,13 @@ def _finish(path: Path, out: dict[str, Any], units, dt, given_by: str) -> Record
     peak = float(np.max(np.abs(values)))
     if not np.isfinite(peak * factor) or peak * factor > PGA_MAX_G * G:
         i = int(np.argmax(np.abs(values)))
-        said = {"caller": "given", "catalogue": "from the catalogue"}.get(units_source, f"from the {units_source}")
+        said = {"caller": "given", "suite": "given", "catalogue": "from the catalogue"}.get(units_source, f"from the {units_source}")
         raise RockcliInputError(f"{name}: sample {i + 1} is {_num(values[i])} {used_units} (units {said}), "
                                 f"a peak beyond the supported {PGA_MAX_G:g} g (recorded peaks reach about 4 g); "
                                 f"check the units")
     meta = dict(out.get("meta", {}))
+    if "azimuth_deg" not in meta:
+        meta.update(_orientation(path, out.get("format"), meta.get("component")))
     meta.update(units=used_units, units_source=units_source, factor=factor, dt_source=dt_source,
                 format=out.get("format"), path=str(path))
     return Record(acc=values * factor, dt=used_dt, name=path.name, t_start=float(out.get("t_start", 0.0)), meta=meta)

@@ -72,8 +72,9 @@ def format_fragility_notes(fr) -> str:
         lines.append(f"{len(unproven)} capacities include scaled runs still moving at the solver's horizon, counted "
                      "as surviving (the capacity is then an upper estimate; margin_note in the CSV; --horizon "
                      "follows them longer).")
-    for u in fr.unavailable:
-        lines.append(f"Not available: {u.label} ({u.reason}).")
+    from rockcli.assess.scenes import unavailable_notes
+
+    lines += unavailable_notes(fr.unavailable)
     failed = fr.failed
     if failed:
         lines.append(f"Not used ({len(failed)} records; error rows in the CSV):")

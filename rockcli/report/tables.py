@@ -44,6 +44,8 @@ def format_cell(row, margin: bool, neighbourhood: bool = False) -> str:
             text += f" x{row.overturn_scale:.2f}"
         elif row.margin_note.startswith("no overturning"):
             text += " x>4"
+    if row.azimuths_run:  # --azimuth worst: the most adverse orientation
+        text += f" @{row.azimuth_deg:g}"
     if neighbourhood and not math.isnan(row.overturn_share_pm10):
         text += f" [{100 * row.overturn_share_pm10:.0f}%]"
     return text
@@ -109,6 +111,15 @@ def format_notes(assessment) -> str:
                      "S < 1 on a survivor: a weaker record overturns it, 1x sits on a safe island; x>4: nothing "
                      "up to 4x overturns). Found on a 0.1x..4x grid in 1 % steps; where the "
                      "boundary is ragged the value is indicative.")
+    worst = [r for r in assessment.rows if r.azimuths_run and not r.error]
+    if worst:
+        lines.append(f"@A: the most adverse orientation of the two horizontal components, of {worst[0].azimuths_run} "
+                     "run (0-179 deg; A = azimuth of the normal to the rocking axis, clockwise from north): the "
+                     "smallest margin xS, then an overturn at 1x, then the largest peak |theta|/alpha.")
+        over = [r for r in worst if r.overturning_azimuths not in ("", "none")]
+        for r in over:
+            lines.append(f"Overturning orientations: {r.column} / {r.record} / {r.configuration}: "
+                         f"{r.overturning_azimuths.replace(' ', ', ')} deg.")
     if assessment.neighbourhood:
         lines.append("[P%]: share of the scale factors 0.90x, 0.91x, ..., 1.10x of the record that overturn "
                      "(0% or 100%: a robust verdict; in between: the verdict flips within +-10% of the record).")
@@ -120,8 +131,9 @@ def format_notes(assessment) -> str:
         lines.append("Idealised (record file not found; its catalogued Ricker pulse was run instead): "
                      + ", ".join(assessment.idealised) + ". A single pulse lacks the record's other cycles: "
                      "with the paper's records it misses many overturns, above all on isolators (see README).")
-    for u in assessment.unavailable:
-        lines.append(f"Not available: {u.label} ({u.reason}).")
+    from rockcli.assess.scenes import unavailable_notes
+
+    lines += unavailable_notes(assessment.unavailable)
     for x in assessment.failed:
         lines.append(f"Could not run {x.label}: {x.error}")
     other = [r for r in assessment.rows if r.error and not any(x.label == r.record for x in assessment.failed)]
@@ -147,6 +159,8 @@ def assessment_frame(assessment):
 
 #: Columns added by ``--check-tolerance`` (:func:`rockcli.assess.table.check_tolerance`), empty on rows
 #: that were not rerun (errors, unavailable motions).
+#: Columns of an assessment with ``--azimuth`` (after :data:`CSV_COLUMNS`).
+AZIMUTH_COLUMNS = ("azimuth_deg", "overturning_azimuths", "azimuths_run")
 CHECK_COLUMNS = ("tight_rtol_verdict", "tight_rtol_peak_change", "ulp_verdicts", "ulp_peak_change", "ill_conditioned")
 
 
@@ -154,6 +168,9 @@ def write_assessment_csv(assessment, path: str | os.PathLike, check=None) -> Pat
     """Write the CSV report (one row per column x record x configuration), atomically; with ``check``
     (a :class:`rockcli.assess.table.ToleranceCheck`) the :data:`CHECK_COLUMNS` follow."""
     df = assessment_frame(assessment)
+    if any(not math.isnan(r.azimuth_deg) for r in assessment.rows):  # --azimuth: the columns of orientation
+        for key in AZIMUTH_COLUMNS:
+            df[key] = [getattr(r, key) for r in assessment.rows]
     for key in ("restitution", "cap_ratio"):  # given physics options (nothing for the defaults)
         if assessment.solver.get(key):
             df[key] = assessment.solver[key]

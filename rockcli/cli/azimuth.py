@@ -1,0 +1,86 @@
+"""``--azimuth`` on ``simulate``: the record along the rocking plane, and ``--azimuth worst``."""
+
+from __future__ import annotations
+
+import click
+
+from rockcli.cli.options import add_inputs, given_azimuth
+from rockcli.errors import RockcliInputError
+
+
+def read_excitation(source, kwargs: dict):
+    """``(record, pair)`` for ``simulate --record SOURCE``: the record as read (``pair`` None), or, with
+    ``--azimuth``, its two horizontal components projected onto the azimuth (``pair`` the checked pair;
+    with ``worst``, the record is the projection onto 0 deg and the sweep is run by :func:`run_worst`)."""
+    from rockcli.records import read_record
+    from rockcli.records.orientation import project, read_pair
+
+    given = given_azimuth()
+    if given["azimuth"] is None:
+        rec = read_record(source, **kwargs)
+        add_inputs([rec.meta.get("path")], "the record")
+        return rec, None
+    pair = read_pair(source, given["record_2"], **kwargs)
+    add_inputs([r.meta.get("path") for r in pair], "the record")
+    return project(*pair, 0.0 if given["azimuth"] == "worst" else given["azimuth"]), pair
+
+
+def refuse_without_record() -> None:
+    """``--azimuth``/``--record-2`` given without ``--record``."""
+    ctx = click.get_current_context(silent=True)
+    if ctx is not None and any(ctx.meta.get(k) is not None for k in ("rockcli.azimuth", "rockcli.record_2",
+                                                                     "rockcli.azimuth_step", "rockcli.component")):
+        raise RockcliInputError("--azimuth, --record-2, --azimuth-step and --component apply to --record")
+
+
+def wants_worst() -> bool:
+    return given_azimuth()["azimuth"] == "worst"
+
+
+def worst_of(results) -> int:
+    """Index of the most adverse run: the earliest overturn, else the largest peak |theta|/alpha."""
+    over = [i for i, r in enumerate(results) if r.overturned]
+    if over:
+        return min(over, key=lambda i: results[i].t_overturn_s)
+    return max(range(len(results)), key=lambda i: results[i].theta_max_over_alpha)
+
+
+def run_worst(block, foundation, pair, factor: float, *, as_json: bool, label: str, **solver) -> None:
+    """Run every azimuth of ``--azimuth worst`` (verdict only, all cores) and print each and the worst."""
+    import json
+
+    from rockcli.records.orientation import project, sweep_azimuths
+    from rockcli.solve import VERDICT_ERROR, simulate_many
+
+    azimuths = sweep_azimuths(given_azimuth()["step"])
+    jobs = [(block, foundation, project(*pair, th), factor) for th in azimuths]
+    results = simulate_many(jobs, **solver)
+    failed = [r for r in results if r.verdict == VERDICT_ERROR or r.status < 0]
+    if failed:
+        raise click.ClickException(f"a run of --azimuth worst failed: {getattr(failed[0], 'error', 'numerical failure')}")
+    worst = worst_of(results)
+    over = [float(th) for th, r in zip(azimuths, results) if r.overturned]
+    comps = ", ".join(f"{r.meta.get('component')} at {r.meta['azimuth_deg']:g} deg" for r in pair)
+    if as_json:
+        click.echo(json.dumps({
+            "block": block.name, "isolation": foundation.label, "excitation": label, "components": comps,
+            "azimuths_deg": [float(a) for a in azimuths],
+            "verdicts": [r.verdict for r in results],
+            "theta_max_over_alpha": [None if r.overturned else r.theta_max_over_alpha for r in results],
+            "worst_azimuth_deg": float(azimuths[worst]), "worst_verdict": results[worst].verdict,
+            "overturning_azimuths_deg": over}, allow_nan=False))
+        return
+    click.echo(f"block       {block.name}: R = {block.R:.3f} m, alpha = {block.alpha_deg:.2f} deg")
+    click.echo(f"foundation  {foundation.label}")
+    click.echo(f"excitation  {label}: components {comps}, projected onto each azimuth "
+               f"(normal to the rocking axis, clockwise from north)")
+    click.echo("azimuth  verdict")
+    for th, r in zip(azimuths, results):
+        text = (f"OVERTURNS at {r.t_overturn_s:.3f} s" if r.overturned else
+                f"{'no uplift' if r.verdict == 'no_uplift' else 'survives'} {r.theta_max_over_alpha:.4f}")
+        click.echo(f"{th:7g}  {text}{'   <- worst' if th == azimuths[worst] else ''}")
+    r = results[worst]
+    what = (f"overturns at {r.t_overturn_s:.3f} s" if r.overturned else
+            f"survives, peak |theta|/alpha {r.theta_max_over_alpha:.4f}")
+    click.echo(f"worst azimuth: {azimuths[worst]:g} deg ({what}); overturning azimuths: "
+               + (", ".join(f"{a:g}" for a in over) if over else "none") + " deg")

@@ -1,0 +1,88 @@
+"""The optional ``formats`` extra: USGS gmprocess reads the agency formats rockcli's own readers do not.
+
+``pip install -e ".[formats]"`` installs gmprocess (about 1.8 GB with OpenQuake and GIS libraries), so it
+is never imported unless a file is not recognised by rockcli's own readers and ObsPy, or is one of the
+formats rockcli recognises only to refuse (USGS SMC, USC Volume I, BHRC VOL1, UNAM ASA 2.0): then
+:func:`read_with_extra` calls ``gmprocess.io.read.read_data`` (ObsPy traces in cm/s^2 with each channel's
+orientation in ``stats.standard``). Without the extra, those files are refused with one sentence that
+names it (:data:`INSTALL_HINT`).
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from rockcli.errors import RockcliInputError
+
+#: How to get the extra, quoted in refusals.
+INSTALL_HINT = "the optional extra reads it: pip install \"rockcli[formats]\" (USGS gmprocess)"
+
+
+def available() -> bool:
+    """True when gmprocess is installed (found without importing it)."""
+    import importlib.util
+
+    try:
+        return importlib.util.find_spec("gmprocess") is not None
+    except (ImportError, ValueError):
+        return False
+
+
+def read_with_extra(path: Path, column, recognised: str | None = None) -> dict[str, Any]:
+    """The ``column``-th trace (1-based) gmprocess reads from ``path``, as the readers' dict (values in the units
+    gmprocess states, dt, orientation); several traces without ``column``: :class:`MultiComponent`.
+    ``recognised``: the format rockcli recognised (a file gmprocess cannot read is then an error, not
+    :class:`NotARecord`)."""
+    import logging
+    import warnings
+
+    from rockcli.records.components import NotARecord, orientation_meta, pick_trace
+
+    logging.getLogger().setLevel(max(logging.getLogger().level, logging.ERROR))  # gmprocess logs every file
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        from gmprocess.io.read import read_data
+
+        try:
+            streams = read_data(str(path))
+        except Exception as exc:  # noqa: BLE001 -- gmprocess raises many kinds; one sentence for the user
+            text = str(exc).strip().splitlines()
+            if recognised:  # rockcli knows the format (it refuses it): a damaged or unusual file, not a non-record
+                raise RockcliInputError(f"{path}: a {recognised} file that gmprocess cannot read either "
+                                        f"({text[0] if text else type(exc).__name__})") from None
+            raise NotARecord(f"{path}: format not recognised by rockcli, ObsPy or gmprocess "
+                             f"({text[0] if text else type(exc).__name__})") from None
+    traces = [tr for st in streams for tr in st]
+    tr = pick_trace(traces, column, path, ", ".join(t.stats.channel for t in traces), "components")
+    std = tr.stats.get("standard", {})
+    if str(std.get("units_type", "acc")) != "acc":
+        raise RockcliInputError(f"{path}: gmprocess reads {std.get('units_type')}, not acceleration")
+    units = str(std.get("units", "") or "")
+    units = {"cm/s/s": "cm/s^2", "cm/s**2": "cm/s^2"}.get(units, units) or None
+    channel = str(tr.stats.channel)
+    orient = orientation_meta(channel, "gmprocess")
+    if not orient["vertical"]:  # HN1/HN2: the azimuth is in gmprocess's station metadata (its orientation)
+        az = std.get("horizontal_orientation", math.nan)
+        if az is not None and math.isfinite(float(az)):
+            orient = orientation_meta(channel, "gmprocess: horizontal_orientation", azimuth=float(az))
+    values = np.asarray(tr.data, dtype=np.float64)
+    meta = {"station": ".".join(x for x in (tr.stats.network, tr.stats.station) if x and x != "--"),
+            "component": channel, "trace_id": tr.id, "starttime": str(tr.stats.starttime),
+            "reader": "gmprocess", "source_format": str(std.get("source_format", "")),
+            "processing": f"read by gmprocess {_version()} ({std.get('source_format', '?')} reader)", **orient}
+    return {"values": values, "dt": float(tr.stats.delta), "dt_source": "extra (gmprocess)", "units": units,
+            "units_source": "extra (gmprocess)",
+            "t_start": 0.0, "meta": meta, "format": f"GMPROCESS_{str(std.get('source_format', '')).upper()}"}
+
+
+def _version() -> str:
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("gmprocess")
+    except PackageNotFoundError:
+        return "?"
