@@ -16,6 +16,26 @@ from rockcli.pulses import make_pulse
 from rockcli.units import G
 
 
+def _absolute_record_folders() -> None:
+    """ROCKCLI_RECORDS as absolute paths of the folders that exist, for the whole session.
+
+    The README's test command gives it relative to the repository (``../shared/records``), but tests run
+    commands from temporary folders too, and rockcli refuses a ROCKCLI_RECORDS entry that does not exist
+    (Bad input). A folder that is absent is dropped here, so that tests needing it skip cleanly.
+    """
+    raw = os.environ.get("ROCKCLI_RECORDS")
+    if raw is None:
+        return
+    folders = [str(Path(p).resolve()) for p in raw.split(os.pathsep) if p and Path(p).is_dir()]
+    if folders:
+        os.environ["ROCKCLI_RECORDS"] = os.pathsep.join(folders)
+    else:
+        del os.environ["ROCKCLI_RECORDS"]
+
+
+_absolute_record_folders()
+
+
 def _record_folders() -> list[Path]:
     return [Path(p) for p in os.environ.get("ROCKCLI_RECORDS", "").split(os.pathsep) if p and Path(p).is_dir()]
 
