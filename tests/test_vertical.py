@@ -169,7 +169,9 @@ def _as_series(vertical):
 
 @pytest.mark.parametrize("chunk", range(2))
 def test_agreement_with_the_slow_reference_under_vertical_motion(chunk):
-    jobs = [j for j in random_vertical_scenes(80, 8)][chunk::2]
+    """Against the SciPy reference with g + a_v typed in (rockcli.reference.linear): 12 scenes with vertical
+    records (a sampled vertical pulse costs the reference minutes; 80 scenes of both kinds agree, README)."""
+    jobs = [j for j in random_vertical_scenes(40, 8) if isinstance(j[2], Record)][:12][chunk::2]
     for i, (block, horizontal, vertical) in enumerate(jobs):
         ref = reference_simulate(block, Rigid(), horizontal, vertical=_as_series(vertical), align=True)
         fast = simulate(block, Rigid(), horizontal, vertical=vertical, rtol=1e-10)
