@@ -28,13 +28,15 @@ from rockcli.cli.types import NUMBER, WHOLE
               help="Ground motion: an analytic pulse, e.g. 'ricker-sym:ap=0.3,Tp=0.6' (ap in g, Tp in s); "
                    "shapes ricker-sym, ricker-anti, sine, cosine.")
 @click.option("--vertical", "vertical_source", default=None, metavar="SOURCE",
-              help="Vertical ground acceleration (upward positive), rigid foundation only: a record file or a catalogue "
-                   "id, read with the same --units/--dt/--format as --record; it must share the horizontal record's time "
-                   "step and start (it may be shorter or longer: zero after its end). Gravity becomes g + a_v.")
+              help="Vertical ground acceleration (upward positive), rigid foundation only: a record file or a "
+                   "catalogue id, read with the same --units/--dt/--format as --record; it must share the horizontal "
+                   "record's time step and start (it may be shorter or longer: zero after its end). Gravity becomes "
+                   "g + a_v.")
 @click.option("--vertical-column", "vertical_column", type=WHOLE, default=None, metavar="N",
               help="Column of the --vertical file (as --record-column).")
 @click.option("--vertical-pulse", "vertical_pulse", default=None, metavar="SPEC",
-              help="Vertical ground acceleration as an analytic pulse (same SPEC as --pulse; ap in g, upward positive).")
+              help="Vertical ground acceleration as an analytic pulse (same SPEC as --pulse; ap in g, upward "
+                   "positive).")
 @click.option("--vertical-scale", "vertical_scale", type=NUMBER, default=1.0,
               help="Multiply the vertical acceleration by this factor (--scale and --flip act on the horizontal only).")
 @click.option("--theta0", type=NUMBER, default=0.0, metavar="RAD",
@@ -65,7 +67,8 @@ from rockcli.cli.types import NUMBER, WHOLE
 @report_option
 @user_errors
 def simulate(column_name, R, alpha, height, width, name, isolation, record_source, units, dt, fmt, column,
-             pulse, vertical_source, vertical_column, vertical_pulse, vertical_scale, theta0, theta_dot0, scale, flip, rtol, tail, horizon, restitution, cap_ratio, check, as_json,
+             pulse, vertical_source, vertical_column, vertical_pulse, vertical_scale, theta0, theta_dot0, scale,
+             flip, rtol, tail, horizon, restitution, cap_ratio, check, as_json,
              history_path, plot_path, report_path):
     """Rocking response of one block to one ground motion, on a rigid or an isolated base.
 

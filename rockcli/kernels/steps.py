@@ -29,12 +29,12 @@ from rockcli.kernels.ground import _pulse_segment
 from rockcli.kernels.layout import (E_AP, E_TP, EXC_RECORD, N_HIST, N_OUT, N_RS, N_W, O_N_IMPACTS, O_N_IMPACTS_ALL,
                                     O_N_RESTS, O_N_REVERSALS, O_NRHS, O_PEAK_FINAL, O_REJECTED, O_SETTLED, O_STATUS,
                                     O_STEPS, O_T_END, O_T_EXCEED, O_T_OVERTURN, O_T_THETA_MAX, O_T_UPLIFT,
-                                    O_THETA_END, O_THETA_MAX, O_U_END, O_U_MAX, P_ALPHA, P_P2, P_TH0, P_THD0, P_THR,
+                                    O_THETA_END, O_THETA_MAX, O_U_END, O_U_MAX, P_ALPHA, P_P2, P_TH0, P_THD0,
                                     PHASE_ROCKING, PHASE_STUCK, RS_FRESH, RS_H, RS_J, RS_NREV, RS_NRHS,
                                     RS_PEAK_FINAL, RS_PHASE, RS_PK_ON, RS_PK_SIG, RS_PK_T,
                                     RS_REJ, RS_S, RS_SEG, RS_SEG_END, RS_SETTLED, RS_STATUS, RS_STEPS, RS_T,
-                                    RS_THMAX, RS_UMAX, RS_VEND, RS_VJ, RS_VSEG, SEG_LINEAR, STATUS_DONE, STATUS_MAX_STEPS,
-                                    STATUS_OVERTURNED,
+                                    RS_THMAX, RS_UMAX, RS_VEND, RS_VJ, RS_VSEG, SEG_LINEAR, STATUS_DONE,
+                                    STATUS_MAX_STEPS, STATUS_OVERTURNED,
                                     W_EV, W_FEV, W_TMP, W_Y, W_YNEW)
 from rockcli.kernels.polynomials import _first_down, _poly
 
