@@ -102,6 +102,19 @@ def _pulse_turns(mode):
     return (inf, inf, inf, inf)
 
 
+@njit(cache=True, inline='always')
+def _piece_end(turns, k, epar, lo, t_end):
+    """End of the monotone piece of a pulse that starts at ``lo`` and ends at its turn ``k`` (0-3; 4: none
+    left) or at ``t_end``, whichever comes first; ``-inf`` when the turn ``k`` lies at or before ``lo``."""
+    if k < 4:
+        tk = epar[E_T0] + turns[k] * epar[E_TP]
+        if tk <= lo:
+            return -math.inf
+        if tk < t_end:
+            return tk
+    return t_end
+
+
 @njit(cache=True)
 def _rigid_uplift(seg, epar, thr, t, t_end):
     """First time in [t, t_end] at which |ag| exceeds ``thr`` (rigid foundation, stuck phase).
@@ -128,13 +141,9 @@ def _rigid_uplift(seg, epar, thr, t, t_end):
     turns = _pulse_turns(int(seg[0]))
     lo = t
     for k in range(5):
-        hi = t_end
-        if k < 4:
-            tk = epar[E_T0] + turns[k] * epar[E_TP]
-            if tk <= lo:
-                continue
-            if tk < t_end:
-                hi = tk
+        hi = _piece_end(turns, k, epar, lo, t_end)
+        if hi < lo:  # the turn k lies at or before lo
+            continue
         f_hi = ground_at(hi, seg, epar)
         if abs(f_hi) > thr:
             sgn = 1.0 if f_hi > 0.0 else -1.0
@@ -200,13 +209,9 @@ def _rigid_uplift_vertical(seg, epar, thr, g, t, t_end):
     turns = _pulse_turns(int(seg[0]))
     lo = t
     for k in range(5):
-        hi = t_end
-        if k < 4:
-            tk = epar[E_T0] + turns[k] * epar[E_TP]
-            if tk <= lo:
-                continue
-            if tk < t_end:
-                hi = tk
+        hi = _piece_end(turns, k, epar, lo, t_end)
+        if hi < lo:  # the turn k lies at or before lo
+            continue
         a = lo
         for m in range(1, N_UPLIFT_SCAN + 1):
             b = hi if m == N_UPLIFT_SCAN else lo + (hi - lo) * m / N_UPLIFT_SCAN

@@ -69,18 +69,25 @@ def pulse_impulse_table(shape: str) -> tuple[np.ndarray, np.ndarray]:
     return _UNIT_TABLES[shape]
 
 
+def _samples(record, what: str):
+    """``(acc, dt)`` of a record, checked: at least 2 finite samples, a positive time step."""
+    acc = np.ascontiguousarray(record.acc, dtype=np.float64)
+    dt = float(record.dt)
+    name = getattr(record, "name", "")
+    if acc.ndim != 1 or acc.size < 2:
+        raise RockcliInputError(f"{what} {name!r} needs at least 2 samples")
+    if not np.all(np.isfinite(acc)):
+        raise RockcliInputError(f"{what} {name!r} has NaN or infinite samples")
+    if not (math.isfinite(dt) and dt > 0):
+        raise RockcliInputError(f"{what} {name!r} has a non-positive time step {dt!r}")
+    return acc, dt
+
+
 def _excitation_arrays(excitation):
     """(ekind, epar, acc, jtab, dt, t_begin, t_exc_end) for the kernel."""
     k = _kernel()
     if hasattr(excitation, "acc") and hasattr(excitation, "dt"):
-        acc = np.ascontiguousarray(excitation.acc, dtype=np.float64)
-        dt = float(excitation.dt)
-        if acc.ndim != 1 or acc.size < 2:
-            raise RockcliInputError(f"record {getattr(excitation, 'name', '')!r} needs at least 2 samples")
-        if not np.all(np.isfinite(acc)):
-            raise RockcliInputError(f"record {getattr(excitation, 'name', '')!r} has NaN or infinite samples")
-        if not (math.isfinite(dt) and dt > 0):
-            raise RockcliInputError(f"record {getattr(excitation, 'name', '')!r} has a non-positive time step {dt!r}")
+        acc, dt = _samples(excitation, "record")
         epar = np.zeros(8)
         epar[k.E_AP] = 1.0  # scale factor of the record
         return k.EXC_RECORD, epar, acc, record_impulse_table(acc, dt), dt, 0.0, (acc.size - 1) * dt
@@ -136,15 +143,8 @@ def _vertical_arrays(vertical, excitation, foundation, g: float):
             "the bearings' normal force (a sliding bearing's friction mu (m + m_b)(g + a_v), a pendulum's "
             "restoring force), which the bearing models do not include")
     if hasattr(vertical, "acc") and hasattr(vertical, "dt"):
-        vacc = np.ascontiguousarray(vertical.acc, dtype=np.float64)
-        vdt = float(vertical.dt)
+        vacc, vdt = _samples(vertical, "vertical record")
         name = getattr(vertical, "name", "")
-        if vacc.ndim != 1 or vacc.size < 2:
-            raise RockcliInputError(f"vertical record {name!r} needs at least 2 samples")
-        if not np.all(np.isfinite(vacc)):
-            raise RockcliInputError(f"vertical record {name!r} has NaN or infinite samples")
-        if not (math.isfinite(vdt) and vdt > 0):
-            raise RockcliInputError(f"vertical record {name!r} has a non-positive time step {vdt!r}")
         if excitation is not None and hasattr(excitation, "acc") and hasattr(excitation, "dt"):
             hdt = float(excitation.dt)
             if abs(vdt - hdt) > _SAME_DT * hdt:
