@@ -48,16 +48,18 @@ def _scaled_twin(block, shape, a_p, T_p, a_v, t0=None):
 def test_constant_vertical_is_the_block_of_gravity_g_plus_av(a_v, shape):
     """A map cell: the same verdict, uplift time and peak as the scaled twin, for rocking and overturning
     cells (the vertical motion lasts past the end of the rocking)."""
-    rng = np.random.default_rng(abs(hash((round(a_v, 3), shape))) % 2**32)
+    rng = np.random.default_rng([SHAPES.index(shape), int(round(1000 * a_v / G)) + 1000])
     seen = set()
     for _ in range(8):
         block = Block(math.exp(rng.uniform(math.log(0.3), math.log(5.0))), rng.uniform(0.1, 0.3))
         T_p = 2 * math.pi / (rng.uniform(1.0, 8.0) * block.p)
         a_p = rng.uniform(1.1, 4.0) * (G + a_v) * math.tan(block.alpha) * rng.choice([-1.0, 1.0])
         pulse = make_pulse(shape, a_p, T_p)
-        vert = simulate(block, Rigid(), pulse, vertical=_constant(a_v, pulse.support()[1] + 200.0))
+        # at rtol 1e-10: the two runs take different steps (the vertical series cuts them at its samples),
+        # so they differ by the integration error (3e-9 rad on a 7e-4 rad peak at the default 5e-9)
+        vert = simulate(block, Rigid(), pulse, vertical=_constant(a_v, pulse.support()[1] + 200.0), rtol=1e-10)
         twin_block, twin_pulse = _scaled_twin(block, shape, a_p, T_p, a_v, pulse.t0)
-        twin = simulate(twin_block, Rigid(), twin_pulse, horizon=300.0)
+        twin = simulate(twin_block, Rigid(), twin_pulse, horizon=300.0, rtol=1e-10)
         seen.add(vert.verdict)
         assert vert.verdict == twin.verdict
         assert vert.t_uplift_s == pytest.approx(twin.t_uplift_s, rel=1e-12)
