@@ -598,7 +598,7 @@ def test_assess_column_on_sliding_bearings(pulse_records, tmp_path):
 _PROBE = """
 import sys
 from rockcli.kernels.rhs import _rhs_rigid
-seg = (1.0, 0.0, 0.0, 0.0)  # segment mode 1: the symmetric Ricker pulse
+seg = (1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)  # segment mode 1: the symmetric Ricker pulse; no vertical motion
 epar = (2.0, 1.0, 0.0, -3.0, 3.0, 0.0, 0.0, 0.0)
 prm = tuple([1.0, 9.80665] + [0.0] * 25)
 print(_rhs_rigid(1.0, prm, seg, epar, 0.0, 0.0, 0.0)[1])

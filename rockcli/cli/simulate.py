@@ -11,7 +11,7 @@ from rockcli.cli.options import (azimuth_options, block_from_options, block_opti
                                  check_outputs,
                                  command_line, horizon_option, record_kwargs, record_options, report_option,
                                  restitution_option)
-from rockcli.cli.types import NUMBER
+from rockcli.cli.types import NUMBER, WHOLE
 
 
 @click.command(context_settings={"show_default": True})
@@ -29,6 +29,18 @@ from rockcli.cli.types import NUMBER
 @click.option("--pulse", default=None, metavar="SPEC",
               help="Ground motion: an analytic pulse, e.g. 'ricker-sym:ap=0.3,Tp=0.6' (ap in g, Tp in s); "
                    "shapes ricker-sym, ricker-anti, sine, cosine.")
+@click.option("--vertical", "vertical_source", default=None, metavar="SOURCE",
+              help="Vertical ground acceleration (upward positive), rigid foundation only: a record file or a "
+                   "catalogue id, read with the same --units/--dt/--format as --record; it must share the horizontal "
+                   "record's time step and start (it may be shorter or longer: zero after its end). Gravity becomes "
+                   "g + a_v.")
+@click.option("--vertical-column", "vertical_column", type=WHOLE, default=None, metavar="N",
+              help="Column of the --vertical file (as --record-column).")
+@click.option("--vertical-pulse", "vertical_pulse", default=None, metavar="SPEC",
+              help="Vertical ground acceleration as an analytic pulse (same SPEC as --pulse; ap in g, upward "
+                   "positive).")
+@click.option("--vertical-scale", "vertical_scale", type=NUMBER, default=1.0,
+              help="Multiply the vertical acceleration by this factor (--scale and --flip act on the horizontal only).")
 @click.option("--theta0", type=NUMBER, default=0.0, metavar="RAD",
               help="Start rocking from this tilt [rad] (|theta0| < pi/2; > 0 on the right corner) instead of at rest; "
                    "without --record/--pulse the block rocks freely on still ground.")
@@ -61,7 +73,8 @@ from rockcli.cli.types import NUMBER
 @report_option
 @user_errors
 def simulate(column_name, R, alpha, height, width, name, isolation, record_source, units, dt, fmt, column,
-             pulse, theta0, theta_dot0, scale, flip, rtol, tail, horizon, restitution, cap_ratio, check, as_json,
+             pulse, vertical_source, vertical_column, vertical_pulse, vertical_scale, theta0, theta_dot0, scale,
+             flip, rtol, tail, horizon, restitution, cap_ratio, check, as_json,
              history_path, history_dt, plot_path, report_path):
     """Rocking response of one block to one ground motion, on a rigid or an isolated base.
 
@@ -72,6 +85,7 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
       rockcli simulate --R 1 --alpha 16 --pulse ricker-sym:ap=0.5,Tp=0.6 --isolation scss:Tb=1.8,mu=0.05 --plot f.png
       rockcli simulate --R 2.5 --alpha 11.5 --theta0 0.1 --restitution 0.9 --history free.csv
       rockcli simulate --R 1 --alpha 14 --theta0 0.2 --history-dt 0.01 --history free.csv --json
+      rockcli simulate --column bassae --record HNE.csv --vertical HNZ.csv
     """
     import json
     import math
@@ -142,6 +156,10 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
         if factor != 1.0:
             excitation = excitation.scaled(factor)
 
+    vertical, vlabel = _vertical(vertical_source, vertical_column, vertical_pulse, vertical_scale, units, dt, fmt)
+    if vertical is not None:
+        solver["vertical"] = vertical
+
     from rockcli.solve import simulate as run
 
     res = run(block, foundation, excitation, rtol=rtol, tail=tail, horizon=horizon,
@@ -171,6 +189,7 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
                "isolation": foundation.label, "excitation": label,
                **_impact_keys(block, foundation, restitution, cap_ratio),
                **({"theta0": theta0, "theta_dot0": theta_dot0} if moving else {}),
+               **({"vertical": vlabel} if vertical is not None else {}),
                **res.summary()}
         if res.history is not None:  # a history run (--history, --history-dt, --plot, --report): its events
             out["events"] = [e.as_dict() for e in res.history.events]
@@ -189,6 +208,7 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
         *([("colonnade", _colonnade_row(block, cap_ratio))] if cap_ratio > 0.0 else []),
         *([("impact rule", _impact_row(block, foundation, restitution))] if restitution is not None else []),
         ("excitation", label + _pga(excitation, G)),
+        *([("vertical", vlabel + _pga(vertical, G))] if vertical is not None else []),
         *([("start", f"theta0 = {theta0:g} rad ({theta0 / block.alpha:.4g} alpha), theta_dot0 = {theta_dot0:g} rad/s")]
           if moving else []),
         ("verdict", {"overturned": "OVERTURNS", "rocked": "survives (rocks)",
@@ -209,6 +229,38 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     if not res.settled:
         click.echo(f"NOTE: the verdict is NOT PROVEN: at {res.t_end_s:.1f} s (the horizon) the base could still lift "
                    "the block; lengthen --horizon to follow it")
+
+
+def _vertical(source, column, pulse, scale, units, dt, fmt):
+    """``(vertical motion or None, its label)`` from ``--vertical``/``--vertical-pulse``/``--vertical-scale``."""
+    from rockcli.cli.options import add_inputs
+    from rockcli.errors import RockcliInputError
+
+    if source is not None and pulse is not None:
+        raise RockcliInputError("give the vertical ground motion as at most one of --vertical SOURCE or "
+                                "--vertical-pulse SPEC")
+    if not math.isfinite(scale) or scale == 0:
+        raise RockcliInputError(f"--vertical-scale must be a finite non-zero number, got {scale!r}")
+    if source is None and pulse is None:
+        if column is not None or scale != 1.0:
+            raise RockcliInputError("--vertical-column and --vertical-scale apply to --vertical/--vertical-pulse")
+        return None, None
+    if pulse is not None:
+        from rockcli.pulses import parse_pulse_spec
+
+        if column is not None:
+            raise RockcliInputError("--vertical-column applies to --vertical, not to --vertical-pulse")
+        vertical = parse_pulse_spec(pulse)
+        if scale != 1.0:
+            vertical = vertical.scaled(scale)
+        return vertical, f"{vertical.shape} pulse"
+    from rockcli.records import read_record
+
+    vertical = read_record(source, **record_kwargs(units, dt, fmt, column))
+    add_inputs([vertical.meta.get("path")], "the vertical record")
+    if scale != 1.0:
+        vertical = vertical.scaled(scale)
+    return vertical, f"record {vertical.name}" + (f" x {scale:g}" if scale != 1.0 else "")
 
 
 def _impact_keys(block, foundation, restitution, cap_ratio=0.0) -> dict:

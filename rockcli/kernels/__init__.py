@@ -41,6 +41,6 @@ from rockcli.kernels.polynomials import (_first_down, _first_exceed, _golden_max
 from rockcli.kernels.bearings import (base_force, bw_phi, bw_phi_inv, bw_slope, dcss_split,  # noqa: E402,F401
                                       force_along_path, free_force_bound, reanchor)
 from rockcli.kernels.dopri import _dense, _dp5_step, _state_at  # noqa: E402,F401
-from rockcli.kernels.rigid import simulate_rigid  # noqa: E402,F401
+from rockcli.kernels.rigid import simulate_rigid, simulate_rigid_vertical  # noqa: E402,F401
 from rockcli.kernels.driver import simulate_core  # noqa: E402,F401
 from rockcli.kernels.batch import simulate_batch, simulate_batch_rigid  # noqa: E402,F401

@@ -394,7 +394,7 @@ def _impact(fkind, prm, rs, W, out, t_exc_end):
     W[W_Y, 3] += dud
     rs[RS_S] = -rs[RS_S]
     a_rest = base_force(fkind, prm, W[W_Y, 2], W[W_Y, 3] + prm[P_GAMMA] * prm[P_H] * thd2, _hy(rs))
-    if _bounce(prm, rs, W, out, thd1, t_exc_end, a_rest, thd2):
+    if _bounce(prm, rs, W, out, thd1, t_exc_end, a_rest, thd2, prm[P_THR]):
         W[W_Y, 3] += prm[P_GAMMA] * prm[P_H] * thd2
     rs[RS_UMAX] = max(rs[RS_UMAX], abs(W[W_Y, 2]))
     _reanchor(fkind, prm, rs, W[W_Y, 2], _direction(rs, W[W_Y, 3]))

@@ -48,6 +48,14 @@ def _ground(t, seg, epar):
     return pulse_acc(mode, epar, t)
 
 
+@njit(cache=True, inline='always')
+def _vertical(t, seg):
+    """Vertical ground acceleration [m/s^2] (upward positive) inside the current segment: linear on
+    the piece ``seg[4:7] = (v0, slope, tv)`` of the vertical series (all zero without one, so that
+    ``a_v = 0`` exactly)."""
+    return seg[4] + seg[5] * (t - seg[6])
+
+
 @njit(cache=True)
 def ground_at(t, seg, epar):
     """:func:`_ground` as a called function: for the places off the integrator's hot path (uplift
@@ -94,6 +102,19 @@ def _pulse_turns(mode):
     return (inf, inf, inf, inf)
 
 
+@njit(cache=True, inline='always')
+def _piece_end(turns, k, epar, lo, t_end):
+    """End of the monotone piece of a pulse that starts at ``lo`` and ends at its turn ``k`` (0-3; 4: none
+    left) or at ``t_end``, whichever comes first; ``-inf`` when the turn ``k`` lies at or before ``lo``."""
+    if k < 4:
+        tk = epar[E_T0] + turns[k] * epar[E_TP]
+        if tk <= lo:
+            return -math.inf
+        if tk < t_end:
+            return tk
+    return t_end
+
+
 @njit(cache=True)
 def _rigid_uplift(seg, epar, thr, t, t_end):
     """First time in [t, t_end] at which |ag| exceeds ``thr`` (rigid foundation, stuck phase).
@@ -120,13 +141,9 @@ def _rigid_uplift(seg, epar, thr, t, t_end):
     turns = _pulse_turns(int(seg[0]))
     lo = t
     for k in range(5):
-        hi = t_end
-        if k < 4:
-            tk = epar[E_T0] + turns[k] * epar[E_TP]
-            if tk <= lo:
-                continue
-            if tk < t_end:
-                hi = tk
+        hi = _piece_end(turns, k, epar, lo, t_end)
+        if hi < lo:  # the turn k lies at or before lo
+            continue
         f_hi = ground_at(hi, seg, epar)
         if abs(f_hi) > thr:
             sgn = 1.0 if f_hi > 0.0 else -1.0
@@ -145,7 +162,91 @@ def _rigid_uplift(seg, epar, thr, t, t_end):
     return -1.0, 0.0
 
 
+#: sub-intervals per monotone piece of a pulse scanned for uplift under a vertical motion
+N_UPLIFT_SCAN = 64
+
+
+@njit(cache=True)
+def _uplift_excess(t, seg, epar, thr, g):
+    """``(ag - thr_v, -ag - thr_v)`` at ``t``, ``thr_v = thr (1 + a_v/g) = (g + a_v) tan(alpha)``: the
+    block lifts about the left corner when the first is positive, about the right one when the second is."""
+    ag = ground_at(t, seg, epar)
+    thr_v = thr * (1.0 + _vertical(t, seg) / g)
+    return ag - thr_v, -ag - thr_v
+
+
+@njit(cache=True)
+def _rigid_uplift_vertical(seg, epar, thr, g, t, t_end):
+    """:func:`_rigid_uplift` under a vertical motion: the first time in [t, t_end] at which
+    ``|ag| > (g + a_v) tan(alpha)`` (``thr = g tan(alpha)``); ``[t, t_end]`` lies inside one piece of
+    the vertical series (a_v linear). A record segment is exact (both sides of the test are linear in
+    t). A pulse segment is cut at the pulse's turns and each monotone piece into
+    :data:`N_UPLIFT_SCAN` sub-intervals; the first sub-interval whose end exceeds is bisected to the
+    last bit. The monotonicity argument of :func:`_rigid_uplift` does not survive a varying
+    threshold, so an excursion above it that starts and ends inside one sub-interval (1/64 of a
+    quarter period or less) can be missed: a grazing uplift, whose rocking would stay below the
+    resolution of the run."""
+    ep0, em0 = _uplift_excess(t, seg, epar, thr, g)
+    if ep0 > 0.0:
+        return t, -1.0
+    if em0 > 0.0:
+        return t, 1.0
+    if int(seg[0]) == SEG_LINEAR:
+        ep1, em1 = _uplift_excess(t_end, seg, epar, thr, g)
+        tu = math.inf
+        su = 0.0
+        if ep1 > 0.0:
+            tu = t + (-ep0) / (ep1 - ep0) * (t_end - t)
+            su = -1.0
+        if em1 > 0.0:
+            tm = t + (-em0) / (em1 - em0) * (t_end - t)
+            if tm < tu:
+                tu = tm
+                su = 1.0
+        if su == 0.0:
+            return -1.0, 0.0
+        return min(max(tu, t), t_end), su
+    turns = _pulse_turns(int(seg[0]))
+    lo = t
+    for k in range(5):
+        hi = _piece_end(turns, k, epar, lo, t_end)
+        if hi < lo:  # the turn k lies at or before lo
+            continue
+        a = lo
+        for m in range(1, N_UPLIFT_SCAN + 1):
+            b = hi if m == N_UPLIFT_SCAN else lo + (hi - lo) * m / N_UPLIFT_SCAN
+            ep, em = _uplift_excess(b, seg, epar, thr, g)
+            if ep > 0.0 or em > 0.0:
+                sgn = 1.0 if ep > 0.0 else -1.0
+                for _ in range(200):
+                    mid = 0.5 * (a + b)
+                    if mid <= a or mid >= b:
+                        break
+                    ep, em = _uplift_excess(mid, seg, epar, thr, g)
+                    if (ep if sgn > 0.0 else em) > 0.0:
+                        b = mid
+                    else:
+                        a = mid
+                return b, -sgn
+            a = b
+        if hi >= t_end:
+            break
+        lo = hi
+    return -1.0, 0.0
+
+
 # ---------------------------------------------------------------------------------------------
+
+
+@njit(cache=True, inline='always')
+def _record_left(jtab, dt, t):
+    """The suffix integral of a record's table at the sample at or before ``t`` (0 past its end)."""
+    n = jtab.shape[0]
+    x = t / dt - 1e-9
+    j = 0 if x <= 0.0 else int(x)
+    if j >= n:
+        return 0.0
+    return jtab[j]
 
 
 @njit(cache=True)
@@ -159,11 +260,7 @@ def _impulse_left(ekind, jtab, epar, dt, t):
     """
     n = jtab.shape[0]
     if ekind == EXC_RECORD:
-        x = t / dt - 1e-9
-        j = 0 if x <= 0.0 else int(x)
-        if j >= n:
-            return 0.0
-        return abs(epar[E_AP]) * jtab[j]
+        return abs(epar[E_AP]) * _record_left(jtab, dt, t)
     ts = epar[E_TS]
     te = epar[E_TE]
     if t >= te:
@@ -173,6 +270,15 @@ def _impulse_left(ekind, jtab, epar, dt, t):
     if k > n - 1:
         k = n - 1
     return abs(epar[E_AP]) * epar[E_TP] * jtab[k]
+
+
+@njit(cache=True)
+def _vertical_left(vjtab, vdt, t):
+    """An upper bound of ``int_t^{t_v_end} |a_v| dtau`` [m/s] of the vertical series (its table is
+    :func:`rockcli.solve.record_impulse_table` of the scaled samples); 0 without one."""
+    if vjtab.shape[0] == 0:
+        return 0.0
+    return _record_left(vjtab, vdt, t)
 
 
 # ---------------------------------------------------------------------------------------------

@@ -126,4 +126,9 @@ RS_NREV = 25  # steps ended at a reversal of the base
 RS_PK_ON = 26  # 1: there is one
 RS_PK_SIG = 27  # its fraction of the step
 RS_PK_T = 28  # its time [s]
-N_RS = 29
+# the vertical ground acceleration (rigid foundation only; zeros without one): a piecewise-linear
+# series from t = 0, read on the current piece as a_v = v0 + slope (t - tv) (rockcli.kernels.ground)
+RS_VSEG = 29  # 3 entries: (v0, slope, tv), the last three entries of the segment tuple
+RS_VEND = 32  # end of the current piece [s] (inf after the series)
+RS_VJ = 33  # index of the current piece
+N_RS = 34

@@ -1,6 +1,8 @@
 """Right-hand sides: one per driver, scalars in, scalars out (no arrays in the hot path).
 
-* Rigid foundation, Eq (3): ``theta_ddot = -p^2 (sin A + ag/g cos A)``, ``A = s alpha - theta``.
+* Rigid foundation, Eq (3): ``theta_ddot = -p^2 (sin A + ag/g cos A)``, ``A = s alpha - theta``; under a
+  vertical ground acceleration ``a_v`` (upward positive) gravity becomes ``g + a_v`` in the restoring
+  term: ``theta_ddot = -p^2 ((1 + a_v/g) sin A + ag/g cos A)`` (``p^2 = 3 g/(4 R)``).
 * Isolated base (linear, single concave / lead-rubber, double concave: only the bearing force
   ``F`` differs, :func:`rockcli.kernels.bearings.base_force`):
   - stuck: block and base move together, ``u_ddot = F - ag``;
@@ -20,7 +22,7 @@ import math
 from numba import njit
 
 from rockcli.kernels.bearings import base_force
-from rockcli.kernels.ground import _ground
+from rockcli.kernels.ground import _ground, _vertical
 from rockcli.kernels.layout import P_ALPHA, P_G, P_GAMMA, P_P2, P_R, PHASE_STUCK
 
 
@@ -28,8 +30,9 @@ from rockcli.kernels.layout import P_ALPHA, P_G, P_GAMMA, P_P2, P_R, PHASE_STUCK
 def _rhs_rigid(s, prm, seg, epar, t, th, thd):
     """Rigid foundation: ``(theta_dot, theta_ddot)`` at ``t`` (Eq 3)."""
     ag = _ground(t, seg, epar)
+    gv = 1.0 + _vertical(t, seg) / prm[P_G]  # (g + a_v)/g: exactly 1 without a vertical motion
     A = s * prm[P_ALPHA] - th
-    return thd, -prm[P_P2] * (math.sin(A) + ag / prm[P_G] * math.cos(A))
+    return thd, -prm[P_P2] * (math.sin(A) * gv + ag / prm[P_G] * math.cos(A))
 
 
 @njit(cache=True, inline='always')

@@ -6,8 +6,8 @@ ground acceleration is scanned for the uplift condition and nothing is integrate
 the rigid foundation compiles only this (and :mod:`rockcli.kernels.steps`, ``dopri``, ``events``,
 ``ground``, ``polynomials``). The isolated bases have their own driver, :mod:`rockcli.kernels.driver`.
 
-End of the run: the proofs P1, P2, P4, P6, P7 (the general rule, and P3, P3s, P5, P8 for isolated bases, are
-stated in :func:`rockcli.kernels.driver.simulate_core`):
+End of the run: the proofs P1, P2, P4, P6, P7 (re-proved under a vertical motion in PV; the general
+rule, and P3, P3s, P5, P8 for isolated bases, are stated in :func:`rockcli.kernels.driver.simulate_core`):
 
 P1 (ground still, block stuck). With ``ag = 0`` and theta = 0 the uplift condition
    ``|ag| > g tan(alpha)`` can never hold again.
@@ -51,6 +51,27 @@ P7 (``early`` only, ``|theta| >= alpha``, moving outward). With ``v = s theta_do
    unknown (NaN). (P6 bounds the energy, P7 the outward velocity: a block that crossed the barrier
    slowly is caught by P6, one thrown over it by P7.)
 
+PV (a vertical ground acceleration ``a_v``, upward positive; ``g + a_v > 0`` throughout, checked by
+   :mod:`rockcli.solve`). Eq (3) becomes ``theta_ddot = -p^2 ((1 + a_v/g) sin A + (ag/g) cos A)``, the
+   uplift threshold ``(g + a_v) tan(alpha)`` (the scan :func:`rockcli.kernels.ground._rigid_uplift_vertical`;
+   exact on a record, sub-sampled on a pulse) and so the rest rule's threshold (its restoring
+   acceleration ``p^2 cos(alpha) ((g + a_v) tan(alpha) - |a|)/g``); the impact map is instantaneous and
+   unchanged. ``t_exc_end`` is the end of both motions. What each proof becomes, with
+   ``E = theta_dot^2/2 + p^2 cos(alpha - |theta|)`` still defined with the constant g:
+   P1, P2: used only after ``t_exc_end``, when ``a_v = 0`` again: unchanged.
+   P4: ``dE/dt = -p^2 theta_dot ((a_v/g) sin A + (ag/g) cos A)`` and ``|sin A| <= sin(alpha)`` while
+   ``|theta| <= alpha``, so ``dX/dt <= p^2 (|ag| + sin(alpha) |a_v|)/(sqrt(2) g)``: the bound uses the
+   remaining impulse of ``|ag|`` plus ``sin(alpha)`` times that of ``|a_v|``
+   (:func:`rockcli.kernels.ground._vertical_left`); the rest of the argument is unchanged (a first
+   arrival at alpha needs ``E >= p^2`` whatever a_v is; P2 takes over at ``t_exc_end``).
+   P6: beyond alpha ``|sin A| <= cos(alpha) <= 1``: the bound uses ``|ag| + |a_v|``, and "the ground is
+   still" means both motions are.
+   P7: ``-s sin(A) (1 + a_v/g) >= 0`` still holds beyond alpha (``g + a_v > 0``), so
+   ``dv/dt >= -p^2 |ag|/g`` as before: unchanged (and with ``ag = 0`` a vertical motion alone cannot
+   turn the block back: it still falls).
+   The remaining-impulse tables: the horizontal one is unchanged; the vertical series has its own
+   (the record table of its samples). The rigid uplift scan: see above.
+
 Steps on a record. A record is piecewise linear, so a step never crosses a sample (the right-hand
 side has a kink there) and, on a rigid foundation, also spans at most ``1/RIGID_RECORD_SUBSTEPS``
 (a half) of a sample interval. With one Dormand-Prince step per interval the error test is met
@@ -70,23 +91,27 @@ from numba import njit
 
 from rockcli.kernels.dopri import _dp5_step, _restep_rows, _state_at
 from rockcli.kernels.events import _count_uplift, _hist_grid, _hist_grid_cut, _hist_peak, _hist_push, impact_map
-from rockcli.kernels.ground import _impulse_left, _rigid_uplift, ground_at
-from rockcli.kernels.layout import (EXC_RECORD, HK_IMPACT, HK_STATE, HK_UPLIFT, O_T_SETTLED, O_T_THETA_MAX, O_UPLIFTED, P_ALPHA, P_COSA,
-                                    P_ETA, P_G, P_HDT, P_P2, P_SINA, P_TH0, P_THD0, P_THR, PHASE_ROCKING, PHASE_STUCK,
+from rockcli.kernels.ground import (_impulse_left, _rigid_uplift, _rigid_uplift_vertical, _vertical, _vertical_left,
+                                   ground_at)
+from rockcli.kernels.layout import (EXC_RECORD, HK_IMPACT, HK_STATE, HK_UPLIFT, O_T_SETTLED, O_T_THETA_MAX, O_UPLIFTED,
+                                    P_ALPHA, P_COSA, P_ETA, P_G, P_HDT, P_P2, P_SINA, P_TH0, P_THD0, P_THR,
+                                    PHASE_ROCKING, PHASE_STUCK,
                                     RIGID_RECORD_SUBSTEPS, RS_FRESH, RS_NRHS, RS_PK_ON, RS_PK_SIG, RS_PK_T,
                                     RS_PEAK_FINAL, RS_PHASE, RS_REJ, RS_S, RS_SEG_END, RS_SETTLED, RS_STATUS,
-                                    RS_STEPS, RS_T, RS_THMAX, STATUS_MAX_STEPS, STATUS_OVERTURNED, W_RE, W_TMP, W_Y)
+                                    RS_STEPS, RS_T, RS_THMAX, RS_VEND, STATUS_MAX_STEPS, STATUS_OVERTURNED, W_RE, W_TMP,
+                                    W_Y)
 from rockcli.kernels.rhs import _rhs_rigid_into
 from rockcli.kernels.steps import (EV_FAILED, EV_IMPACT, EV_OVERTURN, _advance_segment, _bounce, _close_step,
                                    _finish, _grown, _initial_state, _out_of_time, _rocking_events, _row_kind, _seg,
-                                   _shrink, _start, _step_start, _to_impact, _to_overturn, _to_step_end)
+                                   _shrink, _start, _step_start, _to_impact, _to_overturn, _to_step_end,
+                                   _vertical_piece)
 
 _NO_HY = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)  # no hysteretic elements
 
 
 @njit(cache=True)
 def _end_of_run_rigid(prm, ekind, epar, jtab, dt, t_exc_end, early, want_history, t_show_end, t_horizon,
-                      max_steps, rs, W, out):
+                      max_steps, rs, W, out, vjtab, vdt):
     """The end-of-run rule on the ground (P1, P2, P4, P6, P7 in the module notes): True when the run ends now."""
     t = rs[RS_T]
     alpha = prm[P_ALPHA]
@@ -111,22 +136,26 @@ def _end_of_run_rigid(prm, ekind, epar, jtab, dt, t_exc_end, early, want_history
                     settled = True
         if not settled and early and out[O_UPLIFTED] != 0.0:
             c_imp = p2 / (math.sqrt(2.0) * prm[P_G])  # P4, P6: dX/dt <= c_imp |ag|; P7: dv/dt >= -sqrt(2) c_imp |ag|
-            imp = c_imp * _impulse_left(ekind, jtab, epar, dt, t)
+            h_imp = _impulse_left(ekind, jtab, epar, dt, t)
+            v_imp = _vertical_left(vjtab, vdt, t)  # 0 without a vertical motion (PV in the module notes)
+            imp = c_imp * h_imp  # P7
+            imp4 = c_imp * (h_imp + prm[P_SINA] * v_imp)  # P4 (= imp without a vertical motion)
+            imp6 = c_imp * (h_imp + v_imp)  # P6
             x_bar = math.sqrt(p2 * (1.0 - prm[P_COSA]))  # P4: E < p^2  <=>  X < x_bar
             if rs[RS_PHASE] == PHASE_STUCK:
-                if imp < x_bar:
+                if imp4 < x_bar:
                     settled = True  # P4
                     rs[RS_PEAK_FINAL] = 0.0
             else:
                 ath = abs(W[W_Y, 0])
                 En = 0.5 * W[W_Y, 1] ** 2 + p2 * math.cos(alpha - ath)
                 if ath < alpha:
-                    if math.sqrt(max(0.0, En - p2 * prm[P_COSA])) + imp < x_bar:
+                    if math.sqrt(max(0.0, En - p2 * prm[P_COSA])) + imp4 < x_bar:
                         settled = True  # P4
                         rs[RS_PEAK_FINAL] = 0.0
-                elif (math.sqrt(max(0.0, En - p2 * prm[P_SINA])) + imp < math.sqrt(p2 * (1.0 - prm[P_SINA]))
+                elif (math.sqrt(max(0.0, En - p2 * prm[P_SINA])) + imp6 < math.sqrt(p2 * (1.0 - prm[P_SINA]))
                       or rs[RS_S] * W[W_Y, 1] > math.sqrt(2.0) * imp
-                      or (imp == 0.0 and rs[RS_S] * W[W_Y, 1] >= 0.0)):
+                      or (imp6 == 0.0 and rs[RS_S] * W[W_Y, 1] >= 0.0)):
                     # P6, P7: it falls; the time it lands is not computed
                     rs[RS_STATUS] = STATUS_OVERTURNED
                     rs[RS_THMAX] = 0.5 * math.pi
@@ -142,9 +171,12 @@ def _end_of_run_rigid(prm, ekind, epar, jtab, dt, t_exc_end, early, want_history
 
 
 @njit(cache=True)
-def _stuck_rigid(prm, rs, epar, t_stop, out):
+def _stuck_rigid(prm, rs, epar, t_stop, out, vertical):
     """Stuck on a rigid foundation: scan the ground motion up to ``t_stop``, integrate nothing."""
-    tu, su = _rigid_uplift(_seg(rs), epar, prm[P_THR], rs[RS_T], t_stop)
+    if vertical:
+        tu, su = _rigid_uplift_vertical(_seg(rs), epar, prm[P_THR], prm[P_G], rs[RS_T], t_stop)
+    else:
+        tu, su = _rigid_uplift(_seg(rs), epar, prm[P_THR], rs[RS_T], t_stop)
     if tu < 0.0:
         rs[RS_T] = t_stop
     else:
@@ -228,6 +260,19 @@ def simulate_rigid(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, t
                    want_history, early, out):
     """Integrate one scene on a rigid foundation; the arguments, outputs and the general end-of-run
     rule are those of :func:`rockcli.kernels.driver.simulate_core` (``fkind`` is ignored)."""
+    none = np.empty(0)
+    return simulate_rigid_vertical(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, tail, horizon,
+                                   max_steps, want_history, early, none, none, 1.0, out)
+
+
+@njit(cache=True)
+def simulate_rigid_vertical(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, tail, horizon, max_steps,
+                            want_history, early, vacc, vjtab, vdt, out):
+    """:func:`simulate_rigid` under a vertical ground acceleration as well: ``vacc`` [m/s^2, upward
+    positive] sampled every ``vdt`` [s] from t = 0, piecewise linear, zero after its last sample
+    (empty: none), ``vjtab`` its :func:`rockcli.solve.record_impulse_table`; ``t_exc_end`` is the end
+    of both motions. ``g + a_v > 0`` throughout is the caller's to check (module notes, PV)."""
+    vertical = vacc.shape[0] > 0
     W, rs, H = _start(ekind, epar, acc, dt, t_begin, want_history, out)
     _initial_state(prm, rs, W, out)
     nh = np.int64(0)
@@ -246,16 +291,19 @@ def simulate_rigid(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, t
     while True:
         _advance_segment(rs, ekind, epar, acc, dt, t_begin)
         t_stop = min(rs[RS_SEG_END], t_horizon)
+        if vertical:
+            _vertical_piece(rs, vacc, vdt)
+            t_stop = min(t_stop, rs[RS_VEND])
         if rs[RS_SETTLED] != 0.0 and rs[RS_T] < t_show_end:
             t_stop = min(t_stop, t_show_end)  # a history run shows the free motion up to exactly here
 
         if _end_of_run_rigid(prm, ekind, epar, jtab, dt, t_exc_end, early, want_history, t_show_end, t_horizon,
-                             max_steps, rs, W, out):
+                             max_steps, rs, W, out, vjtab, vdt):
             break
 
         if rs[RS_PHASE] == PHASE_STUCK:
             t0 = rs[RS_T]
-            _stuck_rigid(prm, rs, epar, t_stop, out)
+            _stuck_rigid(prm, rs, epar, t_stop, out, vertical)
             if grid:  # at rest on the ground: theta = theta_dot = 0 up to the end (or the uplift)
                 H, nh, kg = _hist_grid(H, nh, kg, hdt, t0, 0.0, rs[RS_T], 0, prm, _NO_HY, _seg(rs), epar, W, 0, 2)
             if want_history:
@@ -297,7 +345,8 @@ def simulate_rigid(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, t
             thd1 = W[W_Y, 1]
             thd2, _ = impact_map(prm, thd1)
             rs[RS_S] = -rs[RS_S]
-            _bounce(prm, rs, W, out, thd1, t_exc_end, ground_at(rs[RS_T], _seg(rs), epar), thd2)
+            thr_v = prm[P_THR] * (1.0 + _vertical(rs[RS_T], _seg(rs)) / prm[P_G])  # (g + a_v) tan(alpha)
+            _bounce(prm, rs, W, out, thd1, t_exc_end, ground_at(rs[RS_T], _seg(rs), epar), thd2, thr_v)
         else:
             _to_step_end(rs, W, t_new, 2)
         if grid and code == EV_OVERTURN:

@@ -29,11 +29,12 @@ from rockcli.kernels.ground import _pulse_segment
 from rockcli.kernels.layout import (E_AP, E_TP, EXC_RECORD, HK_IMPACT_AFTER, HK_OVERTURN, HK_REST, HK_STATE, N_HIST, N_OUT, N_RS, N_W, O_N_IMPACTS, O_N_IMPACTS_ALL,
                                     O_N_RESTS, O_N_REVERSALS, O_NRHS, O_PEAK_FINAL, O_REJECTED, O_SETTLED, O_STATUS,
                                     O_STEPS, O_T_END, O_T_EXCEED, O_T_OVERTURN, O_T_THETA_MAX, O_T_UPLIFT,
-                                    O_THETA_END, O_THETA_MAX, O_U_END, O_U_MAX, P_ALPHA, P_P2, P_TH0, P_THD0, P_THR,
+                                    O_THETA_END, O_THETA_MAX, O_U_END, O_U_MAX, P_ALPHA, P_P2, P_TH0, P_THD0,
                                     PHASE_ROCKING, PHASE_STUCK, RS_FRESH, RS_H, RS_J, RS_NREV, RS_NRHS,
                                     RS_PEAK_FINAL, RS_PHASE, RS_PK_ON, RS_PK_SIG, RS_PK_T,
                                     RS_REJ, RS_S, RS_SEG, RS_SEG_END, RS_SETTLED, RS_STATUS, RS_STEPS, RS_T,
-                                    RS_THMAX, RS_UMAX, SEG_LINEAR, STATUS_DONE, STATUS_MAX_STEPS, STATUS_OVERTURNED,
+                                    RS_THMAX, RS_UMAX, RS_VEND, RS_VJ, RS_VSEG, SEG_LINEAR, STATUS_DONE,
+                                    STATUS_MAX_STEPS, STATUS_OVERTURNED,
                                     W_EV, W_FEV, W_TMP, W_Y, W_YNEW)
 from rockcli.kernels.polynomials import _first_down, _poly
 
@@ -43,7 +44,10 @@ from rockcli.kernels.polynomials import _first_down, _poly
 # ---------------------------------------------------------------------------------------------
 @njit(cache=True, inline='always')
 def _seg(rs):
-    return (rs[RS_SEG], rs[RS_SEG + 1], rs[RS_SEG + 2], rs[RS_SEG + 3])
+    """The segment tuple ``(mode, a0, slope, ts, v0, vslope, tv)``: the horizontal ground motion
+    (:func:`rockcli.kernels.ground._ground`) and the vertical one (:func:`rockcli.kernels.ground._vertical`)."""
+    return (rs[RS_SEG], rs[RS_SEG + 1], rs[RS_SEG + 2], rs[RS_SEG + 3], rs[RS_VSEG], rs[RS_VSEG + 1],
+            rs[RS_VSEG + 2])
 
 
 @njit(cache=True, inline='always')
@@ -73,6 +77,8 @@ def _start(ekind, epar, acc, dt, t_begin, want_history, out):
     rs[RS_PEAK_FINAL] = 1.0
     rs[RS_STATUS] = STATUS_DONE
     rs[RS_J] = 0.0
+    rs[RS_VEND] = np.inf
+    rs[RS_VJ] = -1.0
     if ekind == EXC_RECORD:
         rscale = epar[E_AP]  # records: the factor the record is scaled by
         _set_seg(rs, (float(SEG_LINEAR), rscale * acc[0], rscale * (acc[1] - acc[0]) / dt, 0.0), dt)
@@ -150,6 +156,34 @@ def _advance_segment(rs, ekind, epar, acc, dt, t_begin):
             seg, seg_end = _pulse_segment(j, ekind, epar, t_begin)
             _set_seg(rs, seg, seg_end)
             rs[RS_FRESH] = 1.0
+
+
+@njit(cache=True, inline='always')
+def _vertical_piece(rs, vacc, vdt):
+    """Move to the piece of the vertical series ``vacc`` (samples every ``vdt`` from t = 0, zero after
+    the last) that contains t; nothing without a vertical motion (``vacc`` empty). The series is
+    continuous across its samples (the first-same-as-last derivative stays valid), not at its end."""
+    n = vacc.shape[0]
+    t = rs[RS_T]
+    if n == 0 or (t < rs[RS_VEND] and rs[RS_VJ] >= 0.0):
+        return
+    k = int(t / vdt) if t > 0.0 else 0
+    while k > 0 and k * vdt > t:
+        k -= 1
+    while k < n - 1 and (k + 1) * vdt <= t:
+        k += 1
+    if k < n - 1:
+        rs[RS_VSEG] = vacc[k]
+        rs[RS_VSEG + 1] = (vacc[k + 1] - vacc[k]) / vdt
+        rs[RS_VSEG + 2] = k * vdt
+        rs[RS_VEND] = (k + 1) * vdt
+    else:
+        rs[RS_VSEG] = 0.0
+        rs[RS_VSEG + 1] = 0.0
+        rs[RS_VSEG + 2] = (n - 1) * vdt
+        rs[RS_VEND] = np.inf
+        rs[RS_FRESH] = 1.0
+    rs[RS_VJ] = k
 
 
 @njit(cache=True, inline='always')
@@ -326,15 +360,16 @@ def _to_step_end(rs, W, t_new, nst):
 
 
 @njit(cache=True, inline='always')
-def _bounce(prm, rs, W, out, thd1, t_exc_end, a_rest, thd2):
+def _bounce(prm, rs, W, out, thd1, t_exc_end, a_rest, thd2, thr):
     """After the impact map (``theta_dot`` ``thd1`` before, ``thd2`` after, the pivot switched):
-    count the impact and apply the rest rule under the base acceleration ``a_rest``.
+    count the impact and apply the rest rule under the base acceleration ``a_rest`` and the uplift
+    threshold ``thr`` (``g tan(alpha)``; ``(g + a_v) tan(alpha)`` under a vertical motion).
     Returns True when the block comes to rest (theta_dot = 0, stuck)."""
     out[O_N_IMPACTS_ALL] += 1
     if rs[RS_T] <= t_exc_end:
         out[O_N_IMPACTS] += 1
     rs[RS_FRESH] = 1.0
-    if comes_to_rest(prm, a_rest, thd2, prm[P_THR], prm[P_ALPHA]):
+    if comes_to_rest(prm, a_rest, thd2, thr, prm[P_ALPHA]):
         W[W_Y, 1] = 0.0
         rs[RS_PHASE] = PHASE_STUCK
         rs[RS_S] = 0.0

@@ -21,16 +21,32 @@ from rockcli.reference.result import RefResult
 from rockcli.units import G
 
 
-def reference_linear(block, foundation, excitation, work, *, horizon, rest_tol, max_phases) -> RefResult:
-    """Rigid foundation (``foundation`` not a LinearIsolation) or linear bearings."""
+def reference_linear(block, foundation, excitation, work, *, horizon, rest_tol, max_phases,
+                     vertical=None) -> RefResult:
+    """Rigid foundation (``foundation`` not a LinearIsolation) or linear bearings; ``vertical``
+    (``(acc, dt)``, rigid foundation only) a vertical ground acceleration: gravity ``g + a_v``."""
     from scipy.optimize import brentq, minimize_scalar
 
     ag, t_exc_end, scan_step, max_step = ground_function(excitation)
     g = G
+    if vertical is None:
+        def gv(t):
+            return g
+    else:
+        vacc = np.asarray(vertical[0], float)
+        vtt = float(vertical[1]) * np.arange(vacc.size)
+
+        def gv(t):  # gravity felt by the block: g + a_v(t), a_v zero outside the series
+            return g + (float(np.interp(t, vtt, vacc)) if 0.0 <= t <= vtt[-1] else 0.0)
+
+        t_exc_end = max(t_exc_end, float(vtt[-1]))
+        scan_step = min(scan_step, float(vertical[1]))
+        max_step = min(max_step, float(vertical[1]))
     p2 = block.p ** 2
     alpha = block.alpha
     R = block.R
     thr = g * math.tan(alpha)
+    tan_a = math.tan(alpha)
     isolated = isinstance(foundation, LinearIsolation)
     gamma = foundation.gamma if isolated else 0.0
     wb = foundation.omega_b if isolated else 0.0
@@ -49,7 +65,9 @@ def reference_linear(block, foundation, excitation, work, *, horizon, rest_tol, 
             th, thd = y[0], y[1]
             if not isolated:
                 A = alpha * s - th
-                return [thd, -p2 * (math.sin(A) + ag(t) / g * math.cos(A))]  # Eq (3)
+                if vertical is None:
+                    return [thd, -p2 * (math.sin(A) + ag(t) / g * math.cos(A))]  # Eq (3)
+                return [thd, -p2 / g * (gv(t) * math.sin(A) + ag(t) * math.cos(A))]  # gravity g + a_v
             thdd, a_abs = rocking_on_base(th, thd, s, F(y[2], y[3]), alpha=alpha, p2=p2, gamma=gamma, R=R)
             return [thd, thdd, y[3], a_abs - ag(t)]
         return f
@@ -64,13 +82,14 @@ def reference_linear(block, foundation, excitation, work, *, horizon, rest_tol, 
         grid = grid[grid <= t_exc_end]
         if grid.size == 0 or grid[-1] < t_exc_end:
             grid = np.append(grid, t_exc_end)
-        vals = np.array([abs(ag(x)) for x in grid]) - thr
+        vals = np.array([abs(ag(x)) - (thr if vertical is None else gv(x) * tan_a) for x in grid])
         idx = np.nonzero(vals > 0)[0]
         if idx.size == 0:
             ph.t = t_exc_end
             return True
         k = idx[0]
-        ph.t = grid[0] if k == 0 else brentq(lambda x: abs(ag(x)) - thr, grid[k - 1], grid[k], xtol=1e-14)
+        ph.t = grid[0] if k == 0 else brentq(lambda x: abs(ag(x)) - gv(x) * tan_a, grid[k - 1], grid[k],
+                                                    xtol=1e-14)
         ph.lift(-math.copysign(1.0, ag(grid[k])))
         return True
 
@@ -142,5 +161,6 @@ def reference_linear(block, foundation, excitation, work, *, horizon, rest_tol, 
 
     base_acc = (lambda t, y: F(y[2], y[3])) if isolated else (lambda t, y: ag(t))
     ph = Phases(block, gamma, 4, t_exc_end=t_exc_end, horizon=horizon, rest_tol=rest_tol,
-                n_rock=4 if isolated else 2, base_acc=base_acc, u_grid=4000 if isolated else 0)
+                n_rock=4 if isolated else 2, base_acc=base_acc, u_grid=4000 if isolated else 0,
+                gravity=None if vertical is None else gv)
     return ph.chain(stuck, rock_rhs, work, max_step, max_phases)

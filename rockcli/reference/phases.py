@@ -31,10 +31,12 @@ class Phases:
     """
 
     def __init__(self, block, gamma: float, n_states: int, *, t_exc_end: float, horizon: float, rest_tol: float,
-                 n_rock: int, base_acc: Callable[[float, np.ndarray], float], u_grid: int):
+                 n_rock: int, base_acc: Callable[[float, np.ndarray], float], u_grid: int,
+                 gravity: Callable[[float], float] | None = None):
         self.block, self.gamma = block, gamma
         self.t_exc_end, self.t_max_end = t_exc_end, t_exc_end + horizon
         self.rest_tol, self.n_rock, self.base_acc, self.u_grid = rest_tol, n_rock, base_acc, u_grid
+        self.gravity = gravity  # g + a_v(t) under a vertical motion (rest rule), None: g
         self.t = 0.0
         self.y = np.zeros(n_states)
         self.phase, self.s = "stuck", 0.0
@@ -114,7 +116,10 @@ class Phases:
         at_rest = y.copy()
         at_rest[3] = y[3] + self.gamma * block.h * thd2
         p2, alpha = block.p ** 2, block.alpha
-        restoring = p2 * math.cos(alpha) * (math.tan(alpha) - abs(self.base_acc(t, at_rest)) / G)
+        if self.gravity is None:
+            restoring = p2 * math.cos(alpha) * (math.tan(alpha) - abs(self.base_acc(t, at_rest)) / G)
+        else:  # the uplift threshold (g + a_v) tan(alpha) in place of g tan(alpha)
+            restoring = p2 * math.cos(alpha) * (self.gravity(t) * math.tan(alpha) - abs(self.base_acc(t, at_rest))) / G
         if restoring > 0 and thd2 ** 2 / (2 * restoring) < self.rest_tol * alpha:
             y[3] = at_rest[3]
             y[0] = y[1] = 0.0

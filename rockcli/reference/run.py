@@ -16,7 +16,7 @@ from rockcli.reference.result import RefResult
 
 def reference_simulate(block: Block, foundation, excitation, *, rtol=1e-10, atol=1e-13, horizon=600.0,
                        rest_tol=1e-8, max_phases=200000, method="DOP853", deadline_s=None,
-                       align=False) -> RefResult:
+                       align=False, vertical=None) -> RefResult:
     """Chain stuck and rocking phases with ``solve_ivp`` and terminal events.
 
     Parameters
@@ -37,6 +37,10 @@ def reference_simulate(block: Block, foundation, excitation, *, rtol=1e-10, atol
         straddles a kink of the piecewise-linear ground motion (as the kernel does). Otherwise the
         steps are only limited to one sample interval, and the error of the steps across kinks
         limits the accuracy (about 1e-7 in theta_max/alpha on Kobe Takarazuka at any rtol).
+    vertical : (acc, dt), optional
+        Rigid foundation only: a vertical ground acceleration [m/s^2, upward positive] sampled every
+        ``dt`` from t = 0, piecewise linear, zero after its last sample. Gravity becomes ``g + a_v``
+        in Eq (3), in the uplift threshold and in the rest rule.
 
     Returns
     -------
@@ -57,9 +61,17 @@ def reference_simulate(block: Block, foundation, excitation, *, rtol=1e-10, atol
     work = Work(method, rtol, atol, lambda n: full[-n:], deadline_s)
     if align and hasattr(excitation, "acc"):
         work.breaks = float(excitation.dt) * np.arange(1, np.asarray(excitation.acc).size)
+    if vertical is not None:
+        if hysteretic or isinstance(foundation, LinearIsolation):
+            raise ValueError("the reference takes a vertical motion on a rigid foundation only")
+        vbreaks = float(vertical[1]) * np.arange(1, np.asarray(vertical[0]).size)
+        old = getattr(work, "breaks", None)
+        work.breaks = vbreaks if old is None else np.union1d(old, vbreaks)
     run = reference_hysteretic if hysteretic else reference_linear
     with np.errstate(all="ignore"):  # a diverging method is reported (ReferenceFailure), not warned about
-        out = run(block, foundation, excitation, work, horizon=horizon, rest_tol=rest_tol, max_phases=max_phases)
+        extra = {} if vertical is None else {"vertical": vertical}
+        out = run(block, foundation, excitation, work, horizon=horizon, rest_tol=rest_tol, max_phases=max_phases,
+                  **extra)
     out.steps, out.nfev, out.njev, out.nlu = work.steps, work.nfev, work.njev, work.nlu
     out.wall_s = time.perf_counter() - t_wall
     out.method, out.rtol, out.atol = method, float(rtol), atol

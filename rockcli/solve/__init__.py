@@ -33,6 +33,10 @@ Solver contract
   evaluated analytically and is zero outside its support.
 * Uplift when the absolute base acceleration ``a`` passes ``-g tan(alpha)`` (rocking on the
   right corner, theta > 0) or ``+g tan(alpha)`` (theta < 0).
+* A vertical ground acceleration ``a_v`` (``vertical=``, rigid foundation only; a record on the horizontal
+  record's time base or a pulse sampled at ``T_p/2000``, piecewise linear, zero after its end): gravity
+  ``g + a_v`` in Eq (3), in the uplift threshold and in the rest rule; ``g + a_v <= 0`` anywhere is refused.
+  The excitation ends when both motions have ended.
 * Impacts at theta = 0 keep the total horizontal momentum and the block's angular momentum about
   the new pivot: ``theta_dot+ = eta theta_dot-`` with ``eta = (k - 2)/(k + 4)``,
   ``k = (4 - 3 gamma) cot^2(alpha)`` (Housner's ``1 - 1.5 sin^2 alpha`` when gamma = 0). A given

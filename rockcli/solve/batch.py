@@ -37,7 +37,7 @@ def _threads() -> int:
 def simulate_many(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL,
                   rest_tol: float = DEFAULT_REST_TOL, horizon: float = DEFAULT_HORIZON,
                   max_steps: int = DEFAULT_MAX_STEPS, early: bool = False,
-                  progress=None, chunk: int | None = None, restitution=None, cap_ratio=0.0) -> list:
+                  progress=None, chunk: int | None = None, restitution=None, cap_ratio=0.0, vertical=None) -> list:
     """Verdict-only :func:`simulate` of many scenes, run in parallel on all cores.
 
     Parameters
@@ -60,6 +60,9 @@ def simulate_many(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL,
         Coefficient of restitution of :func:`simulate` (one value or one per scene; None: Housner's).
     cap_ratio : float or sequence of float
         Capped colonnade of :func:`simulate` (one value or one per scene; 0: solitary columns).
+    vertical : Record or pulse, optional
+        One vertical ground motion under every scene (:func:`simulate`; never scaled). These scenes
+        run one after the other on this thread (the batch kernels carry no vertical motion).
 
     Returns
     -------
@@ -69,6 +72,10 @@ def simulate_many(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL,
         :class:`JobError` with the reason and the others still run. Invalid solver options
         (``rtol``, ``tail``, ``rest_tol``, ``horizon``) concern every job and raise.
     """
+    if vertical is not None:
+        return _many_vertical(list(jobs), vertical, rtol=rtol, tail=tail, rest_tol=rest_tol, horizon=horizon,
+                              max_steps=max_steps, early=early, progress=progress, restitution=restitution,
+                              cap_ratio=cap_ratio)
     outs, alphas, failed = _run_many(jobs, rtol=rtol, tail=tail, rest_tol=rest_tol, horizon=horizon,
                                      max_steps=max_steps, early=early, progress=progress, chunk=chunk,
                                      restitution=restitution, cap_ratio=cap_ratio)
@@ -137,6 +144,35 @@ def _scene_arrays(block, foundation, excitation, tail, rtol, rest_tol, horizon, 
         except TypeError:
             pass
     return fkind, prm, ekind, epar.copy(), acc, jtab, dt, t_begin, t_exc_end
+
+
+def _many_vertical(jobs, vertical, *, rtol, tail, rest_tol, horizon, max_steps, early, progress, restitution,
+                   cap_ratio) -> list:
+    """:func:`simulate_many` under a vertical motion: each job through :func:`simulate`, in order."""
+    from rockcli.solve.single import simulate
+
+    n = len(jobs)
+    tails = np.broadcast_to(np.asarray(tail, dtype=float), (n,)) if np.ndim(tail) == 0 else np.asarray(tail, float)
+    if tails.shape != (n,):
+        raise RockcliInputError(f"tail must be one value or one per job ({n}), got {tails.shape}")
+    validate_options(rtol, 0.0, rest_tol, horizon, max_steps)
+    restitutions = _per_job(restitution, n, check_restitution, "restitution")
+    caps = _per_job(cap_ratio, n, check_cap_ratio, "cap_ratio")
+    results = []
+    for i, job in enumerate(jobs):
+        try:
+            block, foundation, excitation = job[:3]
+            scale = float(job[3]) if len(job) > 3 else 1.0
+            if not math.isfinite(scale):
+                raise RockcliInputError(f"job {i}: the scale factor must be finite, got {scale!r}")
+            results.append(simulate(block, foundation, excitation, rtol=rtol, tail=float(tails[i]), rest_tol=rest_tol,
+                                    horizon=horizon, max_steps=max_steps, early=early, restitution=restitutions[i],
+                                    cap_ratio=caps[i], vertical=vertical, _scale=scale))
+        except (RockcliInputError, TypeError, ValueError) as exc:
+            results.append(JobError(str(exc)))
+        if progress is not None:
+            progress(i + 1)
+    return results
 
 
 def _per_job(value, n: int, check, what: str) -> list:

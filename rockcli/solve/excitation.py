@@ -69,18 +69,25 @@ def pulse_impulse_table(shape: str) -> tuple[np.ndarray, np.ndarray]:
     return _UNIT_TABLES[shape]
 
 
+def _samples(record, what: str):
+    """``(acc, dt)`` of a record, checked: at least 2 finite samples, a positive time step."""
+    acc = np.ascontiguousarray(record.acc, dtype=np.float64)
+    dt = float(record.dt)
+    name = getattr(record, "name", "")
+    if acc.ndim != 1 or acc.size < 2:
+        raise RockcliInputError(f"{what} {name!r} needs at least 2 samples")
+    if not np.all(np.isfinite(acc)):
+        raise RockcliInputError(f"{what} {name!r} has NaN or infinite samples")
+    if not (math.isfinite(dt) and dt > 0):
+        raise RockcliInputError(f"{what} {name!r} has a non-positive time step {dt!r}")
+    return acc, dt
+
+
 def _excitation_arrays(excitation):
     """(ekind, epar, acc, jtab, dt, t_begin, t_exc_end) for the kernel."""
     k = _kernel()
     if hasattr(excitation, "acc") and hasattr(excitation, "dt"):
-        acc = np.ascontiguousarray(excitation.acc, dtype=np.float64)
-        dt = float(excitation.dt)
-        if acc.ndim != 1 or acc.size < 2:
-            raise RockcliInputError(f"record {getattr(excitation, 'name', '')!r} needs at least 2 samples")
-        if not np.all(np.isfinite(acc)):
-            raise RockcliInputError(f"record {getattr(excitation, 'name', '')!r} has NaN or infinite samples")
-        if not (math.isfinite(dt) and dt > 0):
-            raise RockcliInputError(f"record {getattr(excitation, 'name', '')!r} has a non-positive time step {dt!r}")
+        acc, dt = _samples(excitation, "record")
         epar = np.zeros(8)
         epar[k.E_AP] = 1.0  # scale factor of the record
         return k.EXC_RECORD, epar, acc, record_impulse_table(acc, dt), dt, 0.0, (acc.size - 1) * dt
@@ -110,3 +117,69 @@ def _excitation_arrays(excitation):
         zeros, jtab = pulse_impulse_table(shape)
         return _PULSE_CODES[shape], epar, zeros, jtab, 1.0, min(0.0, ts), te
     raise RockcliInputError(f"cannot simulate excitation of type {type(excitation).__name__}")
+
+
+#: samples per period of a vertical pulse (read piecewise linear, like a record)
+VERTICAL_PULSE_SAMPLES = 2000
+#: relative difference of time steps still read as the same time base
+_SAME_DT = 1e-9
+
+
+def _vertical_arrays(vertical, excitation, foundation, g: float):
+    """``(vacc, vjtab, vdt, t_v_end, label)`` of a vertical ground acceleration (upward positive) for the
+    rigid-foundation kernel: samples every ``vdt`` from t = 0, piecewise linear, zero after the last.
+
+    ``vertical`` is None (none: empty arrays), a record (same time step and start as a horizontal
+    record; its length may differ) or an analytic pulse (sampled every ``T_p/VERTICAL_PULSE_SAMPLES``
+    from t = 0 to the end of its support). Refused on an isolated base, and wherever ``g + a_v <= 0``.
+    """
+    from rockcli.models import Rigid
+
+    if vertical is None:
+        return np.empty(0), np.empty(0), 1.0, 0.0, "none"
+    if foundation is not None and not isinstance(foundation, Rigid):
+        raise RockcliInputError(
+            "a vertical ground motion is modelled on a rigid foundation only: on an isolated base it also changes "
+            "the bearings' normal force (a sliding bearing's friction mu (m + m_b)(g + a_v), a pendulum's "
+            "restoring force), which the bearing models do not include")
+    if hasattr(vertical, "acc") and hasattr(vertical, "dt"):
+        vacc, vdt = _samples(vertical, "vertical record")
+        name = getattr(vertical, "name", "")
+        if excitation is not None and hasattr(excitation, "acc") and hasattr(excitation, "dt"):
+            hdt = float(excitation.dt)
+            if abs(vdt - hdt) > _SAME_DT * hdt:
+                raise RockcliInputError(
+                    f"vertical record {name!r} has time step {vdt:g} s, the horizontal record {hdt:g} s: the two "
+                    f"components must share one time base (resample one of them first)")
+            hs, vs = float(getattr(excitation, "t_start", 0.0)), float(getattr(vertical, "t_start", 0.0))
+            if abs(hs - vs) > 0.5 * hdt:
+                raise RockcliInputError(
+                    f"vertical record {name!r} starts at {vs:g} s, the horizontal record at {hs:g} s: the two "
+                    f"components must share one time base")
+            vdt = hdt
+        label = f"record {name}" if name else "record"
+    else:
+        shape = getattr(vertical, "shape", None)
+        if shape not in _PULSE_CODES:
+            raise RockcliInputError(f"cannot use a {type(vertical).__name__} as the vertical ground motion")
+        T_p = float(vertical.T_p)
+        ts, te = (float(v) for v in vertical.support())
+        if not (math.isfinite(T_p) and T_p > 0 and math.isfinite(float(vertical.a_p))):
+            raise RockcliInputError(f"vertical pulse {shape}: a_p must be finite and T_p positive")
+        if ts < 0.0:
+            raise RockcliInputError(f"vertical pulse {shape} starts at {ts:g} s, before the run starts at t = 0 s: "
+                                    f"give a larger t0")
+        vdt = T_p / VERTICAL_PULSE_SAMPLES
+        n = int(math.ceil(te / vdt)) + 1
+        if n > 50_000_000:
+            raise RockcliInputError(f"vertical pulse {shape} ends too late ({te:g} s) for its period: give a "
+                                    f"smaller t0")
+        tt = vdt * np.arange(n)
+        vacc = np.where((tt >= ts) & (tt <= te), np.asarray(vertical.acceleration(tt), dtype=float), 0.0)
+        label = f"pulse {shape} a_p={float(vertical.a_p):g}m/s2 T_p={T_p:g}s t0={float(vertical.t0):g}s"
+    low = int(np.argmin(vacc))
+    if g + vacc[low] <= 0.0:
+        raise RockcliInputError(
+            f"the vertical ground acceleration reaches {vacc[low]:.4g} m/s^2 at t = {low * vdt:g} s, so g + a_v <= 0: "
+            f"the block would lift off the ground, which rockcli does not model")
+    return vacc, record_impulse_table(vacc, vdt), vdt, (vacc.size - 1) * vdt, label

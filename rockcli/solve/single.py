@@ -10,7 +10,7 @@ from rockcli.errors import RockcliInputError
 from rockcli.impact import check_restitution
 from rockcli.initial import check_initial_state, still_ground_arrays
 from rockcli.models import Block, Rigid
-from rockcli.solve.excitation import _excitation_arrays
+from rockcli.solve.excitation import _excitation_arrays, _vertical_arrays
 from rockcli.solve.options import (DEFAULT_HORIZON, DEFAULT_MAX_STEPS, DEFAULT_REST_TOL, DEFAULT_TAIL, _kernel,
                                    validate_options)
 from rockcli.solve.parameters import _parameters
@@ -22,7 +22,8 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float | No
              history: bool = False, tail: float = DEFAULT_TAIL, rest_tol: float = DEFAULT_REST_TOL,
              horizon: float = DEFAULT_HORIZON, max_steps: int = DEFAULT_MAX_STEPS, early: bool = False,
              restitution: float | None = None, theta0: float = 0.0, theta_dot0: float = 0.0,
-             cap_ratio: float = 0.0, history_dt: float | None = None) -> Response:
+             cap_ratio: float = 0.0, history_dt: float | None = None, vertical=None,
+             _scale: float = 1.0) -> Response:
     """Rocking response of ``block`` on ``foundation`` under ``excitation``.
 
     Parameters
@@ -68,6 +69,11 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float | No
         output, exact to the integrator's tolerance; the ground acceleration from the excitation
         itself) instead of at the step ends; implies ``history``. The events stay exact either way
         (:attr:`History.events`).
+    vertical : Record or pulse, optional
+        Vertical ground acceleration [m/s^2, upward positive], rigid foundation only: gravity becomes
+        ``g + a_v`` in Eq (3) and in the uplift threshold. A record shares a horizontal record's time
+        step and start (its length may differ: zero after its end); a pulse is sampled every
+        ``T_p/2000`` and read piecewise linear. ``g + a_v <= 0`` anywhere is refused (lift-off).
 
     Returns
     -------
@@ -91,17 +97,24 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float | No
     k = _kernel()
     prepared = still_ground_arrays(k) if excitation is None else _excitation_arrays(excitation)
     ekind, epar, acc, jtab, dt, t_begin, t_exc_end = prepared
+    if _scale != 1.0:  # simulate_many's scale factor, applied as its batch applies it
+        epar = epar.copy()
+        epar[k.E_AP] = _scale if ekind == k.EXC_RECORD else epar[k.E_AP] * _scale
     fkind, prm = _parameters(block, foundation, rtol, float(rest_tol), restitution, cap_ratio)
     prm[k.P_TH0], prm[k.P_THD0] = theta0, theta_dot0
     if history_dt is not None:
         prm[k.P_HDT] = history_dt
         _check_grid_rows(history_dt, t_begin, t_exc_end + float(tail))
+    vacc, vjtab, vdt, t_v_end, _ = _vertical_arrays(vertical, excitation, foundation, float(prm[k.P_G]))
     _check_work(block, foundation, prepared, rtol, float(tail), float(rest_tol), float(horizon),
                 int(max_steps), bool(history), restitution)
     out = np.zeros(k.N_OUT)
-    kernel = k.simulate_rigid if fkind == k.FOUNDATION_RIGID else k.simulate_core
-    H = kernel(fkind, tuple(float(v) for v in prm), ekind, tuple(float(v) for v in epar), acc, jtab, dt,
-               t_begin, t_exc_end, float(tail), float(horizon), int(max_steps), bool(history), bool(early), out)
+    args = (fkind, tuple(float(v) for v in prm), ekind, tuple(float(v) for v in epar), acc, jtab, dt, t_begin,
+            max(t_exc_end, t_v_end), float(tail), float(horizon), int(max_steps), bool(history), bool(early))
+    if vacc.size:
+        H = k.simulate_rigid_vertical(*args, vacc, vjtab, vdt, out)
+    else:
+        H = (k.simulate_rigid if fkind == k.FOUNDATION_RIGID else k.simulate_core)(*args, out)
     return _response(out, H if history else None, block, fkind, history_dt)
 
 
