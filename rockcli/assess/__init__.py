@@ -6,6 +6,9 @@ The library behind ``rockcli assess`` (no click, no pandas). Read it in this ord
     What is assessed: *columns* (presets or custom blocks), *configurations* (isolation specs)
     and *excitations* (catalogue records, files, folders; a file that cannot be read is kept
     with its ``error``). A scene is one column on one configuration under one excitation.
+:mod:`rockcli.assess.excitations`
+    The records of a run: catalogue ids, files, folders (files that are not records skipped), manifests,
+    pairs of horizontal components projected onto the rocking plane.
 :mod:`rockcli.assess.margin`
     The margin search: the smallest scale factor of a record that overturns a scene (a scan of
     373 log-spaced factors 0.1..4 in steps just under 1 %, then a bisection below the first

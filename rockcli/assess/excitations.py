@@ -1,0 +1,439 @@
+"""The excitations of an assessment: catalogue ids, files, folders, manifests and pairs of components.
+
+:func:`resolve_excitations` turns what the user named into :class:`Excitation` objects (a record, or
+the catalogued pulse of a record); a file that cannot be read is kept with its ``error`` (one bad
+file in a folder of hundreds costs one row, not the run), files that are not records are
+:class:`Skipped` (said how many and why). Two horizontal components make a pair projected onto the
+body's rocking plane (``--azimuth``). A folder takes ``--glob``/``--exclude``; a manifest CSV gives
+each file's units, dt, component and azimuth when the file does not state them.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Sequence
+
+import numpy as np
+
+from rockcli.errors import RockcliInputError
+from rockcli.units import G
+
+EXCITATION_RECORD = "record"
+EXCITATION_PULSE = "pulse"
+#: How records are turned into excitations: the file where found, else the catalogued pulse
+#: (``auto``); files only (``record``); catalogued pulses only (``pulse``).
+EXCITATION_MODES = ("auto", "record", "pulse")
+
+
+@dataclass(frozen=True)
+class Excitation:
+    """One ground motion of the assessment.
+
+    Attributes
+    ----------
+    label : str
+        Catalogue id or file name (``folder/name`` when two folders hold files of the same name).
+    kind : str
+        ``record`` (the accelerogram) or ``pulse`` (the catalogued Ricker pulse that idealises it).
+    motion : Record or pulse or None
+        What the solver runs (None when it could not be read: see ``error``).
+    source : str
+        File path, or ``catalogue pulse <shape> a_p=.. g T_p=.. s``.
+    pga_g : float
+        Peak ground acceleration of the motion [g] (|a_p| for a pulse).
+    error : str
+        Why the motion could not be read (runs then get this error in their rows).
+    """
+
+    label: str
+    kind: str
+    motion: object
+    source: str
+    pga_g: float = math.nan
+    error: str = ""
+    a_p_g: float = math.nan
+    T_p_s: float = math.nan
+    #: two horizontal components (checked, :func:`rockcli.records.orientation.check_pair`) when an azimuth
+    #: was asked for: ``motion`` is their projection onto ``azimuth_deg`` (``--azimuth worst``: onto 0 deg,
+    #: and :mod:`rockcli.assess.azimuth` runs every orientation)
+    pair: tuple | None = None
+    azimuth_deg: float = math.nan
+
+
+@dataclass(frozen=True)
+class Unavailable:
+    """A record asked for (or in the default set) that cannot be run: neither file nor pulse."""
+
+    label: str
+    reason: str
+
+
+@dataclass(frozen=True)
+class Skipped(Unavailable):
+    """A file of a folder suite that is not a record by its content (no reader recognises it)."""
+
+
+def unavailable_notes(unavailable) -> list[str]:
+    """Sentences for the notes: the skipped files of folder suites, counted, then what is not available."""
+    skipped = [u for u in unavailable if isinstance(u, Skipped)]
+    lines = []
+    if skipped:
+        lines.append(f"Skipped {len(skipped)} file(s) of the folder(s) that are not records (no reader recognises "
+                     f"their content): {', '.join(u.label for u in skipped)}.")
+    lines += [f"Not available: {u.label} ({u.reason})." for u in unavailable if not isinstance(u, Skipped)]
+    return lines
+
+
+def _pulse_excitation(entry) -> Excitation:
+    from rockcli.pulses import make_pulse
+
+    pulse = make_pulse(entry.pulse_shape, entry.a_p_g * G, entry.T_p_s)
+    source = f"catalogue pulse {entry.pulse_shape} a_p={entry.a_p_g:+.4f} g T_p={entry.T_p_s:.4f} s"
+    return Excitation(entry.id, EXCITATION_PULSE, pulse, source, abs(entry.a_p_g), "", entry.a_p_g, entry.T_p_s)
+
+
+def _read_excitation(label: str, path: Path, read_kwargs: dict, skip: bool = False) -> Excitation:
+    from rockcli.records.components import NotARecord
+
+    try:
+        rec = _read_suite_record(path, dict(read_kwargs))
+    except NotARecord as exc:
+        if skip:
+            return Skipped(label, str(exc))
+        return Excitation(label, EXCITATION_RECORD, None, str(path), error=str(exc))
+    except RockcliInputError as exc:
+        return Excitation(label, EXCITATION_RECORD, None, str(path), error=str(exc))
+    except Exception as exc:  # a file the reader chokes on: report it in its rows, keep the others
+        return Excitation(label, EXCITATION_RECORD, None, str(path), error=f"{path}: {type(exc).__name__}: {exc}")
+    if rec.npts < 2 or not np.all(np.isfinite(rec.acc)) or not rec.dt > 0:
+        return Excitation(label, EXCITATION_RECORD, None, str(path),
+                          error=f"{path}: not a usable record (needs >= 2 finite samples and dt > 0)")
+    return Excitation(label, EXCITATION_RECORD, rec, str(path), rec.pga_g)
+
+
+def _read_suite_record(path: Path, kwargs: dict):
+    """A suite's record: ``component`` picks one of a multi-component file (a one-component file is taken as
+    it is); ``units``/``dt`` fill in only what the file does not state."""
+    from rockcli.records import read_record
+    from rockcli.records.components import select_component
+    from rockcli.records.reader import read_components
+
+    component = kwargs.pop("component", None)
+    if component is None:
+        return read_record(path, **kwargs)
+    comps = read_components(path, **{k: v for k, v in kwargs.items() if k != "column"})
+    return comps[0] if len(comps) == 1 else select_component(comps, component, str(path))
+
+
+def _pair_label(first: str, second: str) -> str:
+    """``RSN181_IMPVALL.H_H-E06140.AT2+E06230.AT2``, ``TCU128-000+090``: the second name without the part
+    both share up to a separator."""
+    import os
+
+    common = os.path.commonprefix([first, second])
+    cut = max((common.rfind(c) for c in "-_."), default=-1) + 1
+    return f"{first}+{second[cut:] or second}"
+
+
+def _pair_excitation(label: str, first, second, read_kwargs: dict, azimuth, skip: bool = False) -> Excitation:
+    """Two horizontal components (``second`` None: those of the multi-component file ``first``) projected
+    onto ``azimuth`` [deg] (``"worst"``: onto 0 deg, every orientation run later); a pair that cannot be
+    read or checked is kept with its ``error``."""
+    from rockcli.records.components import NotARecord
+    from rockcli.records.orientation import project, read_pair
+
+    kwargs = {k: v for k, v in read_kwargs.items() if k != "component"}
+    try:
+        pair = read_pair(first, second, **kwargs)
+    except NotARecord as exc:
+        if skip:
+            return Skipped(label, str(exc))
+        return Excitation(label, EXCITATION_RECORD, None, str(first), error=str(exc))
+    except RockcliInputError as exc:
+        return Excitation(label, EXCITATION_RECORD, None, f"{first} + {second}" if second else str(first),
+                          error=str(exc))
+    theta = 0.0 if azimuth == "worst" else float(azimuth)
+    rec = project(*pair, theta)
+    source = " + ".join(f"{r.meta.get('path')} ({r.meta['azimuth_deg']:g} deg)" for r in pair)
+    if azimuth != "worst":
+        label = f"{label}@{theta:g}"
+    return Excitation(label, EXCITATION_RECORD, rec, source, rec.pga_g, pair=pair, azimuth_deg=theta)
+
+
+def _entry_read_kwargs(entry) -> dict:
+    return {"format": entry.format or None, "units": entry.units, "dt": entry.dt, "column": entry.column}
+
+
+def _has_pulse(entry) -> bool:
+    return bool(entry.pulse_shape) and entry.a_p_g is not None and entry.T_p_s is not None
+
+
+def _from_entry(entry, mode: str):
+    """Excitation (or Unavailable) for a catalogue entry."""
+    from rockcli.records.catalog import find_file, search_path
+
+    path = find_file(entry) if (entry.available and mode != "pulse") else None
+    if path is not None:
+        return _read_excitation(entry.id, path, _entry_read_kwargs(entry))
+    if mode != "record" and _has_pulse(entry):
+        return _pulse_excitation(entry)
+    if not entry.available:
+        why = "no public file is known"
+    elif mode == "pulse":
+        why = "it has no catalogued pulse"
+    else:
+        why = f"file {entry.file!r} not found in {', '.join(str(p) for p in search_path())}"
+    if mode == "auto" and not _has_pulse(entry):
+        why += " and it has no catalogued pulse"
+    return Unavailable(entry.id, why)
+
+
+def table_ii_entries() -> list:
+    """The catalogue rows of the paper's Table II (those with a published PGA), in catalogue order."""
+    from rockcli.records.catalog import load_catalog
+
+    return [e for e in load_catalog() if e.pga_published_g is not None]
+
+
+def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto", *, units: str | None = None,
+                        dt: float | None = None, component: str | None = None, azimuth=None,
+                        glob: Sequence[str] = (), exclude: Sequence[str] = ()):
+    """Turn record sources into excitations.
+
+    Parameters
+    ----------
+    sources : sequence of str, optional
+        Catalogue ids, record files, or folders (every regular, non-hidden file in it, sorted;
+        not recursive). Default: the catalogue's Table II records.
+    mode : {"auto", "record", "pulse"}
+        For catalogue records: the file where found, else the catalogued pulse (``auto``); files
+        only (``record``); the catalogued pulses (``pulse``).
+    units, dt : optional
+        Units of the values and time step [s] of the files that do not state them (headerless
+        text, SAC, ...), passed to :func:`rockcli.records.read_record` with ``fill_in=True``: they
+        fill in only what a file does not state (a file that states others is read as it states
+        them). Files the catalogue lists are read as the catalogue says.
+    component : str, optional
+        The component of each multi-component file (channel code, ``N``/``E``/``UP`` or azimuth);
+        one-component files are taken as they are.
+    azimuth : float or "worst", optional
+        Project two horizontal components onto this azimuth (the normal to the rocking axis, degrees
+        clockwise from north): a source ``A+B`` names the two files (each ``FILE`` or ``FILE@DEG``), a
+        multi-component file gives its own two; anything else is an error row.
+    glob, exclude : sequence of str
+        Shell patterns of file names: a folder suite takes the files matching one of ``glob`` (all when
+        empty) and none of ``exclude``. Files that are not records by their content are skipped and
+        returned in ``unavailable`` as :class:`Skipped`.
+
+    Returns
+    -------
+    excitations : list of Excitation
+        In the order given; a file that cannot be read is kept, with its ``error``. A file given
+        twice (e.g. by its folder and by name) is read once; two different files of the same
+        name in different folders are labelled ``folder/name``.
+    unavailable : list of Unavailable
+        Default-set records that can be run neither from a file nor as a pulse.
+
+    Raises
+    ------
+    RockcliInputError
+        A named source that is neither an existing file or folder nor a catalogue id, a named
+        catalogue record that cannot be run, an empty folder, an unknown ``mode``, bad
+        ``units``/``dt`` values.
+    """
+    from rockcli.records.catalog import load_catalog
+
+    if mode not in EXCITATION_MODES:
+        raise RockcliInputError(f"excitation mode {mode!r} is not one of {', '.join(EXCITATION_MODES)}")
+    file_kwargs = _file_read_kwargs(units, dt)
+    if component is not None:
+        file_kwargs["component"] = str(component)
+    entries = load_catalog()
+    by_id = {e.id: e for e in entries}
+    by_file = {e.file: e for e in entries if e.file}
+    out, unavailable, seen = [], [], {}
+
+    def add(x, path=None):
+        key = str(Path(path).resolve()) if path is not None else x.label
+        if x.label in seen:
+            if seen[x.label] == key:
+                return  # the same file or id again
+            x = _relabel(x, f"{Path(path).parent.name}/{Path(path).name}" if path is not None else x.label)
+            if x.label in seen:
+                return
+        seen[x.label] = key
+        out.append(x)
+
+    if not sources:
+        for e in table_ii_entries():
+            x = _from_entry(e, mode)
+            (unavailable.append(x) if isinstance(x, Unavailable) else add(x))
+        return out, unavailable
+
+    if azimuth is not None and component is not None:
+        raise RockcliInputError("--component picks one component; --azimuth projects two: give one of them")
+    for src in sources:
+        src = str(src)
+        path = Path(src).expanduser()
+        if azimuth is not None and "+" in src and not path.exists():
+            from rockcli.records.orientation import split_source
+
+            first, _, second = src.partition("+")
+            names = [Path(split_source(f)[0]).name for f in (first, second)]
+            add(_pair_excitation(_pair_label(*names), first, second, file_kwargs, azimuth))
+            continue
+        if path.is_file() and is_manifest(path):
+            for label, first, second, kwargs in read_manifest(path, file_kwargs):
+                if azimuth is not None:
+                    add(_pair_excitation(label, first, second, kwargs, azimuth), Path(first.rpartition("@")[0]
+                                                                                      if "@" in first else first))
+                else:  # without an azimuth a row is its first file
+                    src = first.rpartition("@")[0] if "@" in first and not Path(first).exists() else first
+                    add(_manifest_excitation(Path(src).name if second else label, first, kwargs), Path(src))
+            continue
+        if azimuth is not None and (path.is_file() or src in by_id):
+            add(_pair_excitation(path.name if path.is_file() else src, src, None, file_kwargs, azimuth), path)
+            continue
+        if path.is_dir():
+            try:
+                files = sorted(p for p in path.iterdir() if p.is_file() and not p.name.startswith("."))
+            except OSError as exc:
+                raise RockcliInputError(f"--records {src}: the folder cannot be read "
+                                        f"({(exc.strerror or str(exc)).lower()})") from None
+            files = _select(files, glob, exclude)
+            if not files:
+                raise RockcliInputError(f"--records {src}: the folder holds no files"
+                                        + (" that match --glob/--exclude" if glob or exclude else ""))
+            for p in files:
+                x = (_file_excitation(p, by_file, file_kwargs, skip=True) if azimuth is None else
+                     _pair_excitation(p.name, str(p), None, file_kwargs, azimuth, skip=True))
+                (unavailable.append(x) if isinstance(x, Skipped) else add(x, p))
+        elif path.is_file():
+            add(_file_excitation(path, by_file, file_kwargs), path)
+        elif src in by_id:
+            x = _from_entry(by_id[src], mode)
+            if isinstance(x, Unavailable):
+                raise RockcliInputError(f"record {src!r} cannot be run: {x.reason}")
+            add(x, Path(x.source) if x.kind == EXCITATION_RECORD else None)
+        else:
+            raise RockcliInputError(f"--records {src}: no such file or folder, nor a catalogue id "
+                                    f"(see 'rockcli records list')")
+    return out, unavailable
+
+
+def _relabel(x: Excitation, label: str) -> Excitation:
+    from dataclasses import replace
+
+    return replace(x, label=label)
+
+
+def _file_read_kwargs(units, dt) -> dict:
+    """``read_record`` keywords for files outside the catalogue (validated once, up front)."""
+    from rockcli.units import accel_factor
+
+    kwargs = {}
+    if units is not None:
+        accel_factor(units)  # an unknown units word is one error up front, not one per file
+        kwargs["units"] = str(units)
+    if dt is not None:
+        if not (isinstance(dt, (int, float)) and math.isfinite(dt) and dt > 0):
+            raise RockcliInputError(f"--dt {dt!r}: the time step must be a positive number of seconds")
+        kwargs["dt"] = float(dt)
+    if kwargs:
+        kwargs["fill_in"] = True
+    return kwargs
+
+
+def _file_excitation(path: Path, by_file: dict, read_kwargs: dict | None = None, skip: bool = False) -> Excitation:
+    """A record file; one the catalogue lists is read as the catalogue says and labelled by its id."""
+    entry = by_file.get(path.name)
+    if entry is not None:
+        return _read_excitation(entry.id, path, _entry_read_kwargs(entry))
+    return _read_excitation(path.name, path, dict(read_kwargs or {}), skip=skip)
+
+
+def _select(files, glob: Sequence[str], exclude: Sequence[str]) -> list:
+    """The files whose names match one of ``glob`` (all when empty) and none of ``exclude``."""
+    from fnmatch import fnmatch
+
+    return [p for p in files if (not glob or any(fnmatch(p.name, g) for g in glob))
+            and not any(fnmatch(p.name, x) for x in exclude)]
+
+
+#: Columns of a manifest CSV: ``file`` and what the files lack.
+MANIFEST_COLUMNS = ("file", "units", "dt", "component", "azimuth", "file_2", "azimuth_2", "label")
+
+
+def is_manifest(path: Path) -> bool:
+    """A CSV whose header names a ``file`` column and one of units, dt, component, azimuth (never raises)."""
+    try:
+        with open(path, encoding="utf-8-sig", errors="replace") as fh:
+            head = fh.readline()
+    except OSError:
+        return False
+    names = [h.strip().lower() for h in head.split(",")]
+    return "file" in names and any(k in names for k in ("units", "dt", "component", "azimuth"))
+
+
+def read_manifest(path: Path, defaults: dict) -> list:
+    """``(label, first, second, read_kwargs)`` per row of a manifest CSV (files relative to its folder;
+    ``FILE@DEG`` when the row gives an azimuth). A row's units and dt fill in only what its file does not
+    state, like ``--units``/``--dt`` (which fill in what a row leaves empty)."""
+    import csv
+
+    from rockcli.inputs import parse_number
+
+    with open(path, encoding="utf-8-sig", newline="") as fh:
+        reader = csv.DictReader(fh)
+        unknown = [h for h in reader.fieldnames or [] if h.strip().lower() not in MANIFEST_COLUMNS]
+        if unknown:
+            raise RockcliInputError(f"{path}: manifest column(s) {', '.join(map(repr, unknown))} unknown (known: "
+                                    f"{', '.join(MANIFEST_COLUMNS)})")
+        rows = [{k.strip().lower(): (v or "").strip() for k, v in row.items()} for row in reader]
+    out = []
+    for n, row in enumerate(rows, start=2):
+        where = f"{path}, line {n}"
+        if not row.get("file"):
+            raise RockcliInputError(f"{where}: the row names no file")
+        kwargs = dict(defaults)
+        if row.get("units"):
+            kwargs["units"] = row["units"]
+        if row.get("dt"):
+            kwargs["dt"] = parse_number(row["dt"], f"{where}: dt", lo=0, lo_open=True, unit="s")
+        if kwargs.get("units") or kwargs.get("dt"):
+            kwargs["fill_in"] = True
+        if row.get("component"):
+            kwargs["component"] = row["component"]
+
+        def located(name, az):
+            p = Path(name) if Path(name).is_absolute() else path.parent / name
+            if az:
+                parse_number(az, f"{where}: azimuth")
+                return f"{p}@{az}"
+            return str(p)
+
+        first = located(row["file"], row.get("azimuth"))
+        second = located(row["file_2"], row.get("azimuth_2")) if row.get("file_2") else None
+        label = row.get("label") or (_pair_label(Path(row["file"]).name, Path(row["file_2"]).name) if second
+                                     else Path(row["file"]).name)
+        out.append((label, first, second, kwargs))
+    return out
+
+
+def _manifest_excitation(label: str, first: str, kwargs: dict) -> Excitation:
+    """One manifest row without an azimuth: its file, with the row's orientation when it gives one."""
+    from rockcli.records.orientation import oriented, split_source
+
+    src, az = split_source(first)
+    x = _read_excitation(label, Path(src), kwargs)
+    if x.motion is None or az is None:
+        return x
+    try:
+        rec = oriented(x.motion, az, src)
+    except RockcliInputError as exc:
+        return Excitation(label, EXCITATION_RECORD, None, src, error=str(exc))
+    from dataclasses import replace
+
+    return replace(x, motion=rec)
