@@ -248,8 +248,9 @@ ASSUMPTIONS = (
     "A record is one sample of what an earthquake can do: another station, another event or the other "
     "component can be much stronger or weaker at the same PGA. Margins are scale factors of these records "
     "only; a design decision needs a suite of records chosen for the site.",
-    "Margins are found on a grid of scale factors 0.1 to 4 about 10 % apart, refined to 1 %: narrow "
-    "windows of scale factors that topple the body between two surviving ones can be missed.",
+    "Margins are found on a grid of scale factors 0.1 to 4 about 1 % apart (the smallest factor of the grid "
+    "that topples the body): a window of toppling factors narrower than 1 % between two surviving ones can "
+    "be missed.",
     "On isolation, the bearings follow their idealised laws (linear spring and dashpot; or friction with a "
     "smooth Bouc-Wen transition) and move as far as needed: the displacement shown is the demand the bearings "
     "and the space around the base must allow.",
