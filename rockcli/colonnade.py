@@ -27,6 +27,7 @@ from __future__ import annotations
 import math
 
 from rockcli.errors import RockcliInputError
+from rockcli.inputs import format_number
 from rockcli.models import Rigid
 
 #: Largest cap ratio accepted: a beam 100 times the columns' mass (the factor on p^2 is then 0.6689).
@@ -41,7 +42,7 @@ def check_cap_ratio(cap_ratio, foundation=None, what: str = "cap_ratio") -> floa
         raise RockcliInputError(f"{what} must be a number >= 0 (beam mass over the columns' total mass)") from None
     if not (math.isfinite(gc) and 0.0 <= gc <= CAP_RATIO_MAX):
         raise RockcliInputError(f"{what} must lie between 0 and {CAP_RATIO_MAX:g} (beam mass over the columns' total "
-                                f"mass), got {gc:g}")
+                                f"mass), got {format_number(gc)}")
     if gc > 0.0 and foundation is not None and not isinstance(foundation, Rigid):
         raise RockcliInputError(f"{what} needs a rigid foundation: a capped colonnade on an isolated base (the beam's "
                                 f"mass in the base's momentum and impact map) is not derived in rockcli")

@@ -48,6 +48,7 @@ from __future__ import annotations
 import math
 
 from rockcli.errors import RockcliInputError
+from rockcli.inputs import format_number
 from rockcli.models import impact_coefficient
 
 
@@ -67,7 +68,7 @@ def check_restitution(restitution, what: str = "restitution"):
     if not (math.isfinite(E) and 0.0 < E <= 1.0):
         raise RockcliInputError(
             f"{what} must satisfy 0 < E <= 1 (the ratio of angular velocities after / before an impact on a rigid "
-            f"foundation; 1 is a perfectly elastic impact), got {E:g}")
+            f"foundation; 1 is a perfectly elastic impact), got {format_number(E)}")
     return E
 
 

@@ -23,6 +23,7 @@ import math
 import numpy as np
 
 from rockcli.errors import RockcliInputError
+from rockcli.inputs import format_number
 
 
 def check_initial_state(theta0, theta_dot0, names=("theta0", "theta_dot0")) -> tuple[float, float]:
@@ -33,9 +34,9 @@ def check_initial_state(theta0, theta_dot0, names=("theta0", "theta_dot0")) -> t
         raise RockcliInputError(f"{names[0]} and {names[1]} must be numbers (rad, rad/s)") from None
     if not (math.isfinite(th) and abs(th) < 0.5 * math.pi):
         raise RockcliInputError(f"{names[0]} must be an angle in rad with |theta0| < pi/2 (the block lying on its "
-                                f"side), got {th:g}")
+                                f"side), got {format_number(th)}")
     if not math.isfinite(thd):
-        raise RockcliInputError(f"{names[1]} must be a finite angular velocity in rad/s, got {thd:g}")
+        raise RockcliInputError(f"{names[1]} must be a finite angular velocity in rad/s, got {format_number(thd)}")
     return th, thd
 
 

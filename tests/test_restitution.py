@@ -178,3 +178,19 @@ def test_cli_spectrum_and_assess_pass_restitution(tmp_path):
     assert out.exit_code == 0, out.output
     assert "restitution" in path.read_text().splitlines()[0]
     assert "coefficient of restitution E = 0.9" in out.output
+
+
+def test_out_of_range_values_are_quoted_unrounded():
+    """Issue 23's class: a limit error names the value as given, never rounded (1.0000001 printed as '1')."""
+    from rockcli.colonnade import check_cap_ratio
+    from rockcli.errors import RockcliInputError
+    from rockcli.impact import check_restitution
+    from rockcli.initial import check_initial_state
+
+    for call, text in ((lambda: check_restitution(1.0000001), "got 1.0000001"),
+                       (lambda: check_initial_state(1.5707964, 0.0), "got 1.5707964")):
+        with pytest.raises(RockcliInputError, match=text.replace(".", r"\.")):
+            call()
+    with pytest.raises(RockcliInputError) as exc:
+        check_cap_ratio(-1e-7, None)
+    assert "-1e-07" in str(exc.value)

@@ -9,6 +9,7 @@ import math
 import numpy as np
 
 from rockcli.errors import RockcliInputError
+from rockcli.inputs import format_number
 from rockcli.solve.options import _kernel
 
 
@@ -149,12 +150,12 @@ def _vertical_arrays(vertical, excitation, foundation, g: float):
             hdt = float(excitation.dt)
             if abs(vdt - hdt) > _SAME_DT * hdt:
                 raise RockcliInputError(
-                    f"vertical record {name!r} has time step {vdt:g} s, the horizontal record {hdt:g} s: the two "
+                    f"vertical record {name!r} has time step {format_number(vdt)} s, the horizontal record {format_number(hdt)} s: the two "
                     f"components must share one time base (resample one of them first)")
             hs, vs = float(getattr(excitation, "t_start", 0.0)), float(getattr(vertical, "t_start", 0.0))
             if abs(hs - vs) > 0.5 * hdt:
                 raise RockcliInputError(
-                    f"vertical record {name!r} starts at {vs:g} s, the horizontal record at {hs:g} s: the two "
+                    f"vertical record {name!r} starts at {format_number(vs)} s, the horizontal record at {format_number(hs)} s: the two "
                     f"components must share one time base")
             vdt = hdt
         label = f"record {name}" if name else "record"
