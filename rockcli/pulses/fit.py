@@ -42,6 +42,7 @@ from typing import Optional, Tuple, Union
 import numpy as np
 
 from rockcli.errors import RockcliInputError
+from rockcli.inputs import format_number
 from rockcli.pulses.cwt import (WAVELETS, _cwt_grid, _grid_estimate, _grid_shape, coefficient_to_amplitude,
                                 period_to_scale, scale_to_period)
 from rockcli.pulses.shapes import RICKER_HALF_WIDTH, T_P_RANGE_S, RickerAntisymmetric, RickerSymmetric
@@ -154,7 +155,7 @@ def _check_periods(periods, what="periods") -> Tuple[float, float]:
     except (TypeError, ValueError):
         raise RockcliInputError(f"{what} must be a pair (min, max) of periods in seconds") from None
     if not (math.isfinite(lo) and math.isfinite(hi) and 0.0 < lo < hi):
-        raise RockcliInputError(f"{what} must satisfy 0 < min < max (seconds), got {lo:g}:{hi:g}")
+        raise RockcliInputError(f"{what} must satisfy 0 < min < max (seconds), got {format_number(lo)}:{format_number(hi)}")
     return lo, hi
 
 

@@ -27,6 +27,7 @@ from pathlib import Path
 import numpy as np
 
 from rockcli.errors import RockcliInputError
+from rockcli.inputs import format_number
 from rockcli.records.record import Record
 
 #: Default step of ``--azimuth worst`` [deg].
@@ -59,12 +60,12 @@ def oriented(rec: Record, given, label: str) -> Record:
         return rec
     stated = rec.meta.get("azimuth_deg")
     if rec.meta.get("vertical"):
-        raise RockcliInputError(f"{label}: the component is vertical; an azimuth @{given:g} cannot be given to it")
+        raise RockcliInputError(f"{label}: the component is vertical; an azimuth @{format_number(given)} cannot be given to it")
     if stated is not None and abs((stated - given + 180.0) % 360.0 - 180.0) > 1e-9:
-        raise RockcliInputError(f"{label}: the file states the orientation {stated:g} deg "
-                                f"({rec.meta.get('orientation_source')}) but @{given:g} was given")
+        raise RockcliInputError(f"{label}: the file states the orientation {format_number(stated)} deg "
+                                f"({rec.meta.get('orientation_source')}) but @{format_number(given)} was given")
     return replace(rec, meta={**rec.meta, "azimuth_deg": given % 360.0, "vertical": False,
-                              "orientation_source": f"given as @{given:g}"})
+                              "orientation_source": f"given as @{format_number(given)}"})
 
 
 def check_pair(first: Record, second: Record) -> tuple[Record, Record]:

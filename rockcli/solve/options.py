@@ -11,6 +11,7 @@ import math
 import numpy as np
 
 from rockcli.errors import RockcliInputError
+from rockcli.inputs import format_number
 from rockcli.models import DoubleConcaveSliding, LeadRubber, SingleConcaveSliding
 
 
@@ -62,10 +63,10 @@ def validate_options(rtol=None, tail=DEFAULT_TAIL, rest_tol=DEFAULT_REST_TOL, ho
     except (TypeError, ValueError):
         raise RockcliInputError("rtol, tail, rest_tol and horizon must be numbers") from None
     if not (math.isfinite(rtol) and 1e-14 <= rtol <= 1e-2):
-        raise RockcliInputError(f"rtol must lie between 1e-14 and 1e-2, got {rtol:g}")
+        raise RockcliInputError(f"rtol must lie between 1e-14 and 1e-2, got {format_number(rtol)}")
     if not (math.isfinite(tail) and 0 <= tail <= TAIL_MAX):
         raise RockcliInputError(f"tail must be a time between 0 and {TAIL_MAX:g} s (the free motion a history run "
-                                f"shows after the excitation), got {tail:g}")
+                                f"shows after the excitation), got {format_number(tail)}")
     if not (math.isfinite(horizon) and 0 <= horizon <= HORIZON_MAX):
         raise RockcliInputError(f"horizon must be a time between 0 and {HORIZON_MAX:g} s (the free motion followed "
                                 f"after the excitation to prove a verdict), got {horizon:g}")
