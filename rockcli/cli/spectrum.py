@@ -20,6 +20,9 @@ def spectrum():
     Every cell is a pulse of amplitude a_p and period T_p = 2 pi/omega_p on a block of slenderness
     alpha; the result does not depend on the block size when T_b/T_p is kept fixed, so isolation
     is given as KIND:TbTp=<T_b/T_p>,... (e.g. linear:TbTp=2,xi=0.05,gamma=0.01).
+
+    'rocking' is the spectrum of one record instead: peak theta/alpha against the block size R,
+    with bearings given by their period in s (docs/rocking-spectrum.md).
     """
 
 
