@@ -413,7 +413,8 @@ def test_help_and_the_sweeps_library_import_nothing_heavy():
 
     code = ("import sys; from click.testing import CliRunner; from rockcli.cli import main\n"
             "for args in (['spectrum', '--help'], ['spectrum', 'overturning', '--help'],\n"
-            "             ['spectrum', 'min-overturning', '--help'], ['spectrum', 'critical-size', '--help']):\n"
+            "             ['spectrum', 'min-overturning', '--help'], ['spectrum', 'critical-size', '--help'],\n"
+            "             ['spectrum', 'rocking', '--help']):\n"
             "    r = CliRunner().invoke(main, args); assert r.exit_code == 0, r.output\n"
             "import rockcli.spectra\n"
             "print(sorted(m for m in ('numba', 'pandas', 'matplotlib', 'obspy', 'scipy', 'dask', 'distributed')\n"

@@ -20,6 +20,9 @@ def spectrum():
     Every cell is a pulse of amplitude a_p and period T_p = 2 pi/omega_p on a block of slenderness
     alpha; the result does not depend on the block size when T_b/T_p is kept fixed, so isolation
     is given as KIND:TbTp=<T_b/T_p>,... (e.g. linear:TbTp=2,xi=0.05,gamma=0.01).
+
+    'rocking' is the spectrum of one record instead: peak theta/alpha against the block size R,
+    with bearings given by their period in s (docs/rocking-spectrum.md).
     """
 
 
@@ -97,15 +100,17 @@ def _pulses(pulses, records, units, dt, fmt, column, default=("ricker-sym",)):
 
 
 def _runner(scheduler, horizon, restitution=None, cap_ratio=0.0, isolations=()):
+    """The Runner of a spectrum, its options checked (``isolations``: Isolation specs or foundations)."""
     from rockcli.colonnade import check_cap_ratio
     from rockcli.impact import check_restitution
+    from rockcli.models import KIND_RIGID
     from rockcli.solve import validate_options
     from rockcli.spectra import Runner
 
     validate_options(horizon=horizon)
     restitution = check_restitution(restitution, "--restitution")
     cap_ratio = check_cap_ratio(cap_ratio, None, "--cap-ratio")
-    if cap_ratio > 0.0 and not all(iso.rigid for iso in isolations):
+    if cap_ratio > 0.0 and not all(iso.kind in ("none", KIND_RIGID) for iso in isolations):
         raise InputError("--cap-ratio needs a rigid foundation: give --isolation none (a capped colonnade on an "
                          "isolated base is not derived in rockcli)")
     if scheduler is not None:
@@ -416,3 +421,8 @@ def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, 
                     (r.wp_over_p_cross, r.ap_cross_over_g_tan_alpha, f"{r.R_critical_m:.2f} m"))
         plot_min_curves(result.curves, plot_path, crossings=crossings)
         click.echo(f"wrote {plot_path}")
+
+
+from rockcli.cli.spectrum_rocking import rocking  # noqa: E402 (it uses the helpers above)
+
+spectrum.add_command(rocking)

@@ -23,6 +23,9 @@ order:
 :mod:`rockcli.spectra.critical`
     Where the rigid and isolated minimum curves cross, as a block size (Table I), and the Table I
     scenes.
+:mod:`rockcli.spectra.rocking`
+    A record's rocking spectrum: peak ``|theta|/alpha`` against the block size R (and p), one
+    :class:`RockingCurve` per slenderness and foundation, full peaks (issue 27 item 5).
 
 Every public name is importable from ``rockcli.spectra``.
 """
@@ -35,14 +38,18 @@ from rockcli.spectra.maps import OverturningMap, overturning_map, overturning_ma
 from rockcli.spectra.minimum import (DEFAULT_AP_MAX, DEFAULT_REFINE, DEFAULT_REFINE_BAND, DEFAULT_STEP, DEFAULT_TOL,
                                      MinCurve, MinSearch, describe_search, min_overturning_curves,
                                      search_min_overturning)
+from rockcli.spectra.rocking import (RecordFamily, RockingCurve, describe_sizes, frequency_parameter,
+                                     isolation_helps, rocking_spectrum, size_grid, size_ranges)
 from rockcli.spectra.runner import Cells, Runner, run_cells_local
 from rockcli.spectra.scenes import (REFERENCE_R, SHAPES, Family, Isolation, PulseChoice, parse_isolation,
                                     parse_pulse_choice, pulse_from_record)
 
-__all__ = ["CROSSING_GRID", "DEFAULT_AP_MAX", "DEFAULT_REFINE", "DEFAULT_REFINE_BAND", "DEFAULT_STEP", "DEFAULT_TOL",
-           "REFERENCE_R", "SHAPES", "TABLE_I_ALPHAS_DEG", "TABLE_I_GAMMA", "TABLE_I_PULSES", "TABLE_I_TB_TP",
-           "TABLE_I_XI", "Cells", "CriticalResult", "CriticalRow", "Family", "Grid", "Isolation", "MinCurve",
-           "MinSearch", "OverturningMap", "PulseChoice", "Runner", "critical_R", "critical_sizes", "describe_search",
-           "min_overturning_curves", "overturning_map", "overturning_maps", "parse_grid", "parse_isolation",
-           "parse_list", "parse_pulse_choice", "pulse_from_record", "run_cells_local", "search_min_overturning",
-           "table_i_isolations", "table_i_pulses"]
+__all__ = ["CROSSING_GRID", "DEFAULT_AP_MAX", "DEFAULT_REFINE", "DEFAULT_REFINE_BAND", "DEFAULT_STEP",
+           "DEFAULT_TOL", "REFERENCE_R", "SHAPES", "TABLE_I_ALPHAS_DEG", "TABLE_I_GAMMA", "TABLE_I_PULSES",
+           "TABLE_I_TB_TP", "TABLE_I_XI", "Cells", "CriticalResult", "CriticalRow", "Family", "Grid",
+           "Isolation", "MinCurve", "MinSearch", "OverturningMap", "PulseChoice", "RecordFamily",
+           "RockingCurve", "Runner", "critical_R", "critical_sizes", "describe_search", "describe_sizes",
+           "frequency_parameter", "isolation_helps", "min_overturning_curves", "overturning_map",
+           "overturning_maps", "parse_grid", "parse_isolation", "parse_list", "parse_pulse_choice",
+           "pulse_from_record", "rocking_spectrum", "run_cells_local", "search_min_overturning",
+           "size_grid", "size_ranges", "table_i_isolations", "table_i_pulses"]
