@@ -121,7 +121,7 @@ def main():
     rigid = base + ["spectrum", "overturning", "--alpha", "10"]
     linear = rigid + ["--isolation", LIN]
     for iso in (LIN, SCSS):  # warm the kernel cache (both drivers)
-        run(base + ["spectrum", "overturning", "--alpha", "10", "--wp-p", "1:2:2", "--ap", "1:2:2", "--isolation", iso],
+        run(base + ["spectrum", "overturning", "--alpha", "10", "--wp-over-p", "1:2:2", "--ap", "1:2:2", "--isolation", iso],
             env)
     print(f"whole process, median (min) of {opts.repeat} runs, {os.cpu_count()} cores, warm cache "
           f"(machine shared with other jobs: noisy):")

@@ -8,7 +8,7 @@ from functools import partial
 import click
 
 from rockcli.cli.errors import InputError, user_errors
-from rockcli.cli.options import (azimuth_options, cap_ratio_option, check_outputs, command_line, custom_block_options,
+from rockcli.cli.options import (QuietSpellingOption, alias_option, azimuth_options, cap_ratio_option, check_outputs, command_line, custom_block_options,
                                  given_azimuth, given_component, given_suite,
                                  horizon_option, progress_bar, report_option, restitution_option)
 from rockcli.cli.types import NUMBER, SEED, Number
@@ -106,6 +106,18 @@ def _add_record_inputs(excitations):
                + [r.meta.get("path") for x in excitations if x.pair for r in x.pair], "the record")
 
 
+def _not_an_image(path) -> None:
+    """``assess column --plot``, the old spelling of ``--plot-dir``: a folder, so a file name is refused."""
+    from pathlib import Path
+
+    from rockcli.errors import RockcliInputError
+
+    if Path(path).suffix.lower() in (".png", ".pdf", ".svg", ".jpg", ".jpeg", ".eps", ".ps", ".tif", ".tiff",
+                                     ".webp"):
+        raise RockcliInputError(f"assess column draws one figure per run into a folder: give it with --plot-dir "
+                                f"(e.g. --plot-dir {Path(path).stem or 'figs'}); --plot {path} names an image file")
+
+
 def _columns(names, R, alpha, height, width, name):
     from rockcli.assess import custom_column, parse_column_spec
     from rockcli.cli.options import BLOCK_FLAGS
@@ -126,7 +138,8 @@ def _columns(names, R, alpha, height, width, name):
 @assess.command(name="column")
 @click.argument("names", nargs=-1, metavar="NAME...")
 @custom_block_options
-@click.option("--records", "records", multiple=True, metavar="ID|FILE|DIR",
+@click.option("--records", "--record", "records", multiple=True, metavar="ID|FILE|DIR", cls=QuietSpellingOption,
+              quiet_spellings=("--record",),
               help="Records to run (repeatable): catalogue ids, files, folders. Default: the catalogue's "
                    "Table II records (file where found on ROCKCLI_RECORDS, else the catalogued pulse).")
 @_headerless_options
@@ -145,10 +158,12 @@ def _columns(names, R, alpha, height, width, name):
               help="Also run 0.90x..1.10x of each record (21 factors) and report the share that overturns.")
 @click.option("--csv", "csv_path", type=click.Path(), default=None,
               help="Write the report: one row per column x record x configuration.")
-@click.option("--histories", "hist_dir", type=click.Path(), default=None,
+@click.option("--history-dir", "hist_dir", type=click.Path(), default=None, metavar="DIR",
               help="Write one time-history CSV per run into this folder.")
-@click.option("--plot", "plot_dir", type=click.Path(), default=None,
+@alias_option("--histories", "hist_dir", "--history-dir", type=click.Path())
+@click.option("--plot-dir", "plot_dir", type=click.Path(), default=None, metavar="DIR",
               help="Write one figure per run (like the paper's Figure 12) into this folder.")
+@alias_option("--plot", "plot_dir", "--plot-dir", type=click.Path(), check=_not_an_image)
 @click.option("--check-tolerance", is_flag=True,
               help="Rerun every scene at a 100x tighter rtol (5e-11; 2e-11 on sliding bearings) and flag any "
                    "verdict that changes; and on 2 copies of its motion moved by one ulp, and flag any scene "
@@ -174,7 +189,7 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
     Examples:
       ROCKCLI_RECORDS=../shared/records rockcli assess column bassae nemea --csv table.csv
       rockcli assess column statue:R=1.2,alpha=14 --records kobe-1995-takarazuka-000 --isolation none
-      rockcli assess column nemea --records RSN983_NORTHR_JGB022.AT2 --isolation linear:Tb=3 --plot figs
+      rockcli assess column nemea --records RSN983_NORTHR_JGB022.AT2 --isolation linear:Tb=3 --plot-dir figs
       rockcli assess column statue:R=0.93,alpha=15.5 --records RSN1119_KOBE_TAZ000.AT2 --isolation none \\
           --isolation linear:Tb=2.5 --report statue.html
     """
@@ -188,7 +203,7 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
     configurations = parse_configurations(isolation)
     solver.update(_cap_ratio_kw(cap_ratio, configurations))
     check_outputs((csv_path, "--csv", False), (report_path, "--report", False),
-                  folders=((hist_dir, "--histories"), (plot_dir, "--plot")))
+                  folders=((hist_dir, "--history-dir"), (plot_dir, "--plot-dir")))
     azimuth = given_azimuth()
     if azimuth["azimuth"] is not None and not records:
         raise InputError("--azimuth needs pairs of horizontal components: give them with --records A+B "
@@ -206,8 +221,8 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
         from rockcli.records.orientation import sweep_azimuths
 
         if hist_dir or plot_dir or check_tolerance:
-            raise InputError("--azimuth worst keeps the most adverse orientation of each pair: --histories, --plot "
-                             "and --check-tolerance need one --azimuth DEG")
+            raise InputError("--azimuth worst keeps the most adverse orientation of each pair: --history-dir, "
+                             "--plot-dir and --check-tolerance need one --azimuth DEG")
         run_excitations, groups = expand(excitations, sweep_azimuths(azimuth["step"]))
     if hist_dir or plot_dir:
         _plan_run_files(columns, excitations, configurations, hist_dir, plot_dir)
@@ -298,7 +313,7 @@ def _plan_run_files(columns, excitations, configurations, hist_dir, plot_dir):
                     raise InputError(f"the runs {' / '.join(other)} and {b.name} / {x.label} / {c.header} would write "
                                      f"the same file {stem}.*; give the columns (or records) names that differ in "
                                      f"letters or digits")
-                for folder, option, suffix in ((hist_dir, "--histories", ".csv"), (plot_dir, "--plot", ".png")):
+                for folder, option, suffix in ((hist_dir, "--history-dir", ".csv"), (plot_dir, "--plot-dir", ".png")):
                     if folder and outputs is not None:
                         outputs.declare(Path(folder) / f"{stem}{suffix}", option, check=False)
 
@@ -314,7 +329,7 @@ def _write_histories(result, hist_dir, plot_dir):
 
     n = 0
     with transaction() as outputs:
-        for folder, option in ((hist_dir, "--histories"), (plot_dir, "--plot")):
+        for folder, option in ((hist_dir, "--history-dir"), (plot_dir, "--plot-dir")):
             if folder:
                 outputs.make_folder(folder, option)
         for row, block, conf, x, resp in history_runs(result):
@@ -335,7 +350,8 @@ def _write_histories(result, hist_dir, plot_dir):
 @assess.command(name="fragility")
 @click.argument("names", nargs=-1, metavar="NAME...")
 @custom_block_options
-@click.option("--records", "records", multiple=True, metavar="DIR|ID|FILE",
+@click.option("--records", "--record", "records", multiple=True, metavar="DIR|ID|FILE", cls=QuietSpellingOption,
+              quiet_spellings=("--record",),
               help="The suite (repeatable, required): folders (every non-hidden file), catalogue ids, files. "
                    "A file that cannot be read becomes an error row; the others carry on.")
 @_headerless_options

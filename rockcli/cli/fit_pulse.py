@@ -106,7 +106,7 @@ def _update_catalog(fits):
 
 @click.command(name="fit-pulse")
 @click.argument("sources", nargs=-1, metavar="SOURCE...")
-@record_options
+@record_options(column_alias=True)
 @click.option("--catalog", "use_catalog", is_flag=True,
               help="Fit every available catalogue record (files found on ROCKCLI_RECORDS).")
 @click.option("--wavelet", type=click.Choice(["best", "symmetric", "antisymmetric"], case_sensitive=False),
@@ -154,7 +154,7 @@ def fit_pulse(sources, units, dt, fmt, column, use_catalog, wavelet, periods, cs
     if update_catalog and not use_catalog:
         raise InputError("--update-catalog needs --catalog (it stores the fits of all catalogue records)")
     if use_catalog and options_given:
-        raise InputError("--units, --dt, --format and --column apply to files, not to --catalog records "
+        raise InputError("--units, --dt, --format and --record-column apply to files, not to --catalog records "
                          "(the catalogue states them)")
     if update_catalog and n_candidates:
         raise InputError("--update-catalog stores the fit only; leave out --candidates")

@@ -24,7 +24,7 @@ from rockcli.cli.types import NUMBER, WHOLE
                    "uy = yield displacement [m].")
 @click.option("--record", "record_source", default=None, metavar="SOURCE",
               help="Ground motion: a record file or a catalogue id (see 'rockcli records list').")
-@record_options(column_flag="--record-column")
+@record_options
 @azimuth_options
 @click.option("--pulse", default=None, metavar="SPEC",
               help="Ground motion: an analytic pulse, e.g. 'ricker-sym:ap=0.3,Tp=0.6' (ap in g, Tp in s); "
@@ -81,11 +81,11 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     \b
     Examples:
       rockcli simulate --height 2 --width 0.5 --pulse sine:ap=0.29,Tp=2
-      rockcli simulate --column nemea --record northridge-1994-jensen-022 --isolation linear:Tb=3
+      rockcli simulate --body nemea --record northridge-1994-jensen-022 --isolation linear:Tb=3
       rockcli simulate --R 1 --alpha 16 --pulse ricker-sym:ap=0.5,Tp=0.6 --isolation scss:Tb=1.8,mu=0.05 --plot f.png
       rockcli simulate --R 2.5 --alpha 11.5 --theta0 0.1 --restitution 0.9 --history free.csv
       rockcli simulate --R 1 --alpha 14 --theta0 0.2 --history-dt 0.01 --history free.csv --json
-      rockcli simulate --column bassae --record HNE.csv --vertical HNZ.csv
+      rockcli simulate --body bassae --record HNE.csv --vertical HNZ.csv
     """
     import json
     import math

@@ -6,7 +6,7 @@ from __future__ import annotations
 import click
 
 from rockcli.cli.errors import InputError, user_errors
-from rockcli.cli.options import (add_inputs, cap_ratio_option, horizon_option, progress_bar, record_kwargs,
+from rockcli.cli.options import (add_inputs, alias_option, cap_ratio_option, horizon_option, progress_bar, record_kwargs,
                                  record_options, restitution_option)
 from rockcli.cli.types import NUMBER
 
@@ -49,7 +49,7 @@ def _scene_options(isolation_help: str, isolation_default, multiple_isolation: b
             restitution_option,
             cap_ratio_option,
         ]
-        f = record_options(f, column_flag="--record-column")
+        f = record_options(f)
         for option in reversed(options):
             f = option(f)
         return f
@@ -146,7 +146,8 @@ def _echo_notes(pcs):
 @spectrum.command(name="overturning")
 @_scene_options("Foundation: none, or KIND:TbTp=<T_b/T_p>,... e.g. linear:TbTp=2,xi=0.05,gamma=0.01 "
                 "(repeatable: one panel each). Default none.", ("none",))
-@click.option("--wp-p", "wp_p", default="0.5:12:200", show_default=True, metavar="START:STOP:COUNT",
+@alias_option("--wp-p", "wp_p", "--wp-over-p")
+@click.option("--wp-over-p", "wp_p", default="0.5:12:200", show_default=True, metavar="START:STOP:COUNT",
               help="omega_p/p grid, both ends included.")
 @click.option("--ap", "ap", default="0:10:200", show_default=True, metavar="START:STOP:COUNT",
               help="a_p/(g tan alpha) grid, both ends included.")
@@ -167,14 +168,14 @@ def overturning(alpha, pulses, records, isolations, csv_path, plot_path, schedul
     Examples:
       rockcli spectrum overturning --alpha 10 --plot fig6.png
       rockcli spectrum overturning --alpha 10,20 --isolation none --isolation linear:TbTp=2,xi=0.05,gamma=0.01 \\
-          --isolation linear:TbTp=3,xi=0.05,gamma=0.01 --wp-p 0.5:12:120 --ap 0:10:120 --plot fig6.png
+          --isolation linear:TbTp=3,xi=0.05,gamma=0.01 --wp-over-p 0.5:12:120 --ap 0:10:120 --plot fig6.png
     """
     import time
 
     from rockcli.spectra import overturning_maps, parse_grid, parse_isolation, parse_list
 
     alphas = parse_list(alpha, "--alpha", lo=0, hi=90, lo_open=True, hi_open=True)
-    wp_grid = parse_grid(wp_p, "--wp-p", positive=True)
+    wp_grid = parse_grid(wp_p, "--wp-over-p", positive=True)
     ap_grid = parse_grid(ap, "--ap")
     _check_ap_reach(ap, ap_grid.stop, alphas)
     isos = [parse_isolation(s) for s in isolations]
@@ -235,7 +236,8 @@ def _search_options(f):
                  "linear:TbTp=4,xi=0.05,gamma=0.01"))
 @click.option("--gamma", "gammas", default=None, metavar="G[,G...]",
               help="Mass ratios m/(m + m_b): each isolated --isolation is run once per value (Figure 8).")
-@click.option("--wp-p", "wp_p", default="0.5:12:93", show_default=True, metavar="START:STOP:COUNT",
+@alias_option("--wp-p", "wp_p", "--wp-over-p")
+@click.option("--wp-over-p", "wp_p", default="0.5:12:93", show_default=True, metavar="START:STOP:COUNT",
               help="omega_p/p values, both ends included.")
 @click.option("--ap-max", type=NUMBER, default=20.0, show_default=True,
               help="Largest a_p/(g tan alpha) tried; above it the curve is left empty.")
@@ -264,7 +266,7 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
     from rockcli.spectra import min_overturning_curves, parse_grid, parse_isolation, parse_list
 
     alphas = parse_list(alpha, "--alpha", lo=0, hi=90, lo_open=True, hi_open=True)
-    xs = parse_grid(wp_p, "--wp-p", positive=True).values
+    xs = parse_grid(wp_p, "--wp-over-p", positive=True).values
     isos = [parse_isolation(s) for s in isolations]
     if gammas is not None:
         gs = parse_list(gammas, "--gamma", lo=0, hi=1, hi_open=True)
@@ -307,7 +309,8 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
 @spectrum.command(name="critical-size")
 @click.option("--alpha", "alpha", default="10,20", show_default=True, metavar="DEG[,DEG...]",
               help="Block slenderness [degrees] (Table I: 10 and 20).")
-@click.option("--tb-tp", "tb_tp", default="2,3,4", show_default=True, metavar="R[,R...]",
+@alias_option("--tb-tp", "tb_tp", "--tbtp")
+@click.option("--tbtp", "tb_tp", default="2,3,4", show_default=True, metavar="R[,R...]",
               help="Isolation periods as T_b/T_p (Table I: 2, 3, 4).")
 @click.option("--isolation", "bearing", default="linear", show_default=True, metavar="KIND[:k=v,...]",
               help="Bearing kind and its parameters other than the period (T_b = ratio x T_p).")
@@ -320,8 +323,9 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
                    "ricker-sym:Tp=0.6 (Aigio OTE FP 1995) and ricker-anti:Tp=0.9 (Coyote Lake Gilroy #6 230).")
 @click.option("--record", "records", multiple=True, metavar="ID|FILE",
               help="Take shape and T_p from the pulse fitted to this record (repeatable).")
-@record_options(column_flag="--record-column")
-@click.option("--wp-p", "wp_p", default="0.5:12:47", show_default=True, metavar="START:STOP:COUNT",
+@record_options
+@alias_option("--wp-p", "wp_p", "--wp-over-p")
+@click.option("--wp-over-p", "wp_p", default="0.5:12:47", show_default=True, metavar="START:STOP:COUNT",
               help="omega_p/p grid on which the curves are compared before the crossing is refined.")
 @click.option("--xtol", type=NUMBER, default=1e-3, show_default=True,
               help="Relative resolution of the crossing in omega_p/p.")
@@ -351,17 +355,17 @@ def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, 
     \b
     Examples:
       rockcli spectrum critical-size --csv table1.csv
-      rockcli spectrum critical-size --alpha 10.56 --tb-tp 2,2.5,3 --xi 0.1 --record coyotelake-1979-gilroy6-230
+      rockcli spectrum critical-size --alpha 10.56 --tbtp 2,2.5,3 --xi 0.1 --record coyotelake-1979-gilroy6-230
     """
     import time
 
     from rockcli.spectra import critical_sizes, parse_grid, parse_list, table_i_isolations, table_i_pulses
 
     alphas = parse_list(alpha, "--alpha", lo=0, hi=90, lo_open=True, hi_open=True)
-    ratios = parse_list(tb_tp, "--tb-tp", lo=0, lo_open=True)
-    grid = parse_grid(wp_p, "--wp-p", positive=True)
+    ratios = parse_list(tb_tp, "--tbtp", lo=0, lo_open=True)
+    grid = parse_grid(wp_p, "--wp-over-p", positive=True)
     if grid.count < 2:
-        raise InputError(f"--wp-p {wp_p}: the crossing needs at least 2 grid values")
+        raise InputError(f"--wp-over-p {wp_p}: the crossing needs at least 2 grid values")
     kind = bearing.strip().partition(":")[0].strip().lower()
     if kind in ("none", "rigid", "fixed"):
         raise InputError("--isolation: give a bearing kind (e.g. linear); the rigid foundation is always compared")
