@@ -9,8 +9,9 @@ import click
 
 from rockcli.cli.errors import InputError, user_errors
 from rockcli.cli.options import (QuietSpellingOption, alias_option, azimuth_options, cap_ratio_option, check_outputs, command_line, custom_block_options,
-                                 given_azimuth, given_component, given_suite,
-                                 horizon_option, progress_bar, report_option, restitution_option)
+                                 echo_json, given_azimuth, given_component, given_suite, horizon_option,
+                                 is_quiet, json_option, progress_bar, quiet_option, report_option,
+                                 restitution_option)
 from rockcli.cli.types import NUMBER, SEED, Number
 
 
@@ -62,15 +63,20 @@ def _run_counted(total: int, run):
     return result
 
 
-def _echo_result(result, table: str, notes: str, plain: str | None = None):
-    """Print a result's table, notes and (when given) the answer in plain words, and warn (stderr) about the
-    records that could not be read or run."""
-    click.echo(table)
-    click.echo("")
-    click.echo(notes)
-    if plain is not None:
-        click.echo("")
-        click.echo(plain)
+def _echo_result(result, table: str, notes: str, plain: str | None = None, *, as_json=None):
+    """Print a result's table, notes (not with ``--quiet``) and (when given) the answer in plain words, or with
+    ``as_json`` (the JSON document) that instead; and warn (stderr) about the records that could not be read
+    or run."""
+    if as_json is not None:
+        echo_json(as_json)
+    else:
+        click.echo(table)
+        if not is_quiet():
+            click.echo("")
+            click.echo(notes)
+        if plain is not None:
+            click.echo("")
+            click.echo(plain)
     failed = result.failed
     if failed:
         click.echo(f"Warning: {len(failed)} of {len(result.excitations)} records could not be read or run; they "
@@ -169,12 +175,14 @@ def _columns(names, R, alpha, height, width, name):
                    "verdict that changes; and on 2 copies of its motion moved by one ulp, and flag any scene "
                    "whose verdict changes or whose peak moves by more than 1e-3 alpha (ill-conditioned).")
 @report_option
+@json_option
+@quiet_option
 @horizon_option
 @restitution_option
 @cap_ratio_option
 @user_errors
 def column(names, R, alpha, height, width, name, records, units, dt, excitation, isolation, margin, neighbourhood,
-           csv_path, hist_dir, plot_dir, check_tolerance, report_path, horizon, restitution, cap_ratio):
+           csv_path, hist_dir, plot_dir, check_tolerance, report_path, as_json, horizon, restitution, cap_ratio):
     """Do the columns NAME... survive the records, on a rigid base and on isolators?
 
     NAME is a preset (bassae, nemea) or a custom block NAME:R=<m>,alpha=<deg> or
@@ -239,58 +247,76 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
 
     from rockcli.assess.verdicts import format_verdicts
 
-    _echo_result(result, format_matrix(result), format_notes(result), format_verdicts(result))
+    chk = None
+    if check_tolerance:
+        from rockcli.assess.table import check_tolerance as run_check
+
+        chk = run_check(result)
+    _echo_result(result, format_matrix(result), format_notes(result), format_verdicts(result),
+                 as_json=_assessment_json(result, columns, configurations, chk) if as_json else None)
     _warn_pulses(result, excitation)
     failed_runs = [r for r in result.rows if r.error and not any(x.label == r.record for x in result.failed)]
     if failed_runs:
         r = failed_runs[0]
         click.echo(f"Warning: {len(failed_runs)} run(s) failed; their rows carry the error (first: {r.column} / "
                    f"{r.record} / {r.configuration}: {r.error})", err=True)
-    chk = _echo_tolerance_check(result) if check_tolerance else None
+    if chk is not None:
+        _echo_tolerance_check(chk, as_json)
 
     if csv_path:
         from rockcli.report.tables import write_assessment_csv
 
         write_assessment_csv(result, csv_path, check=chk)
-        click.echo(f"wrote {csv_path} ({len(result.rows)} rows)")
+        click.echo(f"wrote {csv_path} ({len(result.rows)} rows)", err=as_json)
     if hist_dir or plot_dir:
-        _write_histories(result, hist_dir, plot_dir)
+        _write_histories(result, hist_dir, plot_dir, as_json)
     if report_path:
         from rockcli.report.html import write_report
         from rockcli.report.html_pages import assessment_report
 
         write_report(report_path, assessment_report(result, check=chk, command=command_line()))
-        click.echo(f"wrote {report_path} (HTML report)")
+        click.echo(f"wrote {report_path} (HTML report)", err=as_json)
 
 
-def _echo_tolerance_check(result):
-    from rockcli.assess.table import check_tolerance
+def _assessment_json(result, columns, configurations, check) -> dict:
+    """``assess column --json``: the bodies, the configurations and one row per run (the CSV's columns)."""
+    from rockcli.report.tables import assessment_rows
+
+    return {"columns": [{"name": b.name, "R_m": b.R, "alpha_deg": b.alpha_deg, "height_m": b.height,
+                         "width_m": b.width} for b in columns],
+            "configurations": [{"header": c.header, "spec": c.spec, "isolation": c.label} for c in configurations],
+            "rows": assessment_rows(result, check)}
+
+
+def _echo_tolerance_check(chk, as_json=False):
+    from functools import partial
+
     from rockcli.conditioning import ILL_PEAK
 
-    chk = check_tolerance(result)
+    echo = partial(click.echo, err=as_json)
     bases = chk.base_rtols or (chk.base_rtol,)
     head = (f"Tolerance check: {chk.n_runs} scenes rerun at rtol {'/'.join(f'{b / 100:g}' for b in bases)} "
             f"(100x tighter than {'/'.join(f'{b:g}' for b in bases)}"
             + (", the defaults of rigid and linear / sliding bearings" if len(bases) > 1 else "") + "): ")
     if not chk.changed:
-        click.echo(head + f"no verdict changes (largest change of a survivor's peak |theta|/alpha: "
+        echo(head + f"no verdict changes (largest change of a survivor's peak |theta|/alpha: "
                           f"{chk.max_peak_change:.1e}).")
     else:
-        click.echo(head + f"{len(chk.changed)} VERDICTS CHANGE (decided by the numerics; treat as a coin toss):")
+        echo(head + f"{len(chk.changed)} VERDICTS CHANGE (decided by the numerics; treat as a coin toss):")
         for row, tight in chk.changed:
-            click.echo(f"  {row.column} / {row.record} / {row.configuration}: {row.verdict} -> {tight}")
+            echo(f"  {row.column} / {row.record} / {row.configuration}: {row.verdict} -> {tight}")
     head = (f"Conditioning check: the {chk.n_runs} scenes rerun on {chk.ulp_draws} copies of their motion moved by "
             f"one ulp (the same motion to within rounding): ")
     if not chk.ill:
-        click.echo(head + f"no verdict changes (largest change of a survivor's peak |theta|/alpha: "
+        echo(head + f"no verdict changes (largest change of a survivor's peak |theta|/alpha: "
                           f"{chk.max_ulp_peak_change:.1e}).")
         return chk
-    click.echo(head + f"{len(chk.ill)} ILL-CONDITIONED (the verdict changes, or the peak moves by more than "
+    echo(head + f"{len(chk.ill)} ILL-CONDITIONED (the verdict changes, or the peak moves by more than "
                       f"{ILL_PEAK:g} alpha: the answer is not determined by the motion at double precision; read "
                       f"it as one sample of a spread, and look at the margin):")
     for row, verdicts, moved in chk.ill:
         what = f"peak moves by {moved:.2g} alpha" if moved == moved else f"{row.verdict} -> {', '.join(verdicts)}"
-        click.echo(f"  {row.column} / {row.record} / {row.configuration}: {what}")
+        echo(f"  {row.column} / {row.record} / {row.configuration}: {what}")
     return chk
 
 
@@ -318,7 +344,7 @@ def _plan_run_files(columns, excitations, configurations, hist_dir, plot_dir):
                         outputs.declare(Path(folder) / f"{stem}{suffix}", option, check=False)
 
 
-def _write_histories(result, hist_dir, plot_dir):
+def _write_histories(result, hist_dir, plot_dir, as_json=False):
     """One history CSV and/or figure per run, staged in the command's transaction (nothing is replaced or
     left behind unless every one of them, and the rest of the run, succeeds)."""
     from pathlib import Path
@@ -344,7 +370,7 @@ def _write_histories(result, hist_dir, plot_dir):
                               Path(plot_dir) / f"{stem}.png")
             n += 1
     what = " and ".join(f"{k} in {d}" for k, d in (("histories", hist_dir), ("figures", plot_dir)) if d)
-    click.echo(f"wrote {what} ({n} runs)")
+    click.echo(f"wrote {what} ({n} runs)", err=as_json)
 
 
 @assess.command(name="fragility")
@@ -377,11 +403,13 @@ def _write_histories(result, hist_dir, plot_dir):
                    "that does not answer, has no worker or loses all its workers stops the run after "
                    "ROCKCLI_DASK_TIMEOUT seconds (default 60).")
 @report_option
+@json_option
+@quiet_option
 @horizon_option
 @restitution_option
 @user_errors
 def fragility(names, R, alpha, height, width, name, records, units, dt, isolation, im, n_boot, seed, csv_path,
-              plot_path, scheduler, report_path, horizon, restitution):
+              plot_path, scheduler, report_path, as_json, horizon, restitution):
     """Fragility curves of overturning: P(the column overturns | IM) from a suite of records.
 
     Each record is scaled (0.1x..4x, then bisection) to the smallest factor that overturns the
@@ -435,20 +463,33 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
     notes = format_fragility_notes(result)
     if solver:
         notes += f"\nImpacts: coefficient of restitution E = {solver['restitution']:g} (README, Restitution)."
-    _echo_result(result, format_fragility(result), notes)
+    _echo_result(result, format_fragility(result), notes, as_json=_fragility_json(result, solver) if as_json else None)
     if csv_path:
         from rockcli.report.fragility import write_fragility_csv
 
         write_fragility_csv(result, csv_path, solver)  # a given --restitution as a column
-        click.echo(f"wrote {csv_path} ({len(result.rows)} rows)")
+        click.echo(f"wrote {csv_path} ({len(result.rows)} rows)", err=as_json)
     if plot_path:
         from rockcli.report.fragility import plot_fragility
 
         plot_fragility(result, plot_path)
-        click.echo(f"wrote {plot_path}")
+        click.echo(f"wrote {plot_path}", err=as_json)
     if report_path:
         from rockcli.report.html import write_report
         from rockcli.report.html_pages import fragility_report
 
         write_report(report_path, fragility_report(result, command=command_line()))
-        click.echo(f"wrote {report_path} (HTML report)")
+        click.echo(f"wrote {report_path} (HTML report)", err=as_json)
+
+
+def _fragility_json(fr, solver) -> dict:
+    """``assess fragility --json``: one fit per column and configuration, and one row per run (the CSV's)."""
+    from rockcli.report.fragility import fragility_rows
+
+    return {"im": fr.im.key, "im_column": fr.im.column, "ci_level": fr.level, "n_boot": fr.n_boot, "seed": fr.seed,
+            **solver,
+            "curves": [{"column": c.column, "configuration": c.configuration.header,
+                        "isolation": c.configuration.label, "median": c.median, "median_ci": list(c.median_ci),
+                        "beta": c.beta, "beta_ci": list(c.beta_ci), "median_ratio_to_none": c.ratio_to_rigid,
+                        "n_records": c.n_records, "n_censored": c.n_right + c.n_left} for c in fr.curves],
+            "rows": fragility_rows(fr)}

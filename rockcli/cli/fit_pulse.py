@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 
 from rockcli.cli.errors import InputError, user_errors
-from rockcli.cli.options import add_inputs, catalog_file, check_outputs, record_kwargs, record_options
+from rockcli.cli.options import add_inputs, catalog_file, check_outputs, json_option, record_kwargs, record_options
 from rockcli.cli.types import Number
 
 #: Pulse columns of records/catalog.csv that ``--update-catalog`` fills, and their rounding.
@@ -117,7 +117,7 @@ def _update_catalog(fits):
               help="Range of pulse periods T_p searched [s].")
 @click.option("--csv", "csv_path", type=click.Path(), default=None,
               help="Also write the fits to this CSV file.")
-@click.option("--json", "as_json", is_flag=True, help="Print the fits as JSON instead of a table.")
+@json_option
 @click.option("--plot", "plot_path", type=click.Path(), default=None,
               help="Overlay each fitted pulse on its record (one panel per record) in this image, e.g. FILE.png.")
 @click.option("--candidates", "n_candidates", type=Number(integer=True, lo=1, hi=20), default=None, metavar="N",

@@ -8,9 +8,8 @@ import click
 
 from rockcli.cli.errors import user_errors
 from rockcli.cli.options import (azimuth_options, block_from_options, block_options, cap_ratio_option,
-                                 check_outputs,
-                                 command_line, horizon_option, record_kwargs, record_options, report_option,
-                                 restitution_option)
+                                 check_outputs, command_line, horizon_option, json_option, record_kwargs,
+                                 record_options, report_option, restitution_option)
 from rockcli.cli.types import NUMBER, WHOLE
 
 
@@ -59,7 +58,7 @@ from rockcli.cli.types import NUMBER, WHOLE
               help="Rerun at a 100x tighter rtol, and on 2 copies of the motion moved by one ulp, and report "
                    "whether the verdict or the peak changes (ill-conditioned: the answer is not determined by the "
                    "motion at double precision).")
-@click.option("--json", "as_json", is_flag=True, help="Print the results as one JSON object.")
+@json_option
 @click.option("--history", "history_path", type=click.Path(), default=None,
               help="Write the time history (t, ground acceleration, theta, theta_dot, u, u_dot; on sliding and "
                    "lead-rubber bearings also z and the bearing force over the weight) as CSV.")

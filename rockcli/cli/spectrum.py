@@ -6,8 +6,8 @@ from __future__ import annotations
 import click
 
 from rockcli.cli.errors import InputError, user_errors
-from rockcli.cli.options import (add_inputs, alias_option, cap_ratio_option, horizon_option, progress_bar, record_kwargs,
-                                 record_options, restitution_option)
+from rockcli.cli.options import (add_inputs, alias_option, cap_ratio_option, echo_json, horizon_option, json_option,
+                                 progress_bar, quiet_option, record_kwargs, record_options, restitution_option)
 from rockcli.cli.types import NUMBER
 
 _SHAPES = "ricker-sym|ricker-anti|sine|cosine"
@@ -45,6 +45,8 @@ def _scene_options(isolation_help: str, isolation_default, multiple_isolation: b
                               "existing scheduler, or 'local' for a LocalCluster on this machine. A scheduler that "
                               "does not answer, has no worker or loses all its workers stops the run after "
                               "ROCKCLI_DASK_TIMEOUT seconds (default 60)."),
+            json_option,
+            quiet_option,
             horizon_option,
             restitution_option,
             cap_ratio_option,
@@ -115,11 +117,12 @@ def _runner(scheduler, horizon, restitution=None, cap_ratio=0.0, isolations=()):
     return Runner(scheduler, horizon=horizon, restitution=restitution, cap_ratio=cap_ratio)
 
 
-def _echo_impacts(runner):
+def _echo_impacts(runner, err=False):
     if runner.restitution is not None:
-        click.echo(f"impacts: coefficient of restitution E = {runner.restitution:g} (README, Restitution)")
+        click.echo(f"impacts: coefficient of restitution E = {runner.restitution:g} (README, Restitution)", err=err)
     if runner.cap_ratio > 0.0:
-        click.echo(f"capped colonnades: beam/columns mass gamma_c = {runner.cap_ratio:g} (docs/physics-colonnade.md)")
+        click.echo(f"capped colonnades: beam/columns mass gamma_c = {runner.cap_ratio:g} (docs/physics-colonnade.md)",
+                   err=err)
 
 
 def _csv_options(runner) -> dict:
@@ -130,17 +133,17 @@ def _csv_options(runner) -> dict:
     return extra
 
 
-def _echo_unproven(runner):
-    _echo_impacts(runner)
+def _echo_unproven(runner, err=False):
+    _echo_impacts(runner, err)
     if runner.unproven:
         click.echo(f"note: {runner.unproven} runs reached the solver's horizon with the verdict NOT PROVEN "
-                   "(counted as surviving)")
+                   "(counted as surviving)", err=err)
 
 
-def _echo_notes(pcs):
+def _echo_notes(pcs, err=False):
     for pc in pcs:
         if pc.note:
-            click.echo(pc.note)
+            click.echo(pc.note, err=err)
 
 
 @spectrum.command(name="overturning")
@@ -156,8 +159,8 @@ def _echo_notes(pcs):
                    "pulse: theta_max_over_alpha is then only a lower bound where peak_final is 0. --full-peaks "
                    "follows every run until its peak is final (the same map, slower).")
 @user_errors
-def overturning(alpha, pulses, records, isolations, csv_path, plot_path, scheduler, units, dt, fmt, column, wp_p, ap,
-                early, horizon, restitution, cap_ratio):
+def overturning(alpha, pulses, records, isolations, csv_path, plot_path, scheduler, as_json, units, dt, fmt, column,
+                wp_p, ap, early, horizon, restitution, cap_ratio):
     """Overturning map over omega_p/p x a_p/(g tan alpha), like the paper's Figures 6 and 9.
 
     Light grey: the block rocks and survives; dark grey: it overturns; white: it never uplifts.
@@ -188,25 +191,35 @@ def overturning(alpha, pulses, records, isolations, csv_path, plot_path, schedul
         update = bar.update if bar else None
         maps = overturning_maps(alphas, pcs, isos, wp_grid, ap_grid, runner=runner, progress=update, early=early)
     elapsed = time.perf_counter() - t0
-    _echo_notes(pcs)
+    _echo_notes(pcs, as_json)
+    summaries = []
     for m in maps:
         cells = m.overturned.size
         unsettled = int((~m.settled & ~m.overturned).sum())  # reached the solver's horizon unproven
-        click.echo(f"alpha = {m.alpha_deg:g} deg, {m.pulse.label}, {m.isolation.label}: "
-                   f"{int(m.overturned.sum())} of {cells} cells overturn, {int((~m.uplifted).sum())} never uplift"
-                   + (f", {unsettled} NOT PROVEN (still moving at the solver's horizon)" if unsettled else ""))
-    click.echo(f"{n} cells (omega_p/p {wp_grid}, a_p/(g tan alpha) {ap_grid}) in {elapsed:.2f} s")
-    _echo_impacts(runner)
+        summaries.append({"alpha_deg": m.alpha_deg, "pulse": m.pulse.label, "isolation": m.isolation.label,
+                          "n_cells": cells, "n_overturn": int(m.overturned.sum()), "n_never_uplift": int((~m.uplifted).sum()),
+                          "n_not_proven": unsettled})
+        if not as_json:
+            click.echo(f"alpha = {m.alpha_deg:g} deg, {m.pulse.label}, {m.isolation.label}: "
+                       f"{int(m.overturned.sum())} of {cells} cells overturn, {int((~m.uplifted).sum())} never uplift"
+                       + (f", {unsettled} NOT PROVEN (still moving at the solver's horizon)" if unsettled else ""))
+    if as_json:
+        from rockcli.report.spectra import map_columns
+
+        echo_json({**_csv_options(runner), "maps": [{**summary, "cells": map_columns(m)}
+                                                     for summary, m in zip(summaries, maps)]})
+    click.echo(f"{n} cells (omega_p/p {wp_grid}, a_p/(g tan alpha) {ap_grid}) in {elapsed:.2f} s", err=as_json)
+    _echo_impacts(runner, as_json)
     if csv_path:
         from rockcli.report.spectra import write_map_csv
 
         write_map_csv(maps, csv_path, _csv_options(runner))
-        click.echo(f"wrote {csv_path} ({n} rows)")
+        click.echo(f"wrote {csv_path} ({n} rows)", err=as_json)
     if plot_path:
         from rockcli.report.spectra import plot_maps
 
         plot_maps(maps, plot_path, n_cols=len(pcs) * len(isos))
-        click.echo(f"wrote {plot_path}")
+        click.echo(f"wrote {plot_path}", err=as_json)
 
 
 def _search_options(f):
@@ -243,8 +256,8 @@ def _search_options(f):
               help="Largest a_p/(g tan alpha) tried; above it the curve is left empty.")
 @_search_options
 @user_errors
-def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, scheduler, units, dt, fmt, column,
-                    gammas, wp_p, ap_max, step, tol, refine, refine_band, horizon, restitution,
+def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, scheduler, as_json, units, dt, fmt,
+                    column, gammas, wp_p, ap_max, step, tol, refine, refine_band, horizon, restitution,
                     cap_ratio):
     """Minimum overturning acceleration over omega_p/p, like the paper's Figures 7, 8, 9 and 11.
 
@@ -285,25 +298,28 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
                                         refine_band=refine_band, runner=runner, progress=update)
     elapsed = time.perf_counter() - t0
 
-    from rockcli.report.spectra import format_min_table
+    from rockcli.report.spectra import format_min_table, min_rows
 
-    _echo_notes(pcs)
-    click.echo(format_min_table(curves))
+    _echo_notes(pcs, as_json)
+    if as_json:
+        echo_json({**_csv_options(runner), "points": list(min_rows(curves))})
+    else:
+        click.echo(format_min_table(curves))
     refined = sum(int(c.refined.sum()) for c in curves)
     click.echo(f"{len(curves)} curves x {xs.size} values of omega_p/p: {runner.cells_run} runs in {elapsed:.2f} s "
                f"({curves[0].found_by}, up to {ap_max:g} g tan alpha)"
-               + (f"; {refined} minima lie in windows the first scan stepped over" if refine > 0 else ""))
-    _echo_unproven(runner)
+               + (f"; {refined} minima lie in windows the first scan stepped over" if refine > 0 else ""), err=as_json)
+    _echo_unproven(runner, as_json)
     if csv_path:
         from rockcli.report.spectra import write_min_csv
 
         write_min_csv(curves, csv_path, _csv_options(runner))
-        click.echo(f"wrote {csv_path} ({len(curves) * xs.size} rows)")
+        click.echo(f"wrote {csv_path} ({len(curves) * xs.size} rows)", err=as_json)
     if plot_path:
         from rockcli.report.spectra import plot_min_curves
 
         plot_min_curves(curves, plot_path)
-        click.echo(f"wrote {plot_path}")
+        click.echo(f"wrote {plot_path}", err=as_json)
 
 
 @spectrum.command(name="critical-size")
@@ -339,11 +355,13 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
               help="Draw the compared curves with the crossings marked.")
 @click.option("--scheduler", default=None, metavar="tcp://HOST:PORT|local",
               help="Run the cells on a Dask cluster (see overturning).")
+@json_option
+@quiet_option
 @horizon_option
 @restitution_option
 @user_errors
 def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, fmt, column, wp_p, xtol, ap_max,
-                  step, tol, refine, refine_band, csv_path, plot_path, scheduler, horizon, restitution):
+                  step, tol, refine, refine_band, csv_path, plot_path, scheduler, as_json, horizon, restitution):
     """Block size beyond which a block is safer without isolation, like the paper's Table I.
 
     Where the minimum overturning curves of the rigid foundation and of the isolated base cross
@@ -394,22 +412,29 @@ def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, 
 
     from rockcli.report.spectra import format_critical_table
 
-    _echo_notes(pcs)
-    click.echo(f"isolation: {isos[0].label.replace(f'TbTp={isos[0].ratio:g}', 'TbTp=<ratio>')}")
-    click.echo(format_critical_table(result.rows))
-    for r in result.rows:
-        if r.note:
-            click.echo(f"note: {r.source}, alpha = {r.alpha_deg:g} deg, T_b/T_p = {r.Tb_over_Tp:g}: {r.note}")
-    for note in result.notes:
-        click.echo(f"note: {note}")
+    _echo_notes(pcs, as_json)
+    isolation = isos[0].label.replace(f'TbTp={isos[0].ratio:g}', 'TbTp=<ratio>')
+    if as_json:
+        echo_json({"isolation": isolation, **_csv_options(runner),
+                   "rows": [{**r.as_dict(), "ap_cross_over_g_tan_alpha": r.ap_cross_over_g_tan_alpha,
+                             "note": r.note or None} for r in result.rows],
+                   "notes": list(result.notes)})
+    else:
+        click.echo(f"isolation: {isolation}")
+        click.echo(format_critical_table(result.rows))
+        for r in result.rows:
+            if r.note:
+                click.echo(f"note: {r.source}, alpha = {r.alpha_deg:g} deg, T_b/T_p = {r.Tb_over_Tp:g}: {r.note}")
+        for note in result.notes:
+            click.echo(f"note: {note}")
     click.echo(f"{len(result.rows)} crossings: {result.runs} runs in {elapsed:.2f} s (omega_p/p grid {grid}, "
-               f"refined to {xtol:g}; minima: {result.curves[0].found_by})")
-    _echo_unproven(runner)
+               f"refined to {xtol:g}; minima: {result.curves[0].found_by})", err=as_json)
+    _echo_unproven(runner, as_json)
     if csv_path:
         from rockcli.report.spectra import write_critical_csv
 
         write_critical_csv(result.rows, csv_path, _csv_options(runner))
-        click.echo(f"wrote {csv_path} ({len(result.rows)} rows)")
+        click.echo(f"wrote {csv_path} ({len(result.rows)} rows)", err=as_json)
     if plot_path:
         from rockcli.report.spectra import plot_min_curves
 
@@ -419,4 +444,4 @@ def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, 
                 crossings.setdefault((r.alpha_deg, r.pulse), []).append(
                     (r.wp_over_p_cross, r.ap_cross_over_g_tan_alpha, f"{r.R_critical_m:.2f} m"))
         plot_min_curves(result.curves, plot_path, crossings=crossings)
-        click.echo(f"wrote {plot_path}")
+        click.echo(f"wrote {plot_path}", err=as_json)
