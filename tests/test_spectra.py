@@ -314,9 +314,9 @@ def test_cli_overturning_csv_one_row_per_cell(tmp_path):
     assert list(rows[0]) == ["alpha_deg", "pulse", "isolation", "T_p_s", "R_m", "wp_over_p", "ap_over_g_tan_alpha",
                              "ap_g", "overturned", "theta_max_over_alpha", "uplift", "peak_final", "proven"]
     for row in rows:
-        assert (row["uplift"] == "1") == (float(row["ap_over_g_tan_alpha"]) > 1.0)
+        assert (row["uplift"] == "True") == (float(row["ap_over_g_tan_alpha"]) > 1.0)
         assert float(row["R_m"]) == pytest.approx(critical_R(0.9, float(row["wp_over_p"])))
-        assert row["proven"] == "1"
+        assert row["proven"] == "True"
     assert png.stat().st_size > 1000
     # early stops are the default: --full-peaks gives the same map with every peak final, and an
     # early peak is never above the final one
@@ -325,12 +325,12 @@ def test_cli_overturning_csv_one_row_per_cell(tmp_path):
                                   "--wp-over-p", "1:6:6", "--ap", "0:3:5", "--csv", str(full), "--full-peaks"])
     assert r.exit_code == 0, r.output
     frows = list(csv.DictReader(full.open()))
-    assert any(row["peak_final"] == "0" for row in rows)
+    assert any(row["peak_final"] == "False" for row in rows)
     for a, b in zip(rows, frows):
         assert (a["overturned"], a["uplift"]) == (b["overturned"], b["uplift"])
-        assert b["peak_final"] == "1"
+        assert b["peak_final"] == "True"
         assert float(a["theta_max_over_alpha"]) <= float(b["theta_max_over_alpha"]) * (1 + 1e-7) + 1e-12
-        if a["peak_final"] == "1":
+        if a["peak_final"] == "True":
             assert float(a["theta_max_over_alpha"]) == pytest.approx(float(b["theta_max_over_alpha"]), rel=1e-7)
 
 
@@ -346,9 +346,9 @@ def test_cli_horizon_follows_unproven_cells_longer(tmp_path):
         assert r.exit_code == 0, r.output
         rows[h] = list(csv.DictReader(out.open()))
         assert ("2 NOT PROVEN" in r.output) == (h == "30"), r.output
-    assert [row["proven"] for row in rows["30"]] == ["0", "0"]
-    assert [row["proven"] for row in rows["600"]] == ["1", "1"]
-    assert [row["overturned"] for row in rows["30"]] == [row["overturned"] for row in rows["600"]] == ["0", "0"]
+    assert [row["proven"] for row in rows["30"]] == ["False", "False"]
+    assert [row["proven"] for row in rows["600"]] == ["True", "True"]
+    assert [row["overturned"] for row in rows["30"]] == [row["overturned"] for row in rows["600"]] == ["False", "False"]
 
 
 def test_cli_critical_size_table_i_columns(tmp_path):

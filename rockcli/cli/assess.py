@@ -12,6 +12,7 @@ from rockcli.cli.options import (QuietSpellingOption, alias_option, azimuth_opti
                                  echo_json, given_azimuth, given_component, given_suite, horizon_option,
                                  is_quiet, json_option, progress_bar, quiet_option, report_option,
                                  restitution_option)
+from rockcli.cli.options import GAMMA_HELP
 from rockcli.cli.types import NUMBER, SEED, Number
 
 
@@ -156,8 +157,8 @@ def _columns(names, R, alpha, height, width, name):
 @click.option("--isolation", "isolation", multiple=True, metavar="SPEC",
               help="Foundation (repeatable): 'none', 'linear:Tb=2.5,xi=0.1,gamma=0.01', 'scss:Tb=2,mu=0.05', "
                    "'lrb:Tb=2.5,Q=0.06,uy=0.015' or 'dcss:R1=1.1,R2=1.1,mu1=0.03,mu2=0.07' (see 'rockcli simulate "
-                   "--help'). Default: the paper's "
-                   "Table III set: none and linear Tb = 2, 2.5, 3 s with xi = 0.1 (gamma = 0.01).")
+                   "--help'). Default: the paper's Table III set: none and linear Tb = 2, 2.5, 3 s with xi = 0.1 "
+                   "(gamma = 0.01). " + GAMMA_HELP)
 @click.option("--margin/--no-margin", default=True, show_default=True,
               help="Find the smallest scale factor of each record that overturns (0.1x..4x scan, then bisection).")
 @click.option("--neighbourhood", is_flag=True,
@@ -385,7 +386,7 @@ def _write_histories(result, hist_dir, plot_dir, as_json=False):
 @click.option("--isolation", "isolation", multiple=True, metavar="SPEC",
               help="Foundation (repeatable): 'none', 'linear:Tb=2.5,xi=0.1,gamma=0.01', 'scss:Tb=2,mu=0.05', "
                    "'lrb:...' or 'dcss:...' (see 'rockcli simulate --help'). Default: none and "
-                   "linear Tb = 2, 2.5, 3 s with xi = 0.1 (gamma = 0.01), as in the paper's Table III.")
+                   "linear Tb = 2, 2.5, 3 s with xi = 0.1 (gamma = 0.01), as in the paper's Table III. " + GAMMA_HELP)
 @click.option("--im", type=click.Choice(["pga", "pgv", "ap"]), default="pga", show_default=True,
               help="Intensity measure: pga [g]; pgv [m/s] (trapezoid rule from rest, as 'records show'); "
                    "ap [g], the amplitude of the record's fitted Ricker pulse.")
@@ -450,8 +451,9 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
 
     if scheduler is not None:
         from rockcli.assess.fragility import run_fragility_distributed
+        from rockcli.cli.options import dask_client
 
-        result = run_fragility_distributed(scheduler, columns, excitations, configurations, im=im, n_boot=n_boot,
+        result = run_fragility_distributed(dask_client(scheduler), columns, excitations, configurations, im=im, n_boot=n_boot,
                                            seed=seed, unavailable=unavailable, horizon=horizon, **solver)
     else:
         result = _run_counted(count_fragility_runs(columns, excitations, configurations),

@@ -194,6 +194,15 @@ def record_kwargs(units, dt, fmt, column) -> dict:
     return {"units": units, "dt": dt, "format": fmt, "column": column, "component": given_component()}
 
 
+#: The isolation defaults (:data:`rockcli.models.DEFAULT_XI`, :data:`rockcli.models.DEFAULT_GAMMA`, written out
+#: so that ``--help`` imports nothing heavy; a test keeps them equal) and what gamma means, for help texts.
+DEFAULT_XI_TEXT, DEFAULT_GAMMA_TEXT = "0.1", "0.01"
+GAMMA_HELP = (f"Left out of a spec, xi = {DEFAULT_XI_TEXT} and gamma = {DEFAULT_GAMMA_TEXT} in every command. "
+              "gamma = m/(m + m_b) is the body's mass over the body's plus the isolated base's: 0.01 is a base 99 "
+              "times heavier than the body (a temple column on an isolated foundation slab; for gamma <= 0.1 the "
+              "answer hardly depends on it, the paper's Figure 8). A museum platform is often lighter than the "
+              "object it carries: give its own gamma (e.g. gamma=0.5 for a platform as heavy as the statue).")
+
 #: What a body of one's own looks like, for help texts and messages.
 BODY_FORMS = "NAME:R=<m>,alpha=<deg> or NAME:height=<m>,width=<m>"
 
@@ -396,6 +405,18 @@ def progress_bar(total: int, label: str = "runs", *, eta: bool = True):
     if not sys.stderr.isatty() or total <= 0 or is_quiet():
         return contextlib.nullcontext(None)
     return click.progressbar(length=total, label=label, file=sys.stderr, show_eta=eta)
+
+
+def dask_client(scheduler):
+    """``--scheduler``: the ``distributed.Client`` of the running command (None without ``--scheduler``), opened
+    once and closed when the command ends; which cluster it is (workers, dashboard) is said on stderr."""
+    if scheduler is None:
+        return None
+    from rockcli.distributed import describe_cluster, open_client
+
+    client = click.get_current_context().with_resource(open_client(scheduler))
+    click.echo(describe_cluster(client, local=scheduler == "local"), err=True)
+    return client
 
 
 def report_option(func):

@@ -10,6 +10,7 @@ from rockcli.cli.errors import user_errors
 from rockcli.cli.options import (azimuth_options, block_from_options, block_options, cap_ratio_option,
                                  check_outputs, command_line, horizon_option, json_option, record_kwargs,
                                  record_options, report_option, restitution_option)
+from rockcli.cli.options import GAMMA_HELP
 from rockcli.cli.types import NUMBER, WHOLE
 
 
@@ -19,8 +20,8 @@ from rockcli.cli.types import NUMBER, WHOLE
               help="Foundation: 'none' (rigid); 'linear:Tb=2.5,xi=0.1,gamma=0.01'; single concave sliding "
                    "'scss:Tb=3,mu=0.05[,uy=0.00025,gamma=0.01]'; lead-rubber 'lrb:Tb=2.5,Q=0.06,uy=0.015' "
                    "(Q = strength/weight); double concave 'dcss:R1=1.1,R2=1.1,mu1=0.03,mu2=0.07[,uy=..,gamma=..]' "
-                   "(effective radii R-h in m) or 'dcss:Tb=3,mu1=0.03,mu2=0.07[,r=R2/R1]'. gamma = m/(m+m_b); "
-                   "uy = yield displacement [m].")
+                   "(effective radii R-h in m) or 'dcss:Tb=3,mu1=0.03,mu2=0.07[,r=R2/R1]'; uy = yield displacement "
+                   "[m]. " + GAMMA_HELP)
 @click.option("--record", "record_source", default=None, metavar="SOURCE",
               help="Ground motion: a record file or a catalogue id (see 'rockcli records list').")
 @record_options

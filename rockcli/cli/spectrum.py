@@ -8,6 +8,7 @@ import click
 from rockcli.cli.errors import InputError, user_errors
 from rockcli.cli.options import (add_inputs, alias_option, cap_ratio_option, echo_json, horizon_option, json_option,
                                  progress_bar, quiet_option, record_kwargs, record_options, restitution_option)
+from rockcli.cli.options import DEFAULT_GAMMA_TEXT, DEFAULT_XI_TEXT, GAMMA_HELP
 from rockcli.cli.types import NUMBER
 
 _SHAPES = "ricker-sym|ricker-anti|sine|cosine"
@@ -19,7 +20,11 @@ def spectrum():
 
     Every cell is a pulse of amplitude a_p and period T_p = 2 pi/omega_p on a block of slenderness
     alpha; the result does not depend on the block size when T_b/T_p is kept fixed, so isolation
-    is given as KIND:TbTp=<T_b/T_p>,... (e.g. linear:TbTp=2,xi=0.05,gamma=0.01).
+    is given as KIND:TbTp=<T_b/T_p>,... (e.g. linear:TbTp=2,xi=0.05,gamma=0.01). Left out, xi = 0.1
+    and gamma = 0.01, as in every command; the paper's Figures 6-9, 11 and Table I have xi = 0.05.
+
+    A full figure takes from seconds to minutes: for a quick look add a coarse grid to any example,
+    --wp-over-p 1:8:4 (and --ap 1:6:4 on overturning maps).
     """
 
 
@@ -111,9 +116,11 @@ def _runner(scheduler, horizon, restitution=None, cap_ratio=0.0, isolations=()):
         raise InputError("--cap-ratio needs a rigid foundation: give --isolation none (a capped colonnade on an "
                          "isolated base is not derived in rockcli)")
     if scheduler is not None:
+        from rockcli.cli.options import dask_client
         from rockcli.distributed import check_scheduler
 
         check_scheduler(scheduler)
+        scheduler = dask_client(scheduler)
     return Runner(scheduler, horizon=horizon, restitution=restitution, cap_ratio=cap_ratio)
 
 
@@ -148,7 +155,7 @@ def _echo_notes(pcs, err=False):
 
 @spectrum.command(name="overturning")
 @_scene_options("Foundation: none, or KIND:TbTp=<T_b/T_p>,... e.g. linear:TbTp=2,xi=0.05,gamma=0.01 "
-                "(repeatable: one panel each). Default none.", ("none",))
+                "(repeatable: one panel each). Default none. " + GAMMA_HELP, ("none",))
 @alias_option("--wp-p", "wp_p", "--wp-over-p")
 @click.option("--wp-over-p", "wp_p", default="0.5:12:200", show_default=True, metavar="START:STOP:COUNT",
               help="omega_p/p grid, both ends included.")
@@ -244,9 +251,9 @@ def _search_options(f):
 
 @spectrum.command(name="min-overturning")
 @_scene_options("Foundation (repeatable, one curve each): none, or KIND:TbTp=<T_b/T_p>,... "
-                "Default: none and linear TbTp = 2, 3, 4 with xi = 0.05, gamma = 0.01 (Figure 7).",
-                ("none", "linear:TbTp=2,xi=0.05,gamma=0.01", "linear:TbTp=3,xi=0.05,gamma=0.01",
-                 "linear:TbTp=4,xi=0.05,gamma=0.01"))
+                "Default: none and linear TbTp = 2, 3, 4 with the default xi = 0.1, gamma = 0.01 (the paper's "
+                "Figure 7 has xi = 0.05: give linear:TbTp=2,xi=0.05 and so on). " + GAMMA_HELP,
+                ("none", "linear:TbTp=2", "linear:TbTp=3", "linear:TbTp=4"))
 @click.option("--gamma", "gammas", default=None, metavar="G[,G...]",
               help="Mass ratios m/(m + m_b): each isolated --isolation is run once per value (Figure 8).")
 @alias_option("--wp-p", "wp_p", "--wp-over-p")
@@ -270,7 +277,9 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
 
     \b
     Examples:
-      rockcli spectrum min-overturning --alpha 10,20 --pulse ricker-sym --pulse ricker-anti --plot fig7.png
+      rockcli spectrum min-overturning --alpha 10,20 --pulse ricker-sym --pulse ricker-anti --isolation none \\
+          --isolation linear:TbTp=2,xi=0.05 --isolation linear:TbTp=3,xi=0.05 --isolation linear:TbTp=4,xi=0.05 \\
+          --plot fig7.png
       rockcli spectrum min-overturning --alpha 12 --isolation linear:TbTp=2,xi=0.05 \\
           --gamma 0.01,0.05,0.1,0.3,0.5 --pulse ricker-sym --pulse ricker-anti --plot fig8.png
     """
@@ -331,9 +340,11 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
 @click.option("--isolation", "bearing", default="linear", show_default=True, metavar="KIND[:k=v,...]",
               help="Bearing kind and its parameters other than the period (T_b = ratio x T_p).")
 @click.option("--xi", type=NUMBER, default=None,
-              help="Damping ratio of linear bearings [default 0.05, as in Figures 6-7].")
-@click.option("--gamma", type=NUMBER, default=0.01, show_default=True,
-              help="Mass ratio m/(m + m_b) (heavy base, as in Figures 6-7).")
+              help=f"Damping ratio of linear bearings [default {DEFAULT_XI_TEXT}, as in every command; the paper's "
+                   "Table I has 0.05: --xi 0.05].")
+@click.option("--gamma", type=NUMBER, default=None,
+              help=f"Mass ratio m/(m + m_b) [default {DEFAULT_GAMMA_TEXT}, as in every command and in Table I]. "
+                   + GAMMA_HELP)
 @click.option("--pulse", "pulses", multiple=True, metavar="SHAPE:Tp=S",
               help="A pulse with its period [s], repeatable. Default: the paper's Table I pulses, "
                    "ricker-sym:Tp=0.6 (Aigio OTE FP 1995) and ricker-anti:Tp=0.9 (Coyote Lake Gilroy #6 230).")
@@ -367,12 +378,13 @@ def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, 
     Where the minimum overturning curves of the rigid foundation and of the isolated base cross
     (the last crossing on the grid, rigid better beyond it), converted to the semi-diagonal R with
     p = omega_p/(omega_p/p)_cross and R = 3 g/(4 p^2). Defaults: the paper's Table I scenes,
-    alpha = 10 and 20 deg, T_b/T_p = 2, 3, 4, linear bearings xi = 0.05, gamma = 0.01, pulses
-    ricker-sym T_p = 0.6 s and ricker-anti T_p = 0.9 s.
+    alpha = 10 and 20 deg, T_b/T_p = 2, 3, 4, linear bearings, pulses
+    ricker-sym T_p = 0.6 s and ricker-anti T_p = 0.9 s; the bearings have the default xi = 0.1, gamma = 0.01
+    of every command (Table I has xi = 0.05: add --xi 0.05).
 
     \b
     Examples:
-      rockcli spectrum critical-size --csv table1.csv
+      rockcli spectrum critical-size --xi 0.05 --csv table1.csv
       rockcli spectrum critical-size --alpha 10.56 --tbtp 2,2.5,3 --xi 0.1 --record coyotelake-1979-gilroy6-230
     """
     import time
@@ -387,8 +399,12 @@ def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, 
     kind = bearing.strip().partition(":")[0].strip().lower()
     if kind in ("none", "rigid", "fixed"):
         raise InputError("--isolation: give a bearing kind (e.g. linear); the rigid foundation is always compared")
+    from rockcli.models import DEFAULT_GAMMA, DEFAULT_XI
+
     if xi is None and kind == "linear":
-        xi = 0.05
+        xi = DEFAULT_XI
+    if gamma is None:
+        gamma = DEFAULT_GAMMA
     isos = table_i_isolations(ratios, xi=xi, gamma=gamma, template=bearing)
     _check_outputs(csv_path, plot_path)
     runner = _runner(scheduler, horizon, restitution)
