@@ -12,11 +12,11 @@ from rockcli.cli.options import (QuietSpellingOption, alias_option, azimuth_opti
                                  echo_json, given_azimuth, given_component, given_suite, horizon_option,
                                  is_quiet, json_option, progress_bar, quiet_option, report_option,
                                  restitution_option)
-from rockcli.cli.options import GAMMA_HELP
+from rockcli.cli.options import GAMMA_HELP, Group
 from rockcli.cli.types import NUMBER, SEED, Number
 
 
-@click.group(name="assess")
+@click.group(name="assess", cls=Group)
 def assess():
     """Assess free-standing bodies against records and isolation configurations."""
 

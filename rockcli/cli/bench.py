@@ -7,12 +7,13 @@ import sys
 import click
 
 from rockcli.cli.errors import InputError, user_errors
+from rockcli.cli.options import Group
 from rockcli.cli.types import SEED, Number
 
 _METHODS = ("RK45", "DOP853", "Radau", "LSODA", "BDF", "RK45-free")
 
 
-@click.group(name="bench")
+@click.group(name="bench", cls=Group)
 def bench():
     """Accuracy, cost and robustness of the solver: work-precision against SciPy, stiff and extreme scenes."""
 

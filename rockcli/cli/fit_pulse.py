@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 
 from rockcli.cli.errors import InputError, user_errors
-from rockcli.cli.options import add_inputs, catalog_file, check_outputs, json_option, record_kwargs, record_options
+from rockcli.cli.options import Command, add_inputs, catalog_file, check_outputs, json_option, record_kwargs, record_options
 from rockcli.cli.types import Number
 
 #: Pulse columns of records/catalog.csv that ``--update-catalog`` fills, and their rounding.
@@ -104,7 +104,7 @@ def _update_catalog(fits):
     return path
 
 
-@click.command(name="fit-pulse")
+@click.command(name="fit-pulse", cls=Command)
 @click.argument("sources", nargs=-1, metavar="SOURCE...")
 @record_options(column_alias=True)
 @click.option("--catalog", "use_catalog", is_flag=True,

@@ -7,6 +7,25 @@ import click
 from rockcli.cli.types import NUMBER, WHOLE
 
 
+class Command(click.Command):
+    """A rockcli command: "did you mean" for a mistyped option suggests only the options ``--help`` lists
+    (never an old spelling kept as a hidden alias)."""
+
+    def parse_args(self, ctx, args):
+        try:
+            return super().parse_args(ctx, args)
+        except click.NoSuchOption as exc:
+            hidden = {o for p in self.params if getattr(p, "hidden", False) for o in p.opts}
+            exc.possibilities = [o for o in (exc.possibilities or ()) if o not in hidden]
+            raise
+
+
+class Group(click.Group):
+    """A rockcli command group: its commands are :class:`Command`."""
+
+    command_class = Command
+
+
 class AliasOption(click.Option):
     """The old spelling of an option, kept for a release: hidden from ``--help``, the value goes to the
     new option's argument, and a note naming the new spelling is printed on stderr once per run.

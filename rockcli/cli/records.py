@@ -5,10 +5,10 @@ from __future__ import annotations
 import click
 
 from rockcli.cli.errors import user_errors
-from rockcli.cli.options import add_inputs, check_outputs, echo_json, json_option, record_kwargs, record_options
+from rockcli.cli.options import Group, add_inputs, check_outputs, echo_json, json_option, record_kwargs, record_options
 
 
-@click.group(name="records")
+@click.group(name="records", cls=Group)
 def records():
     """Ground-motion records: the paper's catalogue and any accelerogram file."""
 

@@ -10,11 +10,11 @@ from rockcli.cli.errors import user_errors
 from rockcli.cli.options import (azimuth_options, block_from_options, block_options, cap_ratio_option,
                                  check_outputs, command_line, horizon_option, json_option, record_kwargs,
                                  record_options, report_option, restitution_option)
-from rockcli.cli.options import GAMMA_HELP
+from rockcli.cli.options import GAMMA_HELP, Command
 from rockcli.cli.types import NUMBER, WHOLE
 
 
-@click.command(context_settings={"show_default": True})
+@click.command(cls=Command, context_settings={"show_default": True})
 @block_options
 @click.option("--isolation", default="none", metavar="SPEC",
               help="Foundation: 'none' (rigid); 'linear:Tb=2.5,xi=0.1,gamma=0.01'; single concave sliding "

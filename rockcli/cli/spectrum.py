@@ -8,13 +8,13 @@ import click
 from rockcli.cli.errors import InputError, user_errors
 from rockcli.cli.options import (add_inputs, alias_option, cap_ratio_option, echo_json, horizon_option, json_option,
                                  progress_bar, quiet_option, record_kwargs, record_options, restitution_option)
-from rockcli.cli.options import DEFAULT_GAMMA_TEXT, DEFAULT_XI_TEXT, GAMMA_HELP
+from rockcli.cli.options import DEFAULT_GAMMA_TEXT, DEFAULT_XI_TEXT, GAMMA_HELP, Group
 from rockcli.cli.types import NUMBER
 
 _SHAPES = "ricker-sym|ricker-anti|sine|cosine"
 
 
-@click.group(name="spectrum")
+@click.group(name="spectrum", cls=Group)
 def spectrum():
     """Overturning spectra over omega_p/p and a_p/(g tan alpha) (the paper's Figures 6-9, 11, Table I).
 

@@ -106,11 +106,9 @@ def format_notes(assessment) -> str:
         lines.append(f"Capped colonnades: each column stands in a colonnade carrying a beam of gamma_c = "
                      f"{assessment.solver['cap_ratio']:g} times the columns' mass (docs/physics-colonnade.md).")
     if assessment.margin:
-        lines.append("xS: smallest scale factor of the record that overturns the body in that configuration "
-                     "(S > 1: survival margin; S < 1 on an overturn: it overturns already at S times the record; "
-                     "S < 1 on a survivor: a weaker record overturns it, 1x sits on a safe island; x>4: nothing "
-                     "up to 4x overturns). Found on a 0.1x..4x grid in 1 % steps; where the "
-                     "boundary is ragged the value is indicative.")
+        lines.append("xS: the smallest scale factor of the record that overturns the body (S > 1: the margin; S < 1 on "
+                     "a survivor: a weaker record overturns it, a safe island; x>4: none up to 4x), 0.1x..4x in "
+                     "1 % steps.")
     worst = [r for r in assessment.rows if r.azimuths_run and not r.error]
     if worst:
         lines.append(f"@A: the most adverse orientation of the two horizontal components, of {worst[0].azimuths_run} "
