@@ -198,9 +198,12 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
     Examples:
       ROCKCLI_RECORDS=../shared/records rockcli assess column bassae nemea --csv table.csv
       rockcli assess column statue:R=1.2,alpha=14 --records kobe-1995-takarazuka-000 --isolation none
-      rockcli assess column nemea --records RSN983_NORTHR_JGB022.AT2 --isolation linear:Tb=3 --plot-dir figs
-      rockcli assess column statue:R=0.93,alpha=15.5 --records RSN1119_KOBE_TAZ000.AT2 --isolation none \\
-          --isolation linear:Tb=2.5 --report statue.html
+      rockcli assess column nemea --records kobe-1995-takarazuka-000 --isolation linear:Tb=3 --plot-dir figs
+      rockcli assess column statue:R=0.93,alpha=15.5 --records ../shared/records/RSN1119_KOBE_TAZ000.AT2 \\
+          --isolation none --isolation linear:Tb=2.5 --report statue.html
+
+    The margins (--margin, the default) take most of the time: --no-margin gives the verdicts alone,
+    in seconds.
     """
     from rockcli.assess import count_runs, parse_configurations, resolve_excitations, run_assessment
 
@@ -423,7 +426,10 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
     Examples:
       rockcli assess fragility bassae nemea --records ../shared/records --records ../shared/records/extra \\
           --csv fragility.csv --plot fragility.png
-      rockcli assess fragility nemea --records my/suite --units g --dt 0.01 --im pgv --isolation none
+      rockcli assess fragility nemea --records ../shared/records --units g --dt 0.01 --im pgv --isolation none
+
+    A suite of 30 records takes minutes; for a quick look take a few of its files and one
+    configuration: --glob 'RSN11*' --isolation none --bootstrap 100.
     """
     from rockcli.assess import parse_configurations, resolve_excitations
     from rockcli.assess.fragility import count_fragility_runs, run_fragility

@@ -141,8 +141,8 @@ def fit_pulse(sources, units, dt, fmt, column, use_catalog, wavelet, periods, cs
 
     \b
     Examples:
-      rockcli fit-pulse RSN1119_KOBE_TAZ000.AT2
-      rockcli fit-pulse C02-065 --units g --dt 0.01 --wavelet antisymmetric
+      rockcli fit-pulse ../shared/records/RSN1119_KOBE_TAZ000.AT2
+      rockcli fit-pulse ../shared/records/C02-065 --units g --dt 0.01 --wavelet antisymmetric
       ROCKCLI_RECORDS=../shared/records rockcli fit-pulse --catalog --plot fits.png
       ROCKCLI_RECORDS=../shared/records rockcli fit-pulse --catalog --update-catalog
       ROCKCLI_RECORDS=../shared/records rockcli fit-pulse kobe-1995-takarazuka-000 --candidates 3

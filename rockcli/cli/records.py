@@ -41,6 +41,11 @@ def list_records(csv_path, as_json):
 
     Files are looked up in the folders of ROCKCLI_RECORDS (path list), then in the repository's
     records/ folder.
+
+    \b
+    Examples:
+      ROCKCLI_RECORDS=../shared/records rockcli records list
+      ROCKCLI_RECORDS=../shared/records rockcli records list --json --csv records.csv
     """
     from rockcli.records.catalog import search_path
 
@@ -83,6 +88,13 @@ def show(source, units, dt, fmt, column, plot_path, as_json):
 
     PGV is computed by trapezoidal integration of the record as given (from rest), and again
     after removing a straight line fitted to the velocity (linear baseline); both are printed.
+    A file of several components lists them (pick one with --component).
+
+    \b
+    Examples:
+      ROCKCLI_RECORDS=../shared/records rockcli records show kobe-1995-takarazuka-000 --plot kobe.png
+      rockcli records show ../shared/records/C02-065 --units g --dt 0.01 --json
+      rockcli records show ../shared/records/extra/20161113_110259_WTMC_20.V2A
     """
     from rockcli.records import read_record
     from rockcli.records.motion import calc_peaks
@@ -190,7 +202,7 @@ def export(source, out, units, dt, fmt, column):
 
     \b
     Example:
-      rockcli records export 20161113_110259_WTMC_20.V2A wtmc-n28w.txt --component N28W
+      rockcli records export ../shared/records/extra/20161113_110259_WTMC_20.V2A wtmc-n28w.txt --component N28W
     """
     from rockcli.files import write_text
     from rockcli.records import read_record

@@ -81,11 +81,14 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     \b
     Examples:
       rockcli simulate --height 2 --width 0.5 --pulse sine:ap=0.29,Tp=2
-      rockcli simulate --body nemea --record northridge-1994-jensen-022 --isolation linear:Tb=3
+      ROCKCLI_RECORDS=../shared/records rockcli simulate --body nemea --record kobe-1995-takarazuka-000 \\
+          --isolation linear:Tb=3
+      rockcli simulate --body statue:height=1.7,width=0.45 --pulse ricker-anti:ap=0.4,Tp=0.5 --json
       rockcli simulate --R 1 --alpha 16 --pulse ricker-sym:ap=0.5,Tp=0.6 --isolation scss:Tb=1.8,mu=0.05 --plot f.png
       rockcli simulate --R 2.5 --alpha 11.5 --theta0 0.1 --restitution 0.9 --history free.csv
       rockcli simulate --R 1 --alpha 14 --theta0 0.2 --history-dt 0.01 --history free.csv --json
-      rockcli simulate --body bassae --record HNE.csv --vertical HNZ.csv
+      rockcli simulate --body bassae --record ../shared/records/RSN1119_KOBE_TAZ000.AT2 \\
+          --vertical-pulse sine:ap=0.2,Tp=0.3
     """
     import json
     import math

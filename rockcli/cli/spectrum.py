@@ -24,7 +24,8 @@ def spectrum():
     and gamma = 0.01, as in every command; the paper's Figures 6-9, 11 and Table I have xi = 0.05.
 
     A full figure takes from seconds to minutes: for a quick look add a coarse grid to any example,
-    --wp-over-p 1:8:4 (and --ap 1:6:4 on overturning maps).
+    --wp-over-p 2:6:2 with --ap 1:5:2 (overturning) or with --step 0.1 (min-overturning,
+    critical-size).
     """
 
 
