@@ -331,3 +331,17 @@ def test_help_example_runs_as_written(path, line, tmp_path, monkeypatch):
     res = CliRunner().invoke(main, args)
     assert res.exit_code == 0, f"{line}\n{res.output}"
     assert "Traceback" not in res.output
+
+
+def test_a_dask_run_names_its_cluster_on_stderr(tmp_path):
+    pytest.importorskip("distributed")
+    args = ["spectrum", "overturning", "--alpha", "10", "--wp-over-p", "2:6:2", "--ap", "1:5:2", "--csv",
+            tmp_path / "m.csv"]
+    res = invoke([*args, "--scheduler", "local"])
+    assert res.exit_code == 0, res.output
+    line = next(ln for ln in res.stderr.splitlines() if ln.startswith("Dask:"))
+    n = int(re.search(r"(\d+) worker\(s\)", line).group(1))
+    assert "LocalCluster" in line and "tcp://" in line and n >= 1 and "dashboard:" in line
+    assert "Dask:" not in res.stdout
+    assert invoke([*args[:-1], tmp_path / "n.csv"]).exit_code == 0
+    assert (tmp_path / "m.csv").read_text() == (tmp_path / "n.csv").read_text()  # the same map either way
