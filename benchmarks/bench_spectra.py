@@ -6,7 +6,7 @@ Prints (no assertions):
    ``spectrum overturning --alpha 10`` (200 x 200 rigid map; early stops, the default), the same
    with ``--isolation linear:TbTp=2,xi=0.05,gamma=0.01`` and with ``--isolation scss:TbTp=2,mu=0.05``,
    the rigid and linear ones also with ``--full-peaks``,
-   ``spectrum critical-size`` with its defaults (Table I, one run), and ``rockcli --help``;
+   ``spectrum critical-size --xi 0.05`` (Table I, one run), and ``rockcli --help``;
 2. the split of the rigid and linear maps inside one process: imports, loading the compiled
    kernels, building the 40,000 scenes, the kernel (wall and CPU), with cells/s and right-hand sides;
 3. with ``--cold``: the first run with an empty numba cache (``NUMBA_CACHE_DIR`` pointed at a new
@@ -121,7 +121,7 @@ def main():
     rigid = base + ["spectrum", "overturning", "--alpha", "10"]
     linear = rigid + ["--isolation", LIN]
     for iso in (LIN, SCSS):  # warm the kernel cache (both drivers)
-        run(base + ["spectrum", "overturning", "--alpha", "10", "--wp-p", "1:2:2", "--ap", "1:2:2", "--isolation", iso],
+        run(base + ["spectrum", "overturning", "--alpha", "10", "--wp-over-p", "1:2:2", "--ap", "1:2:2", "--isolation", iso],
             env)
     print(f"whole process, median (min) of {opts.repeat} runs, {os.cpu_count()} cores, warm cache "
           f"(machine shared with other jobs: noisy):")
@@ -131,7 +131,8 @@ def main():
                            ("  ... --isolation " + LIN, linear, opts.repeat),
                            ("  ... --isolation " + LIN + " --full-peaks", linear + ["--full-peaks"], opts.repeat),
                            ("  ... --isolation " + SCSS, rigid + ["--isolation", SCSS], 1),
-                           ("critical-size (Table I defaults)", base + ["spectrum", "critical-size"],
+                           ("critical-size (Table I: defaults, --xi 0.05)", base + ["spectrum", "critical-size", "--xi",
+                                                                                    "0.05"],
                             0 if opts.skip_table else 1)):
         if n == 0:
             continue

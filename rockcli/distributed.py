@@ -177,6 +177,24 @@ def open_client(scheduler, *, n_workers: int | None = None, processes: bool = Tr
             client.close(timeout=min(timeout, 5.0))
 
 
+def describe_cluster(client, local: bool = False) -> str:
+    """One line on the cluster ``client`` uses: scheduler address, workers, threads, dashboard address
+    (``local``: a LocalCluster this process started)."""
+    try:
+        nthreads = client.nthreads()
+    except Exception:  # noqa: BLE001 - a scheduler out of reach: say what is known
+        nthreads = {}
+    address = getattr(getattr(client, "scheduler", None), "address", None) or "?"
+    try:
+        services = client.scheduler_info().get("services", {})
+    except Exception:  # noqa: BLE001
+        services = {}
+    dashboard = client.dashboard_link if services.get("dashboard") else None
+    kind = "a LocalCluster on this machine, scheduler" if local else "the scheduler"
+    return (f"Dask: {kind} at {address}, {len(nthreads)} worker(s) with {sum(nthreads.values())} thread(s); "
+            f"dashboard: {dashboard or 'none'}")
+
+
 def _n_workers(client, timeout: float) -> int | None:
     """Workers the scheduler knows now (None: the scheduler did not answer within ``timeout``)."""
     try:

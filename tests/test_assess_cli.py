@@ -155,7 +155,7 @@ def test_nothing_written_on_bad_input(pulse_records, tmp_path):
 def test_histories_and_plots(pulse_records, tmp_path):
     hist, figs = tmp_path / "h", tmp_path / "f"
     res = invoke("s:R=0.8,alpha=12", "--records", pulse_records / "anti.txt", "--isolation", "none",
-                 "--isolation", "linear:Tb=2", "--no-margin", "--histories", hist, "--plot", figs)
+                 "--isolation", "linear:Tb=2", "--no-margin", "--history-dir", hist, "--plot-dir", figs)
     assert res.exit_code == 0, res.output
     csvs = sorted(p.name for p in hist.glob("*.csv"))
     assert csvs == ["s_anti.txt_Tb=2s.csv", "s_anti.txt_none.csv"]

@@ -168,7 +168,7 @@ CLI_CASES = {
     "show-dt0": (["records", "show", "nounits.txt", "--units", "g", "--dt", "0"], ["dt=0 s must be a positive"]),
     "show-units": (["records", "show", "nodt.txt", "--units", "furlongs", "--dt", "0.01"],
                    ["unknown acceleration unit 'furlongs'", "known: g"]),
-    "show-column0": (["records", "show", "good.AT2", "--column", "0"], ["column 0 must be a whole number >= 1"]),
+    "show-column0": (["records", "show", "good.AT2", "--record-column", "0"], ["column 0 must be a whole number >= 1"]),
     "show-units-conflict": (["records", "show", "good.AT2", "--units", "gal"], ["states units 'G' but 'gal' was given"]),
     "show-plot-proc": pytest.param((["records", "show", "good.AT2", "--plot", "/proc/x.png"],
                                     ["--plot /proc/x.png: cannot write there", "/proc"]), marks=needs_proc),
@@ -234,7 +234,7 @@ CLI_CASES = {
     "sim-scale-0": ([*SIM, "--record", "good.AT2", "--scale", "0"], ["--scale must be a finite non-zero number"]),
     "sim-scale-nan": ([*SIM, "--record", "good.AT2", "--scale", "nan"], ["--scale 'nan' is not a finite number"]),
     "sim-no-motion": (SIM, ["exactly one of --record SOURCE or --pulse SPEC"]),
-    "sim-two-blocks": (["simulate", "--column", "bassae", "--R", "1", "--alpha", "10", *SINE], ["exactly one of"]),
+    "sim-two-blocks": (["simulate", "--body", "bassae", "--R", "1", "--alpha", "10", *SINE], ["exactly one of"]),
     "sim-record-nan": ([*SIM, "--record", "nan.AT2"], BAD_FILE_WORDS["nan.AT2"]),
     "sim-record-dev-zero": ([*SIM, "--record", "/dev/zero", "--units", "g", "--dt", "0.01"], ["not a regular file"]),
     "sim-history-proc": pytest.param(([*SIM, *SINE, "--history", "/proc/h.csv"], ["--history /proc/h.csv"]),
@@ -249,14 +249,14 @@ CLI_CASES = {
     "assess-missing": ([*ASSESS, "--records", "nope.AT2"], ["--records nope.AT2: no such file or folder"]),
     "assess-csv-proc": pytest.param(([*ASSESS, "--records", "good.AT2", "--csv", "/proc/t.csv"], ["--csv /proc/t.csv"]),
                                     marks=needs_proc),
-    "assess-plot-proc": pytest.param(([*ASSESS, "--records", "good.AT2", "--plot", "/proc/pd"], ["--plot /proc/pd"]),
+    "assess-plot-proc": pytest.param(([*ASSESS, "--records", "good.AT2", "--plot-dir", "/proc/pd"], ["--plot-dir /proc/pd"]),
                                      marks=needs_proc),
     "assess-csv-under-file": ([*ASSESS, "--records", "good.AT2", "--csv", "afile/t.csv"],
                               ["--csv afile/t.csv: cannot write there: afile is a file, not a folder"]),
-    "assess-histories-under-file": ([*ASSESS, "--records", "good.AT2", "--histories", "afile/h"],
-                                    ["--histories afile/h: cannot create the folder: afile is a file"]),
-    "assess-histories-is-file": ([*ASSESS, "--records", "good.AT2", "--histories", "afile"],
-                                 ["--histories afile: exists and is not a folder"]),
+    "assess-histories-under-file": ([*ASSESS, "--records", "good.AT2", "--history-dir", "afile/h"],
+                                    ["--history-dir afile/h: cannot create the folder: afile is a file"]),
+    "assess-histories-is-file": ([*ASSESS, "--records", "good.AT2", "--history-dir", "afile"],
+                                 ["--history-dir afile: exists and is not a folder"]),
     "assess-Tb-tiny": (["assess", "column", "bassae", "--records", "good.AT2", "--isolation", "linear:Tb=1e-6"],
                        ["Tb = 1e-06 s"]),
     "assess-xi-huge": (["assess", "column", "bassae", "--records", "good.AT2", "--isolation", "linear:Tb=2,xi=1e6"],
@@ -305,8 +305,8 @@ FULL_DISK_CASES = {
     "simulate-history": ([*SIM, *SINE, "--history", "out.csv"], "out.csv"),
     "simulate-plot": ([*SIM, *SINE, "--plot", "out.png"], "out.png"),
     "assess-csv": ([*ASSESS, "--records", "good.AT2", "--csv", "out.csv"], "out.csv"),
-    "assess-histories": ([*ASSESS, "--records", "good.AT2", "--histories", "h/deeper"], "h/deeper"),
-    "assess-plots": ([*ASSESS, "--records", "good.AT2", "--plot", "figs"], "figs"),
+    "assess-histories": ([*ASSESS, "--records", "good.AT2", "--history-dir", "h/deeper"], "h/deeper"),
+    "assess-plots": ([*ASSESS, "--records", "good.AT2", "--plot-dir", "figs"], "figs"),
 }
 
 
@@ -466,7 +466,7 @@ def test_assess_some_records_bad_gives_error_rows_and_a_warning(work):
 def test_assess_every_record_bad_one_sentence_per_file(work):
     before = snapshot(work)
     res = run_cli([*ASSESS, "--records", "nan.AT2", "--records", "dt0.AT2", "--records", "empty.txt",
-                   "--csv", "t.csv", "--histories", "h"])
+                   "--csv", "t.csv", "--history-dir", "h"])
     assert res.exit_code == 2 and "Traceback" not in res.output
     lines = [ln for ln in res.output.splitlines() if ln.strip()]
     assert lines[0] == "Error: none of the 3 records can be run:"
@@ -587,7 +587,7 @@ def _console(args, cwd, stdin=None):
 def test_console_script_exit_codes_output_and_files(work):
     """The console script ends the process with os._exit after flushing and the exit handlers:
     the exit code is main()'s (0, 2 for bad input), everything printed arrives, files are whole."""
-    ok = _console(["spectrum", "overturning", "--alpha", "10", "--wp-p", "1:4:7", "--ap", "0.5:5:9",
+    ok = _console(["spectrum", "overturning", "--alpha", "10", "--wp-over-p", "1:4:7", "--ap", "0.5:5:9",
                    "--csv", "map.csv"], work)
     assert ok.returncode == 0, ok.stderr
     rows = (work / "map.csv").read_text().splitlines()
@@ -597,5 +597,5 @@ def test_console_script_exit_codes_output_and_files(work):
     assert bad.returncode == 2 and "Traceback" not in bad.stderr and "--alpha" in bad.stderr
     helped = _console(["--help"], work)
     assert helped.returncode == 0 and "Usage: rockcli" in helped.stdout and helped.stdout.endswith("\n")
-    missing = _console(["simulate", "--column", "bassae", "--record", str(work / "nope.AT2")], work)
+    missing = _console(["simulate", "--body", "bassae", "--record", str(work / "nope.AT2")], work)
     assert missing.returncode == 2 and "Traceback" not in missing.stderr and "nope.AT2" in missing.stderr

@@ -424,7 +424,7 @@ def test_cli_stability_csv(tmp_path):
     rows = list(csv.DictReader(lines))
     assert rows[0]["status"] == "pass" and rows[0]["verdict_rtol_1e-6"] == rows[0]["verdict_rtol_1e-10"] == "rocked"
     assert float(rows[0]["theta_max_over_alpha_rtol_1e-10"]) > 0 and int(rows[0]["steps_rtol_1e-10"]) > 0
-    assert rows[1]["status"] in ("pending", "pass") and rows[0]["settled"] == "1"
+    assert rows[1]["status"] in ("pending", "pass") and rows[0]["settled"] == "True"
     assert float(rows[0]["ulp_spread"]) < 1e-12 and rows[0]["ulp_verdicts"] == "rocked rocked"
     assert rows[0]["ill_conditioned"] in ("0", "False")
 

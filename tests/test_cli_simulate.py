@@ -40,7 +40,7 @@ def test_text_output_names_the_verdict_with_units():
 
 
 def test_flip_mirrors_the_response(tmp_path):
-    args = ["--column", "bassae", "--pulse", "ricker-anti:ap=0.4,Tp=1", "--isolation", "linear:Tb=2,xi=0.05"]
+    args = ["--body", "bassae", "--pulse", "ricker-anti:ap=0.4,Tp=1", "--isolation", "linear:Tb=2,xi=0.05"]
     a = run(*args, "--history", str(tmp_path / "a.csv"))
     b = run(*args, "--flip", "--history", str(tmp_path / "b.csv"))
     assert a.exit_code == 0 and b.exit_code == 0
@@ -53,7 +53,7 @@ def test_flip_mirrors_the_response(tmp_path):
 
 def test_history_and_plot_files(tmp_path):
     hist, fig = tmp_path / "h.csv", tmp_path / "f.png"
-    res = run("--column", "nemea", "--pulse", "ricker-sym:ap=0.3,Tp=1.2", "--isolation", "linear:Tb=3",
+    res = run("--body", "nemea", "--pulse", "ricker-sym:ap=0.3,Tp=1.2", "--isolation", "linear:Tb=3",
               "--history", str(hist), "--plot", str(fig))
     assert res.exit_code == 0, res.output
     header = hist.read_text().splitlines()[0]
@@ -64,9 +64,9 @@ def test_history_and_plot_files(tmp_path):
 
 
 def test_record_from_the_catalogue(records_dirs):
-    res = run("--column", "nemea", "--record", "northridge-1994-jensen-022", "--json")
+    res = run("--body", "nemea", "--record", "northridge-1994-jensen-022", "--json")
     assert res.exit_code == 0, res.output
-    iso = run("--column", "nemea", "--record", "northridge-1994-jensen-022", "--isolation", "linear:Tb=3", "--json")
+    iso = run("--body", "nemea", "--record", "northridge-1994-jensen-022", "--isolation", "linear:Tb=3", "--json")
     # the paper's Figure 12: standing free it survives, isolated with T_b = 3 s it overturns
     assert json.loads(res.output)["verdict"] == "rocked"
     assert json.loads(iso.output)["verdict"] == "overturned"
@@ -84,12 +84,12 @@ def test_record_scale_and_text_column_options(tmp_path):
 
 
 def test_check_tolerance_reports_a_well_and_an_ill_conditioned_run(tmp_path):
-    out = run("--column", "bassae", "--pulse", "ricker-sym:ap=0.5,Tp=1.2", "--check-tolerance")
+    out = run("--body", "bassae", "--pulse", "ricker-sym:ap=0.5,Tp=1.2", "--check-tolerance")
     assert out.exit_code == 0, out.output
     lines = {ln.split("  ")[0]: ln for ln in out.output.splitlines()}
     assert "rtol 5e-11: same verdict" in lines["tolerance check"]
     assert "2 motions moved by one ulp: same verdict" in lines["conditioning"] and "ILL" not in lines["conditioning"]
-    data = json.loads(run("--column", "bassae", "--pulse", "ricker-sym:ap=0.5,Tp=1.2", "--check-tolerance",
+    data = json.loads(run("--body", "bassae", "--pulse", "ricker-sym:ap=0.5,Tp=1.2", "--check-tolerance",
                           "--json").output)
     assert data["check_tight_rtol_verdict"] == data["verdict"] == "rocked" and data["check_tight_rtol_change"] < 1e-7
     assert data["check_ulp_verdicts"] == ["rocked", "rocked"] and data["check_ulp_change"] < 1e-12
@@ -101,7 +101,7 @@ def test_check_tolerance_reports_a_well_and_an_ill_conditioned_run(tmp_path):
     rec = band_limited_record()
     path = tmp_path / "long.txt"
     np.savetxt(path, rec.acc, fmt="%.17g")
-    out = run("--column", "bassae", "--record", str(path), "--units", "m/s^2", "--dt", "0.001", "--check-tolerance",
+    out = run("--body", "bassae", "--record", str(path), "--units", "m/s^2", "--dt", "0.001", "--check-tolerance",
               "--json")
     assert out.exit_code == 0, out.output
     data = json.loads(out.output)
@@ -110,16 +110,16 @@ def test_check_tolerance_reports_a_well_and_an_ill_conditioned_run(tmp_path):
 
 
 @pytest.mark.parametrize("args, words", [
-    (["--column", "parthenon", "--pulse", "sine:ap=1,Tp=1"], "unknown column"),
+    (["--body", "parthenon", "--pulse", "sine:ap=1,Tp=1"], "unknown column"),
     (["--R", "1", "--pulse", "sine:ap=1,Tp=1"], "--R and --alpha"),
     (["--R", "-1", "--alpha", "10", "--pulse", "sine:ap=1,Tp=1"], "positive"),
-    (["--column", "bassae", "--column-x"], "No such option"),
-    (["--column", "bassae"], "exactly one of --record"),
-    (["--column", "bassae", "--pulse", "sine:ap=1,Tp=1", "--record", "x"], "exactly one of --record"),
-    (["--column", "bassae", "--pulse", "square:ap=1,Tp=1"], "square"),
-    (["--column", "bassae", "--pulse", "sine:ap=1,Tp=1", "--isolation", "rubber"], "unknown isolation"),
-    (["--column", "bassae", "--record", "/no/such/file.AT2"], "no such file"),
-    (["--column", "bassae", "--pulse", "sine:ap=1,Tp=1", "--rtol", "2"], "rtol"),
+    (["--body", "bassae", "--column-x"], "No such option"),
+    (["--body", "bassae"], "exactly one of --record"),
+    (["--body", "bassae", "--pulse", "sine:ap=1,Tp=1", "--record", "x"], "exactly one of --record"),
+    (["--body", "bassae", "--pulse", "square:ap=1,Tp=1"], "square"),
+    (["--body", "bassae", "--pulse", "sine:ap=1,Tp=1", "--isolation", "rubber"], "unknown isolation"),
+    (["--body", "bassae", "--record", "/no/such/file.AT2"], "no such file"),
+    (["--body", "bassae", "--pulse", "sine:ap=1,Tp=1", "--rtol", "2"], "rtol"),
 ])
 def test_bad_input_is_one_clear_sentence_and_exit_code_2(args, words, tmp_path):
     out = tmp_path / "never.csv"

@@ -234,7 +234,7 @@ def test_cli_spectrum_and_assess_run_colonnades(tmp_path):
 
     runner = CliRunner()
     path = tmp_path / "map.csv"
-    out = runner.invoke(main, ["spectrum", "overturning", "--alpha", "10", "--wp-p", "2:6:3", "--ap", "2:6:3",
+    out = runner.invoke(main, ["spectrum", "overturning", "--alpha", "10", "--wp-over-p", "2:6:3", "--ap", "2:6:3",
                                "--csv", str(path), "--full-peaks", "--cap-ratio", "0.5"])
     assert out.exit_code == 0, out.output
     assert "gamma_c = 0.5" in out.output

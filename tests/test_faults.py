@@ -88,7 +88,7 @@ def test_sigint_during_assess_plot_folder_leaves_no_folder(tmp_path):
     write_pulse_record(tmp_path / "b.txt", 0.3, 0.5)
     args = [sys.executable, "-m", "rockcli", "assess", "column", "bassae", "nemea", "x:R=1,alpha=14", "--records",
             "a.txt", "--records", "b.txt", "--no-margin", "--isolation", "none", "--isolation", "linear:Tb=2",
-            "--plot", "figs", "--csv", "t.csv"]
+            "--plot-dir", "figs", "--csv", "t.csv"]
     proc = subprocess.Popen(args, cwd=tmp_path, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                             preexec_fn=_default_signals)
     try:
@@ -230,7 +230,7 @@ def _server(reply: bytes):
     return srv, f"tcp://127.0.0.1:{srv.getsockname()[1]}"
 
 
-SPECTRUM = ["spectrum", "overturning", "--alpha", "10", "--wp-p", "1:2:2", "--ap", "1:2:2"]
+SPECTRUM = ["spectrum", "overturning", "--alpha", "10", "--wp-over-p", "1:2:2", "--ap", "1:2:2"]
 
 
 def _one_error(res, *words):

@@ -123,7 +123,7 @@ OPTIONS = [
     (["simulate", "--height", "2", "--width", "0.5", "--record", "{rec}", "--units", "g", "--history", "{out}"],
      "--dt"),
     (["records", "show", "{rec}", "--units", "g", "--plot", "{out}.png"], "--dt"),
-    (["records", "show", "{rec}", "--plot", "{out}.png"], "--column"),
+    (["records", "show", "{rec}", "--plot", "{out}.png"], "--record-column"),
     (["spectrum", "min-overturning", "--alpha", "10", "--csv", "{out}"], "--ap-max"),
     (["spectrum", "min-overturning", "--alpha", "10", "--csv", "{out}"], "--step"),
     (["spectrum", "min-overturning", "--alpha", "10", "--csv", "{out}"], "--tol"),

@@ -120,7 +120,7 @@ OPTION_CASES = {
     "tail-huge": ([*SIM, *SINE, "--tail", "1e999"], ["--tail 1e999 is too large"]),
     "seed-negative": (["assess", "fragility", "bassae", "--seed", "-1"], ["--seed -1 must lie between 0 and"]),
     "bootstrap-underscore": (["assess", "fragility", "bassae", "--bootstrap", "1_000"], ["--bootstrap '1_000'"]),
-    "column-word": (["records", "show", "x.txt", "--column", "two"], ["--column 'two'"]),
+    "column-word": (["records", "show", "x.txt", "--record-column", "two"], ["--record-column 'two'"]),
     "pulse-ap-twice": ([*SIM, "--pulse", "sine:ap=0.5,ap=0.9,Tp=0.5"], ["ap is given twice"]),
     "pulse-ap-rounded": ([*SIM, "--pulse", "sine:ap=100.0001,Tp=0.5"], ["a_p = 100.0001 g", "100 g"]),
     "pulse-ap-1e308": ([*SIM, "--pulse", "sine:ap=1e308,Tp=0.5"], ["a_p = 1e308 g"]),

@@ -171,7 +171,7 @@ def test_update_catalog_keeps_user_columns_link_and_mode(tmp_path, monkeypatch):
 # --------------------------------------------------------------------------------------------------
 def test_assess_refuses_two_runs_with_one_file_name(work):
     before = snapshot(work)
-    res = run_cli([*ASSESS, "a#b:R=1,alpha=14", "a_b:R=1.2,alpha=14", "--records", "syn.txt", "--histories", "h"])
+    res = run_cli([*ASSESS, "a#b:R=1,alpha=14", "a_b:R=1.2,alpha=14", "--records", "syn.txt", "--history-dir", "h"])
     one_error(res, "a#b", "a_b", "would write the same file")
     assert snapshot(work) == before
 
@@ -179,7 +179,7 @@ def test_assess_refuses_two_runs_with_one_file_name(work):
 def test_assess_history_failure_keeps_csv_and_earlier_histories(work, monkeypatch):
     import rockcli.files
 
-    args = [*ASSESS, "bassae", "nemea", "--records", "syn.txt", "--csv", "table.csv", "--histories", "h"]
+    args = [*ASSESS, "bassae", "nemea", "--records", "syn.txt", "--csv", "table.csv", "--history-dir", "h"]
     first = run_cli(args)
     assert first.exit_code == 0, first.output
     earlier = snapshot(work)

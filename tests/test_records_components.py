@@ -67,7 +67,7 @@ def test_select_component_by_code_letter_and_azimuth(find_record):
         select_component(comps, "E", "f")
     # read_record(component=...) is the same samples as --column
     np.testing.assert_array_equal(read_record(path, component="S62W").acc, read_record(path, column=2).acc)
-    with pytest.raises(RockcliInputError, match="either by --component NAME or by --column N"):
+    with pytest.raises(RockcliInputError, match="either by --component NAME or by --record-column N"):
         read_record(path, component="S62W", column=2)
 
 

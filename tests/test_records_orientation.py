@@ -181,7 +181,7 @@ def test_read_pair_from_one_file(find_record):
     a, b = read_pair(str(path))
     assert (a.meta["azimuth_deg"], b.meta["azimuth_deg"]) == (332.0, 242.0)
     np.testing.assert_array_equal(project(a, b, 242.0).acc, b.acc)
-    with pytest.raises(RockcliInputError, match="--component/--column do not apply with --azimuth"):
+    with pytest.raises(RockcliInputError, match="--component/--record-column do not apply with --azimuth"):
         read_pair(str(path), component="N28W")
 
 

@@ -94,7 +94,7 @@ def test_knet_is_mean_removed_si(find_record):
 
 def test_geonet_needs_component(find_record):
     path = find_record("20161113_110259_WTMC_20.V2A")
-    with pytest.raises(RockcliInputError, match=r"holds 3 components \(N28W, S62W, Up\); choose one with --component NAME \(or --column 1-3\)"):
+    with pytest.raises(RockcliInputError, match=r"holds 3 components \(N28W, S62W, Up\); choose one with --component NAME \(or --record-column 1-3\)"):
         read_record(path)
     vert = read_record(path, column=3)
     assert vert.meta["component"] == "Up" and vert.npts == 8192

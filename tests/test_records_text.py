@@ -108,7 +108,7 @@ def test_single_column_needs_dt_and_units(tmp_path):
 
 def test_multi_column_needs_column(tmp_path):
     path = _write(tmp_path, "0.1 0.3\n0.2 -0.1\n-0.1 0.2\n0.0 0.1\n")
-    with pytest.raises(RockcliInputError, match=r"2 data columns; choose one with --column"):
+    with pytest.raises(RockcliInputError, match=r"2 data columns; choose one with --record-column"):
         read_record(path, dt=0.01, units="g")
     with pytest.raises(RockcliInputError, match=r"column 3 does not exist \(the file has 2 columns\)"):
         read_record(path, dt=0.01, units="g", column=3)

@@ -153,7 +153,7 @@ def test_cli_spectrum_and_assess_pass_restitution(tmp_path):
     csvs = []
     for extra in ([], ["--restitution", "0.6"]):
         path = tmp_path / f"map{len(extra)}.csv"
-        out = runner.invoke(main, ["spectrum", "overturning", "--alpha", "10", "--wp-p", "2:6:3", "--ap", "2:6:3",
+        out = runner.invoke(main, ["spectrum", "overturning", "--alpha", "10", "--wp-over-p", "2:6:3", "--ap", "2:6:3",
                                    "--csv", str(path), "--full-peaks", *extra])
         assert out.exit_code == 0, out.output
         import csv

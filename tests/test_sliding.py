@@ -560,7 +560,7 @@ def test_bad_sliding_specs_exit_2(spec, words, tmp_path):
     from rockcli.cli import main
 
     out = tmp_path / "never.csv"
-    res = CliRunner().invoke(main, ["simulate", "--column", "bassae", "--pulse", "sine:ap=1,Tp=1",
+    res = CliRunner().invoke(main, ["simulate", "--body", "bassae", "--pulse", "sine:ap=1,Tp=1",
                                     "--isolation", spec, "--history", str(out)])
     assert res.exit_code == 2 and words in res.output and "Traceback" not in res.output
     assert not out.exists()

@@ -28,7 +28,7 @@ LIN2 = "linear:TbTp=2,xi=0.05,gamma=0.01"
 # Input parsing
 # ------------------------------------------------------------------------------------------
 def test_grid_includes_both_ends():
-    g = parse_grid("0.5:12:24", "--wp-p", positive=True)
+    g = parse_grid("0.5:12:24", "--wp-over-p", positive=True)
     assert g.values[0] == 0.5 and g.values[-1] == 12.0 and g.values.size == 24
     assert parse_grid("2:2:1").values.tolist() == [2.0]
 
@@ -282,7 +282,7 @@ def test_dask_map_equals_the_local_map():
 # CLI
 # ------------------------------------------------------------------------------------------
 @pytest.mark.parametrize("args, words", [
-    (["overturning", "--alpha", "10", "--wp-p", "0.5:12"], "--wp-p"),
+    (["overturning", "--alpha", "10", "--wp-over-p", "0.5:12"], "--wp-over-p"),
     (["overturning", "--alpha", "10", "--ap", "0:10:x"], "--ap"),
     (["overturning", "--alpha", "95"], "--alpha"),
     (["overturning", "--alpha", "10", "--isolation", "linear:Tb=2"], "TbTp"),
@@ -291,7 +291,7 @@ def test_dask_map_equals_the_local_map():
     (["min-overturning", "--alpha", "10", "--gamma", "1.5"], "--gamma"),
     (["min-overturning", "--alpha", "10", "--step", "0"], "scan step"),
     (["critical-size", "--pulse", "ricker-sym"], "period"),
-    (["critical-size", "--tb-tp", "2,-1"], "--tb-tp"),
+    (["critical-size", "--tbtp", "2,-1"], "--tbtp"),
     (["overturning", "--alpha", "10", "--horizon", "4000"], "horizon must be a time between 0 and 3600 s"),
     (["critical-size", "--horizon", "-1"], "horizon must be a time between 0 and 3600 s"),
 ])
@@ -307,30 +307,30 @@ def test_cli_overturning_csv_one_row_per_cell(tmp_path):
     out = tmp_path / "map.csv"
     png = tmp_path / "map.png"
     r = CliRunner().invoke(main, ["spectrum", "overturning", "--alpha", "20", "--pulse", "ricker-anti:Tp=0.9",
-                                  "--wp-p", "1:6:6", "--ap", "0:3:5", "--csv", str(out), "--plot", str(png)])
+                                  "--wp-over-p", "1:6:6", "--ap", "0:3:5", "--csv", str(out), "--plot", str(png)])
     assert r.exit_code == 0, r.output
     rows = list(csv.DictReader(out.open()))
     assert len(rows) == 30
     assert list(rows[0]) == ["alpha_deg", "pulse", "isolation", "T_p_s", "R_m", "wp_over_p", "ap_over_g_tan_alpha",
                              "ap_g", "overturned", "theta_max_over_alpha", "uplift", "peak_final", "proven"]
     for row in rows:
-        assert (row["uplift"] == "1") == (float(row["ap_over_g_tan_alpha"]) > 1.0)
+        assert (row["uplift"] == "True") == (float(row["ap_over_g_tan_alpha"]) > 1.0)
         assert float(row["R_m"]) == pytest.approx(critical_R(0.9, float(row["wp_over_p"])))
-        assert row["proven"] == "1"
+        assert row["proven"] == "True"
     assert png.stat().st_size > 1000
     # early stops are the default: --full-peaks gives the same map with every peak final, and an
     # early peak is never above the final one
     full = tmp_path / "full.csv"
     r = CliRunner().invoke(main, ["spectrum", "overturning", "--alpha", "20", "--pulse", "ricker-anti:Tp=0.9",
-                                  "--wp-p", "1:6:6", "--ap", "0:3:5", "--csv", str(full), "--full-peaks"])
+                                  "--wp-over-p", "1:6:6", "--ap", "0:3:5", "--csv", str(full), "--full-peaks"])
     assert r.exit_code == 0, r.output
     frows = list(csv.DictReader(full.open()))
-    assert any(row["peak_final"] == "0" for row in rows)
+    assert any(row["peak_final"] == "False" for row in rows)
     for a, b in zip(rows, frows):
         assert (a["overturned"], a["uplift"]) == (b["overturned"], b["uplift"])
-        assert b["peak_final"] == "1"
+        assert b["peak_final"] == "True"
         assert float(a["theta_max_over_alpha"]) <= float(b["theta_max_over_alpha"]) * (1 + 1e-7) + 1e-12
-        if a["peak_final"] == "1":
+        if a["peak_final"] == "True":
             assert float(a["theta_max_over_alpha"]) == pytest.approx(float(b["theta_max_over_alpha"]), rel=1e-7)
 
 
@@ -338,7 +338,7 @@ def test_cli_horizon_follows_unproven_cells_longer(tmp_path):
     """A 1.5 deg block on a gamma = 0 SCSS base: cells still rocking at a 30 s horizon count as surviving
     (proven 0, and the count is printed); at 600 s those two are proven, with the same verdicts."""
     args = ["spectrum", "overturning", "--alpha", "1.5", "--isolation", "scss:TbTp=2,mu=0.06,gamma=0",
-            "--wp-p", "4.5:5:2", "--ap", "1:1:1"]
+            "--wp-over-p", "4.5:5:2", "--ap", "1:1:1"]
     rows = {}
     for h in ("30", "600"):
         out = tmp_path / f"h{h}.csv"
@@ -346,15 +346,15 @@ def test_cli_horizon_follows_unproven_cells_longer(tmp_path):
         assert r.exit_code == 0, r.output
         rows[h] = list(csv.DictReader(out.open()))
         assert ("2 NOT PROVEN" in r.output) == (h == "30"), r.output
-    assert [row["proven"] for row in rows["30"]] == ["0", "0"]
-    assert [row["proven"] for row in rows["600"]] == ["1", "1"]
-    assert [row["overturned"] for row in rows["30"]] == [row["overturned"] for row in rows["600"]] == ["0", "0"]
+    assert [row["proven"] for row in rows["30"]] == ["False", "False"]
+    assert [row["proven"] for row in rows["600"]] == ["True", "True"]
+    assert [row["overturned"] for row in rows["30"]] == [row["overturned"] for row in rows["600"]] == ["False", "False"]
 
 
 def test_cli_critical_size_table_i_columns(tmp_path):
     out = tmp_path / "t1.csv"
-    r = CliRunner().invoke(main, ["spectrum", "critical-size", "--alpha", "10", "--tb-tp", "2",
-                                  "--pulse", "ricker-sym:Tp=0.6", "--wp-p", "1:4:7", "--xtol", "0.01",
+    r = CliRunner().invoke(main, ["spectrum", "critical-size", "--alpha", "10", "--tbtp", "2",
+                                  "--pulse", "ricker-sym:Tp=0.6", "--wp-over-p", "1:4:7", "--xtol", "0.01",
                                   "--ap-max", "15", "--csv", str(out)])
     assert r.exit_code == 0, r.output
     rows = list(csv.DictReader(out.open()))
@@ -366,7 +366,7 @@ def test_cli_critical_size_table_i_columns(tmp_path):
 
 def test_cli_record_gives_shape_and_period(tmp_path, pulse_records):
     r = CliRunner().invoke(main, ["spectrum", "min-overturning", "--alpha", "20", "--record",
-                                  str(pulse_records / "anti.txt"), "--isolation", "none", "--wp-p", "2:3:2"])
+                                  str(pulse_records / "anti.txt"), "--isolation", "none", "--wp-over-p", "2:3:2"])
     assert r.exit_code == 0, r.output
     assert "fitted to record" in r.output and "ricker-anti" in r.output and "T_p = 0.500 s" in r.output
 
@@ -438,15 +438,15 @@ def test_cli_search_defaults_are_the_library_defaults():
 # --------------------------------------------------------------------------------------------------
 
 @pytest.mark.parametrize("args, words", [
-    (["min-overturning", "--alpha", "16", "--isolation", "none", "--wp-p", "2:2:1", "--tol", "1e-16"],
+    (["min-overturning", "--alpha", "16", "--isolation", "none", "--wp-over-p", "2:2:1", "--tol", "1e-16"],
      "tolerance must lie in [1e-12, step]"),
-    (["min-overturning", "--alpha", "16", "--isolation", "none", "--wp-p", "2:2:1", "--refine", "1e-17"],
+    (["min-overturning", "--alpha", "16", "--isolation", "none", "--wp-over-p", "2:2:1", "--refine", "1e-17"],
      "refinement step must be 0"),
-    (["min-overturning", "--alpha", "16", "--isolation", "none", "--wp-p", "2:2:1", "--step", "1e-18"],
+    (["min-overturning", "--alpha", "16", "--isolation", "none", "--wp-over-p", "2:2:1", "--step", "1e-18"],
      "scan step must lie in [0.0001, 0.5]"),
-    (["critical-size", "--alpha", "10", "--tb-tp", "2", "--pulse", "ricker-sym:Tp=0.6", "--wp-p", "0.5:12:6",
+    (["critical-size", "--alpha", "10", "--tbtp", "2", "--pulse", "ricker-sym:Tp=0.6", "--wp-over-p", "0.5:12:6",
       "--xtol", "0"], "xtol must lie in [1e-12, 0.5]"),
-    (["overturning", "--alpha", "10", "--wp-p", "1:8:100000", "--ap", "1:6:100000"],
+    (["overturning", "--alpha", "10", "--wp-over-p", "1:8:100000", "--ap", "1:6:100000"],
      "the maps have 10,000,000,000 cells"),
 ])
 def test_search_floors_and_grid_cap_refused_in_one_sentence(args, words, monkeypatch):

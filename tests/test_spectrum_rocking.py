@@ -169,14 +169,14 @@ def test_cli_csv_and_json_columns(tmp_path, synthetic):
     assert len(rows) == 2 * 2 * 12
     assert [r_["alpha_deg"] for r_ in rows[::12]] == ["10.0", "10.0", "15.0", "15.0"]
     assert [r_["isolation"] for r_ in rows[::12]] == ["none", "linear:Tb=3,xi=0.05,gamma=0.01"] * 2
-    over = [r_ for r_ in rows if r_["overturned"] == "1"]
-    kept = [r_ for r_ in rows if r_["overturned"] == "0" and r_["uplift"] == "1"]
+    over = [r_ for r_ in rows if r_["overturned"] == "True"]
+    kept = [r_ for r_ in rows if r_["overturned"] == "False" and r_["uplift"] == "True"]
     assert over and kept  # the columns below are checked on both outcomes
     for r_ in rows:
         R = float(r_["R_m"])
         assert float(r_["p_radps"]) == pytest.approx(math.sqrt(0.75 * G / R), rel=1e-15)
-        assert r_["record"] == "ricker.txt" and float(r_["scale"]) == 1.2 and r_["proven"] == "1"
-        assert r_["peak_final"] == "1"
+        assert r_["record"] == "ricker.txt" and float(r_["scale"]) == 1.2 and r_["proven"] == "True"
+        assert r_["peak_final"] == "True"
     for r_ in over:
         assert float(r_["theta_max_over_alpha"]) == pytest.approx(90.0 / float(r_["alpha_deg"]), rel=1e-12)
     for r_ in kept:
@@ -193,7 +193,7 @@ def test_cli_csv_and_json_columns(tmp_path, synthetic):
         assert curve["isolation"] == part[0]["isolation"]
         assert curve["R_m"] == [float(r_["R_m"]) for r_ in part]
         assert curve["theta_max_over_alpha"] == [float(r_["theta_max_over_alpha"]) for r_ in part]
-        assert curve["overturned"] == [r_["overturned"] == "1" for r_ in part]
+        assert curve["overturned"] == [r_["overturned"] == "True" for r_ in part]
 
 
 def test_cli_point_equals_cli_simulate(tmp_path, synthetic):
@@ -213,7 +213,7 @@ def test_cli_point_equals_cli_simulate(tmp_path, synthetic):
                                       "--json"])
         assert s.exit_code == 0, s.output
         one = json.loads(s.output)
-        assert (one["verdict"] == "overturned") == (row["overturned"] == "1")
+        assert (one["verdict"] == "overturned") == (row["overturned"] == "True")
         assert one["theta_max_over_alpha"] == float(row["theta_max_over_alpha"])
 
 

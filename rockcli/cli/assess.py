@@ -8,13 +8,15 @@ from functools import partial
 import click
 
 from rockcli.cli.errors import InputError, user_errors
-from rockcli.cli.options import (azimuth_options, cap_ratio_option, check_outputs, command_line, custom_block_options,
-                                 given_azimuth, given_component, given_suite,
-                                 horizon_option, progress_bar, report_option, restitution_option)
+from rockcli.cli.options import (QuietSpellingOption, alias_option, azimuth_options, cap_ratio_option, check_outputs, command_line, custom_block_options,
+                                 echo_json, given_azimuth, given_component, given_suite, horizon_option,
+                                 is_quiet, json_option, progress_bar, quiet_option, report_option,
+                                 restitution_option)
+from rockcli.cli.options import GAMMA_HELP, Group
 from rockcli.cli.types import NUMBER, SEED, Number
 
 
-@click.group(name="assess")
+@click.group(name="assess", cls=Group)
 def assess():
     """Assess free-standing bodies against records and isolation configurations."""
 
@@ -62,15 +64,20 @@ def _run_counted(total: int, run):
     return result
 
 
-def _echo_result(result, table: str, notes: str, plain: str | None = None):
-    """Print a result's table, notes and (when given) the answer in plain words, and warn (stderr) about the
-    records that could not be read or run."""
-    click.echo(table)
-    click.echo("")
-    click.echo(notes)
-    if plain is not None:
-        click.echo("")
-        click.echo(plain)
+def _echo_result(result, table: str, notes: str, plain: str | None = None, *, as_json=None):
+    """Print a result's table, notes (not with ``--quiet``) and (when given) the answer in plain words, or with
+    ``as_json`` (the JSON document) that instead; and warn (stderr) about the records that could not be read
+    or run."""
+    if as_json is not None:
+        echo_json(as_json)
+    else:
+        click.echo(table)
+        if not is_quiet():
+            click.echo("")
+            click.echo(notes)
+        if plain is not None:
+            click.echo("")
+            click.echo(plain)
     failed = result.failed
     if failed:
         click.echo(f"Warning: {len(failed)} of {len(result.excitations)} records could not be read or run; they "
@@ -106,6 +113,18 @@ def _add_record_inputs(excitations):
                + [r.meta.get("path") for x in excitations if x.pair for r in x.pair], "the record")
 
 
+def _not_an_image(path) -> None:
+    """``assess column --plot``, the old spelling of ``--plot-dir``: a folder, so a file name is refused."""
+    from pathlib import Path
+
+    from rockcli.errors import RockcliInputError
+
+    if Path(path).suffix.lower() in (".png", ".pdf", ".svg", ".jpg", ".jpeg", ".eps", ".ps", ".tif", ".tiff",
+                                     ".webp"):
+        raise RockcliInputError(f"assess column draws one figure per run into a folder: give it with --plot-dir "
+                                f"(e.g. --plot-dir {Path(path).stem or 'figs'}); --plot {path} names an image file")
+
+
 def _columns(names, R, alpha, height, width, name):
     from rockcli.assess import custom_column, parse_column_spec
     from rockcli.cli.options import BLOCK_FLAGS
@@ -126,7 +145,8 @@ def _columns(names, R, alpha, height, width, name):
 @assess.command(name="column")
 @click.argument("names", nargs=-1, metavar="NAME...")
 @custom_block_options
-@click.option("--records", "records", multiple=True, metavar="ID|FILE|DIR",
+@click.option("--records", "--record", "records", multiple=True, metavar="ID|FILE|DIR", cls=QuietSpellingOption,
+              quiet_spellings=("--record",),
               help="Records to run (repeatable): catalogue ids, files, folders. Default: the catalogue's "
                    "Table II records (file where found on ROCKCLI_RECORDS, else the catalogued pulse).")
 @_headerless_options
@@ -137,29 +157,33 @@ def _columns(names, R, alpha, height, width, name):
 @click.option("--isolation", "isolation", multiple=True, metavar="SPEC",
               help="Foundation (repeatable): 'none', 'linear:Tb=2.5,xi=0.1,gamma=0.01', 'scss:Tb=2,mu=0.05', "
                    "'lrb:Tb=2.5,Q=0.06,uy=0.015' or 'dcss:R1=1.1,R2=1.1,mu1=0.03,mu2=0.07' (see 'rockcli simulate "
-                   "--help'). Default: the paper's "
-                   "Table III set: none and linear Tb = 2, 2.5, 3 s with xi = 0.1 (gamma = 0.01).")
+                   "--help'). Default: the paper's Table III set: none and linear Tb = 2, 2.5, 3 s with xi = 0.1 "
+                   "(gamma = 0.01). " + GAMMA_HELP)
 @click.option("--margin/--no-margin", default=True, show_default=True,
               help="Find the smallest scale factor of each record that overturns (0.1x..4x scan, then bisection).")
 @click.option("--neighbourhood", is_flag=True,
               help="Also run 0.90x..1.10x of each record (21 factors) and report the share that overturns.")
 @click.option("--csv", "csv_path", type=click.Path(), default=None,
               help="Write the report: one row per column x record x configuration.")
-@click.option("--histories", "hist_dir", type=click.Path(), default=None,
+@click.option("--history-dir", "hist_dir", type=click.Path(), default=None, metavar="DIR",
               help="Write one time-history CSV per run into this folder.")
-@click.option("--plot", "plot_dir", type=click.Path(), default=None,
+@alias_option("--histories", "hist_dir", "--history-dir", type=click.Path())
+@click.option("--plot-dir", "plot_dir", type=click.Path(), default=None, metavar="DIR",
               help="Write one figure per run (like the paper's Figure 12) into this folder.")
+@alias_option("--plot", "plot_dir", "--plot-dir", type=click.Path(), check=_not_an_image)
 @click.option("--check-tolerance", is_flag=True,
               help="Rerun every scene at a 100x tighter rtol (5e-11; 2e-11 on sliding bearings) and flag any "
                    "verdict that changes; and on 2 copies of its motion moved by one ulp, and flag any scene "
                    "whose verdict changes or whose peak moves by more than 1e-3 alpha (ill-conditioned).")
 @report_option
+@json_option
+@quiet_option
 @horizon_option
 @restitution_option
 @cap_ratio_option
 @user_errors
 def column(names, R, alpha, height, width, name, records, units, dt, excitation, isolation, margin, neighbourhood,
-           csv_path, hist_dir, plot_dir, check_tolerance, report_path, horizon, restitution, cap_ratio):
+           csv_path, hist_dir, plot_dir, check_tolerance, report_path, as_json, horizon, restitution, cap_ratio):
     """Do the columns NAME... survive the records, on a rigid base and on isolators?
 
     NAME is a preset (bassae, nemea) or a custom block NAME:R=<m>,alpha=<deg> or
@@ -174,9 +198,12 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
     Examples:
       ROCKCLI_RECORDS=../shared/records rockcli assess column bassae nemea --csv table.csv
       rockcli assess column statue:R=1.2,alpha=14 --records kobe-1995-takarazuka-000 --isolation none
-      rockcli assess column nemea --records RSN983_NORTHR_JGB022.AT2 --isolation linear:Tb=3 --plot figs
-      rockcli assess column statue:R=0.93,alpha=15.5 --records RSN1119_KOBE_TAZ000.AT2 --isolation none \\
-          --isolation linear:Tb=2.5 --report statue.html
+      rockcli assess column nemea --records kobe-1995-takarazuka-000 --isolation linear:Tb=3 --plot-dir figs
+      rockcli assess column statue:R=0.93,alpha=15.5 --records ../shared/records/RSN1119_KOBE_TAZ000.AT2 \\
+          --isolation none --isolation linear:Tb=2.5 --report statue.html
+
+    The margins (--margin, the default) take most of the time: --no-margin gives the verdicts alone,
+    in seconds.
     """
     from rockcli.assess import count_runs, parse_configurations, resolve_excitations, run_assessment
 
@@ -188,7 +215,7 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
     configurations = parse_configurations(isolation)
     solver.update(_cap_ratio_kw(cap_ratio, configurations))
     check_outputs((csv_path, "--csv", False), (report_path, "--report", False),
-                  folders=((hist_dir, "--histories"), (plot_dir, "--plot")))
+                  folders=((hist_dir, "--history-dir"), (plot_dir, "--plot-dir")))
     azimuth = given_azimuth()
     if azimuth["azimuth"] is not None and not records:
         raise InputError("--azimuth needs pairs of horizontal components: give them with --records A+B "
@@ -206,8 +233,8 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
         from rockcli.records.orientation import sweep_azimuths
 
         if hist_dir or plot_dir or check_tolerance:
-            raise InputError("--azimuth worst keeps the most adverse orientation of each pair: --histories, --plot "
-                             "and --check-tolerance need one --azimuth DEG")
+            raise InputError("--azimuth worst keeps the most adverse orientation of each pair: --history-dir, "
+                             "--plot-dir and --check-tolerance need one --azimuth DEG")
         run_excitations, groups = expand(excitations, sweep_azimuths(azimuth["step"]))
     if hist_dir or plot_dir:
         _plan_run_files(columns, excitations, configurations, hist_dir, plot_dir)
@@ -224,58 +251,76 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
 
     from rockcli.assess.verdicts import format_verdicts
 
-    _echo_result(result, format_matrix(result), format_notes(result), format_verdicts(result))
+    chk = None
+    if check_tolerance:
+        from rockcli.assess.table import check_tolerance as run_check
+
+        chk = run_check(result)
+    _echo_result(result, format_matrix(result), format_notes(result), format_verdicts(result),
+                 as_json=_assessment_json(result, columns, configurations, chk) if as_json else None)
     _warn_pulses(result, excitation)
     failed_runs = [r for r in result.rows if r.error and not any(x.label == r.record for x in result.failed)]
     if failed_runs:
         r = failed_runs[0]
         click.echo(f"Warning: {len(failed_runs)} run(s) failed; their rows carry the error (first: {r.column} / "
                    f"{r.record} / {r.configuration}: {r.error})", err=True)
-    chk = _echo_tolerance_check(result) if check_tolerance else None
+    if chk is not None:
+        _echo_tolerance_check(chk, as_json)
 
     if csv_path:
         from rockcli.report.tables import write_assessment_csv
 
         write_assessment_csv(result, csv_path, check=chk)
-        click.echo(f"wrote {csv_path} ({len(result.rows)} rows)")
+        click.echo(f"wrote {csv_path} ({len(result.rows)} rows)", err=as_json)
     if hist_dir or plot_dir:
-        _write_histories(result, hist_dir, plot_dir)
+        _write_histories(result, hist_dir, plot_dir, as_json)
     if report_path:
         from rockcli.report.html import write_report
         from rockcli.report.html_pages import assessment_report
 
         write_report(report_path, assessment_report(result, check=chk, command=command_line()))
-        click.echo(f"wrote {report_path} (HTML report)")
+        click.echo(f"wrote {report_path} (HTML report)", err=as_json)
 
 
-def _echo_tolerance_check(result):
-    from rockcli.assess.table import check_tolerance
+def _assessment_json(result, columns, configurations, check) -> dict:
+    """``assess column --json``: the bodies, the configurations and one row per run (the CSV's columns)."""
+    from rockcli.report.tables import assessment_rows
+
+    return {"columns": [{"name": b.name, "R_m": b.R, "alpha_deg": b.alpha_deg, "height_m": b.height,
+                         "width_m": b.width} for b in columns],
+            "configurations": [{"header": c.header, "spec": c.spec, "isolation": c.label} for c in configurations],
+            "rows": assessment_rows(result, check)}
+
+
+def _echo_tolerance_check(chk, as_json=False):
+    from functools import partial
+
     from rockcli.conditioning import ILL_PEAK
 
-    chk = check_tolerance(result)
+    echo = partial(click.echo, err=as_json)
     bases = chk.base_rtols or (chk.base_rtol,)
     head = (f"Tolerance check: {chk.n_runs} scenes rerun at rtol {'/'.join(f'{b / 100:g}' for b in bases)} "
             f"(100x tighter than {'/'.join(f'{b:g}' for b in bases)}"
             + (", the defaults of rigid and linear / sliding bearings" if len(bases) > 1 else "") + "): ")
     if not chk.changed:
-        click.echo(head + f"no verdict changes (largest change of a survivor's peak |theta|/alpha: "
+        echo(head + f"no verdict changes (largest change of a survivor's peak |theta|/alpha: "
                           f"{chk.max_peak_change:.1e}).")
     else:
-        click.echo(head + f"{len(chk.changed)} VERDICTS CHANGE (decided by the numerics; treat as a coin toss):")
+        echo(head + f"{len(chk.changed)} VERDICTS CHANGE (decided by the numerics; treat as a coin toss):")
         for row, tight in chk.changed:
-            click.echo(f"  {row.column} / {row.record} / {row.configuration}: {row.verdict} -> {tight}")
+            echo(f"  {row.column} / {row.record} / {row.configuration}: {row.verdict} -> {tight}")
     head = (f"Conditioning check: the {chk.n_runs} scenes rerun on {chk.ulp_draws} copies of their motion moved by "
             f"one ulp (the same motion to within rounding): ")
     if not chk.ill:
-        click.echo(head + f"no verdict changes (largest change of a survivor's peak |theta|/alpha: "
+        echo(head + f"no verdict changes (largest change of a survivor's peak |theta|/alpha: "
                           f"{chk.max_ulp_peak_change:.1e}).")
         return chk
-    click.echo(head + f"{len(chk.ill)} ILL-CONDITIONED (the verdict changes, or the peak moves by more than "
+    echo(head + f"{len(chk.ill)} ILL-CONDITIONED (the verdict changes, or the peak moves by more than "
                       f"{ILL_PEAK:g} alpha: the answer is not determined by the motion at double precision; read "
                       f"it as one sample of a spread, and look at the margin):")
     for row, verdicts, moved in chk.ill:
         what = f"peak moves by {moved:.2g} alpha" if moved == moved else f"{row.verdict} -> {', '.join(verdicts)}"
-        click.echo(f"  {row.column} / {row.record} / {row.configuration}: {what}")
+        echo(f"  {row.column} / {row.record} / {row.configuration}: {what}")
     return chk
 
 
@@ -298,12 +343,12 @@ def _plan_run_files(columns, excitations, configurations, hist_dir, plot_dir):
                     raise InputError(f"the runs {' / '.join(other)} and {b.name} / {x.label} / {c.header} would write "
                                      f"the same file {stem}.*; give the columns (or records) names that differ in "
                                      f"letters or digits")
-                for folder, option, suffix in ((hist_dir, "--histories", ".csv"), (plot_dir, "--plot", ".png")):
+                for folder, option, suffix in ((hist_dir, "--history-dir", ".csv"), (plot_dir, "--plot-dir", ".png")):
                     if folder and outputs is not None:
                         outputs.declare(Path(folder) / f"{stem}{suffix}", option, check=False)
 
 
-def _write_histories(result, hist_dir, plot_dir):
+def _write_histories(result, hist_dir, plot_dir, as_json=False):
     """One history CSV and/or figure per run, staged in the command's transaction (nothing is replaced or
     left behind unless every one of them, and the rest of the run, succeeds)."""
     from pathlib import Path
@@ -314,7 +359,7 @@ def _write_histories(result, hist_dir, plot_dir):
 
     n = 0
     with transaction() as outputs:
-        for folder, option in ((hist_dir, "--histories"), (plot_dir, "--plot")):
+        for folder, option in ((hist_dir, "--history-dir"), (plot_dir, "--plot-dir")):
             if folder:
                 outputs.make_folder(folder, option)
         for row, block, conf, x, resp in history_runs(result):
@@ -329,13 +374,14 @@ def _write_histories(result, hist_dir, plot_dir):
                               Path(plot_dir) / f"{stem}.png")
             n += 1
     what = " and ".join(f"{k} in {d}" for k, d in (("histories", hist_dir), ("figures", plot_dir)) if d)
-    click.echo(f"wrote {what} ({n} runs)")
+    click.echo(f"wrote {what} ({n} runs)", err=as_json)
 
 
 @assess.command(name="fragility")
 @click.argument("names", nargs=-1, metavar="NAME...")
 @custom_block_options
-@click.option("--records", "records", multiple=True, metavar="DIR|ID|FILE",
+@click.option("--records", "--record", "records", multiple=True, metavar="DIR|ID|FILE", cls=QuietSpellingOption,
+              quiet_spellings=("--record",),
               help="The suite (repeatable, required): folders (every non-hidden file), catalogue ids, files. "
                    "A file that cannot be read becomes an error row; the others carry on.")
 @_headerless_options
@@ -343,7 +389,7 @@ def _write_histories(result, hist_dir, plot_dir):
 @click.option("--isolation", "isolation", multiple=True, metavar="SPEC",
               help="Foundation (repeatable): 'none', 'linear:Tb=2.5,xi=0.1,gamma=0.01', 'scss:Tb=2,mu=0.05', "
                    "'lrb:...' or 'dcss:...' (see 'rockcli simulate --help'). Default: none and "
-                   "linear Tb = 2, 2.5, 3 s with xi = 0.1 (gamma = 0.01), as in the paper's Table III.")
+                   "linear Tb = 2, 2.5, 3 s with xi = 0.1 (gamma = 0.01), as in the paper's Table III. " + GAMMA_HELP)
 @click.option("--im", type=click.Choice(["pga", "pgv", "ap"]), default="pga", show_default=True,
               help="Intensity measure: pga [g]; pgv [m/s] (trapezoid rule from rest, as 'records show'); "
                    "ap [g], the amplitude of the record's fitted Ricker pulse.")
@@ -361,11 +407,13 @@ def _write_histories(result, hist_dir, plot_dir):
                    "that does not answer, has no worker or loses all its workers stops the run after "
                    "ROCKCLI_DASK_TIMEOUT seconds (default 60).")
 @report_option
+@json_option
+@quiet_option
 @horizon_option
 @restitution_option
 @user_errors
 def fragility(names, R, alpha, height, width, name, records, units, dt, isolation, im, n_boot, seed, csv_path,
-              plot_path, scheduler, report_path, horizon, restitution):
+              plot_path, scheduler, report_path, as_json, horizon, restitution):
     """Fragility curves of overturning: P(the column overturns | IM) from a suite of records.
 
     Each record is scaled (0.1x..4x, then bisection) to the smallest factor that overturns the
@@ -378,7 +426,10 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
     Examples:
       rockcli assess fragility bassae nemea --records ../shared/records --records ../shared/records/extra \\
           --csv fragility.csv --plot fragility.png
-      rockcli assess fragility nemea --records my/suite --units g --dt 0.01 --im pgv --isolation none
+      rockcli assess fragility nemea --records ../shared/records --units g --dt 0.01 --im pgv --isolation none
+
+    A suite of 30 records takes minutes; for a quick look take a few of its files and one
+    configuration: --glob 'RSN11*' --isolation none --bootstrap 100.
     """
     from rockcli.assess import parse_configurations, resolve_excitations
     from rockcli.assess.fragility import count_fragility_runs, run_fragility
@@ -406,8 +457,9 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
 
     if scheduler is not None:
         from rockcli.assess.fragility import run_fragility_distributed
+        from rockcli.cli.options import dask_client
 
-        result = run_fragility_distributed(scheduler, columns, excitations, configurations, im=im, n_boot=n_boot,
+        result = run_fragility_distributed(dask_client(scheduler), columns, excitations, configurations, im=im, n_boot=n_boot,
                                            seed=seed, unavailable=unavailable, horizon=horizon, **solver)
     else:
         result = _run_counted(count_fragility_runs(columns, excitations, configurations),
@@ -419,20 +471,33 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
     notes = format_fragility_notes(result)
     if solver:
         notes += f"\nImpacts: coefficient of restitution E = {solver['restitution']:g} (README, Restitution)."
-    _echo_result(result, format_fragility(result), notes)
+    _echo_result(result, format_fragility(result), notes, as_json=_fragility_json(result, solver) if as_json else None)
     if csv_path:
         from rockcli.report.fragility import write_fragility_csv
 
         write_fragility_csv(result, csv_path, solver)  # a given --restitution as a column
-        click.echo(f"wrote {csv_path} ({len(result.rows)} rows)")
+        click.echo(f"wrote {csv_path} ({len(result.rows)} rows)", err=as_json)
     if plot_path:
         from rockcli.report.fragility import plot_fragility
 
         plot_fragility(result, plot_path)
-        click.echo(f"wrote {plot_path}")
+        click.echo(f"wrote {plot_path}", err=as_json)
     if report_path:
         from rockcli.report.html import write_report
         from rockcli.report.html_pages import fragility_report
 
         write_report(report_path, fragility_report(result, command=command_line()))
-        click.echo(f"wrote {report_path} (HTML report)")
+        click.echo(f"wrote {report_path} (HTML report)", err=as_json)
+
+
+def _fragility_json(fr, solver) -> dict:
+    """``assess fragility --json``: one fit per column and configuration, and one row per run (the CSV's)."""
+    from rockcli.report.fragility import fragility_rows
+
+    return {"im": fr.im.key, "im_column": fr.im.column, "ci_level": fr.level, "n_boot": fr.n_boot, "seed": fr.seed,
+            **solver,
+            "curves": [{"column": c.column, "configuration": c.configuration.header,
+                        "isolation": c.configuration.label, "median": c.median, "median_ci": list(c.median_ci),
+                        "beta": c.beta, "beta_ci": list(c.beta_ci), "median_ratio_to_none": c.ratio_to_rigid,
+                        "n_records": c.n_records, "n_censored": c.n_right + c.n_left} for c in fr.curves],
+            "rows": fragility_rows(fr)}

@@ -7,12 +7,13 @@ import sys
 import click
 
 from rockcli.cli.errors import InputError, user_errors
+from rockcli.cli.options import Group
 from rockcli.cli.types import SEED, Number
 
 _METHODS = ("RK45", "DOP853", "Radau", "LSODA", "BDF", "RK45-free")
 
 
-@click.group(name="bench")
+@click.group(name="bench", cls=Group)
 def bench():
     """Accuracy, cost and robustness of the solver: work-precision against SciPy, stiff and extreme scenes."""
 
@@ -105,7 +106,7 @@ def work_precision(scenes, csv_path, plot_path, kernel_rtol, scipy_rtol, methods
     \b
     Examples:
       ROCKCLI_RECORDS=../shared/records rockcli bench work-precision --csv wp.csv --plot wp.png
-      ROCKCLI_RECORDS=../shared/records rockcli bench work-precision --full --csv docs/bench-work-precision.csv
+      ROCKCLI_RECORDS=../shared/records rockcli bench work-precision --full --csv wp-full.csv
       rockcli bench work-precision --scene rigid-ricker --kernel-rtol 1e-4,1e-8 --methods RK45 --scipy-rtol 1e-6
     """
     from rockcli.bench import (SCIPY_BUDGET_FULL_S, SCIPY_BUDGET_S, SCIPY_RTOLS, SCIPY_RTOLS_FULL, WP_SCENES,

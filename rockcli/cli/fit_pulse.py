@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 
 from rockcli.cli.errors import InputError, user_errors
-from rockcli.cli.options import add_inputs, catalog_file, check_outputs, record_kwargs, record_options
+from rockcli.cli.options import Command, add_inputs, catalog_file, check_outputs, json_option, record_kwargs, record_options
 from rockcli.cli.types import Number
 
 #: Pulse columns of records/catalog.csv that ``--update-catalog`` fills, and their rounding.
@@ -104,9 +104,9 @@ def _update_catalog(fits):
     return path
 
 
-@click.command(name="fit-pulse")
+@click.command(name="fit-pulse", cls=Command)
 @click.argument("sources", nargs=-1, metavar="SOURCE...")
-@record_options
+@record_options(column_alias=True)
 @click.option("--catalog", "use_catalog", is_flag=True,
               help="Fit every available catalogue record (files found on ROCKCLI_RECORDS).")
 @click.option("--wavelet", type=click.Choice(["best", "symmetric", "antisymmetric"], case_sensitive=False),
@@ -117,7 +117,7 @@ def _update_catalog(fits):
               help="Range of pulse periods T_p searched [s].")
 @click.option("--csv", "csv_path", type=click.Path(), default=None,
               help="Also write the fits to this CSV file.")
-@click.option("--json", "as_json", is_flag=True, help="Print the fits as JSON instead of a table.")
+@json_option
 @click.option("--plot", "plot_path", type=click.Path(), default=None,
               help="Overlay each fitted pulse on its record (one panel per record) in this image, e.g. FILE.png.")
 @click.option("--candidates", "n_candidates", type=Number(integer=True, lo=1, hi=20), default=None, metavar="N",
@@ -141,8 +141,8 @@ def fit_pulse(sources, units, dt, fmt, column, use_catalog, wavelet, periods, cs
 
     \b
     Examples:
-      rockcli fit-pulse RSN1119_KOBE_TAZ000.AT2
-      rockcli fit-pulse C02-065 --units g --dt 0.01 --wavelet antisymmetric
+      rockcli fit-pulse ../shared/records/RSN1119_KOBE_TAZ000.AT2
+      rockcli fit-pulse ../shared/records/C02-065 --units g --dt 0.01 --wavelet antisymmetric
       ROCKCLI_RECORDS=../shared/records rockcli fit-pulse --catalog --plot fits.png
       ROCKCLI_RECORDS=../shared/records rockcli fit-pulse --catalog --update-catalog
       ROCKCLI_RECORDS=../shared/records rockcli fit-pulse kobe-1995-takarazuka-000 --candidates 3
@@ -154,7 +154,7 @@ def fit_pulse(sources, units, dt, fmt, column, use_catalog, wavelet, periods, cs
     if update_catalog and not use_catalog:
         raise InputError("--update-catalog needs --catalog (it stores the fits of all catalogue records)")
     if use_catalog and options_given:
-        raise InputError("--units, --dt, --format and --column apply to files, not to --catalog records "
+        raise InputError("--units, --dt, --format and --record-column apply to files, not to --catalog records "
                          "(the catalogue states them)")
     if update_catalog and n_candidates:
         raise InputError("--update-catalog stores the fit only; leave out --candidates")

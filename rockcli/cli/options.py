@@ -7,12 +7,92 @@ import click
 from rockcli.cli.types import NUMBER, WHOLE
 
 
-def record_options(func=None, *, column_flag: str = "--column"):
-    """Add ``--units``, ``--dt``, ``--format`` and ``--column``: what ``read_record`` takes.
+class Command(click.Command):
+    """A rockcli command: "did you mean" for a mistyped option suggests only the options ``--help`` lists
+    (never an old spelling kept as a hidden alias)."""
+
+    def parse_args(self, ctx, args):
+        try:
+            return super().parse_args(ctx, args)
+        except click.NoSuchOption as exc:
+            hidden = {o for p in self.params if getattr(p, "hidden", False) for o in p.opts}
+            exc.possibilities = [o for o in (exc.possibilities or ()) if o not in hidden]
+            raise
+
+
+class Group(click.Group):
+    """A rockcli command group: its commands are :class:`Command`."""
+
+    command_class = Command
+
+
+class AliasOption(click.Option):
+    """The old spelling of an option, kept for a release: hidden from ``--help``, the value goes to the
+    new option's argument, and a note naming the new spelling is printed on stderr once per run.
+
+    ``check(value)`` (optional) may refuse a value the new option would misread (raise
+    :class:`rockcli.errors.RockcliInputError`). When both spellings are given, the one written last wins.
+    """
+
+    def __init__(self, param_decls, *, target: str, new: str, check=None, **kwargs):
+        old = param_decls[0]
+        super().__init__([old, f"{target}__old_{old.strip('-').replace('-', '_')}"], hidden=True,
+                         expose_value=False, **kwargs)
+        self.old, self.target, self.new, self.check = old, target, new, check
+
+    def handle_parse_result(self, ctx, opts, args):
+        from click.core import ParameterSource
+
+        value, args = super().handle_parse_result(ctx, opts, args)
+        if ctx.get_parameter_source(self.name) != ParameterSource.COMMANDLINE or ctx.resilient_parsing:
+            return value, args
+        if self.check is not None:
+            from rockcli.errors import RockcliInputError
+
+            try:
+                self.check(value)
+            except RockcliInputError as exc:
+                from rockcli.cli.errors import InputError
+
+                raise InputError(str(exc)) from None
+        ctx.params[self.target] = value
+        ctx.set_parameter_source(self.target, ParameterSource.COMMANDLINE)
+        noted = ctx.meta.setdefault("rockcli.aliases_noted", set())
+        if self.old not in noted:
+            noted.add(self.old)
+            click.echo(f"Note: {self.old} is now {self.new}; the old spelling works for one more release "
+                       f"(docs/cli-conventions.md).", err=True)
+        return value, args
+
+
+class QuietSpellingOption(click.Option):
+    """An option with extra spellings that work but are not listed in ``--help`` (``assess --record`` for
+    ``--records``: a repeatable option whose values from both spellings are collected together)."""
+
+    def __init__(self, *args, quiet_spellings=(), **kwargs):
+        super().__init__(*args, **kwargs)
+        self.quiet_spellings = set(quiet_spellings)
+
+    def get_help_record(self, ctx):
+        opts = self.opts
+        self.opts = [o for o in opts if o not in self.quiet_spellings]
+        try:
+            return super().get_help_record(ctx)
+        finally:
+            self.opts = opts
+
+
+def alias_option(old: str, target: str, new: str, **kwargs):
+    """A decorator adding :class:`AliasOption` ``old`` for the argument ``target`` of the option ``new``."""
+    return click.option(old, cls=AliasOption, target=target, new=new, **kwargs)
+
+
+def record_options(func=None, *, column_alias: bool = False):
+    """Add ``--units``, ``--dt``, ``--format``, ``--record-column`` and ``--component``: what ``read_record`` takes.
 
     The command receives them as the keyword arguments ``units``, ``dt``, ``fmt`` and ``column``.
-    Commands where ``--column`` means something else (``simulate --column nemea``) rename the
-    flag: ``@record_options(column_flag="--record-column")``.
+    ``column_alias=True`` also accepts the old ``--column N`` (``records show``, ``records export``,
+    ``fit-pulse``; ``--column`` was the body preset in ``simulate``, now ``--body``).
     """
 
     def decorate(f):
@@ -25,9 +105,10 @@ def record_options(func=None, *, column_flag: str = "--column"):
             click.option("--format", "fmt", default=None, metavar="NAME",
                          help="File format (PEER_AT2, TEXT, ESM, ITACA, COSMOS, GEONET_V2A, or an ObsPy "
                               "format such as SAC, MSEED, KNET); detected when omitted."),
-            click.option(column_flag, "column", type=WHOLE, default=None, metavar="N",
+            click.option("--record-column", "column", type=WHOLE, default=None, metavar="N",
                          help="1-based column of a multi-column text file (a time column counts), or "
                               "component/trace of a multi-component file."),
+            *([alias_option("--column", "column", "--record-column", type=WHOLE)] if column_alias else []),
             component_option,
         ]
         return _stacked(f, options)
@@ -132,25 +213,48 @@ def record_kwargs(units, dt, fmt, column) -> dict:
     return {"units": units, "dt": dt, "format": fmt, "column": column, "component": given_component()}
 
 
-def block_options(func):
-    """Add the block choice: ``--column NAME``, or ``--R`` with ``--alpha``, or ``--height`` with ``--width``.
+#: The isolation defaults (:data:`rockcli.models.DEFAULT_XI`, :data:`rockcli.models.DEFAULT_GAMMA`, written out
+#: so that ``--help`` imports nothing heavy; a test keeps them equal) and what gamma means, for help texts.
+DEFAULT_XI_TEXT, DEFAULT_GAMMA_TEXT = "0.1", "0.01"
+GAMMA_HELP = (f"Left out of a spec, xi = {DEFAULT_XI_TEXT} and gamma = {DEFAULT_GAMMA_TEXT} in every command. "
+              "gamma = m/(m + m_b) is the body's mass over the body's plus the isolated base's: 0.01 is a base 99 "
+              "times heavier than the body (a temple column on an isolated foundation slab; for gamma <= 0.1 the "
+              "answer hardly depends on it, the paper's Figure 8). A museum platform is often lighter than the "
+              "object it carries: give its own gamma (e.g. gamma=0.5 for a platform as heavy as the statue).")
 
-    The command receives ``column``, ``R``, ``alpha``, ``height``, ``width`` and ``name``; turn them
-    into a :class:`rockcli.models.Block` with :func:`block_from_options`.
+#: What a body of one's own looks like, for help texts and messages.
+BODY_FORMS = "NAME:R=<m>,alpha=<deg> or NAME:height=<m>,width=<m>"
+
+
+def block_options(func):
+    """Add the block choice: ``--body NAME|SPEC``, or ``--R`` with ``--alpha``, or ``--height`` with ``--width``
+    (and the old ``--column NAME``, hidden).
+
+    The command receives ``column_name`` (the ``--body`` text), ``R``, ``alpha``, ``height``, ``width`` and
+    ``name``; turn them into a :class:`rockcli.models.Block` with :func:`block_from_options`.
     """
     options = [
-        click.option("--column", "column_name", default=None, metavar="NAME",
-                     help="A temple column preset: bassae (5.95 m x 1.11 m) or nemea (10.33 m x 1.52 m)."),
+        click.option("--body", "column_name", default=None, metavar="NAME|SPEC",
+                     help="The body: a temple column preset, bassae (5.95 m x 1.11 m) or nemea (10.33 m x 1.52 m), "
+                          f"or a body of your own, {BODY_FORMS} (e.g. statue:height=1.7,width=0.45).",
+                     shell_complete=_complete_presets),
+        alias_option("--column", "column_name", "--body"),
         click.option("--R", "R", type=NUMBER, default=None, metavar="METRES",
-                     help="Semi-diagonal of the block (centre of mass to a base corner) [m]."),
+                     help="Semi-diagonal of the block (centre of mass to a base corner) [m], the paper's R."),
         click.option("--alpha", type=NUMBER, default=None, metavar="DEGREES",
                      help="Slenderness atan(b/h) [degrees], with --R."),
         click.option("--height", type=NUMBER, default=None, metavar="METRES", help="Full height [m], with --width."),
         click.option("--width", type=NUMBER, default=None, metavar="METRES",
                      help="Base width (a column's base drum diameter) [m], with --height."),
-        click.option("--name", default=None, help="Label of a custom block in reports."),
+        click.option("--name", default=None, help="Label of a block given by --R/--alpha or --height/--width."),
     ]
     return _stacked(func, options)
+
+
+def _complete_presets(ctx, param, incomplete):
+    from rockcli.models.block import COLUMN_PRESETS
+
+    return [k for k in COLUMN_PRESETS if k.startswith(incomplete)]
 
 
 def custom_block_options(func):
@@ -209,13 +313,23 @@ def cap_ratio_option(func):
 
 
 #: The block flags, as :func:`rockcli.models.build_block` names them in messages.
-BLOCK_FLAGS = {"preset": "--column NAME", "R": "--R", "alpha": "--alpha", "height": "--height", "width": "--width"}
+BLOCK_FLAGS = {"preset": "--body NAME|SPEC", "R": "--R", "alpha": "--alpha", "height": "--height", "width": "--width"}
 
 
 def block_from_options(column_name=None, R=None, alpha=None, height=None, width=None, name=None):
     """The :class:`Block` named by exactly one of the three forms of :func:`block_options`."""
     from rockcli.models import build_block
 
+    if column_name is not None and ":" in column_name:  # --body NAME:R=..,alpha=.. or NAME:height=..,width=..
+        build_block(preset=column_name, R=R, alpha_deg=alpha, height=height, width=width, labels=BLOCK_FLAGS,
+                    check_only=True)
+        if name is not None:
+            from rockcli.errors import RockcliInputError
+
+            raise RockcliInputError(f"--body {column_name} names the body already; leave out --name")
+        from rockcli.assess import parse_column_spec
+
+        return parse_column_spec(column_name)
     return build_block(preset=column_name, R=R, alpha_deg=alpha, height=height, width=width, name=name,
                        labels=BLOCK_FLAGS)
 
@@ -259,15 +373,69 @@ def add_inputs(paths, what: str) -> None:
         outputs.add_inputs([p for p in paths if p], what)
 
 
+def json_option(func):
+    """``--json``: the command's result as one JSON document on stdout (read it with :func:`echo_json`);
+    every other line (notes, warnings, ``wrote FILE``) goes to stderr, so that stdout parses as it is."""
+    return click.option("--json", "as_json", is_flag=True,
+                        help="Print the result as one JSON document on stdout instead of the table (notes and "
+                             "'wrote FILE' lines go to stderr).")(func)
+
+
+def _plain(value):
+    """``value`` with NaN as None, tuples as lists and numpy scalars and arrays as Python values."""
+    if isinstance(value, dict):
+        return {str(k): _plain(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) for v in value]
+    if hasattr(value, "tolist") and not isinstance(value, (str, bytes)):  # numpy array or scalar
+        return _plain(value.tolist())
+    if isinstance(value, float) and value != value:
+        return None
+    return value
+
+
+def echo_json(obj, *, indent=None) -> None:
+    """Print ``obj`` as JSON on stdout (NaN as null: strict JSON)."""
+    import json
+
+    click.echo(json.dumps(_plain(obj), allow_nan=False, indent=indent))
+
+
+def quiet_option(func):
+    """``--quiet/-q``: no progress bar and no explanatory legend (the table, verdicts and warnings stay);
+    kept on the click context, read with :func:`is_quiet`."""
+    return click.option("--quiet", "-q", is_flag=True, expose_value=False, callback=_remember("rockcli.quiet"),
+                        help="No progress bar and no legend under the table (the results, warnings and "
+                             "'wrote FILE' lines stay).")(func)
+
+
+def is_quiet() -> bool:
+    """The running command was given ``--quiet``."""
+    ctx = click.get_current_context(silent=True)
+    return bool(ctx is not None and ctx.meta.get("rockcli.quiet"))
+
+
 def progress_bar(total: int, label: str = "runs", *, eta: bool = True):
     """A progress bar on stderr when it is a terminal, else nothing: a context manager yielding the
-    bar (call ``bar.update(n)``) or ``None`` (piped output stays quiet)."""
+    bar (call ``bar.update(n)``) or ``None`` (piped output and ``--quiet`` stay quiet)."""
     import contextlib
     import sys
 
-    if not sys.stderr.isatty() or total <= 0:
+    if not sys.stderr.isatty() or total <= 0 or is_quiet():
         return contextlib.nullcontext(None)
     return click.progressbar(length=total, label=label, file=sys.stderr, show_eta=eta)
+
+
+def dask_client(scheduler):
+    """``--scheduler``: the ``distributed.Client`` of the running command (None without ``--scheduler``), opened
+    once and closed when the command ends; which cluster it is (workers, dashboard) is said on stderr."""
+    if scheduler is None:
+        return None
+    from rockcli.distributed import describe_cluster, open_client
+
+    client = click.get_current_context().with_resource(open_client(scheduler))
+    click.echo(describe_cluster(client, local=scheduler == "local"), err=True)
+    return client
 
 
 def report_option(func):

@@ -5,10 +5,10 @@ from __future__ import annotations
 import click
 
 from rockcli.cli.errors import user_errors
-from rockcli.cli.options import add_inputs, check_outputs, record_kwargs, record_options
+from rockcli.cli.options import Group, add_inputs, check_outputs, echo_json, json_option, record_kwargs, record_options
 
 
-@click.group(name="records")
+@click.group(name="records", cls=Group)
 def records():
     """Ground-motion records: the paper's catalogue and any accelerogram file."""
 
@@ -34,18 +34,37 @@ def _fmt(value, spec: str) -> str:
 @records.command(name="list")
 @click.option("--csv", "csv_path", type=click.Path(), default=None,
               help="Also write the table to this CSV file.")
+@json_option
 @user_errors
-def list_records(csv_path):
+def list_records(csv_path, as_json):
     """List the catalogue and, for each id, whether and where its file was found.
 
     Files are looked up in the folders of ROCKCLI_RECORDS (path list), then in the repository's
     records/ folder.
+
+    \b
+    Examples:
+      ROCKCLI_RECORDS=../shared/records rockcli records list
+      ROCKCLI_RECORDS=../shared/records rockcli records list --json --csv records.csv
     """
     from rockcli.records.catalog import search_path
 
     check_outputs((csv_path, "--csv", False))
     rows = _status_rows()
     add_inputs([r["path"] for r in rows], "the record file")
+    found = sum(r["status"] == "found" for r in rows)
+    if as_json:
+        echo_json({"records": rows, "found": found, "searched": [str(p) for p in search_path()]})
+    else:
+        _echo_list(rows, found, search_path())
+    if csv_path:
+        from rockcli.report.records import write_list_csv
+
+        write_list_csv(rows, csv_path)
+        click.echo(f"wrote {csv_path}", err=as_json)
+
+
+def _echo_list(rows, found, searched) -> None:
     table = [("id", "event", "PGA [g]", "PGV [m/s]", "status", "path")]
     for r in rows:
         table.append((r["id"], f"{r['event']} {r['year']}", _fmt(r["pga_published_g"], ".2f"),
@@ -53,27 +72,29 @@ def list_records(csv_path):
     widths = [max(len(row[i]) for row in table) for i in range(len(table[0]) - 1)]
     for row in table:
         click.echo("  ".join(cell.ljust(w) for cell, w in zip(row, widths)) + "  " + row[-1])
-    found = sum(r["status"] == "found" for r in rows)
     click.echo(f"\n{found} of {len(rows)} files found; PGA/PGV are the published values (Table II). "
-               f"Searched: {', '.join(str(p) for p in search_path())}")
-    if csv_path:
-        from rockcli.report.records import write_list_csv
-
-        write_list_csv(rows, csv_path)
-        click.echo(f"wrote {csv_path}")
+               f"Searched: {', '.join(str(p) for p in searched)}")
 
 
 @records.command(name="show")
 @click.argument("source")
-@record_options
+@record_options(column_alias=True)
 @click.option("--plot", "plot_path", type=click.Path(), default=None,
               help="Plot acceleration, velocity and displacement to this image (e.g. FILE.png).")
+@json_option
 @user_errors
-def show(source, units, dt, fmt, column, plot_path):
+def show(source, units, dt, fmt, column, plot_path, as_json):
     """Print npts, dt, duration, PGA and PGV of SOURCE (a file or a catalogue id).
 
     PGV is computed by trapezoidal integration of the record as given (from rest), and again
     after removing a straight line fitted to the velocity (linear baseline); both are printed.
+    A file of several components lists them (pick one with --component).
+
+    \b
+    Examples:
+      ROCKCLI_RECORDS=../shared/records rockcli records show kobe-1995-takarazuka-000 --plot kobe.png
+      rockcli records show ../shared/records/C02-065 --units g --dt 0.01 --json
+      rockcli records show ../shared/records/extra/20161113_110259_WTMC_20.V2A
     """
     from rockcli.records import read_record
     from rockcli.records.motion import calc_peaks
@@ -85,7 +106,7 @@ def show(source, units, dt, fmt, column, plot_path):
     try:
         rec = read_record(source, **kwargs)
     except MultiComponent:
-        _list_components(source, kwargs)
+        _list_components(source, kwargs, as_json)
         return
     add_inputs([rec.meta.get("path")], "the record")
     peaks = calc_peaks(rec)
@@ -111,14 +132,26 @@ def show(source, units, dt, fmt, column, plot_path):
     ]
     if meta.get("processing"):
         lines.append(("processing", str(meta["processing"])))
-    width = max(len(k) for k, _ in lines)
-    for key, value in lines:
-        click.echo(f"{key.ljust(width)}  {value}")
+    if as_json:
+        from rockcli.records.components import component_name, orientation_text
+
+        echo_json({"record": rec.name, "file": meta.get("path"), "format": meta.get("format"),
+                   "event": meta.get("event"), "station": meta.get("station"), "component": component_name(rec),
+                   "orientation": orientation_text(rec), "units_in_file": meta.get("units"),
+                   "units_source": meta.get("units_source"), "factor_to_mps2": meta.get("factor"),
+                   "npts": rec.npts, "dt_s": rec.dt, "dt_source": meta.get("dt_source"), "duration_s": rec.duration,
+                   "t_start_s": rec.t_start, "pga_g": peaks.pga_g, "pga_mps2": rec.pga, "pgv_mps": peaks.pgv_mps,
+                   "pgv_linear_baseline_mps": peaks.pgv_linear_mps, "pgd_linear_baseline_m": peaks.pgd_m,
+                   "processing": meta.get("processing")})
+    else:
+        width = max(len(k) for k, _ in lines)
+        for key, value in lines:
+            click.echo(f"{key.ljust(width)}  {value}")
     if plot_path:
         from rockcli.report.records import plot_record
 
         plot_record(rec, plot_path, baseline="linear")
-        click.echo(f"wrote {plot_path} (velocity and displacement with the linear baseline)")
+        click.echo(f"wrote {plot_path} (velocity and displacement with the linear baseline)", err=as_json)
 
 
 def _component_text(rec) -> str:
@@ -128,7 +161,7 @@ def _component_text(rec) -> str:
     return f"{component_name(rec)} ({orientation_text(rec)}" + (f"; from the {source})" if source else ")")
 
 
-def _list_components(source, kwargs) -> None:
+def _list_components(source, kwargs, as_json=False) -> None:
     """A multi-component file: one line per component (name, orientation, npts, dt, PGA)."""
     from rockcli.records.reader import read_components
 
@@ -136,6 +169,14 @@ def _list_components(source, kwargs) -> None:
     comps = read_components(source, **kwargs)
     add_inputs([comps[0].meta.get("path")], "the record")
     first = comps[0]
+    if as_json:
+        from rockcli.records.components import component_name, orientation_text
+
+        echo_json({"file": first.meta.get("path", source), "format": first.meta.get("format"),
+                   "station": first.meta.get("station"),
+                   "components": [{"component": component_name(r), "orientation": orientation_text(r),
+                                   "npts": r.npts, "dt_s": r.dt, "pga_g": r.pga_g, "pga_mps2": r.pga} for r in comps]})
+        return
     click.echo(f"{first.meta.get('path', source)}: {len(comps)} components ({first.meta.get('format')}"
                + (f", station {first.meta['station']}" if first.meta.get("station") else "") + ")")
     rows = [("component", "orientation", "npts", "dt [s]", "PGA [g]", "PGA [m/s^2]")]
@@ -153,7 +194,7 @@ def _list_components(source, kwargs) -> None:
 @records.command(name="export")
 @click.argument("source")
 @click.argument("out", type=click.Path())
-@record_options
+@record_options(column_alias=True)
 @user_errors
 def export(source, out, units, dt, fmt, column):
     """Write one component of SOURCE as a plain text record OUT (m/s^2, its dt in a comment), which rockcli
@@ -161,7 +202,7 @@ def export(source, out, units, dt, fmt, column):
 
     \b
     Example:
-      rockcli records export 20161113_110259_WTMC_20.V2A wtmc-n28w.txt --component N28W
+      rockcli records export ../shared/records/extra/20161113_110259_WTMC_20.V2A wtmc-n28w.txt --component N28W
     """
     from rockcli.files import write_text
     from rockcli.records import read_record

@@ -8,23 +8,23 @@ import click
 
 from rockcli.cli.errors import user_errors
 from rockcli.cli.options import (azimuth_options, block_from_options, block_options, cap_ratio_option,
-                                 check_outputs,
-                                 command_line, horizon_option, record_kwargs, record_options, report_option,
-                                 restitution_option)
+                                 check_outputs, command_line, horizon_option, json_option, record_kwargs,
+                                 record_options, report_option, restitution_option)
+from rockcli.cli.options import GAMMA_HELP, Command
 from rockcli.cli.types import NUMBER, WHOLE
 
 
-@click.command(context_settings={"show_default": True})
+@click.command(cls=Command, context_settings={"show_default": True})
 @block_options
 @click.option("--isolation", default="none", metavar="SPEC",
               help="Foundation: 'none' (rigid); 'linear:Tb=2.5,xi=0.1,gamma=0.01'; single concave sliding "
                    "'scss:Tb=3,mu=0.05[,uy=0.00025,gamma=0.01]'; lead-rubber 'lrb:Tb=2.5,Q=0.06,uy=0.015' "
                    "(Q = strength/weight); double concave 'dcss:R1=1.1,R2=1.1,mu1=0.03,mu2=0.07[,uy=..,gamma=..]' "
-                   "(effective radii R-h in m) or 'dcss:Tb=3,mu1=0.03,mu2=0.07[,r=R2/R1]'. gamma = m/(m+m_b); "
-                   "uy = yield displacement [m].")
+                   "(effective radii R-h in m) or 'dcss:Tb=3,mu1=0.03,mu2=0.07[,r=R2/R1]'; uy = yield displacement "
+                   "[m]. " + GAMMA_HELP)
 @click.option("--record", "record_source", default=None, metavar="SOURCE",
               help="Ground motion: a record file or a catalogue id (see 'rockcli records list').")
-@record_options(column_flag="--record-column")
+@record_options
 @azimuth_options
 @click.option("--pulse", default=None, metavar="SPEC",
               help="Ground motion: an analytic pulse, e.g. 'ricker-sym:ap=0.3,Tp=0.6' (ap in g, Tp in s); "
@@ -59,7 +59,7 @@ from rockcli.cli.types import NUMBER, WHOLE
               help="Rerun at a 100x tighter rtol, and on 2 copies of the motion moved by one ulp, and report "
                    "whether the verdict or the peak changes (ill-conditioned: the answer is not determined by the "
                    "motion at double precision).")
-@click.option("--json", "as_json", is_flag=True, help="Print the results as one JSON object.")
+@json_option
 @click.option("--history", "history_path", type=click.Path(), default=None,
               help="Write the time history (t, ground acceleration, theta, theta_dot, u, u_dot; on sliding and "
                    "lead-rubber bearings also z and the bearing force over the weight) as CSV.")
@@ -81,11 +81,14 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     \b
     Examples:
       rockcli simulate --height 2 --width 0.5 --pulse sine:ap=0.29,Tp=2
-      rockcli simulate --column nemea --record northridge-1994-jensen-022 --isolation linear:Tb=3
+      ROCKCLI_RECORDS=../shared/records rockcli simulate --body nemea --record kobe-1995-takarazuka-000 \\
+          --isolation linear:Tb=3
+      rockcli simulate --body statue:height=1.7,width=0.45 --pulse ricker-anti:ap=0.4,Tp=0.5 --json
       rockcli simulate --R 1 --alpha 16 --pulse ricker-sym:ap=0.5,Tp=0.6 --isolation scss:Tb=1.8,mu=0.05 --plot f.png
       rockcli simulate --R 2.5 --alpha 11.5 --theta0 0.1 --restitution 0.9 --history free.csv
       rockcli simulate --R 1 --alpha 14 --theta0 0.2 --history-dt 0.01 --history free.csv --json
-      rockcli simulate --column bassae --record HNE.csv --vertical HNZ.csv
+      rockcli simulate --body bassae --record ../shared/records/RSN1119_KOBE_TAZ000.AT2 \\
+          --vertical-pulse sine:ap=0.2,Tp=0.3
     """
     import json
     import math

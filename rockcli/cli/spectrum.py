@@ -6,20 +6,26 @@ from __future__ import annotations
 import click
 
 from rockcli.cli.errors import InputError, user_errors
-from rockcli.cli.options import (add_inputs, cap_ratio_option, horizon_option, progress_bar, record_kwargs,
-                                 record_options, restitution_option)
+from rockcli.cli.options import (add_inputs, alias_option, cap_ratio_option, echo_json, horizon_option, json_option,
+                                 progress_bar, quiet_option, record_kwargs, record_options, restitution_option)
+from rockcli.cli.options import DEFAULT_GAMMA_TEXT, DEFAULT_XI_TEXT, GAMMA_HELP, Group
 from rockcli.cli.types import NUMBER
 
 _SHAPES = "ricker-sym|ricker-anti|sine|cosine"
 
 
-@click.group(name="spectrum")
+@click.group(name="spectrum", cls=Group)
 def spectrum():
     """Overturning spectra over omega_p/p and a_p/(g tan alpha) (the paper's Figures 6-9, 11, Table I).
 
     Every cell is a pulse of amplitude a_p and period T_p = 2 pi/omega_p on a block of slenderness
     alpha; the result does not depend on the block size when T_b/T_p is kept fixed, so isolation
-    is given as KIND:TbTp=<T_b/T_p>,... (e.g. linear:TbTp=2,xi=0.05,gamma=0.01).
+    is given as KIND:TbTp=<T_b/T_p>,... (e.g. linear:TbTp=2,xi=0.05,gamma=0.01). Left out, xi = 0.1
+    and gamma = 0.01, as in every command; the paper's Figures 6-9, 11 and Table I have xi = 0.05.
+
+    A full figure takes from seconds to minutes: for a quick look add a coarse grid to any example,
+    --wp-over-p 2:6:2 with --ap 1:5:2 (overturning) or with --step 0.1 (min-overturning,
+    critical-size).
 
     'rocking' is the spectrum of one record instead: peak theta/alpha against the block size R,
     with bearings given by their period in s (docs/rocking-spectrum.md).
@@ -48,11 +54,13 @@ def _scene_options(isolation_help: str, isolation_default, multiple_isolation: b
                               "existing scheduler, or 'local' for a LocalCluster on this machine. A scheduler that "
                               "does not answer, has no worker or loses all its workers stops the run after "
                               "ROCKCLI_DASK_TIMEOUT seconds (default 60)."),
+            json_option,
+            quiet_option,
             horizon_option,
             restitution_option,
             cap_ratio_option,
         ]
-        f = record_options(f, column_flag="--record-column")
+        f = record_options(f)
         for option in reversed(options):
             f = option(f)
         return f
@@ -114,17 +122,20 @@ def _runner(scheduler, horizon, restitution=None, cap_ratio=0.0, isolations=()):
         raise InputError("--cap-ratio needs a rigid foundation: give --isolation none (a capped colonnade on an "
                          "isolated base is not derived in rockcli)")
     if scheduler is not None:
+        from rockcli.cli.options import dask_client
         from rockcli.distributed import check_scheduler
 
         check_scheduler(scheduler)
+        scheduler = dask_client(scheduler)
     return Runner(scheduler, horizon=horizon, restitution=restitution, cap_ratio=cap_ratio)
 
 
-def _echo_impacts(runner):
+def _echo_impacts(runner, err=False):
     if runner.restitution is not None:
-        click.echo(f"impacts: coefficient of restitution E = {runner.restitution:g} (README, Restitution)")
+        click.echo(f"impacts: coefficient of restitution E = {runner.restitution:g} (README, Restitution)", err=err)
     if runner.cap_ratio > 0.0:
-        click.echo(f"capped colonnades: beam/columns mass gamma_c = {runner.cap_ratio:g} (docs/physics-colonnade.md)")
+        click.echo(f"capped colonnades: beam/columns mass gamma_c = {runner.cap_ratio:g} (docs/physics-colonnade.md)",
+                   err=err)
 
 
 def _csv_options(runner) -> dict:
@@ -135,23 +146,24 @@ def _csv_options(runner) -> dict:
     return extra
 
 
-def _echo_unproven(runner):
-    _echo_impacts(runner)
+def _echo_unproven(runner, err=False):
+    _echo_impacts(runner, err)
     if runner.unproven:
         click.echo(f"note: {runner.unproven} runs reached the solver's horizon with the verdict NOT PROVEN "
-                   "(counted as surviving)")
+                   "(counted as surviving)", err=err)
 
 
-def _echo_notes(pcs):
+def _echo_notes(pcs, err=False):
     for pc in pcs:
         if pc.note:
-            click.echo(pc.note)
+            click.echo(pc.note, err=err)
 
 
 @spectrum.command(name="overturning")
 @_scene_options("Foundation: none, or KIND:TbTp=<T_b/T_p>,... e.g. linear:TbTp=2,xi=0.05,gamma=0.01 "
-                "(repeatable: one panel each). Default none.", ("none",))
-@click.option("--wp-p", "wp_p", default="0.5:12:200", show_default=True, metavar="START:STOP:COUNT",
+                "(repeatable: one panel each). Default none. " + GAMMA_HELP, ("none",))
+@alias_option("--wp-p", "wp_p", "--wp-over-p")
+@click.option("--wp-over-p", "wp_p", default="0.5:12:200", show_default=True, metavar="START:STOP:COUNT",
               help="omega_p/p grid, both ends included.")
 @click.option("--ap", "ap", default="0:10:200", show_default=True, metavar="START:STOP:COUNT",
               help="a_p/(g tan alpha) grid, both ends included.")
@@ -160,8 +172,8 @@ def _echo_notes(pcs):
                    "pulse: theta_max_over_alpha is then only a lower bound where peak_final is 0. --full-peaks "
                    "follows every run until its peak is final (the same map, slower).")
 @user_errors
-def overturning(alpha, pulses, records, isolations, csv_path, plot_path, scheduler, units, dt, fmt, column, wp_p, ap,
-                early, horizon, restitution, cap_ratio):
+def overturning(alpha, pulses, records, isolations, csv_path, plot_path, scheduler, as_json, units, dt, fmt, column,
+                wp_p, ap, early, horizon, restitution, cap_ratio):
     """Overturning map over omega_p/p x a_p/(g tan alpha), like the paper's Figures 6 and 9.
 
     Light grey: the block rocks and survives; dark grey: it overturns; white: it never uplifts.
@@ -172,14 +184,14 @@ def overturning(alpha, pulses, records, isolations, csv_path, plot_path, schedul
     Examples:
       rockcli spectrum overturning --alpha 10 --plot fig6.png
       rockcli spectrum overturning --alpha 10,20 --isolation none --isolation linear:TbTp=2,xi=0.05,gamma=0.01 \\
-          --isolation linear:TbTp=3,xi=0.05,gamma=0.01 --wp-p 0.5:12:120 --ap 0:10:120 --plot fig6.png
+          --isolation linear:TbTp=3,xi=0.05,gamma=0.01 --wp-over-p 0.5:12:120 --ap 0:10:120 --plot fig6.png
     """
     import time
 
     from rockcli.spectra import overturning_maps, parse_grid, parse_isolation, parse_list
 
     alphas = parse_list(alpha, "--alpha", lo=0, hi=90, lo_open=True, hi_open=True)
-    wp_grid = parse_grid(wp_p, "--wp-p", positive=True)
+    wp_grid = parse_grid(wp_p, "--wp-over-p", positive=True)
     ap_grid = parse_grid(ap, "--ap")
     _check_ap_reach(ap, ap_grid.stop, alphas)
     isos = [parse_isolation(s) for s in isolations]
@@ -192,25 +204,35 @@ def overturning(alpha, pulses, records, isolations, csv_path, plot_path, schedul
         update = bar.update if bar else None
         maps = overturning_maps(alphas, pcs, isos, wp_grid, ap_grid, runner=runner, progress=update, early=early)
     elapsed = time.perf_counter() - t0
-    _echo_notes(pcs)
+    _echo_notes(pcs, as_json)
+    summaries = []
     for m in maps:
         cells = m.overturned.size
         unsettled = int((~m.settled & ~m.overturned).sum())  # reached the solver's horizon unproven
-        click.echo(f"alpha = {m.alpha_deg:g} deg, {m.pulse.label}, {m.isolation.label}: "
-                   f"{int(m.overturned.sum())} of {cells} cells overturn, {int((~m.uplifted).sum())} never uplift"
-                   + (f", {unsettled} NOT PROVEN (still moving at the solver's horizon)" if unsettled else ""))
-    click.echo(f"{n} cells (omega_p/p {wp_grid}, a_p/(g tan alpha) {ap_grid}) in {elapsed:.2f} s")
-    _echo_impacts(runner)
+        summaries.append({"alpha_deg": m.alpha_deg, "pulse": m.pulse.label, "isolation": m.isolation.label,
+                          "n_cells": cells, "n_overturn": int(m.overturned.sum()), "n_never_uplift": int((~m.uplifted).sum()),
+                          "n_not_proven": unsettled})
+        if not as_json:
+            click.echo(f"alpha = {m.alpha_deg:g} deg, {m.pulse.label}, {m.isolation.label}: "
+                       f"{int(m.overturned.sum())} of {cells} cells overturn, {int((~m.uplifted).sum())} never uplift"
+                       + (f", {unsettled} NOT PROVEN (still moving at the solver's horizon)" if unsettled else ""))
+    if as_json:
+        from rockcli.report.spectra import map_columns
+
+        echo_json({**_csv_options(runner), "maps": [{**summary, "cells": map_columns(m)}
+                                                     for summary, m in zip(summaries, maps)]})
+    click.echo(f"{n} cells (omega_p/p {wp_grid}, a_p/(g tan alpha) {ap_grid}) in {elapsed:.2f} s", err=as_json)
+    _echo_impacts(runner, as_json)
     if csv_path:
         from rockcli.report.spectra import write_map_csv
 
         write_map_csv(maps, csv_path, _csv_options(runner))
-        click.echo(f"wrote {csv_path} ({n} rows)")
+        click.echo(f"wrote {csv_path} ({n} rows)", err=as_json)
     if plot_path:
         from rockcli.report.spectra import plot_maps
 
         plot_maps(maps, plot_path, n_cols=len(pcs) * len(isos))
-        click.echo(f"wrote {plot_path}")
+        click.echo(f"wrote {plot_path}", err=as_json)
 
 
 def _search_options(f):
@@ -235,19 +257,20 @@ def _search_options(f):
 
 @spectrum.command(name="min-overturning")
 @_scene_options("Foundation (repeatable, one curve each): none, or KIND:TbTp=<T_b/T_p>,... "
-                "Default: none and linear TbTp = 2, 3, 4 with xi = 0.05, gamma = 0.01 (Figure 7).",
-                ("none", "linear:TbTp=2,xi=0.05,gamma=0.01", "linear:TbTp=3,xi=0.05,gamma=0.01",
-                 "linear:TbTp=4,xi=0.05,gamma=0.01"))
+                "Default: none and linear TbTp = 2, 3, 4 with the default xi = 0.1, gamma = 0.01 (the paper's "
+                "Figure 7 has xi = 0.05: give linear:TbTp=2,xi=0.05 and so on). " + GAMMA_HELP,
+                ("none", "linear:TbTp=2", "linear:TbTp=3", "linear:TbTp=4"))
 @click.option("--gamma", "gammas", default=None, metavar="G[,G...]",
               help="Mass ratios m/(m + m_b): each isolated --isolation is run once per value (Figure 8).")
-@click.option("--wp-p", "wp_p", default="0.5:12:93", show_default=True, metavar="START:STOP:COUNT",
+@alias_option("--wp-p", "wp_p", "--wp-over-p")
+@click.option("--wp-over-p", "wp_p", default="0.5:12:93", show_default=True, metavar="START:STOP:COUNT",
               help="omega_p/p values, both ends included.")
 @click.option("--ap-max", type=NUMBER, default=20.0, show_default=True,
               help="Largest a_p/(g tan alpha) tried; above it the curve is left empty.")
 @_search_options
 @user_errors
-def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, scheduler, units, dt, fmt, column,
-                    gammas, wp_p, ap_max, step, tol, refine, refine_band, horizon, restitution,
+def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, scheduler, as_json, units, dt, fmt,
+                    column, gammas, wp_p, ap_max, step, tol, refine, refine_band, horizon, restitution,
                     cap_ratio):
     """Minimum overturning acceleration over omega_p/p, like the paper's Figures 7, 8, 9 and 11.
 
@@ -260,7 +283,9 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
 
     \b
     Examples:
-      rockcli spectrum min-overturning --alpha 10,20 --pulse ricker-sym --pulse ricker-anti --plot fig7.png
+      rockcli spectrum min-overturning --alpha 10,20 --pulse ricker-sym --pulse ricker-anti --isolation none \\
+          --isolation linear:TbTp=2,xi=0.05 --isolation linear:TbTp=3,xi=0.05 --isolation linear:TbTp=4,xi=0.05 \\
+          --plot fig7.png
       rockcli spectrum min-overturning --alpha 12 --isolation linear:TbTp=2,xi=0.05 \\
           --gamma 0.01,0.05,0.1,0.3,0.5 --pulse ricker-sym --pulse ricker-anti --plot fig8.png
     """
@@ -269,7 +294,7 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
     from rockcli.spectra import min_overturning_curves, parse_grid, parse_isolation, parse_list
 
     alphas = parse_list(alpha, "--alpha", lo=0, hi=90, lo_open=True, hi_open=True)
-    xs = parse_grid(wp_p, "--wp-p", positive=True).values
+    xs = parse_grid(wp_p, "--wp-over-p", positive=True).values
     isos = [parse_isolation(s) for s in isolations]
     if gammas is not None:
         gs = parse_list(gammas, "--gamma", lo=0, hi=1, hi_open=True)
@@ -288,45 +313,52 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
                                         refine_band=refine_band, runner=runner, progress=update)
     elapsed = time.perf_counter() - t0
 
-    from rockcli.report.spectra import format_min_table
+    from rockcli.report.spectra import format_min_table, min_rows
 
-    _echo_notes(pcs)
-    click.echo(format_min_table(curves))
+    _echo_notes(pcs, as_json)
+    if as_json:
+        echo_json({**_csv_options(runner), "points": list(min_rows(curves))})
+    else:
+        click.echo(format_min_table(curves))
     refined = sum(int(c.refined.sum()) for c in curves)
     click.echo(f"{len(curves)} curves x {xs.size} values of omega_p/p: {runner.cells_run} runs in {elapsed:.2f} s "
                f"({curves[0].found_by}, up to {ap_max:g} g tan alpha)"
-               + (f"; {refined} minima lie in windows the first scan stepped over" if refine > 0 else ""))
-    _echo_unproven(runner)
+               + (f"; {refined} minima lie in windows the first scan stepped over" if refine > 0 else ""), err=as_json)
+    _echo_unproven(runner, as_json)
     if csv_path:
         from rockcli.report.spectra import write_min_csv
 
         write_min_csv(curves, csv_path, _csv_options(runner))
-        click.echo(f"wrote {csv_path} ({len(curves) * xs.size} rows)")
+        click.echo(f"wrote {csv_path} ({len(curves) * xs.size} rows)", err=as_json)
     if plot_path:
         from rockcli.report.spectra import plot_min_curves
 
         plot_min_curves(curves, plot_path)
-        click.echo(f"wrote {plot_path}")
+        click.echo(f"wrote {plot_path}", err=as_json)
 
 
 @spectrum.command(name="critical-size")
 @click.option("--alpha", "alpha", default="10,20", show_default=True, metavar="DEG[,DEG...]",
               help="Block slenderness [degrees] (Table I: 10 and 20).")
-@click.option("--tb-tp", "tb_tp", default="2,3,4", show_default=True, metavar="R[,R...]",
+@alias_option("--tb-tp", "tb_tp", "--tbtp")
+@click.option("--tbtp", "tb_tp", default="2,3,4", show_default=True, metavar="R[,R...]",
               help="Isolation periods as T_b/T_p (Table I: 2, 3, 4).")
 @click.option("--isolation", "bearing", default="linear", show_default=True, metavar="KIND[:k=v,...]",
               help="Bearing kind and its parameters other than the period (T_b = ratio x T_p).")
 @click.option("--xi", type=NUMBER, default=None,
-              help="Damping ratio of linear bearings [default 0.05, as in Figures 6-7].")
-@click.option("--gamma", type=NUMBER, default=0.01, show_default=True,
-              help="Mass ratio m/(m + m_b) (heavy base, as in Figures 6-7).")
+              help=f"Damping ratio of linear bearings [default {DEFAULT_XI_TEXT}, as in every command; the paper's "
+                   "Table I has 0.05: --xi 0.05].")
+@click.option("--gamma", type=NUMBER, default=None,
+              help=f"Mass ratio m/(m + m_b) [default {DEFAULT_GAMMA_TEXT}, as in every command and in Table I]. "
+                   + GAMMA_HELP)
 @click.option("--pulse", "pulses", multiple=True, metavar="SHAPE:Tp=S",
               help="A pulse with its period [s], repeatable. Default: the paper's Table I pulses, "
                    "ricker-sym:Tp=0.6 (Aigio OTE FP 1995) and ricker-anti:Tp=0.9 (Coyote Lake Gilroy #6 230).")
 @click.option("--record", "records", multiple=True, metavar="ID|FILE",
               help="Take shape and T_p from the pulse fitted to this record (repeatable).")
-@record_options(column_flag="--record-column")
-@click.option("--wp-p", "wp_p", default="0.5:12:47", show_default=True, metavar="START:STOP:COUNT",
+@record_options
+@alias_option("--wp-p", "wp_p", "--wp-over-p")
+@click.option("--wp-over-p", "wp_p", default="0.5:12:47", show_default=True, metavar="START:STOP:COUNT",
               help="omega_p/p grid on which the curves are compared before the crossing is refined.")
 @click.option("--xtol", type=NUMBER, default=1e-3, show_default=True,
               help="Relative resolution of the crossing in omega_p/p.")
@@ -340,38 +372,45 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
               help="Draw the compared curves with the crossings marked.")
 @click.option("--scheduler", default=None, metavar="tcp://HOST:PORT|local",
               help="Run the cells on a Dask cluster (see overturning).")
+@json_option
+@quiet_option
 @horizon_option
 @restitution_option
 @user_errors
 def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, fmt, column, wp_p, xtol, ap_max,
-                  step, tol, refine, refine_band, csv_path, plot_path, scheduler, horizon, restitution):
+                  step, tol, refine, refine_band, csv_path, plot_path, scheduler, as_json, horizon, restitution):
     """Block size beyond which a block is safer without isolation, like the paper's Table I.
 
     Where the minimum overturning curves of the rigid foundation and of the isolated base cross
     (the last crossing on the grid, rigid better beyond it), converted to the semi-diagonal R with
     p = omega_p/(omega_p/p)_cross and R = 3 g/(4 p^2). Defaults: the paper's Table I scenes,
-    alpha = 10 and 20 deg, T_b/T_p = 2, 3, 4, linear bearings xi = 0.05, gamma = 0.01, pulses
-    ricker-sym T_p = 0.6 s and ricker-anti T_p = 0.9 s.
+    alpha = 10 and 20 deg, T_b/T_p = 2, 3, 4, linear bearings, pulses
+    ricker-sym T_p = 0.6 s and ricker-anti T_p = 0.9 s; the bearings have the default xi = 0.1, gamma = 0.01
+    of every command (Table I has xi = 0.05: add --xi 0.05).
 
     \b
     Examples:
-      rockcli spectrum critical-size --csv table1.csv
-      rockcli spectrum critical-size --alpha 10.56 --tb-tp 2,2.5,3 --xi 0.1 --record coyotelake-1979-gilroy6-230
+      rockcli spectrum critical-size --xi 0.05 --csv table1.csv
+      rockcli spectrum critical-size --alpha 10.56 --tbtp 2,2.5,3 --xi 0.1 --record coyotelake-1979-gilroy6-230
     """
     import time
 
     from rockcli.spectra import critical_sizes, parse_grid, parse_list, table_i_isolations, table_i_pulses
 
     alphas = parse_list(alpha, "--alpha", lo=0, hi=90, lo_open=True, hi_open=True)
-    ratios = parse_list(tb_tp, "--tb-tp", lo=0, lo_open=True)
-    grid = parse_grid(wp_p, "--wp-p", positive=True)
+    ratios = parse_list(tb_tp, "--tbtp", lo=0, lo_open=True)
+    grid = parse_grid(wp_p, "--wp-over-p", positive=True)
     if grid.count < 2:
-        raise InputError(f"--wp-p {wp_p}: the crossing needs at least 2 grid values")
+        raise InputError(f"--wp-over-p {wp_p}: the crossing needs at least 2 grid values")
     kind = bearing.strip().partition(":")[0].strip().lower()
     if kind in ("none", "rigid", "fixed"):
         raise InputError("--isolation: give a bearing kind (e.g. linear); the rigid foundation is always compared")
+    from rockcli.models import DEFAULT_GAMMA, DEFAULT_XI
+
     if xi is None and kind == "linear":
-        xi = 0.05
+        xi = DEFAULT_XI
+    if gamma is None:
+        gamma = DEFAULT_GAMMA
     isos = table_i_isolations(ratios, xi=xi, gamma=gamma, template=bearing)
     _check_outputs(csv_path, plot_path)
     runner = _runner(scheduler, horizon, restitution)
@@ -395,22 +434,29 @@ def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, 
 
     from rockcli.report.spectra import format_critical_table
 
-    _echo_notes(pcs)
-    click.echo(f"isolation: {isos[0].label.replace(f'TbTp={isos[0].ratio:g}', 'TbTp=<ratio>')}")
-    click.echo(format_critical_table(result.rows))
-    for r in result.rows:
-        if r.note:
-            click.echo(f"note: {r.source}, alpha = {r.alpha_deg:g} deg, T_b/T_p = {r.Tb_over_Tp:g}: {r.note}")
-    for note in result.notes:
-        click.echo(f"note: {note}")
+    _echo_notes(pcs, as_json)
+    isolation = isos[0].label.replace(f'TbTp={isos[0].ratio:g}', 'TbTp=<ratio>')
+    if as_json:
+        echo_json({"isolation": isolation, **_csv_options(runner),
+                   "rows": [{**r.as_dict(), "ap_cross_over_g_tan_alpha": r.ap_cross_over_g_tan_alpha,
+                             "note": r.note or None} for r in result.rows],
+                   "notes": list(result.notes)})
+    else:
+        click.echo(f"isolation: {isolation}")
+        click.echo(format_critical_table(result.rows))
+        for r in result.rows:
+            if r.note:
+                click.echo(f"note: {r.source}, alpha = {r.alpha_deg:g} deg, T_b/T_p = {r.Tb_over_Tp:g}: {r.note}")
+        for note in result.notes:
+            click.echo(f"note: {note}")
     click.echo(f"{len(result.rows)} crossings: {result.runs} runs in {elapsed:.2f} s (omega_p/p grid {grid}, "
-               f"refined to {xtol:g}; minima: {result.curves[0].found_by})")
-    _echo_unproven(runner)
+               f"refined to {xtol:g}; minima: {result.curves[0].found_by})", err=as_json)
+    _echo_unproven(runner, as_json)
     if csv_path:
         from rockcli.report.spectra import write_critical_csv
 
         write_critical_csv(result.rows, csv_path, _csv_options(runner))
-        click.echo(f"wrote {csv_path} ({len(result.rows)} rows)")
+        click.echo(f"wrote {csv_path} ({len(result.rows)} rows)", err=as_json)
     if plot_path:
         from rockcli.report.spectra import plot_min_curves
 
@@ -420,7 +466,7 @@ def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, 
                 crossings.setdefault((r.alpha_deg, r.pulse), []).append(
                     (r.wp_over_p_cross, r.ap_cross_over_g_tan_alpha, f"{r.R_critical_m:.2f} m"))
         plot_min_curves(result.curves, plot_path, crossings=crossings)
-        click.echo(f"wrote {plot_path}")
+        click.echo(f"wrote {plot_path}", err=as_json)
 
 
 from rockcli.cli.spectrum_rocking import rocking  # noqa: E402 (it uses the helpers above)

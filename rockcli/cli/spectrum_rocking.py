@@ -5,12 +5,13 @@ from __future__ import annotations
 import click
 
 from rockcli.cli.errors import InputError, user_errors
-from rockcli.cli.options import (add_inputs, cap_ratio_option, check_outputs, horizon_option, progress_bar,
-                                 record_kwargs, record_options, restitution_option)
+from rockcli.cli.options import (Command, add_inputs, cap_ratio_option, check_outputs, echo_json, horizon_option,
+                                 json_option, progress_bar, quiet_option, record_kwargs, record_options,
+                                 restitution_option)
 from rockcli.cli.types import NUMBER
 
 
-@click.command(name="rocking")
+@click.command(name="rocking", cls=Command)
 @click.argument("source", metavar="SOURCE")
 @click.option("--alpha", "alpha", required=True, metavar="DEG[,DEG...]",
               help="Block slenderness atan(b/h) [degrees]; a comma list gives one curve each.")
@@ -28,7 +29,8 @@ from rockcli.cli.types import NUMBER
                    "theta_max_over_alpha, overturned, uplift, proven, peak_final).")
 @click.option("--plot", "plot_path", type=click.Path(), default=None,
               help="Draw peak theta/alpha against R (log axis, p on top), overturning marked at 1 (.png, .pdf, .svg).")
-@click.option("--json", "as_json", is_flag=True, help="Print the curves as one JSON object.")
+@json_option
+@quiet_option
 @click.option("--scheduler", default=None, metavar="tcp://HOST:PORT|local",
               help="Run the blocks in chunks on a Dask cluster (see 'rockcli spectrum overturning').")
 @horizon_option
@@ -91,13 +93,11 @@ def rocking(source, alpha, R, isolations, units, dt, fmt, column, scale, csv_pat
         shown = f"{name}" + (f" x {scale:g}" if scale != 1.0 else "")
         plot_rocking_spectrum(curves, plot_path, title=f"Rocking spectrum under {shown} (PGA {record.pga_g:.3g} g)")
     if as_json:
-        import json
-
         from rockcli.report.rocking import rocking_json
 
         out = {"record": name, "scale": scale, "pga_g": record.pga_g, "runs": n, "peaks": "final (early=False)",
                **extra, "curves": rocking_json(curves)}
-        click.echo(json.dumps(out, allow_nan=False))
+        echo_json(out)
     else:
         _echo_summary(curves, name, scale, record.pga_g, n, elapsed, runner)
     for path in (csv_path, plot_path):

@@ -120,7 +120,13 @@ def column(name: str) -> Block:
     """A named column preset (``bassae`` or ``nemea``) as a :class:`Block`."""
     key = str(name).strip().lower()
     if key not in COLUMN_PRESETS:
-        raise RockcliInputError(f"unknown column {name!r} (known: {', '.join(sorted(COLUMN_PRESETS))})")
+        import difflib
+
+        close = difflib.get_close_matches(key, COLUMN_PRESETS, n=1)
+        raise RockcliInputError(
+            f"unknown column {name!r}" + (f" (did you mean {close[0]!r}?)" if close else "")
+            + f": the presets are {' and '.join(sorted(COLUMN_PRESETS))}; a body of your own is written "
+              f"NAME:R=<m>,alpha=<deg> or NAME:height=<m>,width=<m>, e.g. {key or 'statue'}:height=1.7,width=0.45")
     height, width, _ = COLUMN_PRESETS[key]
     return Block.from_dimensions(height, width, key)
 
@@ -133,7 +139,8 @@ BLOCK_LABELS = {"preset": "a preset name", "R": "R (m)", "alpha": "alpha (deg)",
 
 def build_block(*, preset: str | None = None, R: float | None = None, alpha_deg: float | None = None,
                 height: float | None = None, width: float | None = None, name: str | None = None,
-                labels: dict | None = None, allow_preset: bool = True, context: str = "") -> Block:
+                labels: dict | None = None, allow_preset: bool = True, context: str = "",
+                check_only: bool = False) -> Block | None:
     """The :class:`Block` given by exactly one of three forms: a preset, R with alpha, height with width.
 
     The one block builder of rockcli (the library's custom columns and the CLI's block options).
@@ -153,6 +160,8 @@ def build_block(*, preset: str | None = None, R: float | None = None, alpha_deg:
         (default :data:`BLOCK_LABELS`; the CLI gives its flags, e.g. ``{"R": "--R"}``).
     context : str
         Prefix of error messages (e.g. ``"column 'statue'"``).
+    check_only : bool
+        Only check that exactly one form is given (and return None).
 
     Raises
     ------
@@ -170,6 +179,8 @@ def build_block(*, preset: str | None = None, R: float | None = None, alpha_deg:
         if allow_preset:
             raise RockcliInputError(f"{head}give the block as exactly one of {L['preset']}, {pairs}")
         raise RockcliInputError(f"{head}give {pairs}" + (", not both" if n > 1 else ""))
+    if check_only:  # exactly one form was given; the caller builds it
+        return None
     if by_preset:
         return column(preset)
     if by_r:

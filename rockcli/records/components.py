@@ -44,7 +44,7 @@ def pick_trace(traces, column, path, names: str, what: str = "traces"):
         raise RockcliInputError(f"{path}: the file holds no traces")
     if len(traces) > 1 and column is None:
         raise MultiComponent(f"{path}: the file holds {len(traces)} {what} ({names}); choose one with --component "
-                             f"CHANNEL (or --column 1-{len(traces)})", len(traces))
+                             f"CHANNEL (or --record-column 1-{len(traces)})", len(traces))
     index = (column or 1) - 1
     if index >= len(traces):
         raise RockcliInputError(f"{path}: trace {column} does not exist (the file holds {len(traces)})")

@@ -164,7 +164,7 @@ def _read_geonet(lines: list[str], filename: str, column: int | None) -> dict[st
 
         raise MultiComponent(
             f"{filename}: GeoNet V2A file holds {len(starts)} components ({', '.join(comps)}); "
-            f"choose one with --component NAME (or --column 1-{len(starts)})", len(starts))
+            f"choose one with --component NAME (or --record-column 1-{len(starts)})", len(starts))
     if not 1 <= column <= len(starts):
         raise RockcliInputError(f"{filename}: column {column} does not exist (the file holds {len(starts)} components)")
     s = starts[column - 1]
@@ -261,7 +261,7 @@ def _is_cwb(lines):
                                                                           for l in lines[:3])
 
 
-#: name -> probe: text tables rockcli reads column by column (``--column``, ``--units``), which the
+#: name -> probe: text tables rockcli reads column by column (``--record-column``, ``--units``), which the
 #: ``formats`` extra reads with their units and orientations when it is installed.
 EXTRA_FIRST: dict[str, Callable] = {"CWB": _is_cwb}
 

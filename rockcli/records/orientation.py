@@ -154,7 +154,7 @@ def read_pair(first, second=None, **kwargs) -> tuple[Record, Record]:
     component, column = kwargs.pop("component", None), kwargs.pop("column", None)
     if component is not None or column is not None:
         raise RockcliInputError("an azimuth projects two horizontal components onto the rocking plane: "
-                                "--component/--column do not apply with --azimuth")
+                                "--component/--record-column do not apply with --azimuth")
     src1, az1 = split_source(first)
     if second is None:
         comps = read_components(src1, **kwargs)

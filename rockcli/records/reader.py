@@ -126,7 +126,7 @@ def read_record(source, *, format=None, units=None, dt=None, column=None, compon
     fmt = str(format).strip().upper() if format else None
     if component is not None:
         if column is not None:
-            raise RockcliInputError("give the component either by --component NAME or by --column N, not both")
+            raise RockcliInputError("give the component either by --component NAME or by --record-column N, not both")
         from rockcli.records.components import select_component
 
         comps = read_components(source, format=format, units=units, dt=dt, fill_in=fill_in)
@@ -216,7 +216,7 @@ def _read_path(path: Path, fmt, units, dt, column, given_by: str = "caller") -> 
             if not extra.available():
                 if fmt in formats.EXTRA_FIRST:
                     raise RockcliInputError(f"{name}: format {fmt} is read by the optional extra: pip install "
-                                            f"\"rockcli[formats]\" (without it, read it as TEXT with --column)")
+                                            f"\"rockcli[formats]\" (without it, read it as TEXT with --record-column)")
                 raise formats.refusal(fmt, name)
             out = extra.read_with_extra(path, column, recognised=fmt)
         elif fmt in formats.READERS:

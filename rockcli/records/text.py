@@ -286,9 +286,9 @@ def parse_text(text: str, filename: str = "text file", column: int | None = None
         if len(data_cols) > 1:
             what = f"a time column and {len(data_cols)} data columns" if time_col else f"{ncol} data columns"
             raise RockcliInputError(
-                f"{filename}: the file has {what}; choose one with --column (1-based, counting the time column)"
+                f"{filename}: the file has {what}; choose one with --record-column (1-based, counting the time column)"
                 if time_col else
-                f"{filename}: the file has {what}; choose one with --column (1-based)")
+                f"{filename}: the file has {what}; choose one with --record-column (1-based)")
         column = data_cols[0]
     column = int(column)
     if column < 1 or column > ncol:

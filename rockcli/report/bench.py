@@ -39,7 +39,7 @@ def _fmt(v):
     if v is None:
         return ""
     if isinstance(v, (bool, np.bool_)):
-        return "1" if v else "0"
+        return str(bool(v))  # True/False, as every rockcli CSV writes booleans
     if isinstance(v, (float, np.floating)):
         return "" if math.isnan(v) else repr(float(v))
     if isinstance(v, np.integer):

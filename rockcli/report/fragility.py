@@ -94,10 +94,9 @@ def fragility_columns(im) -> tuple:
             "median_ratio_to_none", "n_records", "n_censored", "ci_level", "n_boot", "seed")
 
 
-def fragility_frame(fr):
-    """One row per column x record x configuration (the fit of its column and configuration repeated)."""
-    import pandas as pd
-
+def fragility_rows(fr) -> list[dict]:
+    """One dict per column x record x configuration (the fit of its column and configuration repeated),
+    keyed by :func:`fragility_columns`."""
     im = fr.im
     s = im.suffix
     fits = {(c.column, c.configuration.header): c for c in fr.curves}
@@ -114,7 +113,14 @@ def fragility_frame(fr):
             "median_ratio_to_none": c.ratio_to_rigid, "n_records": c.n_records, "n_censored": c.n_right + c.n_left,
             "ci_level": fr.level, "n_boot": fr.n_boot, "seed": fr.seed,
         })
-    return pd.DataFrame(data, columns=list(fragility_columns(im)))
+    return data
+
+
+def fragility_frame(fr):
+    """:func:`fragility_rows` as a pandas DataFrame."""
+    import pandas as pd
+
+    return pd.DataFrame(fragility_rows(fr), columns=list(fragility_columns(fr.im)))
 
 
 def write_fragility_csv(fr, path: str | os.PathLike, extra: dict | None = None) -> Path:

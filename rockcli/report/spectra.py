@@ -39,7 +39,7 @@ def _size(T_p, x):
 
 def _fmt(v):
     if isinstance(v, bool):
-        return "1" if v else "0"
+        return str(v)  # True/False, as every rockcli CSV writes booleans
     if isinstance(v, float):
         return "" if math.isnan(v) else repr(float(v))
     return v
@@ -102,7 +102,7 @@ def _column_text(values) -> list:
 
     v = np.asarray(values)
     if v.dtype == bool:
-        return np.where(v, "1", "0").tolist()
+        return np.where(v, "True", "False").tolist()
     if v.dtype.kind == "f":
         return ["" if x != x else repr(x) for x in v.tolist()]  # x != x: NaN
     return [str(x) for x in v.tolist()]

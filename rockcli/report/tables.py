@@ -106,11 +106,9 @@ def format_notes(assessment) -> str:
         lines.append(f"Capped colonnades: each column stands in a colonnade carrying a beam of gamma_c = "
                      f"{assessment.solver['cap_ratio']:g} times the columns' mass (docs/physics-colonnade.md).")
     if assessment.margin:
-        lines.append("xS: smallest scale factor of the record that overturns the body in that configuration "
-                     "(S > 1: survival margin; S < 1 on an overturn: it overturns already at S times the record; "
-                     "S < 1 on a survivor: a weaker record overturns it, 1x sits on a safe island; x>4: nothing "
-                     "up to 4x overturns). Found on a 0.1x..4x grid in 1 % steps; where the "
-                     "boundary is ragged the value is indicative.")
+        lines.append("xS: the smallest scale factor of the record that overturns the body (S > 1: the margin; S < 1 on "
+                     "a survivor: a weaker record overturns it, a safe island; x>4: none up to 4x), 0.1x..4x in "
+                     "1 % steps.")
     worst = [r for r in assessment.rows if r.azimuths_run and not r.error]
     if worst:
         lines.append(f"@A: the most adverse orientation of the two horizontal components, of {worst[0].azimuths_run} "
@@ -164,22 +162,24 @@ AZIMUTH_COLUMNS = ("azimuth_deg", "overturning_azimuths", "azimuths_run")
 CHECK_COLUMNS = ("tight_rtol_verdict", "tight_rtol_peak_change", "ulp_verdicts", "ulp_peak_change", "ill_conditioned")
 
 
-def write_assessment_csv(assessment, path: str | os.PathLike, check=None) -> Path:
-    """Write the CSV report (one row per column x record x configuration), atomically; with ``check``
-    (a :class:`rockcli.assess.table.ToleranceCheck`) the :data:`CHECK_COLUMNS` follow."""
-    df = assessment_frame(assessment)
-    if any(not math.isnan(r.azimuth_deg) for r in assessment.rows):  # --azimuth: the columns of orientation
+def extra_columns(assessment, check=None) -> dict:
+    """The columns after :data:`CSV_COLUMNS`, one list per name: the orientation (``--azimuth``), the
+    given physics options (``restitution``, ``cap_ratio``; nothing for the defaults) and, with ``check``
+    (a :class:`rockcli.assess.table.ToleranceCheck`), the :data:`CHECK_COLUMNS`."""
+    rows = assessment.rows
+    cols = {}
+    if any(not math.isnan(r.azimuth_deg) for r in rows):  # --azimuth: the columns of orientation
         for key in AZIMUTH_COLUMNS:
-            df[key] = [getattr(r, key) for r in assessment.rows]
-    for key in ("restitution", "cap_ratio"):  # given physics options (nothing for the defaults)
+            cols[key] = [getattr(r, key) for r in rows]
+    for key in ("restitution", "cap_ratio"):
         if assessment.solver.get(key):
-            df[key] = assessment.solver[key]
+            cols[key] = [assessment.solver[key]] * len(rows)
     if check is not None:
         from rockcli.conditioning import ill_conditioned
 
         by_row = {id(row): rest for row, *rest in check.per_row}
-        cols = {c: [] for c in CHECK_COLUMNS}
-        for row in assessment.rows:
+        cols.update({c: [] for c in CHECK_COLUMNS})
+        for row in rows:
             got = by_row.get(id(row))
             if got is None:
                 for c in CHECK_COLUMNS:
@@ -191,8 +191,24 @@ def write_assessment_csv(assessment, path: str | os.PathLike, check=None) -> Pat
             cols["ulp_verdicts"].append(" ".join(ulp_verdicts))
             cols["ulp_peak_change"].append(ulp_moved)
             cols["ill_conditioned"].append(ill_conditioned(row.verdict, ulp_moved, ulp_verdicts))
-        for c in CHECK_COLUMNS:
-            df[c] = cols[c]
+    return cols
+
+
+def assessment_rows(assessment, check=None) -> list[dict]:
+    """One dict per column x record x configuration: :data:`CSV_COLUMNS` and :func:`extra_columns` (the
+    ``--json`` of ``assess column``)."""
+    extra = extra_columns(assessment, check)
+    return [{**{k: getattr(r, k) for k in CSV_COLUMNS}, **{k: v[i] for k, v in extra.items()}}
+            for i, r in enumerate(assessment.rows)]
+
+
+def write_assessment_csv(assessment, path: str | os.PathLike, check=None) -> Path:
+    """Write the CSV report (one row per column x record x configuration), atomically: :data:`CSV_COLUMNS`
+    and :func:`extra_columns`."""
+    df = assessment_frame(assessment)
+    for key, values in extra_columns(assessment, check).items():
+        df[key] = values
+    if check is not None:
         df["ill_conditioned"] = df["ill_conditioned"].astype("boolean")
     return write_text(path, df.to_csv(index=False, float_format="%.6g", lineterminator="\n"))
 

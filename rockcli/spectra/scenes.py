@@ -138,10 +138,16 @@ class Isolation:
 
     @property
     def short_label(self) -> str:
+        """The panel title: kind, T_b/T_p and every other parameter, defaults included (a map's title
+        states the xi and gamma it used, given or not)."""
         if self.rigid:
             return "rigid foundation"
-        extras = ", ".join(f"{k} = {v}" for k, v in self.params)
-        return f"{self.kind}, $T_b/T_p$ = {self.ratio:g}" + (f", {extras}" if extras else "")
+        kind, _, rest = self.label.partition(":")
+        names = {"xi": r"$\xi$", "gamma": r"$\gamma$", "mu": r"$\mu$", "mu1": r"$\mu_1$", "mu2": r"$\mu_2$",
+                 "uy": "$u_y$"}
+        pairs = [kv.split("=", 1) for kv in rest.split(",") if "=" in kv and not kv.startswith("TbTp=")]
+        extras = ", ".join(f"{names.get(k, k)} = {v}" for k, v in pairs)
+        return f"{kind}, $T_b/T_p$ = {self.ratio:g}" + (f", {extras}" if extras else "")
 
 
 def parse_isolation(text: str) -> Isolation:
