@@ -98,6 +98,74 @@ def given_azimuth() -> dict:
     return {"record_2": record_2, "azimuth": azimuth, "step": AZIMUTH_STEP if step is None else step}
 
 
+def vertical_options(func):
+    """``--vertical``, ``--vertical-component``, ``--vertical-pulse`` and ``--vertical-scale`` of the commands that
+    run suites of records (``assess``): kept on the click context, read with :func:`given_vertical`."""
+    options = [
+        click.option("--vertical", "vertical", default=None, metavar="SOURCE", expose_value=False,
+                     callback=_remember("rockcli.vertical"),
+                     help="Vertical ground acceleration (upward positive) under every record, rigid foundation only: "
+                          "a record file or catalogue id on the records' time base (read with --units/--dt). "
+                          "Gravity becomes g + a_v; the margin's scale factors multiply the horizontal motion only."),
+        click.option("--vertical-component", "vertical_component", default=None, metavar="NAME", expose_value=False,
+                     callback=_remember("rockcli.vertical_component"),
+                     help="Run each record under its own vertical component, read from the same multi-component "
+                          "file: its channel code (HNZ, UP, ...) or UP."),
+        click.option("--vertical-pulse", "vertical_pulse", default=None, metavar="SPEC", expose_value=False,
+                     callback=_remember("rockcli.vertical_pulse"),
+                     help="Vertical ground acceleration as an analytic pulse under every record (same SPEC as "
+                          "simulate --pulse; ap in g, upward positive)."),
+        click.option("--vertical-scale", "vertical_scale", type=NUMBER, default=None, expose_value=False,
+                     callback=_remember("rockcli.vertical_scale"),
+                     help="Multiply the vertical acceleration by this factor [default: 1]."),
+    ]
+    return _stacked(func, options)
+
+
+def given_vertical() -> dict:
+    """``source``, ``component``, ``pulse`` and ``scale`` of :func:`vertical_options`."""
+    ctx = click.get_current_context(silent=True)
+    meta = {} if ctx is None else ctx.meta
+    scale = meta.get("rockcli.vertical_scale")
+    return {"source": meta.get("rockcli.vertical"), "component": meta.get("rockcli.vertical_component"),
+            "pulse": meta.get("rockcli.vertical_pulse"), "scale": 1.0 if scale is None else scale,
+            "scale_given": scale is not None}
+
+
+def read_vertical(source, column, pulse, scale, read_kwargs: dict):
+    """``(vertical motion or None, its label)`` from ``--vertical SOURCE`` (read with ``read_kwargs`` and
+    ``--vertical-column``) or ``--vertical-pulse SPEC``, times ``--vertical-scale``."""
+    import math
+
+    from rockcli.errors import RockcliInputError
+
+    if source is not None and pulse is not None:
+        raise RockcliInputError("give the vertical ground motion as at most one of --vertical SOURCE or "
+                                "--vertical-pulse SPEC")
+    if not math.isfinite(scale) or scale == 0:
+        raise RockcliInputError(f"--vertical-scale must be a finite non-zero number, got {scale!r}")
+    if source is None and pulse is None:
+        if column is not None or scale != 1.0:
+            raise RockcliInputError("--vertical-column and --vertical-scale apply to --vertical/--vertical-pulse")
+        return None, None
+    if pulse is not None:
+        from rockcli.pulses import parse_pulse_spec
+
+        if column is not None:
+            raise RockcliInputError("--vertical-column applies to --vertical, not to --vertical-pulse")
+        vertical = parse_pulse_spec(pulse)
+        if scale != 1.0:
+            vertical = vertical.scaled(scale)
+        return vertical, f"{vertical.shape} pulse" + (f" x {scale:g}" if scale != 1.0 else "")
+    from rockcli.records import read_record
+
+    vertical = read_record(source, **{**read_kwargs, "column": column})
+    add_inputs([vertical.meta.get("path")], "the vertical record")
+    if scale != 1.0:
+        vertical = vertical.scaled(scale)
+    return vertical, f"record {vertical.name}" + (f" x {scale:g}" if scale != 1.0 else "")
+
+
 def suite_options(func):
     """``--glob`` and ``--exclude`` (multiple) for folder suites: kept on the click context, read with
     :func:`given_suite`."""

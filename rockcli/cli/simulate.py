@@ -233,34 +233,9 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
 
 def _vertical(source, column, pulse, scale, units, dt, fmt):
     """``(vertical motion or None, its label)`` from ``--vertical``/``--vertical-pulse``/``--vertical-scale``."""
-    from rockcli.cli.options import add_inputs
-    from rockcli.errors import RockcliInputError
+    from rockcli.cli.options import read_vertical
 
-    if source is not None and pulse is not None:
-        raise RockcliInputError("give the vertical ground motion as at most one of --vertical SOURCE or "
-                                "--vertical-pulse SPEC")
-    if not math.isfinite(scale) or scale == 0:
-        raise RockcliInputError(f"--vertical-scale must be a finite non-zero number, got {scale!r}")
-    if source is None and pulse is None:
-        if column is not None or scale != 1.0:
-            raise RockcliInputError("--vertical-column and --vertical-scale apply to --vertical/--vertical-pulse")
-        return None, None
-    if pulse is not None:
-        from rockcli.pulses import parse_pulse_spec
-
-        if column is not None:
-            raise RockcliInputError("--vertical-column applies to --vertical, not to --vertical-pulse")
-        vertical = parse_pulse_spec(pulse)
-        if scale != 1.0:
-            vertical = vertical.scaled(scale)
-        return vertical, f"{vertical.shape} pulse"
-    from rockcli.records import read_record
-
-    vertical = read_record(source, **record_kwargs(units, dt, fmt, column))
-    add_inputs([vertical.meta.get("path")], "the vertical record")
-    if scale != 1.0:
-        vertical = vertical.scaled(scale)
-    return vertical, f"record {vertical.name}" + (f" x {scale:g}" if scale != 1.0 else "")
+    return read_vertical(source, column, pulse, scale, record_kwargs(units, dt, fmt, None))
 
 
 def _impact_keys(block, foundation, restitution, cap_ratio=0.0) -> dict:

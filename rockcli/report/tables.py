@@ -174,6 +174,7 @@ def write_assessment_csv(assessment, path: str | os.PathLike, check=None) -> Pat
     for key in ("restitution", "cap_ratio"):  # given physics options (nothing for the defaults)
         if assessment.solver.get(key):
             df[key] = assessment.solver[key]
+    _vertical_column(df, assessment)
     if check is not None:
         from rockcli.conditioning import ill_conditioned
 
@@ -195,6 +196,15 @@ def write_assessment_csv(assessment, path: str | os.PathLike, check=None) -> Pat
             df[c] = cols[c]
         df["ill_conditioned"] = df["ill_conditioned"].astype("boolean")
     return write_text(path, df.to_csv(index=False, float_format="%.6g", lineterminator="\n"))
+
+
+def _vertical_column(df, result) -> None:
+    """``vertical``: the vertical motion each row's record ran under (only when one did)."""
+    from rockcli.assess.vertical import vertical_labels
+
+    labels = vertical_labels(result.excitations)
+    if labels:
+        df["vertical"] = [labels.get(r.record, "none") for r in result.rows]
 
 
 def read_assessment_csv(path: str | os.PathLike):

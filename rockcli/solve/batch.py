@@ -14,7 +14,7 @@ from rockcli.colonnade import check_cap_ratio
 from rockcli.errors import RockcliInputError
 from rockcli.impact import check_restitution
 from rockcli.models import Block, Rigid
-from rockcli.solve.excitation import _excitation_arrays, _vertical_arrays
+from rockcli.solve.excitation import _excitation_arrays, _vertical_arrays, attached_vertical
 from rockcli.solve.options import (DEFAULT_HORIZON, DEFAULT_MAX_STEPS, DEFAULT_REST_TOL, DEFAULT_TAIL, TAIL_MAX,
                                    _kernel, validate_options)
 from rockcli.solve.parameters import _parameters
@@ -62,7 +62,7 @@ def simulate_many(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL,
         Capped colonnade of :func:`simulate` (one value or one per scene; 0: solitary columns).
     vertical : Record, pulse, None or a sequence of them, optional
         Vertical ground motion of :func:`simulate` (one for every scene, or one per scene; None:
-        none). Never scaled: ``scale`` multiplies the horizontal motion only. Rigid foundation only
+        the one the scene's record carries, if any, :func:`rockcli.solve.with_vertical`). Never scaled: ``scale`` multiplies the horizontal motion only. Rigid foundation only
         (a scene on an isolated base gets a :class:`JobError`); these scenes run in the same batch
         machinery, on the rigid driver's vertical entry.
 
@@ -227,15 +227,16 @@ def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress
             if not math.isfinite(scale):
                 raise RockcliInputError(f"job {i}: the scale factor must be finite, got {scale!r}")
             tail_i = float(tails_in if tails_in.ndim == 0 else tails_in[i])
+            vertical_i = verticals[i] if verticals[i] is not None else attached_vertical(excitation)
             # the jobs hold these objects, so their ids stay theirs for the whole loop
-            gkey = (id(block), id(foundation), id(excitation), tail_i, restitutions[i], caps[i], id(verticals[i]))
+            gkey = (id(block), id(foundation), id(excitation), tail_i, restitutions[i], caps[i], id(vertical_i))
             g = groups.get(gkey)
             if g is None:
                 try:
                     fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end = _scene_arrays(
                         block, foundation, excitation, tail_i, rtol, rest_tol, horizon, max_steps, prepared, params,
                         checked, restitutions[i], caps[i])
-                    vacc, vjtab, vdt, t_v_end = _vertical_scene(verticals[i], excitation, foundation,
+                    vacc, vjtab, vdt, t_v_end = _vertical_scene(vertical_i, excitation, foundation,
                                                                 float(prm[k.P_G]), vprepared)
                 except (RockcliInputError, TypeError, ValueError) as exc:
                     g = RockcliInputError(str(exc))
