@@ -147,3 +147,69 @@ def test_vertical_motion_on_isolated_bases_is_refused_in_one_sentence(command, t
     assert both.exit_code == 2 and "one of --vertical" in both.output
     alone = _cli(common + ["--isolation", "none", "--vertical-scale", "0.5"])
     assert alone.exit_code == 2 and "--vertical-scale applies" in alone.output
+
+
+# ------------------------------------------------------------------------------------------
+# The pulse spectra: --vertical-pulse SHAPE:ap=G[,TvTp=R]
+# ------------------------------------------------------------------------------------------
+def _family(alpha_deg=10.0, shape="ricker-sym", R=1.0):
+    from rockcli.spectra import Family, parse_isolation
+
+    return Family(math.radians(alpha_deg), shape, parse_isolation("none"), R)
+
+
+def test_a_map_under_a_vertical_pulse_is_its_cells_and_does_not_depend_on_the_block_size():
+    from rockcli.spectra import Runner, Grid, overturning_maps, parse_pulse_choice, parse_isolation
+    from rockcli.spectra import parse_vertical_choice
+
+    vertical = parse_vertical_choice("sine:ap=0.5,TvTp=0.7")
+    args = ([12.0], [parse_pulse_choice("ricker-anti")], [parse_isolation("none")], Grid(1.0, 8.0, 9),
+            Grid(0.5, 6.0, 9))
+    a = overturning_maps(*args, runner=Runner(vertical=vertical))[0]
+    b = overturning_maps(*args, R=3.7, runner=Runner(vertical=vertical))[0]
+    plain = overturning_maps(*args)[0]
+    assert np.array_equal(a.overturned, b.overturned) and np.array_equal(a.uplifted, b.uplifted)
+    assert np.allclose(a.theta_max_over_alpha, b.theta_max_over_alpha, rtol=1e-5, atol=1e-7)
+    assert not np.array_equal(a.uplifted, plain.uplifted) or not np.array_equal(a.overturned, plain.overturned)
+    fam = _family(12.0, "ricker-anti")
+    rng = np.random.default_rng(5)
+    for _ in range(12):  # each cell is the simulate run of its block, pulse and vertical pulse
+        i, j = rng.integers(9, size=2)
+        block, foundation, pulse = fam.scene(a.wp_over_p[j], a.ap_over_g_tan_alpha[i])
+        r = simulate(block, foundation, pulse, vertical=vertical.pulse(pulse))
+        assert r.overturned == a.overturned[i, j] and (r.verdict != "no_uplift") == a.uplifted[i, j]
+
+
+def test_min_overturning_under_a_vertical_pulse_brackets_the_simulate_runs():
+    """The uplift threshold is no longer y = 1: found by bisection, it brackets simulate's uplift; ap_min
+    overturns and ap_safe does not."""
+    from rockcli.spectra import Runner, parse_vertical_choice, search_min_overturning
+
+    vertical = parse_vertical_choice("sine:ap=0.4,TvTp=2")
+    fam = _family(10.0, "sine")
+    xs = np.array([1.5, 3.0, 6.0])
+    res = search_min_overturning([fam], np.zeros(xs.size, np.int64), xs, runner=Runner(vertical=vertical))
+    assert np.all(np.abs(res.ap_uplift - 1.0) > 1e-3)  # it moved
+    for k, x in enumerate(xs):
+        def run(y):
+            block, foundation, pulse = fam.scene(x, y)
+            return simulate(block, foundation, pulse, vertical=vertical.pulse(pulse), early=True)
+
+        assert run(res.ap_uplift[k] * (1 + 1e-6)).verdict != "no_uplift" == run(res.ap_uplift[k] * (1 - 1e-6)).verdict
+        assert run(res.ap_min[k]).overturned and not run(res.ap_safe[k]).overturned
+
+
+@pytest.mark.parametrize("command", ["overturning", "min-overturning"])
+def test_spectrum_vertical_pulse_is_reported_and_refused_on_isolated_bases(command, tmp_path):
+    base = ["spectrum", command, "--alpha", "10", "--wp-p", "2:3:2"] + (["--ap", "0:4:3"] if command == "overturning"
+                                                                       else ["--isolation", "none"])
+    out = _cli(base + ["--vertical-pulse", "sine:ap=0.3", "--csv", str(tmp_path / "v.csv")])
+    assert out.exit_code == 0, out.output
+    assert "vertical motion: a sine:ap=0.3,TvTp=1 pulse" in out.output
+    assert {r["vertical"] for r in _rows(tmp_path / "v.csv")} == {"sine:ap=0.3,TvTp=1"}
+    iso = _cli(base + ["--vertical-pulse", "sine:ap=0.3", "--isolation", "linear:TbTp=2,xi=0.1"])
+    assert iso.exit_code == 2 and "rigid foundation only" in iso.output and "Traceback" not in iso.output
+    for spec, msg in (("sine:ap=-1.2", "lift off"), ("sine:ap=0.2,Tp=1", "TvTp"), ("box:ap=0.2", "unknown shape"),
+                      ("sine:TvTp=2", "give the vertical amplitude")):
+        bad = _cli(base + ["--vertical-pulse", spec])
+        assert bad.exit_code == 2 and msg in bad.output, (spec, bad.output)

@@ -122,6 +122,16 @@ def vertical_options(func):
     return _stacked(func, options)
 
 
+#: ``--vertical-pulse`` of the pulse spectra (a :class:`rockcli.spectra.VerticalChoice`), kept on the click
+#: context like :func:`vertical_options`'s and read with :func:`given_vertical`.
+spectrum_vertical_option = click.option(
+    "--vertical-pulse", "vertical_pulse", default=None, metavar="SHAPE:ap=G[,TvTp=R]", expose_value=False,
+    callback=_remember("rockcli.vertical_pulse"),
+    help="A vertical pulse under every cell, rigid foundation only: its shape, amplitude a_v [g, upward positive] "
+         "and period over the horizontal pulse's (default 1), centred on the horizontal pulse. Gravity becomes "
+         "g + a_v.")
+
+
 def given_vertical() -> dict:
     """``source``, ``component``, ``pulse`` and ``scale`` of :func:`vertical_options`."""
     ctx = click.get_current_context(silent=True)

@@ -7,7 +7,7 @@ import click
 
 from rockcli.cli.errors import InputError, user_errors
 from rockcli.cli.options import (add_inputs, cap_ratio_option, horizon_option, progress_bar, record_kwargs,
-                                 record_options, restitution_option)
+                                 record_options, restitution_option, spectrum_vertical_option)
 from rockcli.cli.types import NUMBER
 
 _SHAPES = "ricker-sym|ricker-anti|sine|cosine"
@@ -48,6 +48,7 @@ def _scene_options(isolation_help: str, isolation_default, multiple_isolation: b
             horizon_option,
             restitution_option,
             cap_ratio_option,
+            spectrum_vertical_option,
         ]
         f = record_options(f, column_flag="--record-column")
         for option in reversed(options):
@@ -108,11 +109,28 @@ def _runner(scheduler, horizon, restitution=None, cap_ratio=0.0, isolations=()):
     if cap_ratio > 0.0 and not all(iso.rigid for iso in isolations):
         raise InputError("--cap-ratio needs a rigid foundation: give --isolation none (a capped colonnade on an "
                          "isolated base is not derived in rockcli)")
+    vertical = _vertical_choice(isolations)
     if scheduler is not None:
         from rockcli.distributed import check_scheduler
 
         check_scheduler(scheduler)
-    return Runner(scheduler, horizon=horizon, restitution=restitution, cap_ratio=cap_ratio)
+    return Runner(scheduler, horizon=horizon, restitution=restitution, cap_ratio=cap_ratio, vertical=vertical)
+
+
+def _vertical_choice(isolations):
+    """``--vertical-pulse`` as a :class:`rockcli.spectra.VerticalChoice` (None when not given); refused with an
+    isolated foundation, in one sentence why."""
+    from rockcli.cli.options import given_vertical
+
+    text = given_vertical()["pulse"]
+    if text is None:
+        return None
+    from rockcli.solve.excitation import VERTICAL_RIGID_ONLY
+    from rockcli.spectra import parse_vertical_choice
+
+    if not all(iso.rigid for iso in isolations):
+        raise InputError(f"--vertical-pulse: {VERTICAL_RIGID_ONLY}; give --isolation none")
+    return parse_vertical_choice(text)
 
 
 def _echo_impacts(runner):
@@ -120,6 +138,9 @@ def _echo_impacts(runner):
         click.echo(f"impacts: coefficient of restitution E = {runner.restitution:g} (README, Restitution)")
     if runner.cap_ratio > 0.0:
         click.echo(f"capped colonnades: beam/columns mass gamma_c = {runner.cap_ratio:g} (docs/physics-colonnade.md)")
+    if runner.vertical is not None:
+        click.echo(f"vertical motion: a {runner.vertical.label} pulse under every cell, centred on the horizontal "
+                   f"one (docs/vertical.md)")
 
 
 def _csv_options(runner) -> dict:
@@ -127,6 +148,8 @@ def _csv_options(runner) -> dict:
     extra = {"restitution": runner.restitution} if runner.restitution is not None else {}
     if runner.cap_ratio > 0.0:
         extra["cap_ratio"] = runner.cap_ratio
+    if runner.vertical is not None:
+        extra["vertical"] = runner.vertical.label
     return extra
 
 

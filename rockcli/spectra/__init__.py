@@ -36,10 +36,10 @@ from rockcli.spectra.minimum import (DEFAULT_AP_MAX, DEFAULT_REFINE, DEFAULT_REF
                                      MinCurve, MinSearch, describe_search, min_overturning_curves,
                                      search_min_overturning)
 from rockcli.spectra.runner import Cells, Runner, run_cells_local
-from rockcli.spectra.scenes import (REFERENCE_R, SHAPES, Family, Isolation, PulseChoice, parse_isolation,
-                                    parse_pulse_choice, pulse_from_record)
+from rockcli.spectra.scenes import (REFERENCE_R, SHAPES, Family, Isolation, PulseChoice, VerticalChoice,
+                                    parse_isolation, parse_pulse_choice, parse_vertical_choice, pulse_from_record)
 
-__all__ = ["CROSSING_GRID", "DEFAULT_AP_MAX", "DEFAULT_REFINE", "DEFAULT_REFINE_BAND", "DEFAULT_STEP", "DEFAULT_TOL",
+__all__ = ["VerticalChoice", "parse_vertical_choice", "CROSSING_GRID", "DEFAULT_AP_MAX", "DEFAULT_REFINE", "DEFAULT_REFINE_BAND", "DEFAULT_STEP", "DEFAULT_TOL",
            "REFERENCE_R", "SHAPES", "TABLE_I_ALPHAS_DEG", "TABLE_I_GAMMA", "TABLE_I_PULSES", "TABLE_I_TB_TP",
            "TABLE_I_XI", "Cells", "CriticalResult", "CriticalRow", "Family", "Grid", "Isolation", "MinCurve",
            "MinSearch", "OverturningMap", "PulseChoice", "Runner", "critical_R", "critical_sizes", "describe_search",
