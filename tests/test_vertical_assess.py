@@ -113,6 +113,29 @@ def test_assess_column_runs_each_record_under_its_own_vertical_component(find_re
     assert abs(plain.theta_max - lib.theta_max) > 0.1 * block.alpha  # it does move the peak
 
 
+def test_simulate_reads_the_vertical_component_of_a_three_component_file(find_record):
+    """--component picks the horizontal record; the --vertical file's own component is its one vertical one
+    (or --vertical-component/--vertical-column), never the horizontal --component (it used to be)."""
+    import json
+
+    from rockcli.assess import parse_column_spec
+    from rockcli.records.reader import read_components
+
+    path = str(find_record("20161113_110259_WTMC_20.V2A"))
+    comps = {c.meta["component"]: c for c in read_components(path)}
+    lib = simulate(parse_column_spec("bassae"), Rigid(), comps["S62W"], vertical=comps["Up"].scaled(0.5))
+    base = ["simulate", "--column", "bassae", "--record", path, "--component", "S62W", "--vertical", path,
+            "--vertical-scale", "0.5", "--json"]
+    for extra in ([], ["--vertical-component", "UP"], ["--vertical-column", "3"]):
+        out = _cli(base + extra)
+        assert out.exit_code == 0, out.output
+        got = json.loads(out.output)
+        assert got["theta_max"] == lib.theta_max and got["verdict"] == lib.verdict, extra
+        assert "component Up" in got["vertical"] or extra, got["vertical"]
+    bad = _cli(base + ["--vertical-component", "UP", "--vertical-column", "3"])
+    assert bad.exit_code == 2 and "not both" in bad.output
+
+
 def _suite(tmp_path, n=3):
     folder = tmp_path / "suite"
     folder.mkdir()
@@ -213,3 +236,9 @@ def test_spectrum_vertical_pulse_is_reported_and_refused_on_isolated_bases(comma
                       ("sine:TvTp=2", "give the vertical amplitude")):
         bad = _cli(base + ["--vertical-pulse", spec])
         assert bad.exit_code == 2 and msg in bad.output, (spec, bad.output)
+
+
+def test_spectrum_critical_size_refuses_a_vertical_pulse():
+    """It always compares isolated bases with the rigid foundation: refused, in one sentence, not 'no such option'."""
+    out = _cli(["spectrum", "critical-size", "--vertical-pulse", "sine:ap=0.2"])
+    assert out.exit_code == 2 and "rigid foundation only" in out.output and "critical-size compares" in out.output

@@ -49,8 +49,11 @@ def _with_vertical(excitations, configurations, units, dt) -> list:
     from rockcli.solve.excitation import VERTICAL_RIGID_ONLY
 
     v = given_vertical()
-    given = [f for f, k in (("--vertical", "source"), ("--vertical-component", "component"),
-                            ("--vertical-pulse", "pulse")) if v[k] is not None]
+    given = [f for f, k in (("--vertical", "source"), ("--vertical-pulse", "pulse")) if v[k] is not None]
+    if v["component"] is not None and v["source"] is None:  # without --vertical: each record's own component
+        given.append("--vertical-component")
+    if v["column"] is not None and v["source"] is None:
+        raise InputError("--vertical-column applies to --vertical SOURCE")
     if not given:
         if v["scale_given"]:
             raise InputError("--vertical-scale applies to --vertical, --vertical-component or --vertical-pulse")
@@ -62,14 +65,15 @@ def _with_vertical(excitations, configurations, units, dt) -> list:
         raise InputError(f"{given[0]}: {VERTICAL_RIGID_ONLY}; give --isolation none")
     from rockcli.assess.vertical import attach_verticals
 
-    if v["component"] is not None:
+    if v["component"] is not None and v["source"] is None:
         import math
 
         if not math.isfinite(v["scale"]) or v["scale"] == 0:
             raise InputError(f"--vertical-scale must be a finite non-zero number, got {v['scale']!r}")
         return attach_verticals(excitations, component=v["component"], scale=v["scale"],
                                 read_kwargs=_file_read_kwargs(units, dt))
-    motion, label = read_vertical(v["source"], None, v["pulse"], v["scale"], {"units": units, "dt": dt})
+    motion, label = read_vertical(v["source"], v["column"], v["pulse"], v["scale"], {"units": units, "dt": dt},
+                                  v["component"])
     return attach_verticals(excitations, motion=motion, label=label)
 
 

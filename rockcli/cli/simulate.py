@@ -10,7 +10,7 @@ from rockcli.cli.errors import user_errors
 from rockcli.cli.options import (azimuth_options, block_from_options, block_options, cap_ratio_option,
                                  check_outputs,
                                  command_line, horizon_option, record_kwargs, record_options, report_option,
-                                 restitution_option)
+                                 restitution_option, simulate_vertical_component_option)
 from rockcli.cli.types import NUMBER, WHOLE
 
 
@@ -36,6 +36,7 @@ from rockcli.cli.types import NUMBER, WHOLE
                    "g + a_v.")
 @click.option("--vertical-column", "vertical_column", type=WHOLE, default=None, metavar="N",
               help="Column of the --vertical file (as --record-column).")
+@simulate_vertical_component_option
 @click.option("--vertical-pulse", "vertical_pulse", default=None, metavar="SPEC",
               help="Vertical ground acceleration as an analytic pulse (same SPEC as --pulse; ap in g, upward "
                    "positive).")
@@ -233,9 +234,9 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
 
 def _vertical(source, column, pulse, scale, units, dt, fmt):
     """``(vertical motion or None, its label)`` from ``--vertical``/``--vertical-pulse``/``--vertical-scale``."""
-    from rockcli.cli.options import read_vertical
+    from rockcli.cli.options import given_vertical, read_vertical
 
-    return read_vertical(source, column, pulse, scale, record_kwargs(units, dt, fmt, None))
+    return read_vertical(source, column, pulse, scale, record_kwargs(units, dt, fmt, None), given_vertical()["component"])
 
 
 def _impact_keys(block, foundation, restitution, cap_ratio=0.0) -> dict:

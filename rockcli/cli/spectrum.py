@@ -97,7 +97,7 @@ def _pulses(pulses, records, units, dt, fmt, column, default=("ricker-sym",)):
     return out
 
 
-def _runner(scheduler, horizon, restitution=None, cap_ratio=0.0, isolations=()):
+def _runner(scheduler, horizon, restitution=None, cap_ratio=0.0, isolations=(), fix="give --isolation none"):
     from rockcli.colonnade import check_cap_ratio
     from rockcli.impact import check_restitution
     from rockcli.solve import validate_options
@@ -109,7 +109,7 @@ def _runner(scheduler, horizon, restitution=None, cap_ratio=0.0, isolations=()):
     if cap_ratio > 0.0 and not all(iso.rigid for iso in isolations):
         raise InputError("--cap-ratio needs a rigid foundation: give --isolation none (a capped colonnade on an "
                          "isolated base is not derived in rockcli)")
-    vertical = _vertical_choice(isolations)
+    vertical = _vertical_choice(isolations, fix)
     if scheduler is not None:
         from rockcli.distributed import check_scheduler
 
@@ -117,7 +117,7 @@ def _runner(scheduler, horizon, restitution=None, cap_ratio=0.0, isolations=()):
     return Runner(scheduler, horizon=horizon, restitution=restitution, cap_ratio=cap_ratio, vertical=vertical)
 
 
-def _vertical_choice(isolations):
+def _vertical_choice(isolations, fix):
     """``--vertical-pulse`` as a :class:`rockcli.spectra.VerticalChoice` (None when not given); refused with an
     isolated foundation, in one sentence why."""
     from rockcli.cli.options import given_vertical
@@ -129,7 +129,7 @@ def _vertical_choice(isolations):
     from rockcli.spectra import parse_vertical_choice
 
     if not all(iso.rigid for iso in isolations):
-        raise InputError(f"--vertical-pulse: {VERTICAL_RIGID_ONLY}; give --isolation none")
+        raise InputError(f"--vertical-pulse: {VERTICAL_RIGID_ONLY}; {fix}")
     return parse_vertical_choice(text)
 
 
@@ -360,6 +360,7 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
               help="Run the cells on a Dask cluster (see overturning).")
 @horizon_option
 @restitution_option
+@spectrum_vertical_option
 @user_errors
 def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, fmt, column, wp_p, xtol, ap_max,
                   step, tol, refine, refine_band, csv_path, plot_path, scheduler, horizon, restitution):
@@ -392,7 +393,8 @@ def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, 
         xi = 0.05
     isos = table_i_isolations(ratios, xi=xi, gamma=gamma, template=bearing)
     _check_outputs(csv_path, plot_path)
-    runner = _runner(scheduler, horizon, restitution)
+    runner = _runner(scheduler, horizon, restitution, isolations=isos,
+                     fix="critical-size compares the rigid foundation with isolated bases, so it cannot take one")
     if pulses or records:
         pcs = _pulses(pulses, records, units, dt, fmt, column, default=())
     else:
