@@ -98,45 +98,44 @@ def given_azimuth() -> dict:
     return {"record_2": record_2, "azimuth": azimuth, "step": AZIMUTH_STEP if step is None else step}
 
 
+def _kept(flag: str, **kwargs):
+    """An option not passed to the command: kept on the click context as ``rockcli.<name>`` (``--vertical-scale``
+    -> ``rockcli.vertical_scale``), None when not given."""
+    return click.option(flag, default=None, expose_value=False,
+                        callback=_remember("rockcli." + flag.lstrip("-").replace("-", "_")), **kwargs)
+
+
 def vertical_options(func):
     """``--vertical``, ``--vertical-column``, ``--vertical-component``, ``--vertical-pulse`` and ``--vertical-scale`` of
     the commands that run suites of records (``assess``): kept on the click context, read with
     :func:`given_vertical`."""
     options = [
-        click.option("--vertical", "vertical", default=None, metavar="SOURCE", expose_value=False,
-                     callback=_remember("rockcli.vertical"),
-                     help="Vertical ground acceleration (upward positive) under every record, rigid foundation only: "
-                          "a record file or catalogue id on the records' time base (read with --units/--dt). "
-                          "Gravity becomes g + a_v; the margin's scale factors multiply the horizontal motion only."),
-        click.option("--vertical-column", "vertical_column", type=WHOLE, default=None, metavar="N", expose_value=False,
-                     callback=_remember("rockcli.vertical_column"),
-                     help="Column of the --vertical file (a multi-column text file)."),
-        click.option("--vertical-component", "vertical_component", default=None, metavar="NAME", expose_value=False,
-                     callback=_remember("rockcli.vertical_component"),
-                     help="Run each record under its own vertical component, read from the same multi-component "
-                          "file: its channel code (HNZ, UP, ...) or UP. With --vertical: the component of that file."),
-        click.option("--vertical-pulse", "vertical_pulse", default=None, metavar="SPEC", expose_value=False,
-                     callback=_remember("rockcli.vertical_pulse"),
-                     help="Vertical ground acceleration as an analytic pulse under every record (same SPEC as "
-                          "simulate --pulse; ap in g, upward positive)."),
-        click.option("--vertical-scale", "vertical_scale", type=NUMBER, default=None, expose_value=False,
-                     callback=_remember("rockcli.vertical_scale"),
-                     help="Multiply the vertical acceleration by this factor [default: 1]."),
+        _kept("--vertical", metavar="SOURCE",
+              help="Vertical ground acceleration (upward positive) under every record, rigid foundation only: a record "
+                   "file or catalogue id on the records' time base (read with --units/--dt). Gravity becomes g + a_v; "
+                   "the margin's scale factors multiply the horizontal motion only."),
+        _kept("--vertical-column", type=WHOLE, metavar="N",
+              help="Column of the --vertical file (a multi-column text file)."),
+        _kept("--vertical-component", metavar="NAME",
+              help="Run each record under its own vertical component, read from the same multi-component file: its "
+                   "channel code (HNZ, UP, ...) or UP. With --vertical: the component of that file."),
+        _kept("--vertical-pulse", metavar="SPEC",
+              help="Vertical ground acceleration as an analytic pulse under every record (same SPEC as simulate "
+                   "--pulse; ap in g, upward positive)."),
+        _kept("--vertical-scale", type=NUMBER, help="Multiply the vertical acceleration by this factor [default: 1]."),
     ]
     return _stacked(func, options)
 
 
 #: ``--vertical-component NAME`` of ``simulate``: the component of the ``--vertical`` file (kept on the click context)
-simulate_vertical_component_option = click.option(
-    "--vertical-component", "vertical_component", default=None, metavar="NAME", expose_value=False,
-    callback=_remember("rockcli.vertical_component"),
+simulate_vertical_component_option = _kept(
+    "--vertical-component", metavar="NAME",
     help="Component of a multi-component --vertical file (HNZ, UP, ...; default: its one vertical component).")
 
 #: ``--vertical-pulse`` of the pulse spectra (a :class:`rockcli.spectra.VerticalChoice`), kept on the click
 #: context like :func:`vertical_options`'s and read with :func:`given_vertical`.
-spectrum_vertical_option = click.option(
-    "--vertical-pulse", "vertical_pulse", default=None, metavar="SHAPE:ap=G[,TvTp=R]", expose_value=False,
-    callback=_remember("rockcli.vertical_pulse"),
+spectrum_vertical_option = _kept(
+    "--vertical-pulse", metavar="SHAPE:ap=G[,TvTp=R]",
     help="A vertical pulse under every cell, rigid foundation only: its shape, amplitude a_v [g, upward positive] "
          "and period over the horizontal pulse's (default 1), centred on the horizontal pulse. Gravity becomes "
          "g + a_v.")

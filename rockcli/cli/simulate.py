@@ -236,7 +236,8 @@ def _vertical(source, column, pulse, scale, units, dt, fmt):
     """``(vertical motion or None, its label)`` from ``--vertical``/``--vertical-pulse``/``--vertical-scale``."""
     from rockcli.cli.options import given_vertical, read_vertical
 
-    return read_vertical(source, column, pulse, scale, record_kwargs(units, dt, fmt, None), given_vertical()["component"])
+    return read_vertical(source, column, pulse, scale, record_kwargs(units, dt, fmt, None),
+                         given_vertical()["component"])
 
 
 def _impact_keys(block, foundation, restitution, cap_ratio=0.0) -> dict:

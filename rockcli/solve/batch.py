@@ -62,9 +62,10 @@ def simulate_many(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL,
         Capped colonnade of :func:`simulate` (one value or one per scene; 0: solitary columns).
     vertical : Record, pulse, None or a sequence of them, optional
         Vertical ground motion of :func:`simulate` (one for every scene, or one per scene; None:
-        the one the scene's record carries, if any, :func:`rockcli.solve.with_vertical`). Never scaled: ``scale`` multiplies the horizontal motion only. Rigid foundation only
-        (a scene on an isolated base gets a :class:`JobError`); these scenes run in the same batch
-        machinery, on the rigid driver's vertical entry.
+        the one the scene's record carries, if any, :func:`rockcli.solve.with_vertical`). Never
+        scaled: ``scale`` multiplies the horizontal motion only. Rigid foundation only (a scene on an
+        isolated base gets a :class:`JobError`); these scenes run in the same batch machinery, on the
+        rigid driver's vertical entry.
 
     Returns
     -------
