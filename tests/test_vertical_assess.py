@@ -85,6 +85,21 @@ def test_attach_verticals_turns_what_cannot_carry_one_into_error_rows():
     assert lift[0].motion is None and "lift off" in lift[0].error
 
 
+def test_every_projection_of_a_pair_keeps_the_vertical_component():
+    """--azimuth worst projects a pair onto every orientation: each projection carries the pair's vertical."""
+    from dataclasses import replace
+
+    from rockcli.assess.azimuth import expand
+    from rockcli.records.orientation import project
+
+    a = replace(synthetic_record(51, duration=4.0), meta={"azimuth_deg": 0.0, "vertical": False})
+    b = replace(synthetic_record(52, duration=4.0), meta={"azimuth_deg": 90.0, "vertical": False})
+    up = synthetic_record(53, duration=4.0, pga=0.3 * G)
+    x = Excitation("a+b", "record", with_vertical(project(a, b, 0.0), up, "up"), "a", pair=(a, b))
+    out, groups = expand([x], [0.0, 45.0, 90.0])
+    assert len(out) == 3 and all(attached_vertical(o.motion) is up for o in out)
+
+
 # ------------------------------------------------------------------------------------------
 # assess column / assess fragility
 # ------------------------------------------------------------------------------------------
