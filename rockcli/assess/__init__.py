@@ -9,6 +9,9 @@ The library behind ``rockcli assess`` (no click, no pandas). Read it in this ord
 :mod:`rockcli.assess.excitations`
     The records of a run: catalogue ids, files, folders (files that are not records skipped), manifests,
     pairs of horizontal components projected onto the rocking plane.
+:mod:`rockcli.assess.vertical`
+    The vertical ground motion of each record (its own vertical component, or one vertical motion for
+    all), carried by the record through every run; the margins scale the horizontal motion only.
 :mod:`rockcli.assess.margin`
     The margin search: the smallest scale factor of a record that overturns a scene (a scan of
     373 log-spaced factors 0.1..4 in steps just under 1 %, then a bisection below the first
@@ -41,6 +44,7 @@ from rockcli.assess.scenes import (DEFAULT_ISOLATION, EXCITATION_MODES, EXCITATI
 from rockcli.assess.table import (ROW_FIELDS, Assessment, AssessmentRow, count_runs, history_runs, run_assessment,
                                   safe_name)
 from rockcli.assess.verdicts import body_noun, configuration_sentence, format_verdicts, scene_sentence
+from rockcli.assess.vertical import attach_verticals, vertical_labels
 
 __all__ = ["DEFAULT_ISOLATION", "EXCITATION_MODES", "EXCITATION_PULSE", "EXCITATION_RECORD", "IMS", "MARGIN_GRID",
            "MARGIN_RTOL", "NEIGHBOURHOOD", "ROW_FIELDS", "Assessment", "AssessmentRow", "Configuration", "Excitation",
@@ -50,4 +54,4 @@ __all__ = ["DEFAULT_ISOLATION", "EXCITATION_MODES", "EXCITATION_PULSE", "EXCITAT
            "custom_column", "find_overturn_scales", "fit_lognormal", "fragility_probability", "history_runs",
            "intensity_measure", "map_chunks", "overturn_scales_chunked", "overturn_shares", "parse_column_spec",
            "parse_configurations", "resolve_excitations", "run_assessment", "run_fragility", "run_local",
-           "safe_name", "table_ii_entries"]
+           "safe_name", "table_ii_entries", "attach_verticals", "vertical_labels"]

@@ -20,6 +20,7 @@ def expand(excitations: Sequence, azimuths) -> tuple[list, dict]:
     """The excitations with every pair replaced by its projections onto ``azimuths``; and, per pair label,
     the labels of its projections in azimuth order."""
     from rockcli.records.orientation import project
+    from rockcli.solve import attached_vertical, vertical_label, with_vertical
 
     out, groups = [], {}
     for x in excitations:
@@ -29,6 +30,8 @@ def expand(excitations: Sequence, azimuths) -> tuple[list, dict]:
         subs = []
         for theta in azimuths:
             rec = project(*x.pair, float(theta))
+            if attached_vertical(x.motion) is not None:  # the pair's vertical component goes with every projection
+                rec = with_vertical(rec, attached_vertical(x.motion), vertical_label(x.motion))
             sub = replace(x, label=f"{x.label}@{float(theta):g}", motion=rec, pga_g=rec.pga_g,
                           azimuth_deg=float(theta))
             subs.append(sub.label)

@@ -11,7 +11,7 @@ from rockcli.cli.errors import InputError, user_errors
 from rockcli.cli.options import (QuietSpellingOption, alias_option, azimuth_options, cap_ratio_option, check_outputs, command_line, custom_block_options,
                                  echo_json, given_azimuth, given_component, given_suite, horizon_option,
                                  is_quiet, json_option, progress_bar, quiet_option, report_option,
-                                 restitution_option)
+                                 restitution_option, vertical_options)
 from rockcli.cli.options import GAMMA_HELP, Group
 from rockcli.cli.types import NUMBER, SEED, Number
 
@@ -40,6 +40,56 @@ def _cap_ratio_kw(cap_ratio, configurations) -> dict:
         raise InputError("--cap-ratio needs a rigid foundation: give --isolation none (a capped colonnade on an "
                          "isolated base is not derived in rockcli)")
     return {"cap_ratio": cap_ratio}
+
+
+def _with_vertical(excitations, configurations, units, dt) -> list:
+    """The excitations under the vertical motion of ``--vertical``/``--vertical-component``/``--vertical-pulse``
+    (:func:`rockcli.assess.vertical.attach_verticals`); unchanged without them. Refused with an isolated
+    configuration (one sentence why)."""
+    from rockcli.assess.excitations import _file_read_kwargs
+    from rockcli.cli.options import given_vertical, read_vertical
+    from rockcli.solve.excitation import VERTICAL_RIGID_ONLY
+
+    v = given_vertical()
+    given = [f for f, k in (("--vertical", "source"), ("--vertical-pulse", "pulse")) if v[k] is not None]
+    if v["component"] is not None and v["source"] is None:  # without --vertical: each record's own component
+        given.append("--vertical-component")
+    if v["column"] is not None and v["source"] is None:
+        raise InputError("--vertical-column applies to --vertical SOURCE")
+    if not given:
+        if v["scale_given"]:
+            raise InputError("--vertical-scale applies to --vertical, --vertical-component or --vertical-pulse")
+        return list(excitations)
+    if len(given) > 1:
+        raise InputError(f"give the vertical ground motion as one of --vertical, --vertical-component or "
+                         f"--vertical-pulse, not {' and '.join(given)}")
+    if any(c.isolated for c in configurations):
+        raise InputError(f"{given[0]}: {VERTICAL_RIGID_ONLY}; give --isolation none")
+    from rockcli.assess.vertical import attach_verticals
+
+    if v["component"] is not None and v["source"] is None:
+        import math
+
+        if not math.isfinite(v["scale"]) or v["scale"] == 0:
+            raise InputError(f"--vertical-scale must be a finite non-zero number, got {v['scale']!r}")
+        return attach_verticals(excitations, component=v["component"], scale=v["scale"],
+                                read_kwargs=_file_read_kwargs(units, dt))
+    motion, label = read_vertical(v["source"], v["column"], v["pulse"], v["scale"], {"units": units, "dt": dt},
+                                  v["component"])
+    return attach_verticals(excitations, motion=motion, label=label)
+
+
+def _vertical_note(result) -> str:
+    """A line of the notes naming the vertical motion of each record (none without one)."""
+    from rockcli.assess.vertical import vertical_labels
+
+    labels = vertical_labels(result.excitations)
+    if not labels:
+        return ""
+    kinds = sorted(set(labels.values()))
+    what = kinds[0] if len(kinds) == 1 else "; ".join(f"{k}: {v}" for k, v in labels.items())
+    return (f"\nVertical motion (rigid foundation; gravity g + a_v; the scale factors multiply the horizontal "
+            f"motion only): {what}.")
 
 
 def _headerless_options(func):
@@ -151,6 +201,7 @@ def _columns(names, R, alpha, height, width, name):
                    "Table II records (file where found on ROCKCLI_RECORDS, else the catalogued pulse).")
 @_headerless_options
 @azimuth_options(suite=True)
+@vertical_options
 @click.option("--excitation", type=click.Choice(["auto", "record", "pulse"]), default="auto", show_default=True,
               help="Catalogue records: the file where found else its fitted Ricker pulse (auto), files only "
                    "(record), or the pulses only (pulse).")
@@ -225,6 +276,7 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
                                                    **given_suite())
     if not excitations:
         raise InputError("no record to run: " + "; ".join(f"{u.label}: {u.reason}" for u in unavailable))
+    excitations = _with_vertical(excitations, configurations, units, dt)
     _refuse_if_none_can_run(excitations)
     _add_record_inputs(excitations)
     run_excitations, groups = excitations, {}
@@ -256,7 +308,7 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
         from rockcli.assess.table import check_tolerance as run_check
 
         chk = run_check(result)
-    _echo_result(result, format_matrix(result), format_notes(result), format_verdicts(result),
+    _echo_result(result, format_matrix(result), format_notes(result) + _vertical_note(result), format_verdicts(result),
                  as_json=_assessment_json(result, columns, configurations, chk) if as_json else None)
     _warn_pulses(result, excitation)
     failed_runs = [r for r in result.rows if r.error and not any(x.label == r.record for x in result.failed)]
@@ -386,6 +438,7 @@ def _write_histories(result, hist_dir, plot_dir, as_json=False):
                    "A file that cannot be read becomes an error row; the others carry on.")
 @_headerless_options
 @azimuth_options(suite=True)
+@vertical_options
 @click.option("--isolation", "isolation", multiple=True, metavar="SPEC",
               help="Foundation (repeatable): 'none', 'linear:Tb=2.5,xi=0.1,gamma=0.01', 'scss:Tb=2,mu=0.05', "
                    "'lrb:...' or 'dcss:...' (see 'rockcli simulate --help'). Default: none and "
@@ -452,6 +505,7 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
                          "--azimuth worst is not supported here yet (run 'assess column --azimuth worst')")
     excitations, unavailable = resolve_excitations(records, "record", units=units, dt=dt, azimuth=azimuth,
                                                    component=given_component(), **given_suite())
+    excitations = _with_vertical(excitations, configurations, units, dt)
     _refuse_if_none_can_run(excitations)
     _add_record_inputs(excitations)
 
@@ -468,7 +522,7 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
 
     from rockcli.report.fragility import format_fragility, format_fragility_notes
 
-    notes = format_fragility_notes(result)
+    notes = format_fragility_notes(result) + _vertical_note(result)
     if solver:
         notes += f"\nImpacts: coefficient of restitution E = {solver['restitution']:g} (README, Restitution)."
     _echo_result(result, format_fragility(result), notes, as_json=_fragility_json(result, solver) if as_json else None)

@@ -179,6 +179,125 @@ def given_azimuth() -> dict:
     return {"record_2": record_2, "azimuth": azimuth, "step": AZIMUTH_STEP if step is None else step}
 
 
+def _kept(flag: str, **kwargs):
+    """An option not passed to the command: kept on the click context as ``rockcli.<name>`` (``--vertical-scale``
+    -> ``rockcli.vertical_scale``), None when not given."""
+    return click.option(flag, default=None, expose_value=False,
+                        callback=_remember("rockcli." + flag.lstrip("-").replace("-", "_")), **kwargs)
+
+
+def vertical_options(func):
+    """``--vertical``, ``--vertical-column``, ``--vertical-component``, ``--vertical-pulse`` and ``--vertical-scale`` of
+    the commands that run suites of records (``assess``): kept on the click context, read with
+    :func:`given_vertical`."""
+    options = [
+        _kept("--vertical", metavar="SOURCE",
+              help="Vertical ground acceleration (upward positive) under every record, rigid foundation only: a record "
+                   "file or catalogue id on the records' time base (read with --units/--dt). Gravity becomes g + a_v; "
+                   "the margin's scale factors multiply the horizontal motion only."),
+        _kept("--vertical-column", type=WHOLE, metavar="N",
+              help="Column of the --vertical file (a multi-column text file)."),
+        _kept("--vertical-component", metavar="NAME",
+              help="Run each record under its own vertical component, read from the same multi-component file: its "
+                   "channel code (HNZ, UP, ...) or UP. With --vertical: the component of that file."),
+        _kept("--vertical-pulse", metavar="SPEC",
+              help="Vertical ground acceleration as an analytic pulse under every record (same SPEC as simulate "
+                   "--pulse; ap in g, upward positive)."),
+        _kept("--vertical-scale", type=NUMBER, help="Multiply the vertical acceleration by this factor [default: 1]."),
+    ]
+    return _stacked(func, options)
+
+
+#: ``--vertical-component NAME`` of ``simulate``: the component of the ``--vertical`` file (kept on the click context)
+simulate_vertical_component_option = _kept(
+    "--vertical-component", metavar="NAME",
+    help="Component of a multi-component --vertical file (HNZ, UP, ...; default: its one vertical component).")
+
+#: ``--vertical-pulse`` of the pulse spectra (a :class:`rockcli.spectra.VerticalChoice`), kept on the click
+#: context like :func:`vertical_options`'s and read with :func:`given_vertical`.
+spectrum_vertical_option = _kept(
+    "--vertical-pulse", metavar="SHAPE:ap=G[,TvTp=R]",
+    help="A vertical pulse under every cell, rigid foundation only: its shape, amplitude a_v [g, upward positive] "
+         "and period over the horizontal pulse's (default 1), centred on the horizontal pulse. Gravity becomes "
+         "g + a_v.")
+
+
+def given_vertical() -> dict:
+    """``source``, ``component``, ``pulse`` and ``scale`` of :func:`vertical_options`."""
+    ctx = click.get_current_context(silent=True)
+    meta = {} if ctx is None else ctx.meta
+    scale = meta.get("rockcli.vertical_scale")
+    return {"source": meta.get("rockcli.vertical"), "column": meta.get("rockcli.vertical_column"),
+            "component": meta.get("rockcli.vertical_component"),
+            "pulse": meta.get("rockcli.vertical_pulse"), "scale": 1.0 if scale is None else scale,
+            "scale_given": scale is not None}
+
+
+def read_vertical(source, column, pulse, scale, read_kwargs: dict, component=None):
+    """``(vertical motion or None, its label)`` from ``--vertical SOURCE`` (read with ``read_kwargs``; of a
+    multi-component file its ``--vertical-component`` or ``--vertical-column``, else its one vertical component)
+    or ``--vertical-pulse SPEC``, times ``--vertical-scale``. The horizontal record's ``--component`` does not
+    apply to it."""
+    import math
+
+    from rockcli.errors import RockcliInputError
+
+    if source is not None and pulse is not None:
+        raise RockcliInputError("give the vertical ground motion as at most one of --vertical SOURCE or "
+                                "--vertical-pulse SPEC")
+    if not math.isfinite(scale) or scale == 0:
+        raise RockcliInputError(f"--vertical-scale must be a finite non-zero number, got {scale!r}")
+    if source is None and pulse is None:
+        if column is not None or scale != 1.0 or component is not None:
+            raise RockcliInputError("--vertical-column, --vertical-component and --vertical-scale apply to "
+                                    "--vertical/--vertical-pulse")
+        return None, None
+    if pulse is not None:
+        from rockcli.pulses import parse_pulse_spec
+
+        if column is not None or component is not None:
+            raise RockcliInputError("--vertical-column and --vertical-component apply to --vertical, not to "
+                                    "--vertical-pulse")
+        vertical = parse_pulse_spec(pulse)
+        if scale != 1.0:
+            vertical = vertical.scaled(scale)
+        return vertical, f"{vertical.shape} pulse" + (f" x {scale:g}" if scale != 1.0 else "")
+    vertical = _read_vertical_record(source, column, component,
+                                     {k: v for k, v in read_kwargs.items() if k not in ("component", "column")})
+    add_inputs([vertical.meta.get("path")], "the vertical record")
+    comp = vertical.meta.get("component")
+    if scale != 1.0:
+        vertical = vertical.scaled(scale)
+    return vertical, (f"record {vertical.name}" + (f" component {comp}" if comp else "")
+                      + (f" x {scale:g}" if scale != 1.0 else ""))
+
+
+def _read_vertical_record(source, column, component, kwargs):
+    """The vertical record of ``--vertical SOURCE``: its ``column``, its ``component``, or the one vertical
+    component of a multi-component file."""
+    from rockcli.errors import RockcliInputError
+    from rockcli.records import read_record
+    from rockcli.records.components import MultiComponent, select_component
+    from rockcli.records.reader import read_components
+
+    if column is not None and component is not None:
+        raise RockcliInputError("give the vertical component either by --vertical-component NAME or by "
+                                "--vertical-column N, not both")
+    if component is not None:
+        comps = read_components(source, **{k: v for k, v in kwargs.items() if v is not None})
+        return select_component(comps, component, str(source))
+    try:
+        return read_record(source, **kwargs, column=column)
+    except MultiComponent:
+        comps = read_components(source, **{k: v for k, v in kwargs.items() if v is not None})
+        up = [c for c in comps if c.meta.get("vertical")]
+        if len(up) == 1:
+            return up[0]
+        raise RockcliInputError(f"--vertical {source}: the file holds {len(comps)} components, "
+                                f"{len(up)} of them vertical: choose one with --vertical-component NAME "
+                                f"(or --vertical-column N)") from None
+
+
 def suite_options(func):
     """``--glob`` and ``--exclude`` (multiple) for folder suites: kept on the click context, read with
     :func:`given_suite`."""

@@ -9,7 +9,8 @@ import click
 from rockcli.cli.errors import user_errors
 from rockcli.cli.options import (azimuth_options, block_from_options, block_options, cap_ratio_option,
                                  check_outputs, command_line, horizon_option, json_option, record_kwargs,
-                                 record_options, report_option, restitution_option)
+                                 record_options, report_option, restitution_option,
+                                 simulate_vertical_component_option)
 from rockcli.cli.options import GAMMA_HELP, Command
 from rockcli.cli.types import NUMBER, WHOLE
 
@@ -36,6 +37,7 @@ from rockcli.cli.types import NUMBER, WHOLE
                    "g + a_v.")
 @click.option("--vertical-column", "vertical_column", type=WHOLE, default=None, metavar="N",
               help="Column of the --vertical file (as --record-column).")
+@simulate_vertical_component_option
 @click.option("--vertical-pulse", "vertical_pulse", default=None, metavar="SPEC",
               help="Vertical ground acceleration as an analytic pulse (same SPEC as --pulse; ap in g, upward "
                    "positive).")
@@ -236,34 +238,10 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
 
 def _vertical(source, column, pulse, scale, units, dt, fmt):
     """``(vertical motion or None, its label)`` from ``--vertical``/``--vertical-pulse``/``--vertical-scale``."""
-    from rockcli.cli.options import add_inputs
-    from rockcli.errors import RockcliInputError
+    from rockcli.cli.options import given_vertical, read_vertical
 
-    if source is not None and pulse is not None:
-        raise RockcliInputError("give the vertical ground motion as at most one of --vertical SOURCE or "
-                                "--vertical-pulse SPEC")
-    if not math.isfinite(scale) or scale == 0:
-        raise RockcliInputError(f"--vertical-scale must be a finite non-zero number, got {scale!r}")
-    if source is None and pulse is None:
-        if column is not None or scale != 1.0:
-            raise RockcliInputError("--vertical-column and --vertical-scale apply to --vertical/--vertical-pulse")
-        return None, None
-    if pulse is not None:
-        from rockcli.pulses import parse_pulse_spec
-
-        if column is not None:
-            raise RockcliInputError("--vertical-column applies to --vertical, not to --vertical-pulse")
-        vertical = parse_pulse_spec(pulse)
-        if scale != 1.0:
-            vertical = vertical.scaled(scale)
-        return vertical, f"{vertical.shape} pulse"
-    from rockcli.records import read_record
-
-    vertical = read_record(source, **record_kwargs(units, dt, fmt, column))
-    add_inputs([vertical.meta.get("path")], "the vertical record")
-    if scale != 1.0:
-        vertical = vertical.scaled(scale)
-    return vertical, f"record {vertical.name}" + (f" x {scale:g}" if scale != 1.0 else "")
+    return read_vertical(source, column, pulse, scale, record_kwargs(units, dt, fmt, None),
+                         given_vertical()["component"])
 
 
 def _impact_keys(block, foundation, restitution, cap_ratio=0.0) -> dict:

@@ -7,7 +7,8 @@ import click
 
 from rockcli.cli.errors import InputError, user_errors
 from rockcli.cli.options import (add_inputs, alias_option, cap_ratio_option, echo_json, horizon_option, json_option,
-                                 progress_bar, quiet_option, record_kwargs, record_options, restitution_option)
+                                 progress_bar, quiet_option, record_kwargs, record_options, restitution_option,
+                                 spectrum_vertical_option)
 from rockcli.cli.options import DEFAULT_GAMMA_TEXT, DEFAULT_XI_TEXT, GAMMA_HELP, Group
 from rockcli.cli.types import NUMBER
 
@@ -59,6 +60,7 @@ def _scene_options(isolation_help: str, isolation_default, multiple_isolation: b
             horizon_option,
             restitution_option,
             cap_ratio_option,
+            spectrum_vertical_option,
         ]
         f = record_options(f)
         for option in reversed(options):
@@ -107,7 +109,7 @@ def _pulses(pulses, records, units, dt, fmt, column, default=("ricker-sym",)):
     return out
 
 
-def _runner(scheduler, horizon, restitution=None, cap_ratio=0.0, isolations=()):
+def _runner(scheduler, horizon, restitution=None, cap_ratio=0.0, isolations=(), fix="give --isolation none"):
     """The Runner of a spectrum, its options checked (``isolations``: Isolation specs or foundations)."""
     from rockcli.colonnade import check_cap_ratio
     from rockcli.impact import check_restitution
@@ -121,13 +123,30 @@ def _runner(scheduler, horizon, restitution=None, cap_ratio=0.0, isolations=()):
     if cap_ratio > 0.0 and not all(iso.kind in ("none", KIND_RIGID) for iso in isolations):
         raise InputError("--cap-ratio needs a rigid foundation: give --isolation none (a capped colonnade on an "
                          "isolated base is not derived in rockcli)")
+    vertical = _vertical_choice(isolations, fix)
     if scheduler is not None:
         from rockcli.cli.options import dask_client
         from rockcli.distributed import check_scheduler
 
         check_scheduler(scheduler)
         scheduler = dask_client(scheduler)
-    return Runner(scheduler, horizon=horizon, restitution=restitution, cap_ratio=cap_ratio)
+    return Runner(scheduler, horizon=horizon, restitution=restitution, cap_ratio=cap_ratio, vertical=vertical)
+
+
+def _vertical_choice(isolations, fix):
+    """``--vertical-pulse`` as a :class:`rockcli.spectra.VerticalChoice` (None when not given); refused with an
+    isolated foundation, in one sentence why."""
+    from rockcli.cli.options import given_vertical
+
+    text = given_vertical()["pulse"]
+    if text is None:
+        return None
+    from rockcli.solve.excitation import VERTICAL_RIGID_ONLY
+    from rockcli.spectra import parse_vertical_choice
+
+    if not all(iso.rigid for iso in isolations):
+        raise InputError(f"--vertical-pulse: {VERTICAL_RIGID_ONLY}; {fix}")
+    return parse_vertical_choice(text)
 
 
 def _echo_impacts(runner, err=False):
@@ -136,6 +155,9 @@ def _echo_impacts(runner, err=False):
     if runner.cap_ratio > 0.0:
         click.echo(f"capped colonnades: beam/columns mass gamma_c = {runner.cap_ratio:g} (docs/physics-colonnade.md)",
                    err=err)
+    if runner.vertical is not None:
+        click.echo(f"vertical motion: a {runner.vertical.label} pulse under every cell, centred on the horizontal "
+                   f"one (docs/vertical.md)", err=err)
 
 
 def _csv_options(runner) -> dict:
@@ -143,6 +165,8 @@ def _csv_options(runner) -> dict:
     extra = {"restitution": runner.restitution} if runner.restitution is not None else {}
     if runner.cap_ratio > 0.0:
         extra["cap_ratio"] = runner.cap_ratio
+    if runner.vertical is not None:
+        extra["vertical"] = runner.vertical.label
     return extra
 
 
@@ -376,6 +400,7 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
 @quiet_option
 @horizon_option
 @restitution_option
+@spectrum_vertical_option
 @user_errors
 def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, fmt, column, wp_p, xtol, ap_max,
                   step, tol, refine, refine_band, csv_path, plot_path, scheduler, as_json, horizon, restitution):
@@ -413,7 +438,8 @@ def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, 
         gamma = DEFAULT_GAMMA
     isos = table_i_isolations(ratios, xi=xi, gamma=gamma, template=bearing)
     _check_outputs(csv_path, plot_path)
-    runner = _runner(scheduler, horizon, restitution)
+    runner = _runner(scheduler, horizon, restitution, isolations=isos,
+                     fix="critical-size compares the rigid foundation with isolated bases, so it cannot take one")
     if pulses or records:
         pcs = _pulses(pulses, records, units, dt, fmt, column, default=())
     else:

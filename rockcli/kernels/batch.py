@@ -7,6 +7,8 @@ driver for the same work). A sweep compiles only the driver its scenes need.
 Row ``i`` of each argument describes scene ``i`` (``prms[i]`` in the ``P_*`` layout, ``N_PRM``
 wide); records are slices ``acc_all[acc_off[i]:acc_off[i] + acc_len[i]]`` (scenes may share one;
 ``jtab_all`` is laid out alike). Results go to ``outs[i]`` (``O_*`` layout); nothing else is stored.
+Under a vertical ground motion (rigid foundation only) the vertical series are slices
+``vacc_all[v_off[i]:v_off[i] + v_len[i]]`` sampled every ``vdts[i]`` (``vjtab_all`` alike).
 """
 
 from __future__ import annotations
@@ -15,7 +17,7 @@ import numpy as np
 from numba import njit
 
 from rockcli.kernels.driver import simulate_core
-from rockcli.kernels.rigid import simulate_rigid
+from rockcli.kernels.rigid import simulate_rigid, simulate_rigid_vertical
 
 
 @njit(cache=True, inline='always')
@@ -55,3 +57,19 @@ def simulate_batch(fkinds, prms, ekinds, epars, acc_all, jtab_all, acc_off, acc_
     """Scenes on isolated bases (:func:`rockcli.kernels.driver.simulate_core`)."""
     _run_scenes(simulate_core, fkinds, prms, ekinds, epars, acc_all, jtab_all, acc_off, acc_len, dts, t_begins,
                 t_exc_ends, tails, horizon, max_steps, early, outs)
+
+
+@njit(cache=True, nogil=True)
+def simulate_batch_rigid_vertical(fkinds, prms, ekinds, epars, acc_all, jtab_all, acc_off, acc_len, dts, t_begins,
+                                  t_exc_ends, tails, horizon, max_steps, early, vacc_all, vjtab_all, v_off, v_len, vdts,
+                                  outs):
+    """Scenes on a rigid foundation under a vertical ground motion as well
+    (:func:`rockcli.kernels.rigid.simulate_rigid_vertical`; its proofs under a vertical motion, PV)."""
+    no_history = np.bool_(False)
+    for i in range(fkinds.shape[0]):
+        prm, epar = _scene(i, prms, epars)
+        a, b = acc_off[i], acc_off[i] + acc_len[i]
+        c, d = v_off[i], v_off[i] + v_len[i]
+        simulate_rigid_vertical(fkinds[i], prm, ekinds[i], epar, acc_all[a:b], jtab_all[a:b], dts[i], t_begins[i],
+                                t_exc_ends[i], tails[i], horizon, max_steps, no_history, early, vacc_all[c:d],
+                                vjtab_all[c:d], vdts[i], outs[i])

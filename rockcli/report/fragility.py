@@ -127,7 +127,10 @@ def write_fragility_csv(fr, path: str | os.PathLike, extra: dict | None = None) 
     """Write the fragility CSV (see :func:`fragility_columns`; ``extra``: constant columns appended), atomically."""
     from rockcli.report.spectra import constant_columns
 
+    from rockcli.report.tables import _vertical_column
+
     df = fragility_frame(fr)
+    _vertical_column(df, fr)
     return write_text(path, constant_columns(df.to_csv(index=False, float_format="%.6g", lineterminator="\n"), extra))
 
 

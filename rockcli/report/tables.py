@@ -174,6 +174,7 @@ def extra_columns(assessment, check=None) -> dict:
     for key in ("restitution", "cap_ratio"):
         if assessment.solver.get(key):
             cols[key] = [assessment.solver[key]] * len(rows)
+    _vertical_column(cols, assessment)
     if check is not None:
         from rockcli.conditioning import ill_conditioned
 
@@ -211,6 +212,15 @@ def write_assessment_csv(assessment, path: str | os.PathLike, check=None) -> Pat
     if check is not None:
         df["ill_conditioned"] = df["ill_conditioned"].astype("boolean")
     return write_text(path, df.to_csv(index=False, float_format="%.6g", lineterminator="\n"))
+
+
+def _vertical_column(cols: dict, result) -> None:
+    """``vertical``: the vertical motion each row's record ran under (only when one did)."""
+    from rockcli.assess.vertical import vertical_labels
+
+    labels = vertical_labels(result.excitations)
+    if labels:
+        cols["vertical"] = [labels.get(r.record, "none") for r in result.rows]
 
 
 def read_assessment_csv(path: str | os.PathLike):

@@ -36,6 +36,7 @@ Solver contract
 * A vertical ground acceleration ``a_v`` (``vertical=``, rigid foundation only; a record on the horizontal
   record's time base or a pulse sampled at ``T_p/2000``, piecewise linear, zero after its end): gravity
   ``g + a_v`` in Eq (3), in the uplift threshold and in the rest rule; ``g + a_v <= 0`` anywhere is refused.
+  A record may carry its vertical component (:func:`with_vertical`): then it runs under it wherever it goes.
   The excitation ends when both motions have ended.
 * Impacts at theta = 0 keep the total horizontal momentum and the block's angular momentum about
   the new pivot: ``theta_dot+ = eta theta_dot-`` with ``eta = (k - 2)/(k + 4)``,
@@ -71,8 +72,8 @@ from rockcli.solve.options import (DEFAULT_HORIZON, DEFAULT_MAX_STEPS, DEFAULT_R
 from rockcli.solve.response import (VERDICT_ERROR, VERDICT_NO_UPLIFT, VERDICT_OVERTURNED, VERDICT_ROCKED, History,
                                     JobError, Response, Verdicts, _response)
 from rockcli.solve.excitation import (_PULSE_CODES, _PULSE_ZEROS, _UNIT_TABLES, N_IMPULSE_TABLE,
-                                      PULSE_START_MAX_PERIODS, _excitation_arrays, pulse_impulse_table,
-                                      record_impulse_table)
+                                      PULSE_START_MAX_PERIODS, _excitation_arrays, attached_vertical,
+                                      pulse_impulse_table, record_impulse_table, vertical_label, with_vertical)
 from rockcli.solve.parameters import _parameters, bearing_force_path
 from rockcli.solve.work import _check_work, _estimate_steps
 from rockcli.solve.single import simulate
@@ -81,5 +82,6 @@ from rockcli.solve.batch import _run_many, _scene_arrays, _threads, simulate_man
 __all__ = ["DEFAULT_HORIZON", "DEFAULT_MAX_STEPS", "DEFAULT_REST_TOL", "DEFAULT_RTOL", "DEFAULT_RTOL_HYSTERETIC",
            "DEFAULT_TAIL", "HORIZON_MAX", "N_IMPULSE_TABLE", "PULSE_START_MAX_PERIODS", "REST_TOL_MIN", "TAIL_MAX",
            "VERDICT_ERROR", "VERDICT_NO_UPLIFT", "VERDICT_OVERTURNED", "VERDICT_ROCKED", "History", "JobError",
-           "Response", "Verdicts", "bearing_force_path", "default_rtol", "pulse_impulse_table",
-           "record_impulse_table", "simulate", "simulate_many", "simulate_verdicts", "validate_options"]
+           "Response", "Verdicts", "attached_vertical", "bearing_force_path", "default_rtol", "pulse_impulse_table",
+           "record_impulse_table", "simulate", "simulate_many", "simulate_verdicts", "validate_options",
+           "vertical_label", "with_vertical"]

@@ -14,7 +14,7 @@ from rockcli.colonnade import check_cap_ratio
 from rockcli.errors import RockcliInputError
 from rockcli.impact import check_restitution
 from rockcli.models import Block, Rigid
-from rockcli.solve.excitation import _excitation_arrays
+from rockcli.solve.excitation import _excitation_arrays, _vertical_arrays, attached_vertical
 from rockcli.solve.options import (DEFAULT_HORIZON, DEFAULT_MAX_STEPS, DEFAULT_REST_TOL, DEFAULT_TAIL, TAIL_MAX,
                                    _kernel, validate_options)
 from rockcli.solve.parameters import _parameters
@@ -60,9 +60,12 @@ def simulate_many(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL,
         Coefficient of restitution of :func:`simulate` (one value or one per scene; None: Housner's).
     cap_ratio : float or sequence of float
         Capped colonnade of :func:`simulate` (one value or one per scene; 0: solitary columns).
-    vertical : Record or pulse, optional
-        One vertical ground motion under every scene (:func:`simulate`; never scaled). These scenes
-        run one after the other on this thread (the batch kernels carry no vertical motion).
+    vertical : Record, pulse, None or a sequence of them, optional
+        Vertical ground motion of :func:`simulate` (one for every scene, or one per scene; None:
+        the one the scene's record carries, if any, :func:`rockcli.solve.with_vertical`). Never
+        scaled: ``scale`` multiplies the horizontal motion only. Rigid foundation only (a scene on an
+        isolated base gets a :class:`JobError`); these scenes run in the same batch machinery, on the
+        rigid driver's vertical entry.
 
     Returns
     -------
@@ -72,20 +75,17 @@ def simulate_many(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL,
         :class:`JobError` with the reason and the others still run. Invalid solver options
         (``rtol``, ``tail``, ``rest_tol``, ``horizon``) concern every job and raise.
     """
-    if vertical is not None:
-        return _many_vertical(list(jobs), vertical, rtol=rtol, tail=tail, rest_tol=rest_tol, horizon=horizon,
-                              max_steps=max_steps, early=early, progress=progress, restitution=restitution,
-                              cap_ratio=cap_ratio)
     outs, alphas, failed = _run_many(jobs, rtol=rtol, tail=tail, rest_tol=rest_tol, horizon=horizon,
                                      max_steps=max_steps, early=early, progress=progress, chunk=chunk,
-                                     restitution=restitution, cap_ratio=cap_ratio)
+                                     restitution=restitution, cap_ratio=cap_ratio, vertical=vertical)
     done = iter(range(outs.shape[0]))
     return [failed[i] if i in failed else _response(outs[next(done)], None, alphas[i]) for i in range(len(alphas))]
 
 
 def simulate_verdicts(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL, rest_tol: float = DEFAULT_REST_TOL,
                       horizon: float = DEFAULT_HORIZON, max_steps: int = DEFAULT_MAX_STEPS, early: bool = False,
-                      progress=None, chunk: int | None = None, restitution=None, cap_ratio=0.0) -> Verdicts:
+                      progress=None, chunk: int | None = None, restitution=None, cap_ratio=0.0,
+                      vertical=None) -> Verdicts:
     """:func:`simulate_many` returning arrays (no :class:`Response` per scene): for large sweeps.
 
     Same arguments and the same runs; a job that fails validation raises here.
@@ -93,7 +93,7 @@ def simulate_verdicts(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL, res
     k = _kernel()
     outs, alphas, failed = _run_many(jobs, rtol=rtol, tail=tail, rest_tol=rest_tol, horizon=horizon,
                                      max_steps=max_steps, early=early, progress=progress, chunk=chunk,
-                                     restitution=restitution, cap_ratio=cap_ratio)
+                                     restitution=restitution, cap_ratio=cap_ratio, vertical=vertical)
     if failed:
         i = min(failed)
         raise RockcliInputError(f"job {i}: {failed[i].error}")
@@ -146,35 +146,6 @@ def _scene_arrays(block, foundation, excitation, tail, rtol, rest_tol, horizon, 
     return fkind, prm, ekind, epar.copy(), acc, jtab, dt, t_begin, t_exc_end
 
 
-def _many_vertical(jobs, vertical, *, rtol, tail, rest_tol, horizon, max_steps, early, progress, restitution,
-                   cap_ratio) -> list:
-    """:func:`simulate_many` under a vertical motion: each job through :func:`simulate`, in order."""
-    from rockcli.solve.single import simulate
-
-    n = len(jobs)
-    tails = np.broadcast_to(np.asarray(tail, dtype=float), (n,)) if np.ndim(tail) == 0 else np.asarray(tail, float)
-    if tails.shape != (n,):
-        raise RockcliInputError(f"tail must be one value or one per job ({n}), got {tails.shape}")
-    validate_options(rtol, 0.0, rest_tol, horizon, max_steps)
-    restitutions = _per_job(restitution, n, check_restitution, "restitution")
-    caps = _per_job(cap_ratio, n, check_cap_ratio, "cap_ratio")
-    results = []
-    for i, job in enumerate(jobs):
-        try:
-            block, foundation, excitation = job[:3]
-            scale = float(job[3]) if len(job) > 3 else 1.0
-            if not math.isfinite(scale):
-                raise RockcliInputError(f"job {i}: the scale factor must be finite, got {scale!r}")
-            results.append(simulate(block, foundation, excitation, rtol=rtol, tail=float(tails[i]), rest_tol=rest_tol,
-                                    horizon=horizon, max_steps=max_steps, early=early, restitution=restitutions[i],
-                                    cap_ratio=caps[i], vertical=vertical, _scale=scale))
-        except (RockcliInputError, TypeError, ValueError) as exc:
-            results.append(JobError(str(exc)))
-        if progress is not None:
-            progress(i + 1)
-    return results
-
-
 def _per_job(value, n: int, check, what: str) -> list:
     """A solver option given as one value or one per job, checked, as a list of ``n`` values."""
     if value is None or np.ndim(value) == 0:
@@ -185,8 +156,31 @@ def _per_job(value, n: int, check, what: str) -> list:
     return [check(v) for v in values]
 
 
+def _per_job_vertical(vertical, n: int) -> list:
+    """The vertical motion of each of ``n`` jobs: one motion (or None) for all, or a list/tuple of one per job."""
+    if not isinstance(vertical, (list, tuple)):
+        return [vertical] * n
+    if len(vertical) != n:
+        raise RockcliInputError(f"vertical must be one motion or one per job ({n}), got {len(vertical)}")
+    return list(vertical)
+
+
+def _vertical_scene(vertical, excitation, foundation, g, vprepared):
+    """A job's vertical series ``(vacc, vjtab, vdt, t_v_end)`` (:func:`_vertical_arrays`), cached by the ids of
+    the motion and the horizontal excitation (the time-base check concerns both) and the kind of foundation."""
+    key = (id(vertical), id(excitation), isinstance(foundation, Rigid))
+    if key not in vprepared:
+        try:
+            vprepared[key] = _vertical_arrays(vertical, excitation, foundation, g)[:4]
+        except RockcliInputError as exc:
+            vprepared[key] = exc
+    if isinstance(vprepared[key], RockcliInputError):
+        raise vprepared[key]
+    return vprepared[key]
+
+
 def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress, chunk, restitution=None,
-              cap_ratio=0.0):
+              cap_ratio=0.0, vertical=None):
     """Kernel outputs (``O_*`` rows) of the valid jobs, each job's slenderness, and the failed jobs.
 
     Returns ``(outs, alphas, failed)``: ``outs`` has one row per valid job in job order,
@@ -204,16 +198,20 @@ def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress
         validate_options(rtol, 0.0, rest_tol, horizon, max_steps)
     restitutions = _per_job(restitution, len(jobs), check_restitution, "restitution")
     caps = _per_job(cap_ratio, len(jobs), check_cap_ratio, "cap_ratio")  # (the foundation is checked per job)
+    verticals = _per_job_vertical(vertical, len(jobs))
     k = _kernel()
     n = len(jobs)
     if n == 0:
         return np.zeros((0, k.N_OUT)), [], {}
     pieces, jpieces, where, total = [], [], {}, 0
+    vpieces, vjpieces, vwhere, vtotal = [], [], {}, 0  # the vertical series, laid out alike
+    vprepared = {}  # (id(vertical), id(excitation), rigid) -> its series (or the error)
     prepared = {}  # id(excitation) -> validated kernel arrays (or the error): a shared record is checked once
     params = {}  # (block, foundation) -> kernel parameters: built once per distinct pair
     checked = set()  # work estimates that passed (see _check_work)
     groups = {}  # (id(block), id(foundation), id(excitation), tail) -> index into G, or the error
-    G = []  # per distinct scene: (fkind, prm, ekind, epar, offset, length, dt, t_begin, t_exc_end, alpha)
+    G = []  # per distinct scene: (fkind, prm, ekind, epar, offset, length, dt, t_begin, t_exc_end, alpha,
+    #        vertical offset, vertical length, vertical dt)
     failed = {}  # job index -> JobError; those jobs are not run
     gidx = np.full(n, -1, np.int64)
     scales = np.ones(n)
@@ -230,14 +228,17 @@ def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress
             if not math.isfinite(scale):
                 raise RockcliInputError(f"job {i}: the scale factor must be finite, got {scale!r}")
             tail_i = float(tails_in if tails_in.ndim == 0 else tails_in[i])
+            vertical_i = verticals[i] if verticals[i] is not None else attached_vertical(excitation)
             # the jobs hold these objects, so their ids stay theirs for the whole loop
-            gkey = (id(block), id(foundation), id(excitation), tail_i, restitutions[i], caps[i])
+            gkey = (id(block), id(foundation), id(excitation), tail_i, restitutions[i], caps[i], id(vertical_i))
             g = groups.get(gkey)
             if g is None:
                 try:
                     fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end = _scene_arrays(
                         block, foundation, excitation, tail_i, rtol, rest_tol, horizon, max_steps, prepared, params,
                         checked, restitutions[i], caps[i])
+                    vacc, vjtab, vdt, t_v_end = _vertical_scene(vertical_i, excitation, foundation,
+                                                                float(prm[k.P_G]), vprepared)
                 except (RockcliInputError, TypeError, ValueError) as exc:
                     g = RockcliInputError(str(exc))
                 else:
@@ -247,8 +248,16 @@ def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress
                         pieces.append(acc)
                         jpieces.append(jtab)
                         total += acc.size
+                    vkey = id(vacc)
+                    if vacc.size and vkey not in vwhere:
+                        vwhere[vkey] = vtotal
+                        vpieces.append(vacc)
+                        vjpieces.append(vjtab)
+                        vtotal += vacc.size
                     g = len(G)
-                    G.append((fkind, prm, ekind, epar, where[akey], acc.size, dt, t_begin, t_exc_end, block.alpha))
+                    # the excitation ends when both motions have (as in simulate)
+                    G.append((fkind, prm, ekind, epar, where[akey], acc.size, dt, t_begin, max(t_exc_end, t_v_end),
+                              block.alpha, vwhere.get(vkey, 0), vacc.size, vdt))
                 groups[gkey] = g
             if isinstance(g, RockcliInputError):
                 raise g
@@ -271,6 +280,7 @@ def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress
     fkinds, prms, ekinds, epars = per_job(0, np.int64), per_job(1), per_job(2, np.int64), per_job(3)
     acc_off, acc_len = per_job(4, np.int64), per_job(5, np.int64)
     dts, t_begins, t_exc_ends = per_job(6), per_job(7), per_job(8)
+    v_off, v_len, vdts = per_job(10, np.int64), per_job(11, np.int64), per_job(12)
     alphas = np.full(n, math.nan)
     alphas[ok] = per_job(9)
     alphas = alphas.tolist()
@@ -289,21 +299,29 @@ def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress
         if progress is not None:
             chunk = min(chunk, max(1, m // 50))
     tasks = []
-    # one batch kernel per driver (rigid foundation, isolated base): a sweep compiles only what it uses
+    # one batch kernel per driver (rigid foundation, isolated base) and one for the rigid foundation under a
+    # vertical motion: a sweep compiles only what it uses
     rigid = fkinds == k.FOUNDATION_RIGID
-    for batch, sel in ((k.simulate_batch_rigid, np.flatnonzero(rigid)), (k.simulate_batch, np.flatnonzero(~rigid))):
+    shaken = v_len > 0  # (only on a rigid foundation: _vertical_arrays refuses the others)
+    for batch, sel in ((k.simulate_batch_rigid, np.flatnonzero(rigid & ~shaken)),
+                       (k.simulate_batch, np.flatnonzero(~rigid)),
+                       (k.simulate_batch_rigid_vertical, np.flatnonzero(shaken))):
         whole = sel.size == m  # every job runs on this driver: pass views, the kernel writes into outs
         for lo in range(0, sel.size, chunk):
             hi = min(sel.size, lo + chunk)
             tasks.append((batch, slice(lo, hi) if whole else sel[lo:hi]))
     common = (acc_all, jtab_all)
     tail_args = (float(horizon), int(max_steps), bool(early))
+    vacc_all = np.concatenate(vpieces) if vpieces else np.zeros(2)
+    vjtab_all = np.concatenate(vjpieces) if vjpieces else np.zeros(2)
 
     def run(task):
         batch, part = task
         o = outs[part] if isinstance(part, slice) else np.zeros((part.size, k.N_OUT))
+        vert = ((vacc_all, vjtab_all, v_off[part], v_len[part], vdts[part])
+                if batch is k.simulate_batch_rigid_vertical else ())
         batch(fkinds[part], prms[part], ekinds[part], epars[part], *common, acc_off[part], acc_len[part],
-              dts[part], t_begins[part], t_exc_ends[part], tails[part], *tail_args, o)
+              dts[part], t_begins[part], t_exc_ends[part], tails[part], *tail_args, *vert, o)
         if not isinstance(part, slice):
             outs[part] = o
         return o.shape[0]

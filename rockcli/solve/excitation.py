@@ -120,6 +120,42 @@ def _excitation_arrays(excitation):
     raise RockcliInputError(f"cannot simulate excitation of type {type(excitation).__name__}")
 
 
+#: the key of a record's ``meta`` that carries its vertical component (:func:`with_vertical`)
+VERTICAL_KEY = "vertical_motion"
+
+
+def with_vertical(record, vertical, label: str = ""):
+    """``record`` carrying ``vertical`` (a record or a pulse, upward positive) as its vertical ground motion.
+
+    :func:`rockcli.solve.simulate` and :func:`rockcli.solve.simulate_many` run a record that carries one under
+    it when no ``vertical=`` is given; the vertical motion is kept by :meth:`Record.scaled` and by copies made
+    with :func:`dataclasses.replace` (the scale factor of a sweep multiplies the horizontal motion only).
+    ``label`` says which motion it is, for the outputs (:func:`vertical_label`).
+    """
+    import dataclasses
+
+    if not hasattr(record, "meta"):
+        raise RockcliInputError("only a record can carry a vertical component (an analytic pulse cannot)")
+    return dataclasses.replace(record, meta={**record.meta, VERTICAL_KEY: vertical, VERTICAL_KEY + "_label": label})
+
+
+def attached_vertical(excitation):
+    """The vertical motion an excitation carries (:func:`with_vertical`), or None."""
+    meta = getattr(excitation, "meta", None)
+    return meta.get(VERTICAL_KEY) if meta else None
+
+
+def vertical_label(excitation) -> str:
+    """What the vertical motion an excitation carries is (``""``: none)."""
+    meta = getattr(excitation, "meta", None)
+    return (meta.get(VERTICAL_KEY + "_label") or "vertical motion") if attached_vertical(excitation) is not None else ""
+
+
+#: why a vertical motion is refused on an isolated base (the commands add what to give instead)
+VERTICAL_RIGID_ONLY = ("a vertical ground motion is modelled on a rigid foundation only: on an isolated base it also "
+                       "changes the bearings' normal force (a sliding bearing's friction mu (m + m_b)(g + a_v), a "
+                       "pendulum's restoring force), which the bearing models do not include")
+
 #: samples per period of a vertical pulse (read piecewise linear, like a record)
 VERTICAL_PULSE_SAMPLES = 2000
 #: relative difference of time steps still read as the same time base
@@ -139,10 +175,7 @@ def _vertical_arrays(vertical, excitation, foundation, g: float):
     if vertical is None:
         return np.empty(0), np.empty(0), 1.0, 0.0, "none"
     if foundation is not None and not isinstance(foundation, Rigid):
-        raise RockcliInputError(
-            "a vertical ground motion is modelled on a rigid foundation only: on an isolated base it also changes "
-            "the bearings' normal force (a sliding bearing's friction mu (m + m_b)(g + a_v), a pendulum's "
-            "restoring force), which the bearing models do not include")
+        raise RockcliInputError(VERTICAL_RIGID_ONLY)
     if hasattr(vertical, "acc") and hasattr(vertical, "dt"):
         vacc, vdt = _samples(vertical, "vertical record")
         name = getattr(vertical, "name", "")

@@ -10,7 +10,7 @@ from rockcli.errors import RockcliInputError
 from rockcli.impact import check_restitution
 from rockcli.initial import check_initial_state, still_ground_arrays
 from rockcli.models import Block, Rigid
-from rockcli.solve.excitation import _excitation_arrays, _vertical_arrays
+from rockcli.solve.excitation import _excitation_arrays, _vertical_arrays, attached_vertical
 from rockcli.solve.options import (DEFAULT_HORIZON, DEFAULT_MAX_STEPS, DEFAULT_REST_TOL, DEFAULT_TAIL, _kernel,
                                    validate_options)
 from rockcli.solve.parameters import _parameters
@@ -74,6 +74,7 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float | No
         ``g + a_v`` in Eq (3) and in the uplift threshold. A record shares a horizontal record's time
         step and start (its length may differ: zero after its end); a pulse is sampled every
         ``T_p/2000`` and read piecewise linear. ``g + a_v <= 0`` anywhere is refused (lift-off).
+        None: the vertical motion the record carries, if any (:func:`rockcli.solve.with_vertical`).
 
     Returns
     -------
@@ -105,6 +106,8 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float | No
     if history_dt is not None:
         prm[k.P_HDT] = history_dt
         _check_grid_rows(history_dt, t_begin, t_exc_end + float(tail))
+    if vertical is None:
+        vertical = attached_vertical(excitation)
     vacc, vjtab, vdt, t_v_end, _ = _vertical_arrays(vertical, excitation, foundation, float(prm[k.P_G]))
     _check_work(block, foundation, prepared, rtol, float(tail), float(rest_tol), float(horizon),
                 int(max_steps), bool(history), restitution)

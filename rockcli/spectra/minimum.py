@@ -9,7 +9,9 @@ On a rigid foundation the block uplifts when ``|ag|`` passes ``g tan(alpha)``; a
 peak at exactly ``|a_p|`` (the antisymmetric Ricker through its factor beta), so the no-uplift zone is
 exactly ``y <= 1`` for each of them. On an isolated base, before uplift, block and base move together
 as a linear oscillator, so the peak base acceleration is proportional to ``a_p``: uplift is monotone
-in ``a_p`` and its threshold is found by bisection on the solver's uplift flag.
+in ``a_p`` and its threshold is found by bisection on the solver's uplift flag. Under a vertical pulse
+(``rockcli spectrum min-overturning --vertical-pulse``) the threshold on a rigid foundation moves with
+``g + a_v(t)``: still monotone in ``a_p`` (``g + a_v > 0``), found by the same bisection.
 
 Minimum overturning acceleration
 --------------------------------
@@ -154,7 +156,7 @@ def search_min_overturning(families: Sequence[Family], fam, x, *, ap_max: float 
         if progress and k:
             progress(int(k))
 
-    y_u = _uplift_thresholds(families, fam, n, ap_max, run)
+    y_u = _uplift_thresholds(families, fam, n, ap_max, run, getattr(runner, "vertical", None) is not None)
     active = np.flatnonzero(np.isfinite(y_u) & (y_u < ap_max))
     tell(n - active.size)
     scans = _scan(y_u, active, 1.0 + step, ap_max, run)
@@ -192,12 +194,14 @@ def search_min_overturning(families: Sequence[Family], fam, x, *, ap_max: float 
                      refine_runs=refine_runs)
 
 
-def _uplift_thresholds(families, fam, n, ap_max, run) -> np.ndarray:
+def _uplift_thresholds(families, fam, n, ap_max, run, vertical: bool = False) -> np.ndarray:
     """Uplift threshold per column: exactly 1 on a rigid foundation (every shape peaks at |a_p|); on
     an isolated base the stuck motion is linear in a_p, so uplift is monotone: bisection (NaN when
-    the block does not uplift up to 2 ap_max)."""
+    the block does not uplift up to 2 ap_max). Under a vertical pulse (rigid foundation) the block
+    uplifts when ``y tan(alpha) |f(t)| > (1 + a_v(t)/g) tan(alpha)`` at some t, with ``g + a_v > 0``:
+    monotone in y too, but not at y = 1: bisection on every column."""
     y_u = np.ones(n)
-    iso_cols = np.array([i for i in range(n) if not families[fam[i]].isolation.rigid], dtype=np.int64)
+    iso_cols = np.array([i for i in range(n) if vertical or not families[fam[i]].isolation.rigid], dtype=np.int64)
     if iso_cols.size:
         lo = np.zeros(iso_cols.size)
         hi = np.ones(iso_cols.size)

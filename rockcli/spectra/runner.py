@@ -37,13 +37,15 @@ class Cells:
 
 def run_cells_local(families: Sequence[Family], fam: np.ndarray, x: np.ndarray, y: np.ndarray,
                     progress: Optional[Callable[[int], None]] = None, early: bool = False,
-                    horizon: float | None = None, restitution: float | None = None, cap_ratio: float = 0.0) -> Cells:
+                    horizon: float | None = None, restitution: float | None = None, cap_ratio: float = 0.0,
+                    vertical=None) -> Cells:
     """Run cells ``(families[fam[i]], x[i], y[i])`` with :func:`rockcli.solve.simulate_verdicts` (all cores).
 
     ``progress(n)`` is called with the number of cells finished since the last call; ``early``: stop
     each run once its verdict is proven (the same verdicts; peaks may be lower bounds); ``horizon``:
     the solver's horizon [s] (None: its default, 600 s); ``restitution``: the coefficient of
-    restitution of every impact (None: Housner's); ``cap_ratio``: capped colonnades (0: solitary blocks).
+    restitution of every impact (None: Housner's); ``cap_ratio``: capped colonnades (0: solitary blocks);
+    ``vertical``: a :class:`~rockcli.spectra.scenes.VerticalChoice` under every cell (None: none).
     """
     from rockcli.solve import DEFAULT_HORIZON, simulate_verdicts
 
@@ -52,13 +54,17 @@ def run_cells_local(families: Sequence[Family], fam: np.ndarray, x: np.ndarray, 
         return Cells.concatenate([])
     jobs = []
     columns = {}  # (family, x) -> the scene at y = 1 (a_p = g tan alpha), built once per column
+    verticals = {}  # (family, x) -> its vertical pulse (one object per column: its series is built once)
     for i in range(n):
         key = (int(fam[i]), float(x[i]))
         col = columns.get(key)
         if col is None:
             col = columns[key] = families[key[0]].scene(key[1], 1.0)
+            if vertical is not None:
+                verticals[key] = vertical.pulse(col[2])
         # the kernel scales the unit pulse's a_p by y: the same run as Family.scene(x, y)
         jobs.append((col[0], col[1], col[2], float(y[i])))
+    vjobs = None if vertical is None else [verticals[(int(fam[i]), float(x[i]))] for i in range(n)]
     done = [0]
 
     def step(k):
@@ -71,7 +77,7 @@ def run_cells_local(families: Sequence[Family], fam: np.ndarray, x: np.ndarray, 
     order = np.random.default_rng(0).permutation(n)
     v = simulate_verdicts([jobs[i] for i in order], early=early, progress=step if progress else None,
                           horizon=DEFAULT_HORIZON if horizon is None else horizon, restitution=restitution,
-                          cap_ratio=cap_ratio)
+                          cap_ratio=cap_ratio, vertical=None if vjobs is None else [vjobs[i] for i in order])
     back = np.empty(n, np.int64)
     back[order] = np.arange(n)
     return Cells(v.overturned[back], v.uplifted[back], v.theta_max_over_alpha[back], v.settled[back],
@@ -80,9 +86,9 @@ def run_cells_local(families: Sequence[Family], fam: np.ndarray, x: np.ndarray, 
 
 def _run_cells_task(args) -> Cells:
     """One chunk on a Dask worker (module-level so that it pickles by reference)."""
-    families, fam, x, y, early, horizon, restitution, cap_ratio = args
+    families, fam, x, y, early, horizon, restitution, cap_ratio, vertical = args
     return run_cells_local(families, fam, x, y, early=early, horizon=horizon, restitution=restitution,
-                           cap_ratio=cap_ratio)
+                           cap_ratio=cap_ratio, vertical=vertical)
 
 
 class Runner:
@@ -102,15 +108,18 @@ class Runner:
         The coefficient of restitution of every impact (None: Housner's; :mod:`rockcli.impact`).
     cap_ratio : float
         Capped colonnades of the blocks, rigid foundation only (:mod:`rockcli.colonnade`; 0: none).
+    vertical : VerticalChoice, optional
+        A vertical pulse under every cell, rigid foundation only (:class:`rockcli.spectra.VerticalChoice`).
     """
 
     def __init__(self, scheduler=None, *, chunk: int = 2000, horizon: float | None = None,
-                 restitution: float | None = None, cap_ratio: float = 0.0):
+                 restitution: float | None = None, cap_ratio: float = 0.0, vertical=None):
         self.scheduler = scheduler
         self.chunk = int(chunk)
         self.horizon = horizon
         self.restitution = restitution
         self.cap_ratio = cap_ratio
+        self.vertical = vertical
         self._client = None
         self._close = None
         self.cells_run = 0
@@ -137,7 +146,7 @@ class Runner:
         y = np.asarray(y, dtype=float)
         if self.scheduler is None:
             out = run_cells_local(families, fam, x, y, progress, early, self.horizon, self.restitution,
-                                  self.cap_ratio)
+                                  self.cap_ratio, self.vertical)
         else:
             if self._client is None:
                 raise RuntimeError("use the Runner as a context manager to run on a scheduler")
@@ -146,7 +155,7 @@ class Runner:
             n = len(x)
             bounds = [(lo, min(n, lo + self.chunk)) for lo in range(0, n, self.chunk)]
             tasks = [(tuple(families), fam[lo:hi], x[lo:hi], y[lo:hi], early, self.horizon, self.restitution,
-                      self.cap_ratio) for lo, hi in bounds]
+                      self.cap_ratio, self.vertical) for lo, hi in bounds]
             sizes = [hi - lo for lo, hi in bounds]
             parts = map_chunks(self._client, _run_cells_task, tasks,
                                progress=(lambda i: progress(sizes[i])) if progress else None)

@@ -89,6 +89,68 @@ def pulse_from_record(record, *, wavelet: str = "best") -> PulseChoice:
 
 
 @dataclass(frozen=True)
+class VerticalChoice:
+    """A vertical pulse under every cell of a spectrum, scaled with the cell's horizontal pulse.
+
+    ``shape`` one of :data:`SHAPES`, ``a_v_g`` its amplitude [g, upward positive], ``ratio`` its period
+    over the horizontal pulse's, ``T_v = ratio T_p``; the middle of its support is placed at the middle
+    of the horizontal pulse's (the same shape with ``ratio = 1``: in phase), moved later if it would
+    otherwise start before t = 0. Written in the time ``p t`` the rocking equation then depends on
+    ``a_v/g`` and ``T_v/T_p`` only, so a map stays independent of the block size
+    (``tests/test_vertical_assess.py`` checks it).
+    """
+
+    shape: str
+    a_v_g: float
+    ratio: float = 1.0
+
+    @property
+    def label(self) -> str:
+        return f"{self.shape}:ap={self.a_v_g:g},TvTp={self.ratio:g}"
+
+    def pulse(self, horizontal):
+        """The vertical pulse under the horizontal pulse ``horizontal``."""
+        unit = make_pulse(self.shape, self.a_v_g * G, self.ratio * float(horizontal.T_p))
+        ts, te = unit.support()
+        hs, he = horizontal.support()
+        shift = max(0.5 * (hs + he) - 0.5 * (ts + te), -ts)
+        return make_pulse(self.shape, self.a_v_g * G, self.ratio * float(horizontal.T_p), t0=unit.t0 + shift)
+
+
+def parse_vertical_choice(text: str, option: str = "--vertical-pulse") -> VerticalChoice:
+    """``SHAPE:ap=<a_v in g>[,TvTp=<T_v/T_p>]`` (default ``TvTp=1``); ``|a_v| < 1 g`` (lift-off beyond)."""
+    from rockcli.inputs import parse_number, spec_items
+
+    raw = str(text).strip()
+    shape, _, rest = raw.partition(":")
+    shape = {"one-sine": "sine", "one-cosine": "cosine"}.get(shape.strip().lower(), shape.strip().lower())
+    what = f"{option} {raw!r}"
+    if shape not in SHAPES:
+        raise RockcliInputError(f"{what}: unknown shape {shape!r} (use {', '.join(SHAPES)})")
+    got = {}
+    for key, val, eq in spec_items(rest, what):
+        k = {"ap": "ap", "tvtp": "tvtp"}.get(key.lower())
+        if k is None or not eq:
+            raise RockcliInputError(f"{what}: {key!r} is not ap=<a_v in g> or TvTp=<T_v/T_p> (a spectrum keeps the "
+                                    f"vertical pulse's period a fixed multiple of the horizontal one's)")
+        got[k] = val
+    if "ap" not in got:
+        raise RockcliInputError(f"{what}: give the vertical amplitude ap=<a_v in g>")
+    a_v = parse_number(got["ap"], f"{what}: ap", unit="g")
+    ratio = 1.0
+    if "tvtp" in got:
+        ratio = parse_number(got["tvtp"], f"{what}: TvTp", lo=0.0, lo_open=True)
+    from rockcli.solve.excitation import _vertical_arrays
+
+    try:  # g + a_v > 0 throughout: the same for every period, so checked once
+        _vertical_arrays(VerticalChoice(shape, float(a_v), float(ratio)).pulse(make_pulse(shape, G, 1.0)), None,
+                         Rigid(), G)
+    except RockcliInputError as exc:
+        raise RockcliInputError(f"{what}: {exc}") from None
+    return VerticalChoice(shape, float(a_v), float(ratio))
+
+
+@dataclass(frozen=True)
 class Isolation:
     """A foundation with ``T_b / T_p`` fixed, for any pulse period.
 
