@@ -96,7 +96,7 @@ def _pulses(pulses, records, units, dt, fmt, column, default=("ricker-sym",)):
     return out
 
 
-def _runner(scheduler, horizon, restitution=None, cap_ratio=0.0, isolations=()):
+def _runner(scheduler, horizon, restitution=None, cap_ratio=0.0):
     from rockcli.colonnade import check_cap_ratio
     from rockcli.impact import check_restitution
     from rockcli.solve import validate_options
@@ -104,10 +104,7 @@ def _runner(scheduler, horizon, restitution=None, cap_ratio=0.0, isolations=()):
 
     validate_options(horizon=horizon)
     restitution = check_restitution(restitution, "--restitution")
-    cap_ratio = check_cap_ratio(cap_ratio, None, "--cap-ratio")
-    if cap_ratio > 0.0 and not all(iso.rigid for iso in isolations):
-        raise InputError("--cap-ratio needs a rigid foundation: give --isolation none (a capped colonnade on an "
-                         "isolated base is not derived in rockcli)")
+    cap_ratio = check_cap_ratio(cap_ratio, "--cap-ratio")
     if scheduler is not None:
         from rockcli.distributed import check_scheduler
 
@@ -179,7 +176,7 @@ def overturning(alpha, pulses, records, isolations, csv_path, plot_path, schedul
     _check_ap_reach(ap, ap_grid.stop, alphas)
     isos = [parse_isolation(s) for s in isolations]
     _check_outputs(csv_path, plot_path)
-    runner = _runner(scheduler, horizon, restitution, cap_ratio, isos)
+    runner = _runner(scheduler, horizon, restitution, cap_ratio)
     pcs = _pulses(pulses, records, units, dt, fmt, column)
     n = len(alphas) * len(pcs) * len(isos) * wp_grid.count * ap_grid.count
     t0 = time.perf_counter()
@@ -273,7 +270,7 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
             iso.foundation(1.0)
     isos = list(dict.fromkeys(isos))
     _check_outputs(csv_path, plot_path)
-    runner = _runner(scheduler, horizon, restitution, cap_ratio, isos)
+    runner = _runner(scheduler, horizon, restitution, cap_ratio)
     pcs = _pulses(pulses, records, units, dt, fmt, column)
     n = len(alphas) * len(pcs) * len(isos) * xs.size
     t0 = time.perf_counter()
