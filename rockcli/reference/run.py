@@ -16,7 +16,7 @@ from rockcli.reference.result import RefResult
 
 def reference_simulate(block: Block, foundation, excitation, *, rtol=1e-10, atol=1e-13, horizon=600.0,
                        rest_tol=1e-8, max_phases=200000, method="DOP853", deadline_s=None,
-                       align=False, vertical=None) -> RefResult:
+                       align=False, vertical=None, restitution=None, cap_ratio=0.0) -> RefResult:
     """Chain stuck and rocking phases with ``solve_ivp`` and terminal events.
 
     Parameters
@@ -41,6 +41,12 @@ def reference_simulate(block: Block, foundation, excitation, *, rtol=1e-10, atol
         Rigid foundation only: a vertical ground acceleration [m/s^2, upward positive] sampled every
         ``dt`` from t = 0, piecewise linear, zero after its last sample. Gravity becomes ``g + a_v``
         in Eq (3), in the uplift threshold and in the rest rule.
+    restitution : float, optional
+        Coefficient of restitution E (theta_dot+ = E theta_dot- on a rigid foundation; on a base the
+        momentum map with the impulsive couple of :mod:`rockcli.impact`); None: Housner's rule.
+    cap_ratio : float
+        A capped colonnade of such columns (beam mass over the columns'; docs/physics-colonnade.md),
+        written from its bodies' mass properties; on a base ``gamma`` is columns + beam over the moving mass.
 
     Returns
     -------
@@ -70,6 +76,7 @@ def reference_simulate(block: Block, foundation, excitation, *, rtol=1e-10, atol
     run = reference_hysteretic if hysteretic else reference_linear
     with np.errstate(all="ignore"):  # a diverging method is reported (ReferenceFailure), not warned about
         extra = {} if vertical is None else {"vertical": vertical}
+        extra.update(restitution=restitution, cap_ratio=float(cap_ratio))
         out = run(block, foundation, excitation, work, horizon=horizon, rest_tol=rest_tol, max_phases=max_phases,
                   **extra)
     out.steps, out.nfev, out.njev, out.nlu = work.steps, work.nfev, work.njev, work.nlu

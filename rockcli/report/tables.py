@@ -104,7 +104,8 @@ def format_notes(assessment) -> str:
                      "Housner's 1 - 1.5 sin^2 alpha.")
     if assessment.solver.get("cap_ratio"):
         lines.append(f"Capped colonnades: each column stands in a colonnade carrying a beam of gamma_c = "
-                     f"{assessment.solver['cap_ratio']:g} times the columns' mass (docs/physics-colonnade.md).")
+                     f"{assessment.solver['cap_ratio']:g} times the columns' mass; on isolators gamma is the mass of "
+                     f"columns and beam over the whole moving mass (docs/physics-colonnade.md).")
     if assessment.margin:
         lines.append("xS: smallest scale factor of the record that overturns the body in that configuration "
                      "(S > 1: survival margin; S < 1 on an overturn: it overturns already at S times the record; "
