@@ -86,15 +86,17 @@ def reference_simulate(block: Block, foundation, excitation, *, rtol=1e-10, atol
 
 
 def reference_sliding(block, foundation, excitation, *, rtol=1e-9, atol=1e-12, horizon=600.0, rest_tol=1e-8,
-                      method="Radau", max_phases=20000, stats=None) -> RefResult:
+                      method="Radau", max_phases=20000, stats=None, restitution=None, cap_ratio=0.0) -> RefResult:
     """:func:`reference_simulate` with the defaults of a hysteretic base (Radau, ``rtol`` 1e-9,
     ``atol`` 1e-12 on every state).
 
     ``stats`` (a dict), when given, accumulates ``steps``, ``nfev``, ``njev`` and ``nlu`` of the
-    ``solve_ivp`` calls (the benchmark's cost figures).
+    ``solve_ivp`` calls (the benchmark's cost figures); ``restitution`` and ``cap_ratio`` as for
+    :func:`reference_simulate`.
     """
     out = reference_simulate(block, foundation, excitation, rtol=rtol, atol=atol, horizon=horizon,
-                             rest_tol=rest_tol, max_phases=max_phases, method=method)
+                             rest_tol=rest_tol, max_phases=max_phases, method=method, restitution=restitution,
+                             cap_ratio=cap_ratio)
     if stats is not None:
         for key in ("steps", "nfev", "njev", "nlu"):
             stats[key] = stats.get(key, 0) + int(getattr(out, key, 0) or 0)

@@ -101,7 +101,7 @@ class Runner:
     restitution : float, optional
         The coefficient of restitution of every impact (None: Housner's; :mod:`rockcli.impact`).
     cap_ratio : float
-        Capped colonnades of the blocks, rigid foundation only (:mod:`rockcli.colonnade`; 0: none).
+        Capped colonnades of the blocks, on any foundation (:mod:`rockcli.colonnade`; 0: none).
     """
 
     def __init__(self, scheduler=None, *, chunk: int = 2000, horizon: float | None = None,
