@@ -118,9 +118,9 @@ class Phases:
         y[1], y[3] = thd2, ud2  # the base displacement (and a bearing's hysteretic states) do not jump
         self.s = -self.s
         at_rest = y.copy()
-        gc = self.cap_ratio
-        at_rest[3] = y[3] + self.gamma * block.h * (1 + 2 * gc) / (1 + gc) * thd2  # S cos(alpha)/M
-        p2, alpha = colonnade_masses(block, self.gamma, gc).p2, block.alpha
+        m = colonnade_masses(block, self.gamma, self.cap_ratio)
+        at_rest[3] = y[3] + m.first * math.cos(block.alpha) / m.total * thd2  # S cos(alpha)/M (0: rigid)
+        p2, alpha = m.p2, block.alpha
         if self.gravity is None:
             restoring = p2 * math.cos(alpha) * (math.tan(alpha) - abs(self.base_acc(t, at_rest)) / G)
         else:  # the uplift threshold (g + a_v) tan(alpha) in place of g tan(alpha)
