@@ -18,8 +18,17 @@ With ``gamma_c = m_beam / (N m_column)``:
 
 Hence the rigid-foundation kernel runs a colonnade unchanged with ``P_P2`` and ``P_ETA`` replaced,
 and every end-of-run proof carries over (they use only the equation's form, with ``p^2`` as a
-parameter, and ``0 <= eta <= 1``). A colonnade on an isolated base is refused: the beam's mass
-would enter the base's horizontal momentum and the impact map, which are not derived here.
+parameter, and ``0 <= eta <= 1``).
+
+On an isolated base (base mass ``m_b``; ``gamma = (N m + m_beam)/(N m + m_beam + m_b)``, the mass the
+bearings carry above the base over the whole moving mass) Lagrange with ``u`` and theta gives the
+solitary block's Eqs (10)-(11) exactly, with the semi-diagonal ``R_eff = R (1 + 3 gamma_c)/(1 + 2 gamma_c)``
+(the same ``p_c``) and the mass ratio :func:`effective_gamma`; the impact map (the whole system's
+horizontal momentum and the momentum conjugate to theta of the mechanism after the impact) is the
+isolated map of :mod:`rockcli.impact` with ``E`` the colonnade's ratio on the ground (or the given
+``--restitution``) and the effective mass ratio. So the isolated kernels run it unchanged, with
+``P_P2, P_R, P_H, P_GAMMA, P_ETA, P_DU`` replaced (:func:`apply_cap_ratio`); the bearings' forces per
+unit moving mass (``omega_b^2 u``, ``mu g``) take the beam's mass with the rest.
 """
 
 from __future__ import annotations
@@ -27,6 +36,7 @@ from __future__ import annotations
 import math
 
 from rockcli.errors import RockcliInputError
+from rockcli.impact import impact_ratio
 from rockcli.inputs import format_number
 from rockcli.models import Rigid
 
@@ -34,8 +44,8 @@ from rockcli.models import Rigid
 CAP_RATIO_MAX = 100.0
 
 
-def check_cap_ratio(cap_ratio, foundation=None, what: str = "cap_ratio") -> float:
-    """``cap_ratio`` as a float in [0, CAP_RATIO_MAX]; refused (one sentence) on an isolated base when > 0."""
+def check_cap_ratio(cap_ratio, what: str = "cap_ratio") -> float:
+    """``cap_ratio`` as a float in [0, CAP_RATIO_MAX] (one sentence otherwise)."""
     try:
         gc = float(cap_ratio)
     except (TypeError, ValueError):
@@ -43,9 +53,6 @@ def check_cap_ratio(cap_ratio, foundation=None, what: str = "cap_ratio") -> floa
     if not (math.isfinite(gc) and 0.0 <= gc <= CAP_RATIO_MAX):
         raise RockcliInputError(f"{what} must lie between 0 and {CAP_RATIO_MAX:g} (beam mass over the columns' total "
                                 f"mass), got {format_number(gc)}")
-    if gc > 0.0 and foundation is not None and not isinstance(foundation, Rigid):
-        raise RockcliInputError(f"{what} needs a rigid foundation: a capped colonnade on an isolated base (the beam's "
-                                f"mass in the base's momentum and impact map) is not derived in rockcli")
     return gc
 
 
@@ -61,14 +68,44 @@ def colonnade_restitution(alpha: float, cap_ratio: float) -> float:
                / (1.0 + 3.0 * cap_ratio))
 
 
-def apply_cap_ratio(prm, kernels, block, cap_ratio: float, restitution: float | None) -> None:
-    """Turn the rigid-foundation parameters ``prm`` of ``block`` into those of its colonnade (in place);
+def effective_gamma(gamma: float, cap_ratio: float) -> float:
+    """The solitary block's mass ratio that gives a colonnade of mass ratio ``gamma`` (superstructure over
+    the whole moving mass) on its base: ``S/(M R_eff)`` with ``S = N m (1 + 2 gamma_c) R`` the first
+    moment about the pivots and ``M`` the moving mass, i.e. ``gamma (1 + 2 gamma_c)^2/((1 + gamma_c)
+    (1 + 3 gamma_c))`` (between gamma and 4/3 gamma; the equations need only ``gamma_eff cos^2 alpha < 4/3``)."""
+    return gamma * (1.0 + 2.0 * cap_ratio) ** 2 / ((1.0 + cap_ratio) * (1.0 + 3.0 * cap_ratio))
+
+
+def impact_ratio_on_base(alpha: float, gamma: float, cap_ratio: float, restitution: float | None) -> float:
+    """``theta_dot+ / theta_dot-`` of a colonnade on a base of mass ratio ``gamma`` (0: rigid foundation):
+    its ratio on the ground (or the given ``restitution``) through the isolated map of :mod:`rockcli.impact`."""
+    E = colonnade_restitution(alpha, cap_ratio) if restitution is None else restitution
+    if gamma == 0.0:
+        return E
+    return impact_ratio(alpha, effective_gamma(gamma, cap_ratio), E)
+
+
+def apply_cap_ratio(prm, kernels, block, foundation, cap_ratio: float, restitution: float | None) -> None:
+    """Turn the parameters ``prm`` of ``block`` on ``foundation`` into those of its colonnade (in place);
     ``cap_ratio`` 0 leaves them untouched (the solitary column, bit for bit). A given ``restitution``
-    overrides the colonnade's impact ratio."""
+    overrides the colonnade's impact ratio on the ground."""
     if cap_ratio == 0.0:
         return
-    p2 = prm[kernels.P_P2] * frequency_factor(cap_ratio)
-    prm[kernels.P_P2] = p2
-    prm[kernels.P_SC0 + 1] = math.sqrt(p2) * block.alpha  # error scale of theta_dot: p alpha
-    prm[kernels.P_ETA] = colonnade_restitution(block.alpha, cap_ratio) if restitution is None else restitution
-    prm[kernels.P_DU] = 0.0
+    k = kernels
+    p2 = prm[k.P_P2] * frequency_factor(cap_ratio)
+    prm[k.P_P2] = p2
+    prm[k.P_SC0 + 1] = math.sqrt(p2) * block.alpha  # error scale of theta_dot: p alpha
+    if isinstance(foundation, Rigid):
+        prm[k.P_ETA] = impact_ratio_on_base(block.alpha, 0.0, cap_ratio, restitution)
+        prm[k.P_DU] = 0.0
+        return
+    R_eff = block.R / frequency_factor(cap_ratio)
+    gamma = effective_gamma(foundation.gamma, cap_ratio)
+    prm[k.P_R] = R_eff
+    prm[k.P_H] = R_eff * math.cos(block.alpha)
+    prm[k.P_GAMMA] = gamma
+    prm[k.P_ETA] = impact_ratio_on_base(block.alpha, foundation.gamma, cap_ratio, restitution)
+    prm[k.P_DU] = gamma * prm[k.P_H] * (1.0 - prm[k.P_ETA])  # the moving system's horizontal momentum is kept
+    w = max(prm[k.P_W], math.sqrt(p2))  # the base's error scales, as for the block of semi-diagonal R_eff
+    prm[k.P_SC0 + 2] = prm[k.P_THR] / w ** 2
+    prm[k.P_SC0 + 3] = prm[k.P_THR] / w

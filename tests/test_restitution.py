@@ -192,5 +192,5 @@ def test_out_of_range_values_are_quoted_unrounded():
         with pytest.raises(RockcliInputError, match=text.replace(".", r"\.")):
             call()
     with pytest.raises(RockcliInputError) as exc:
-        check_cap_ratio(-1e-7, None)
+        check_cap_ratio(-1e-7)
     assert "-1e-07" in str(exc.value)

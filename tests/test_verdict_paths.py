@@ -160,6 +160,59 @@ def test_agreement_with_the_slow_reference_on_random_scenes(chunk):
         assert fast.t_uplift_s == pytest.approx(ref.t_uplift, rel=1e-8, nan_ok=True)
 
 
+def impact_options(n, seed):
+    """Random ``restitution`` (None, or E in [0.5, 0.95]) and ``cap_ratio`` (0, or in [0, 2]) per scene:
+    each of the four combinations in about a quarter of them."""
+    rng = np.random.default_rng(seed)
+    Es = [float(rng.uniform(0.5, 0.95)) if rng.random() < 0.5 else None for _ in range(n)]
+    caps = [float(rng.uniform(0.0, 2.0)) if rng.random() < 0.5 else 0.0 for _ in range(n)]
+    return Es, caps
+
+
+@pytest.mark.parametrize("chunk", range(2))
+def test_restitution_and_cap_ratio_agree_with_the_slow_reference(chunk):
+    """Issue 27: verdict-only, full-history and the slow reference (rockcli.reference: the colonnade written
+    from its bodies' mass properties, E as the momentum before the impact) on 64 random scenes of issue
+    9's set, rigid and linear bases, with random restitutions and cap ratios (each of the four combinations of
+    default/given E and solitary/capped columns rocks and overturns on both kinds of base)."""
+    jobs = random_scenes(64, 2731)[chunk::2]
+    Es, caps = impact_options(64, 2731)
+    Es, caps = Es[chunk::2], caps[chunk::2]
+    _, verdict_only, mismatches = _compare_modes(jobs, restitution=Es, cap_ratio=caps)
+    assert mismatches == []
+    for i, job in enumerate(jobs):
+        ref = reference_simulate(*job, restitution=Es[i], cap_ratio=caps[i])
+        fast = simulate(*job, rtol=1e-10, restitution=Es[i], cap_ratio=caps[i])
+        assert fast.verdict == ref.verdict == verdict_only[i].verdict, (chunk, i, job, Es[i], caps[i])
+        if fast.verdict == "rocked":
+            assert fast.theta_max == pytest.approx(ref.theta_max, rel=2e-6, abs=1e-8 * job[0].alpha), (chunk, i)
+            assert fast.n_impacts == ref.n_impacts, (chunk, i)
+        if fast.overturned:
+            assert fast.t_overturn_s == pytest.approx(ref.t_overturn, rel=1e-6)
+        assert fast.t_uplift_s == pytest.approx(ref.t_uplift, rel=1e-8, nan_ok=True)
+
+
+def test_the_reference_impact_map_with_restitution_and_cap_ratio():
+    """The reference's 2x2 momentum system with the beam's terms and E against rockcli's closed forms
+    (rockcli.impact, rockcli.colonnade), and Eqs 14/16 unchanged for the solitary block."""
+    from naive import impact_map_linear_system
+    from rockcli.colonnade import effective_gamma, frequency_factor, impact_ratio_on_base
+    from rockcli.impact import impact_ratio
+
+    rng = np.random.default_rng(5)
+    for _ in range(200):
+        block = Block(rng.uniform(0.2, 20.0), math.radians(rng.uniform(3.0, 30.0)))
+        gamma = float(rng.choice([0.0, rng.uniform(0.0, 0.95)]))
+        gc = float(rng.choice([0.0, rng.uniform(0.0, 3.0)]))
+        E = None if rng.random() < 0.5 else float(rng.uniform(0.5, 1.0))
+        thd1, ud1 = -rng.uniform(0.1, 2.0), rng.normal()
+        thd2, ud2 = impact_map_linear_system(block, gamma, thd1, ud1, E, gc)
+        eta = impact_ratio_on_base(block.alpha, gamma, gc, E) if gc > 0 else impact_ratio(block.alpha, gamma, E)
+        assert thd2 == pytest.approx(eta * thd1, rel=1e-11)
+        share = effective_gamma(gamma, gc) * block.h / frequency_factor(gc)  # gamma_eff h_eff
+        assert ud2 == pytest.approx(ud1 + share * (1 - eta) * thd1, rel=1e-11, abs=1e-12)
+
+
 # ------------------------------------------------------------------------------------------
 # The rest rule
 # ------------------------------------------------------------------------------------------

@@ -29,17 +29,12 @@ def _restitution_kw(restitution) -> dict:
     return {} if restitution is None else {"restitution": restitution}
 
 
-def _cap_ratio_kw(cap_ratio, configurations) -> dict:
-    """The solver keyword of ``--cap-ratio`` (none when 0), refused with isolated configurations."""
+def _cap_ratio_kw(cap_ratio) -> dict:
+    """The solver keyword of ``--cap-ratio`` (checked; none when 0: solitary columns)."""
     from rockcli.colonnade import check_cap_ratio
 
-    cap_ratio = check_cap_ratio(cap_ratio, None, "--cap-ratio")
-    if cap_ratio == 0.0:
-        return {}
-    if any(c.isolated for c in configurations):
-        raise InputError("--cap-ratio needs a rigid foundation: give --isolation none (a capped colonnade on an "
-                         "isolated base is not derived in rockcli)")
-    return {"cap_ratio": cap_ratio}
+    cap_ratio = check_cap_ratio(cap_ratio, "--cap-ratio")
+    return {} if cap_ratio == 0.0 else {"cap_ratio": cap_ratio}
 
 
 def _with_vertical(excitations, configurations, units, dt) -> list:
@@ -264,7 +259,7 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
     solver = _restitution_kw(restitution)
     columns = _columns(names, R, alpha, height, width, name)
     configurations = parse_configurations(isolation)
-    solver.update(_cap_ratio_kw(cap_ratio, configurations))
+    solver.update(_cap_ratio_kw(cap_ratio))
     check_outputs((csv_path, "--csv", False), (report_path, "--report", False),
                   folders=((hist_dir, "--history-dir"), (plot_dir, "--plot-dir")))
     azimuth = given_azimuth()

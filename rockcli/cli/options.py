@@ -423,11 +423,12 @@ def restitution_option(func):
 
 def cap_ratio_option(func):
     """``--cap-ratio GAMMA_C``: a capped colonnade of the columns (``cap_ratio`` keyword of
-    :func:`rockcli.solve.simulate`), rigid foundation only (:mod:`rockcli.colonnade`)."""
+    :func:`rockcli.solve.simulate`) on any foundation (:mod:`rockcli.colonnade`)."""
     return click.option("--cap-ratio", "cap_ratio", type=NUMBER, default=0.0, metavar="GAMMA_C",
-                        help="A capped colonnade of N such columns carrying a rigid beam (Makris & Vassiliou 2013), "
-                             "rigid foundation only: beam mass over the columns' total mass; they rock as one column "
-                             "with p times sqrt((1 + 2 gamma_c)/(1 + 3 gamma_c)) (docs/physics-colonnade.md). "
+                        help="A capped colonnade of N such columns carrying a rigid beam (Makris & Vassiliou 2013): "
+                             "beam mass over the columns' total mass; they rock as one column with p times "
+                             "sqrt((1 + 2 gamma_c)/(1 + 3 gamma_c)). On an isolation layer its gamma is the mass "
+                             "of columns + beam over the whole moving mass (docs/physics-colonnade.md). "
                              "0: solitary columns.")(func)
 
 

@@ -112,7 +112,7 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     from rockcli.colonnade import check_cap_ratio
     from rockcli.initial import check_initial_state
 
-    cap_ratio = check_cap_ratio(cap_ratio, foundation, "--cap-ratio")
+    cap_ratio = check_cap_ratio(cap_ratio, "--cap-ratio")
     if cap_ratio > 0.0:
         solver["cap_ratio"] = cap_ratio
 
@@ -210,8 +210,8 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
         ("block", f"{block.name}: R = {block.R:.3f} m, alpha = {block.alpha_deg:.2f} deg "
                   f"(h/b = {block.h / block.b:.2f}), p = {block.p:.3f} rad/s"),
         ("foundation", foundation.label),
-        *([("colonnade", _colonnade_row(block, cap_ratio))] if cap_ratio > 0.0 else []),
-        *([("impact rule", _impact_row(block, foundation, restitution))] if restitution is not None else []),
+        *([("colonnade", _colonnade_row(block, foundation, cap_ratio))] if cap_ratio > 0.0 else []),
+        *([("impact rule", _impact_row(block, foundation, restitution, cap_ratio))] if restitution is not None else []),
         ("excitation", label + _pga(excitation, G)),
         *([("vertical", vlabel + _pga(vertical, G))] if vertical is not None else []),
         *([("start", f"theta0 = {theta0:g} rad ({theta0 / block.alpha:.4g} alpha), theta_dot0 = {theta_dot0:g} rad/s")]
@@ -244,35 +244,40 @@ def _vertical(source, column, pulse, scale, units, dt, fmt):
                          given_vertical()["component"])
 
 
-def _impact_keys(block, foundation, restitution, cap_ratio=0.0) -> dict:
-    """JSON keys of a given restitution and of a colonnade (none for the defaults)."""
-    from rockcli.colonnade import colonnade_restitution, frequency_factor
+def _eta(block, foundation, restitution, cap_ratio) -> float:
+    """``theta_dot+ / theta_dot-`` at an impact of this block or colonnade on this foundation."""
+    from rockcli.colonnade import impact_ratio_on_base
     from rockcli.impact import impact_ratio
 
-    out = {}
+    if cap_ratio > 0.0:
+        return impact_ratio_on_base(block.alpha, foundation.gamma, cap_ratio, restitution)
+    return impact_ratio(block.alpha, foundation.gamma, restitution)
+
+
+def _impact_keys(block, foundation, restitution, cap_ratio=0.0) -> dict:
+    """JSON keys of a given restitution and of a colonnade (none for the defaults)."""
+    from rockcli.colonnade import frequency_factor
+
+    out = {} if restitution is None else {"restitution": restitution}
     if cap_ratio > 0.0:
         out.update(cap_ratio=cap_ratio, p_colonnade_radps=block.p * math.sqrt(frequency_factor(cap_ratio)))
-        eta = colonnade_restitution(block.alpha, cap_ratio) if restitution is None else restitution
-        out.update(impact_ratio=eta)
-    if restitution is not None:
-        out = {"restitution": restitution, "impact_ratio": impact_ratio(block.alpha, foundation.gamma, restitution),
-               **out}
+    if out:
+        out["impact_ratio"] = _eta(block, foundation, restitution, cap_ratio)
     return out
 
 
-def _colonnade_row(block, cap_ratio) -> str:
-    from rockcli.colonnade import colonnade_restitution, frequency_factor
+def _colonnade_row(block, foundation, cap_ratio) -> str:
+    from rockcli.colonnade import frequency_factor
 
     return (f"capped, beam/columns mass gamma_c = {cap_ratio:g}: p = {block.p * math.sqrt(frequency_factor(cap_ratio)):.3f} "
-            f"rad/s, impact ratio {colonnade_restitution(block.alpha, cap_ratio):.4f} (Makris & Vassiliou 2013)")
+            f"rad/s, impact ratio {_eta(block, foundation, None, cap_ratio):.4f} (Makris & Vassiliou 2013)")
 
 
-def _impact_row(block, foundation, restitution) -> str:
-    from rockcli.impact import housner_restitution, impact_ratio
+def _impact_row(block, foundation, restitution, cap_ratio) -> str:
+    from rockcli.impact import housner_restitution
 
-    eta = impact_ratio(block.alpha, foundation.gamma, restitution)
     return (f"restitution E = {restitution:g} (Housner's {housner_restitution(block.alpha):.4f}): "
-            f"theta_dot+ = {eta:.4f} theta_dot-")
+            f"theta_dot+ = {_eta(block, foundation, restitution, cap_ratio):.4f} theta_dot-")
 
 
 def _check(block, foundation, excitation, res, rtol, horizon, solver=None) -> dict:

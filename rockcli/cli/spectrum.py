@@ -113,16 +113,12 @@ def _runner(scheduler, horizon, restitution=None, cap_ratio=0.0, isolations=(), 
     """The Runner of a spectrum, its options checked (``isolations``: Isolation specs or foundations)."""
     from rockcli.colonnade import check_cap_ratio
     from rockcli.impact import check_restitution
-    from rockcli.models import KIND_RIGID
     from rockcli.solve import validate_options
     from rockcli.spectra import Runner
 
     validate_options(horizon=horizon)
     restitution = check_restitution(restitution, "--restitution")
-    cap_ratio = check_cap_ratio(cap_ratio, None, "--cap-ratio")
-    if cap_ratio > 0.0 and not all(iso.kind in ("none", KIND_RIGID) for iso in isolations):
-        raise InputError("--cap-ratio needs a rigid foundation: give --isolation none (a capped colonnade on an "
-                         "isolated base is not derived in rockcli)")
+    cap_ratio = check_cap_ratio(cap_ratio, "--cap-ratio")
     vertical = _vertical_choice(isolations, fix)
     if scheduler is not None:
         from rockcli.cli.options import dask_client

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rockcli.reference.equations import ground_function, rocking_on_base
+from rockcli.reference.equations import ground_function, rocking_accelerations
 from rockcli.reference.phases import Phases
 from rockcli.reference.result import RefResult
 from rockcli.units import G
@@ -94,15 +94,17 @@ class Bearing:
 
 
 
-def reference_hysteretic(block, foundation, excitation, work, *, horizon, rest_tol, max_phases) -> RefResult:
-    """A block on a hysteretic bearing (``foundation`` with ``u_y``: SCSS, DCSS or lead-rubber)."""
+def reference_hysteretic(block, foundation, excitation, work, *, horizon, rest_tol, max_phases, restitution=None,
+                         cap_ratio=0.0) -> RefResult:
+    """A block (or a capped colonnade, ``cap_ratio``) on a hysteretic bearing (``foundation`` with ``u_y``:
+    SCSS, DCSS or lead-rubber); ``restitution`` None: Housner's momentum rule."""
     ag, t_exc_end, _, max_step = ground_function(excitation)
     if not hasattr(excitation, "acc"):
         max_step = excitation.T_p / 20.0
     brg = Bearing.of(foundation)
-    p2, alpha, R = block.p ** 2, block.alpha, block.R
-    thr = G * math.tan(alpha)
+    thr = G * math.tan(block.alpha)
     gamma = foundation.gamma
+    rocking = rocking_accelerations(block, gamma, cap_ratio)
     t_max_end = t_exc_end + horizon
 
     def stuck_rhs(t, b):
@@ -111,7 +113,7 @@ def reference_hysteretic(block, foundation, excitation, work, *, horizon, rest_t
     def rock_rhs(s):
         def f(t, y):
             th, thd, b = y[0], y[1], y[2:]
-            thdd, a_abs = rocking_on_base(th, thd, s, brg.force(b), alpha=alpha, p2=p2, gamma=gamma, R=R)
+            thdd, a_abs = rocking(th, thd, s, brg.force(b))
             return [thd, thdd, b[1], a_abs - ag(t), *brg.rates(b)]
         return f
 
@@ -151,5 +153,5 @@ def reference_hysteretic(block, foundation, excitation, work, *, horizon, rest_t
         return False
 
     ph = Phases(block, gamma, 2 + brg.nb, t_exc_end=t_exc_end, horizon=horizon, rest_tol=rest_tol, n_rock=2 + brg.nb,
-                base_acc=lambda t, y: brg.force(y[2:]), u_grid=2000)
+                base_acc=lambda t, y: brg.force(y[2:]), u_grid=2000, restitution=restitution, cap_ratio=cap_ratio)
     return ph.chain(stuck, rock_rhs, work, max_step, max_phases)

@@ -15,16 +15,17 @@ import math
 import numpy as np
 
 from rockcli.models import LinearIsolation
-from rockcli.reference.equations import ground_function, rocking_on_base
+from rockcli.reference.equations import colonnade_masses, ground_function, rocking_accelerations
 from rockcli.reference.phases import Phases
 from rockcli.reference.result import RefResult
 from rockcli.units import G
 
 
 def reference_linear(block, foundation, excitation, work, *, horizon, rest_tol, max_phases,
-                     vertical=None) -> RefResult:
+                     vertical=None, restitution=None, cap_ratio=0.0) -> RefResult:
     """Rigid foundation (``foundation`` not a LinearIsolation) or linear bearings; ``vertical``
-    (``(acc, dt)``, rigid foundation only) a vertical ground acceleration: gravity ``g + a_v``."""
+    (``(acc, dt)``, rigid foundation only) a vertical ground acceleration: gravity ``g + a_v``;
+    ``restitution`` and ``cap_ratio`` as for :class:`rockcli.reference.phases.Phases`."""
     from scipy.optimize import brentq, minimize_scalar
 
     ag, t_exc_end, scan_step, max_step = ground_function(excitation)
@@ -42,9 +43,7 @@ def reference_linear(block, foundation, excitation, work, *, horizon, rest_tol, 
         t_exc_end = max(t_exc_end, float(vtt[-1]))
         scan_step = min(scan_step, float(vertical[1]))
         max_step = min(max_step, float(vertical[1]))
-    p2 = block.p ** 2
     alpha = block.alpha
-    R = block.R
     thr = g * math.tan(alpha)
     tan_a = math.tan(alpha)
     isolated = isinstance(foundation, LinearIsolation)
@@ -52,6 +51,8 @@ def reference_linear(block, foundation, excitation, work, *, horizon, rest_tol, 
     wb = foundation.omega_b if isolated else 0.0
     xi = foundation.xi if isolated else 0.0
     t_max_end = t_exc_end + horizon
+    p2 = colonnade_masses(block, gamma, cap_ratio).p2
+    rocking = rocking_accelerations(block, gamma, cap_ratio)
 
     def F(u, ud):
         return -wb * wb * u - 2 * xi * wb * ud
@@ -68,7 +69,7 @@ def reference_linear(block, foundation, excitation, work, *, horizon, rest_tol, 
                 if vertical is None:
                     return [thd, -p2 * (math.sin(A) + ag(t) / g * math.cos(A))]  # Eq (3)
                 return [thd, -p2 / g * (gv(t) * math.sin(A) + ag(t) * math.cos(A))]  # gravity g + a_v
-            thdd, a_abs = rocking_on_base(th, thd, s, F(y[2], y[3]), alpha=alpha, p2=p2, gamma=gamma, R=R)
+            thdd, a_abs = rocking(th, thd, s, F(y[2], y[3]))
             return [thd, thdd, y[3], a_abs - ag(t)]
         return f
 
@@ -162,5 +163,5 @@ def reference_linear(block, foundation, excitation, work, *, horizon, rest_tol, 
     base_acc = (lambda t, y: F(y[2], y[3])) if isolated else (lambda t, y: ag(t))
     ph = Phases(block, gamma, 4, t_exc_end=t_exc_end, horizon=horizon, rest_tol=rest_tol,
                 n_rock=4 if isolated else 2, base_acc=base_acc, u_grid=4000 if isolated else 0,
-                gravity=None if vertical is None else gv)
+                gravity=None if vertical is None else gv, restitution=restitution, cap_ratio=cap_ratio)
     return ph.chain(stuck, rock_rhs, work, max_step, max_phases)

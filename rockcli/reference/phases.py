@@ -14,7 +14,7 @@ from typing import Callable
 
 import numpy as np
 
-from rockcli.reference.equations import impact_map_linear_system
+from rockcli.reference.equations import colonnade_masses, impact_map_linear_system
 from rockcli.reference.result import RefResult
 from rockcli.units import G
 
@@ -27,13 +27,16 @@ class Phases:
     corner the block rocks about. A rocking phase integrates ``y[:n_rock]``; ``base_acc(t, y)`` is the
     absolute acceleration [m/s^2] of the base a block at rest with states ``y`` rides on (the rest
     rule); ``u_grid`` is the number of points of a rocking phase's dense output searched for the peak
-    base displacement (0 on a rigid foundation).
+    base displacement (0 on a rigid foundation). ``restitution`` (None: Housner's momentum rule) and
+    ``cap_ratio`` (a capped colonnade) enter the impact map and the rest rule.
     """
 
     def __init__(self, block, gamma: float, n_states: int, *, t_exc_end: float, horizon: float, rest_tol: float,
                  n_rock: int, base_acc: Callable[[float, np.ndarray], float], u_grid: int,
-                 gravity: Callable[[float], float] | None = None):
+                 gravity: Callable[[float], float] | None = None, restitution: float | None = None,
+                 cap_ratio: float = 0.0):
         self.block, self.gamma = block, gamma
+        self.restitution, self.cap_ratio = restitution, cap_ratio
         self.t_exc_end, self.t_max_end = t_exc_end, t_exc_end + horizon
         self.rest_tol, self.n_rock, self.base_acc, self.u_grid = rest_tol, n_rock, base_acc, u_grid
         self.gravity = gravity  # g + a_v(t) under a vertical motion (rest rule), None: g
@@ -106,16 +109,18 @@ class Phases:
         """The impact map (the 2x2 momentum system), then the rest rule: the block stays at rest when the
         base acceleration it would ride on cannot lift it, and its reach against the restoring
         acceleration ``p^2 cos(alpha) (tan(alpha) - |a|/g)`` is below ``rest_tol`` alpha (a rest is
-        plastic: block and base keep their total horizontal momentum)."""
+        plastic: block and base keep their total horizontal momentum; a colonnade's ``p`` and first
+        moment in place of the block's)."""
         y, t, block = self.y, self.t, self.block
         y[0] = 0.0
         self.n_imp += 1 if t <= self.t_exc_end else 0
-        thd2, ud2 = impact_map_linear_system(block, self.gamma, y[1], y[3])
+        thd2, ud2 = impact_map_linear_system(block, self.gamma, y[1], y[3], self.restitution, self.cap_ratio)
         y[1], y[3] = thd2, ud2  # the base displacement (and a bearing's hysteretic states) do not jump
         self.s = -self.s
         at_rest = y.copy()
-        at_rest[3] = y[3] + self.gamma * block.h * thd2
-        p2, alpha = block.p ** 2, block.alpha
+        m = colonnade_masses(block, self.gamma, self.cap_ratio)
+        at_rest[3] = y[3] + m.first * math.cos(block.alpha) / m.total * thd2  # S cos(alpha)/M (0: rigid)
+        p2, alpha = m.p2, block.alpha
         if self.gravity is None:
             restoring = p2 * math.cos(alpha) * (math.tan(alpha) - abs(self.base_acc(t, at_rest)) / G)
         else:  # the uplift threshold (g + a_v) tan(alpha) in place of g tan(alpha)

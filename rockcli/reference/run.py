@@ -16,7 +16,7 @@ from rockcli.reference.result import RefResult
 
 def reference_simulate(block: Block, foundation, excitation, *, rtol=1e-10, atol=1e-13, horizon=600.0,
                        rest_tol=1e-8, max_phases=200000, method="DOP853", deadline_s=None,
-                       align=False, vertical=None) -> RefResult:
+                       align=False, vertical=None, restitution=None, cap_ratio=0.0) -> RefResult:
     """Chain stuck and rocking phases with ``solve_ivp`` and terminal events.
 
     Parameters
@@ -41,6 +41,12 @@ def reference_simulate(block: Block, foundation, excitation, *, rtol=1e-10, atol
         Rigid foundation only: a vertical ground acceleration [m/s^2, upward positive] sampled every
         ``dt`` from t = 0, piecewise linear, zero after its last sample. Gravity becomes ``g + a_v``
         in Eq (3), in the uplift threshold and in the rest rule.
+    restitution : float, optional
+        Coefficient of restitution E (theta_dot+ = E theta_dot- on a rigid foundation; on a base the
+        momentum map with the impulsive couple of :mod:`rockcli.impact`); None: Housner's rule.
+    cap_ratio : float
+        A capped colonnade of such columns (beam mass over the columns'; docs/physics-colonnade.md),
+        written from its bodies' mass properties; on a base ``gamma`` is columns + beam over the moving mass.
 
     Returns
     -------
@@ -70,6 +76,7 @@ def reference_simulate(block: Block, foundation, excitation, *, rtol=1e-10, atol
     run = reference_hysteretic if hysteretic else reference_linear
     with np.errstate(all="ignore"):  # a diverging method is reported (ReferenceFailure), not warned about
         extra = {} if vertical is None else {"vertical": vertical}
+        extra.update(restitution=restitution, cap_ratio=float(cap_ratio))
         out = run(block, foundation, excitation, work, horizon=horizon, rest_tol=rest_tol, max_phases=max_phases,
                   **extra)
     out.steps, out.nfev, out.njev, out.nlu = work.steps, work.nfev, work.njev, work.nlu
@@ -79,15 +86,17 @@ def reference_simulate(block: Block, foundation, excitation, *, rtol=1e-10, atol
 
 
 def reference_sliding(block, foundation, excitation, *, rtol=1e-9, atol=1e-12, horizon=600.0, rest_tol=1e-8,
-                      method="Radau", max_phases=20000, stats=None) -> RefResult:
+                      method="Radau", max_phases=20000, stats=None, restitution=None, cap_ratio=0.0) -> RefResult:
     """:func:`reference_simulate` with the defaults of a hysteretic base (Radau, ``rtol`` 1e-9,
     ``atol`` 1e-12 on every state).
 
     ``stats`` (a dict), when given, accumulates ``steps``, ``nfev``, ``njev`` and ``nlu`` of the
-    ``solve_ivp`` calls (the benchmark's cost figures).
+    ``solve_ivp`` calls (the benchmark's cost figures); ``restitution`` and ``cap_ratio`` as for
+    :func:`reference_simulate`.
     """
     out = reference_simulate(block, foundation, excitation, rtol=rtol, atol=atol, horizon=horizon,
-                             rest_tol=rest_tol, max_phases=max_phases, method=method)
+                             rest_tol=rest_tol, max_phases=max_phases, method=method, restitution=restitution,
+                             cap_ratio=cap_ratio)
     if stats is not None:
         for key in ("steps", "nfev", "njev", "nlu"):
             stats[key] = stats.get(key, 0) + int(getattr(out, key, 0) or 0)

@@ -104,7 +104,8 @@ def format_notes(assessment) -> str:
                      "Housner's 1 - 1.5 sin^2 alpha.")
     if assessment.solver.get("cap_ratio"):
         lines.append(f"Capped colonnades: each column stands in a colonnade carrying a beam of gamma_c = "
-                     f"{assessment.solver['cap_ratio']:g} times the columns' mass (docs/physics-colonnade.md).")
+                     f"{assessment.solver['cap_ratio']:g} times the columns' mass; on isolators gamma is the mass of "
+                     f"columns and beam over the whole moving mass (docs/physics-colonnade.md).")
     if assessment.margin:
         lines.append("xS: the smallest scale factor of the record that overturns the body (S > 1: the margin; S < 1 on "
                      "a survivor: a weaker record overturns it, a safe island; x>4: none up to 4x), 0.1x..4x in "

@@ -197,7 +197,7 @@ def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress
             raise RockcliInputError(f"tail must be a time between 0 and {TAIL_MAX:g} s for every job")
         validate_options(rtol, 0.0, rest_tol, horizon, max_steps)
     restitutions = _per_job(restitution, len(jobs), check_restitution, "restitution")
-    caps = _per_job(cap_ratio, len(jobs), check_cap_ratio, "cap_ratio")  # (the foundation is checked per job)
+    caps = _per_job(cap_ratio, len(jobs), check_cap_ratio, "cap_ratio")
     verticals = _per_job_vertical(vertical, len(jobs))
     k = _kernel()
     n = len(jobs)

@@ -78,7 +78,7 @@ def _parameters(block: Block, foundation, rtol, rest_tol: float, restitution: fl
         prm[k.P_SC0 + 3] = prm[k.P_THR] / max(w, p)
     else:
         raise RockcliInputError(f"unknown foundation {foundation!r}")
-    apply_cap_ratio(prm, k, block, check_cap_ratio(cap_ratio, foundation), restitution)  # a capped colonnade
+    apply_cap_ratio(prm, k, block, foundation, check_cap_ratio(cap_ratio), restitution)  # a capped colonnade
     return fkind, prm
 
 

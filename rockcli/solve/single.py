@@ -62,8 +62,9 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float | No
         Start rocking from this tilt [rad] (``|theta0| < pi/2``) and angular velocity [rad/s]
         instead of at rest (:mod:`rockcli.initial`); ``excitation`` may then be None (free rocking).
     cap_ratio : float
-        A capped colonnade of such columns on a rigid foundation: beam mass over the columns' total
-        mass, >= 0 (0: the solitary column; :mod:`rockcli.colonnade`).
+        A capped colonnade of such columns: beam mass over the columns' total mass, >= 0 (0: the
+        solitary column; :mod:`rockcli.colonnade`). On an isolated base the foundation's ``gamma`` is
+        the mass of columns and beam over the whole moving mass.
     history_dt : float, optional
         The history on a uniform grid: rows at the times ``k history_dt`` [s] (the steps' dense
         output, exact to the integrator's tolerance; the ground acceleration from the excitation

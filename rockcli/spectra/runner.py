@@ -107,7 +107,7 @@ class Runner:
     restitution : float, optional
         The coefficient of restitution of every impact (None: Housner's; :mod:`rockcli.impact`).
     cap_ratio : float
-        Capped colonnades of the blocks, rigid foundation only (:mod:`rockcli.colonnade`; 0: none).
+        Capped colonnades of the blocks, on any foundation (:mod:`rockcli.colonnade`; 0: none).
     vertical : VerticalChoice, optional
         A vertical pulse under every cell, rigid foundation only (:class:`rockcli.spectra.VerticalChoice`).
     """
