@@ -21,7 +21,8 @@ Files (data flows down this list):
 ``driver``                :func:`simulate_core`: a block on an isolated base as a loop over phases
                           (proofs P3, P3s, P5, P8 in its docstring)
 ``batch``                 :func:`simulate_batch_rigid`, :func:`simulate_batch`: many verdict-only
-                          scenes in parallel, one entry per driver
+                          scenes in parallel, one entry per driver; :func:`prepare` gets them ready
+                          (compiled side by side on the first run on a machine)
 ========================  ======================================================================
 
 Every physical constant reaches the kernels as an argument (the ``prm`` tuple); module-level
@@ -43,4 +44,4 @@ from rockcli.kernels.bearings import (base_force, bw_phi, bw_phi_inv, bw_slope, 
 from rockcli.kernels.dopri import _dense, _dp5_step, _state_at  # noqa: E402,F401
 from rockcli.kernels.rigid import simulate_rigid, simulate_rigid_vertical  # noqa: E402,F401
 from rockcli.kernels.driver import simulate_core  # noqa: E402,F401
-from rockcli.kernels.batch import simulate_batch, simulate_batch_rigid  # noqa: E402,F401
+from rockcli.kernels.batch import prepare, simulate_batch, simulate_batch_rigid  # noqa: E402,F401

@@ -291,7 +291,10 @@ def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress
     tasks = []
     # one batch kernel per driver (rigid foundation, isolated base): a sweep compiles only what it uses
     rigid = fkinds == k.FOUNDATION_RIGID
-    for batch, sel in ((k.simulate_batch_rigid, np.flatnonzero(rigid)), (k.simulate_batch, np.flatnonzero(~rigid))):
+    drivers = [(k.simulate_batch_rigid, np.flatnonzero(rigid)), (k.simulate_batch, np.flatnonzero(~rigid))]
+    # loaded, or compiled (side by side on the first run on a machine) before any scene runs
+    k.prepare([batch.__name__ for batch, sel in drivers if sel.size])
+    for batch, sel in drivers:
         whole = sel.size == m  # every job runs on this driver: pass views, the kernel writes into outs
         for lo in range(0, sel.size, chunk):
             hi = min(sel.size, lo + chunk)
