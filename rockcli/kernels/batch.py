@@ -117,12 +117,14 @@ def prepare(names) -> None:
         cores = os.cpu_count() or 1
     here = cold[-1] if cold else None  # the isolated base's kernel, the longest compile, when both are cold
     if len(cold) >= 2 and cores >= 2:
-        for k in cold[:-1]:
+        root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+        env = dict(os.environ, PYTHONPATH=os.pathsep.join(filter(None, [root, os.environ.get("PYTHONPATH")])))
+        for k in cold[:-1]:  # the child imports this very rockcli, so it writes where this process reads
             try:
                 children.append(subprocess.Popen(
                     [sys.executable, "-c", f"from rockcli.kernels.batch import _compile_child; _compile_child("
                                            f"{k.py_func.__name__!r})"],
-                    stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
+                    env=env, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
             except OSError:
                 break
     try:
