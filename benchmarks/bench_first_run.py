@@ -11,9 +11,10 @@ Prints (no assertions):
 
 1. per repeat: wall and CPU time (user + system, all threads) of the cold and the warm process,
    their ratio, the load average; then the medians and the median ratio cold / warm;
-2. the kernels that compile for this job (numba's cache misses, as :mod:`rockcli.compiling` reports
-   them: the outermost function of each compile) with the wall and CPU time of each (medians of
-   the cold runs), and how many compiles the warm runs needed (0: everything loaded from the cache).
+2. the kernels that compile in the job's own process (numba's cache misses, as :mod:`rockcli.compiling`
+   reports them: the outermost function of each compile) with the wall and CPU time of each (medians
+   of the cold runs; one compiled side by side in a child process is in the CPU total only), and how
+   many compiles the warm runs needed (0: everything loaded from the cache).
 
 Usage::
 
@@ -123,6 +124,8 @@ def main(argv=None) -> None:
     total = [sum(x["cpu_s"] for x in c["compiles"]) for c, _ in rows]
     print(f"  total compile CPU per cold run: {med(total):.1f} s; compiles in the warm runs: "
           f"{sum(len(w['compiles']) for _, w in rows)}")
+    print("  (a kernel compiled side by side in a child process (rockcli.kernels.batch.prepare) is not listed;"
+          " its CPU time is in the cold run's total)")
 
 
 if __name__ == "__main__":
