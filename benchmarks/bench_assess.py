@@ -47,9 +47,16 @@ mark(f"the {len(a.rows)} runs")
 scenes = [(b, c.foundation, x.motion) for b in blocks for x in xs for c in confs]
 known = simulate_many(scenes)
 t = time.perf_counter()
-n = [0]
-A.find_overturn_scales(scenes, known=known, progress=lambda k: n.__setitem__(0, n[0] + k))
-mark(f"margin ({n[0]} scan runs + bisection)")
+import rockcli.solve as S
+n, many = [0], S.simulate_many
+def counted(jobs, **kw):
+    jobs = list(jobs)
+    n[0] += len(jobs)
+    return many(jobs, **kw)
+S.simulate_many = counted
+A.find_overturn_scales(scenes, known=known)
+S.simulate_many = many
+mark(f"margin ({n[0]} runs: scan + bisection)")
 from rockcli.report.tables import format_matrix, write_assessment_csv
 a = A.run_assessment(blocks, xs, confs, margin=False, unavailable=unavailable)
 format_matrix(a)

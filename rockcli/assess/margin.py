@@ -81,7 +81,11 @@ def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL,
     known : sequence of Response or None, optional
         Responses at scale 1 when already computed.
     progress : callable, optional
-        ``progress(n)`` with the number of runs just done.
+        ``progress(n)`` with the number of (scene, grid factor) pairs just settled: run, or shown not
+        to need a run (below a factor without uplift, above the first that overturns). Over the
+        search they add up to ``len(scenes) * len(grid)``, less the factor 1 of each scene when
+        ``known`` is given; the bisection, which runs only with a grid coarser than ``rtol``, is not
+        counted.
     batch : int
         Grid factors per scene per parallel batch of the scan.
     **solver
@@ -138,8 +142,6 @@ def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL,
             state[i, j] = code(r)
             if state[i, j] == 4:
                 errors.setdefault(i, r.error)
-        if progress is not None:
-            progress(len(pairs))
 
     linear = [_linear_before_uplift(f) for _, f, _ in scenes]
     for i, (b, f, mo) in enumerate(scenes):
@@ -151,6 +153,24 @@ def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL,
             state[i, grid * _peak(mo) < b.uplift_acceleration * (1 - 1e-9)] = 3
     # downwards from 1 (or from the top of the grid below 1)
     down = {i: list(range(min(i1, m - 1), -1, -1)) for i in range(n)}
+    up = None
+    settled = [n if known is not None and ones.size else 0]  # pairs counted so far (factor 1 known)
+
+    def advance():  # progress: every pair that no longer may need a run is settled
+        if progress is None:
+            return
+        left = sum(int(np.count_nonzero(state[i, js] == 0)) for i, js in down.items())
+        if up is None:  # before the upward scan: any scene not overturned at or below 1 may need it
+            above = state[~(state[:, : i1 + 1] == 2).any(axis=1), i1 + 1:]
+            left += int(np.count_nonzero(above == 0))
+        else:
+            left += sum(int(np.count_nonzero(state[i, js] == 0)) for i, js in up.items())
+        k = n * m - left - settled[0]
+        if k > 0:
+            settled[0] += k
+            progress(k)
+
+    advance()
     while True:
         pairs = []
         for i, js in down.items():
@@ -167,8 +187,10 @@ def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL,
         if not pairs:
             break
         run(pairs)
+        advance()
     # upwards from 1 for the scenes that have not overturned at or below 1
     up = {i: list(range(i1 + 1, m)) for i in range(n) if not (state[i, : i1 + 1] == 2).any()}
+    advance()
     while up:
         pairs = []
         for i, js in up.items():
@@ -176,6 +198,7 @@ def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL,
             del js[:batch]
         run(pairs)
         up = {i: js for i, js in up.items() if js and not (state[i] == 2).any()}
+        advance()
 
     out = [None] * n
     lo, hi, active = np.zeros(n), np.zeros(n), []

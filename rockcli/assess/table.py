@@ -190,8 +190,8 @@ def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
     if margin:
         t0 = time.perf_counter()
         ok = [i for i, r in enumerate(responses) if r.verdict != VERDICT_ERROR]
-        found = find_overturn_scales([scenes[i] for i in ok], known=[responses[i] for i in ok],
-                                     progress=_Advance(progress) if progress else None, **solver)
+        found = find_overturn_scales([scenes[i] for i in ok], known=[responses[i] for i in ok], progress=progress,
+                                     **solver)
         for i, (hi, lo, note) in zip(ok, found):
             run_rows[i].overturn_scale, run_rows[i].overturn_scale_survives, run_rows[i].margin_note = hi, lo, note
         timings["margin_s"] = time.perf_counter() - t0

@@ -54,6 +54,9 @@ def main():
 
     Implements Vassiliou & Makris (2012), Earthquake Engng Struct Dyn 41:177-196.
     """
+    from rockcli.cli.progress import watch_compiles
+
+    watch_compiles()  # one line on a terminal when the kernels compile (the first run on a machine)
 
 
 def run():

@@ -537,13 +537,16 @@ def is_quiet() -> bool:
 
 def progress_bar(total: int, label: str = "runs", *, eta: bool = True):
     """A progress bar on stderr when it is a terminal, else nothing: a context manager yielding the
-    bar (call ``bar.update(n)``) or ``None`` (piped output and ``--quiet`` stay quiet)."""
+    bar (call ``bar.update(n)``; :class:`rockcli.cli.progress.Progress`, whose ETA waits for the
+    kernels and for enough work to measure) or ``None`` (piped output and ``--quiet`` stay quiet)."""
     import contextlib
     import sys
 
     if not sys.stderr.isatty() or total <= 0 or is_quiet():
         return contextlib.nullcontext(None)
-    return click.progressbar(length=total, label=label, file=sys.stderr, show_eta=eta)
+    from rockcli.cli.progress import Progress
+
+    return Progress(total, label, eta=eta, stream=sys.stderr)
 
 
 def dask_client(scheduler):

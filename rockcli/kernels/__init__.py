@@ -22,7 +22,9 @@ Files (data flows down this list):
                           (proofs P3, P3s, P5, P8 in its docstring)
 ``batch``                 :func:`simulate_batch_rigid`, :func:`simulate_batch`,
                           :func:`simulate_batch_rigid_vertical`: many verdict-only scenes in
-                          parallel, one entry per driver (and one for a vertical motion)
+                          parallel, one entry per driver (and one for a vertical motion);
+                          :func:`prepare` gets them ready (compiled side by side on the first run
+                          on a machine)
 ========================  ======================================================================
 
 Every physical constant reaches the kernels as an argument (the ``prm`` tuple); module-level
@@ -44,5 +46,5 @@ from rockcli.kernels.bearings import (base_force, bw_phi, bw_phi_inv, bw_slope, 
 from rockcli.kernels.dopri import _dense, _dp5_step, _state_at  # noqa: E402,F401
 from rockcli.kernels.rigid import simulate_rigid, simulate_rigid_vertical  # noqa: E402,F401
 from rockcli.kernels.driver import simulate_core  # noqa: E402,F401
-from rockcli.kernels.batch import (simulate_batch, simulate_batch_rigid,  # noqa: E402,F401
+from rockcli.kernels.batch import (BATCH_KERNELS, prepare, simulate_batch, simulate_batch_rigid,  # noqa: E402,F401
                                    simulate_batch_rigid_vertical)

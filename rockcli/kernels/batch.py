@@ -9,6 +9,9 @@ wide); records are slices ``acc_all[acc_off[i]:acc_off[i] + acc_len[i]]`` (scene
 ``jtab_all`` is laid out alike). Results go to ``outs[i]`` (``O_*`` layout); nothing else is stored.
 Under a vertical ground motion (rigid foundation only) the vertical series are slices
 ``vacc_all[v_off[i]:v_off[i] + v_len[i]]`` sampled every ``vdts[i]`` (``vjtab_all`` alike).
+
+:func:`prepare` gets the kernels a sweep needs ready before it starts; on the first run on a machine
+it compiles them side by side (one child process per kernel but one).
 """
 
 from __future__ import annotations
@@ -73,3 +76,95 @@ def simulate_batch_rigid_vertical(fkinds, prms, ekinds, epars, acc_all, jtab_all
         simulate_rigid_vertical(fkinds[i], prm, ekinds[i], epar, acc_all[a:b], jtab_all[a:b], dts[i], t_begins[i],
                                 t_exc_ends[i], tails[i], horizon, max_steps, no_history, early, vacc_all[c:d],
                                 vjtab_all[c:d], vdts[i], outs[i])
+
+
+# --------------------------------------------------------------------------------------------------
+# getting the batch kernels ready: the first run compiles the ones it needs side by side
+# --------------------------------------------------------------------------------------------------
+
+#: The batch kernels by name (what a child process is asked to compile).
+BATCH_KERNELS = ("simulate_batch_rigid", "simulate_batch")
+#: Longest wait for a child's compile [s]; then it is stopped and the kernel compiled here.
+CHILD_TIMEOUT = 900.0
+
+
+def _empty_call(kernel) -> None:
+    """Call ``kernel`` on no scenes, with the argument types of :func:`rockcli.solve.simulate_many`'s
+    calls: it is compiled (or loaded from the disk cache) for exactly that signature, and runs nothing."""
+    from rockcli.kernels.layout import N_EPAR, N_OUT, N_PRM
+
+    ints, floats = np.zeros(0, np.int64), np.zeros(0)
+    kernel(ints, np.zeros((0, N_PRM)), ints, np.zeros((0, N_EPAR)), floats, floats, ints, ints, floats, floats,
+           floats, floats, 0.0, 1, False, np.zeros((0, N_OUT)))
+
+
+def _cached(kernel) -> bool | None:
+    """Whether numba's disk cache holds ``kernel`` compiled from the current sources (None: cannot tell,
+    e.g. with the JIT disabled, no disk cache, or another numba's internals)."""
+    try:
+        locator = kernel._cache._impl.locator
+        if getattr(locator, "_no_disk", False):
+            return None
+        return bool(kernel._cache._cache_file._load_index())
+    except Exception:  # noqa: BLE001 - only an optimisation depends on it
+        return None
+
+
+def prepare(names) -> None:
+    """Compile or load the batch kernels ``names`` (of :data:`BATCH_KERNELS`) before a sweep runs on them.
+
+    A kernel already in this process costs nothing, one in the disk cache is loaded. When two or more
+    must be compiled (the first run on a machine) and this machine has two cores or more, all but the
+    last are compiled at the same time in child processes (numba compiles one function at a time in
+    a process), which write them to the disk cache, from where this process then loads them: the
+    same compiled code as compiling them here, in about the time of the longest compile instead of
+    the sum. A child that fails or takes longer than :data:`CHILD_TIMEOUT` changes nothing: the
+    kernel is then compiled here.
+    """
+    import os
+    import subprocess
+    import sys
+
+    kernels = [globals()[name] for name in dict.fromkeys(names)]
+    todo = [k for k in kernels if hasattr(k, "signatures") and not k.signatures]
+    cold = [k for k in todo if _cached(k) is False]
+    children = []
+    try:
+        cores = len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):
+        cores = os.cpu_count() or 1
+    here = cold[-1] if cold else None  # the isolated base's kernel, the longest compile, when both are cold
+    if len(cold) >= 2 and cores >= 2:
+        root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+        env = dict(os.environ, PYTHONPATH=os.pathsep.join(filter(None, [root, os.environ.get("PYTHONPATH")])))
+        for k in cold[:-1]:  # the child imports this very rockcli, so it writes where this process reads
+            try:
+                children.append(subprocess.Popen(
+                    [sys.executable, "-c", f"from rockcli.kernels.batch import _compile_child; _compile_child("
+                                           f"{k.py_func.__name__!r})"],
+                    env=env, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
+            except OSError:
+                break
+    try:
+        if children:
+            _empty_call(here)
+        for child in children:
+            try:
+                child.wait(timeout=CHILD_TIMEOUT)
+            except subprocess.TimeoutExpired:
+                child.kill()
+                child.wait()
+    finally:
+        for child in children:
+            if child.poll() is None:
+                child.kill()
+                child.wait()
+    for k in todo:
+        _empty_call(k)
+
+
+def _compile_child(name: str) -> None:
+    """In a child process of :func:`prepare`: compile the kernel ``name`` into the disk cache."""
+    if name not in BATCH_KERNELS:
+        raise SystemExit(f"not a batch kernel: {name}")
+    _empty_call(globals()[name])

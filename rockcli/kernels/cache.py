@@ -21,6 +21,10 @@ The disk cache is an optimisation, never a condition of a run:
 imported (numba picks a function's locator when ``@njit(cache=True)`` is applied). It changes
 nothing for functions outside this package.
 
+:func:`install` also tells :mod:`rockcli.compiling` when numba starts and ends compiling a kernel of
+this package (a cache miss: the first run on a machine, or after an edit), so that the command line
+can say why it waits (:func:`_watch_compiles`).
+
 ``NUMBA_NUM_THREADS`` set to 0 or less makes numba fail at import; it is refused here first, in one
 sentence (:func:`check_thread_setting`).
 """
@@ -31,6 +35,8 @@ import hashlib
 import os
 import pickle
 import sys
+import threading
+import time
 from pathlib import Path
 
 from rockcli.errors import RockcliInputError
@@ -88,6 +94,53 @@ def install() -> None:
     if PackageLocator not in locators:
         locators.insert(0, PackageLocator)
     _wrap_cache_io(caching.Cache)
+    _watch_compiles()
+
+
+def _watch_compiles() -> None:
+    """Report each outermost compile of a function of this package to :mod:`rockcli.compiling` (idempotent).
+
+    numba triggers a ``numba:compile`` event only when it really compiles (a function loaded from the
+    disk cache triggers none), once per function, nested for the callees a kernel pulls in: only the
+    outermost function of this package in a thread is reported.
+    """
+    from numba.core import event
+
+    if any(getattr(x, "_rockcli_watch", False) for x in event._registered.get("numba:compile", ())):
+        return
+    from rockcli import compiling
+
+    local = threading.local()
+
+    class _Watch(event.Listener):
+        _rockcli_watch = True
+
+        def _name(self, ev):
+            func = getattr(ev.data.get("dispatcher"), "py_func", None)
+            module = getattr(func, "__module__", "") or ""
+            if not module.startswith(__package__ + "."):
+                return None
+            return f"{module.rsplit('.', 1)[-1]}.{func.__qualname__}"
+
+        def on_start(self, ev):
+            name = self._name(ev)
+            if name is None:
+                return
+            stack = local.__dict__.setdefault("stack", [])
+            stack.append(time.perf_counter())
+            if len(stack) == 1:
+                compiling.started(name)
+
+        def on_end(self, ev):
+            name = self._name(ev)
+            stack = local.__dict__.get("stack")
+            if name is None or not stack:
+                return
+            t0 = stack.pop()
+            if not stack:
+                compiling.ended(name, time.perf_counter() - t0)
+
+    event.register("numba:compile", _Watch())
 
 
 def _ours(cache) -> bool:

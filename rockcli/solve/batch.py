@@ -303,9 +303,12 @@ def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress
     # vertical motion: a sweep compiles only what it uses
     rigid = fkinds == k.FOUNDATION_RIGID
     shaken = v_len > 0  # (only on a rigid foundation: _vertical_arrays refuses the others)
-    for batch, sel in ((k.simulate_batch_rigid, np.flatnonzero(rigid & ~shaken)),
-                       (k.simulate_batch, np.flatnonzero(~rigid)),
-                       (k.simulate_batch_rigid_vertical, np.flatnonzero(shaken))):
+    drivers = [(k.simulate_batch_rigid, np.flatnonzero(rigid & ~shaken)), (k.simulate_batch, np.flatnonzero(~rigid)),
+               (k.simulate_batch_rigid_vertical, np.flatnonzero(shaken))]
+    # loaded, or compiled (side by side on the first run on a machine) before any scene runs; the vertical
+    # motion's kernel (rarely needed) compiles on its first call
+    k.prepare([batch.__name__ for batch, sel in drivers if sel.size and batch.__name__ in k.BATCH_KERNELS])
+    for batch, sel in drivers:
         whole = sel.size == m  # every job runs on this driver: pass views, the kernel writes into outs
         for lo in range(0, sel.size, chunk):
             hi = min(sel.size, lo + chunk)

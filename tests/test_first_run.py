@@ -1,0 +1,233 @@
+"""The first run: the compile notice, a progress bar whose ETA is not fooled by a compile, the margin
+search's progress (every (scene, factor) pair settled exactly once), and the batch kernels compiled
+side by side (``rockcli.kernels.batch.prepare``)."""
+
+from __future__ import annotations
+
+import io
+import os
+import subprocess
+import types
+
+import numpy as np
+import pytest
+
+from rockcli import compiling
+from rockcli.assess import MARGIN_GRID, find_overturn_scales, parse_column_spec, parse_configurations
+from rockcli.cli import progress as progress_mod
+from rockcli.pulses import make_pulse
+from rockcli.solve import simulate_many
+from rockcli.units import G
+
+COARSE_GRID = np.append(MARGIN_GRID[:-1:8], MARGIN_GRID[-1])
+
+
+class _Tty(io.StringIO):
+    def isatty(self):
+        return True
+
+
+@pytest.fixture
+def fresh_watch(monkeypatch):
+    """No compile watch installed yet, and the subscriptions of this test dropped afterwards."""
+    monkeypatch.setattr(progress_mod, "_watching", False)
+    before = list(compiling._listeners)
+    yield
+    compiling._listeners[:] = before
+
+
+# --------------------------------------------------------------------------------------------------
+# the compile notice
+# --------------------------------------------------------------------------------------------------
+
+def test_compile_notice_once_on_a_terminal_and_never_when_piped(fresh_watch):
+    tty = _Tty()
+    progress_mod.watch_compiles(tty)
+    assert tty.getvalue() == ""  # nothing until a kernel compiles
+    compiling.started("batch.simulate_batch")
+    compiling.ended("batch.simulate_batch", 20.0)
+    compiling.started("batch.simulate_batch_rigid")
+    assert tty.getvalue().count("compiling the solver kernels") == 1 and tty.getvalue().endswith("...\n")
+    compiling.ended("batch.simulate_batch_rigid", 20.0)
+    assert not compiling.compiling()
+
+    progress_mod._watching = False
+    piped = io.StringIO()
+    progress_mod.watch_compiles(piped)
+    compiling.started("batch.simulate_batch")
+    compiling.ended("batch.simulate_batch", 1.0)
+    assert piped.getvalue() == ""
+
+
+def test_a_failing_listener_does_not_reach_the_compiler(fresh_watch):
+    def boom(*_):
+        raise OSError("stderr closed")
+
+    unsubscribe = compiling.subscribe(boom, boom)
+    compiling.started("x.y")  # would raise inside numba's compile otherwise
+    compiling.ended("x.y", 0.0)
+    unsubscribe()
+    assert (boom, boom) not in compiling._listeners
+
+
+def test_kernels_report_only_real_compiles():
+    """numba's compile of a function of rockcli.kernels is reported once, as it begins and ends; a kernel
+    already compiled or loaded, and a function outside the package, are not."""
+    from numba import njit
+    from numba.core import event
+
+    import rockcli.kernels as K
+
+    scene = (parse_column_spec("c:R=1,alpha=10"), None, make_pulse("ricker-sym", 0.3 * G, 0.5))
+    simulate_many([scene])  # compiled or loaded now
+    seen = []
+    unsubscribe = compiling.subscribe(lambda name: seen.append(("start", name, compiling.compiling())),
+                                      lambda name, s: seen.append(("end", name, s >= 0)))
+    try:
+        simulate_many([scene])
+        assert seen == []
+
+        @njit
+        def outside(x):  # not a function of rockcli.kernels: not reported
+            return x + 1
+
+        outside(1)
+        assert seen == []
+        fresh = njit(K.ground.pulse_acc.py_func)  # a new dispatcher of a kernel function: a real compile
+        fresh(np.int64(K.EXC_RICKER_SYM), (0.1, 1.0, 0.5, 0.0, 2.0, 1.0, 0.0, 0.0), 0.25)
+        assert seen == [("start", "ground.pulse_acc", True), ("end", "ground.pulse_acc", True)]
+        assert not compiling.compiling()
+        watch = [x for x in event._registered["numba:compile"] if getattr(x, "_rockcli_watch", False)]
+        assert len(watch) == 1
+    finally:
+        unsubscribe()
+
+
+# --------------------------------------------------------------------------------------------------
+# the progress bar's ETA
+# --------------------------------------------------------------------------------------------------
+
+class _Clock:
+    def __init__(self):
+        self.t = 0.0
+
+    def __call__(self):
+        return self.t
+
+
+def test_eta_waits_for_the_kernels_and_for_work_to_measure(monkeypatch):
+    clock = _Clock()
+    bar = progress_mod.Progress(1000, stream=io.StringIO(), clock=clock)
+    state = {"compiling": True}
+    monkeypatch.setattr(compiling, "compiling", lambda: state["compiling"])
+    with bar:
+        clock.t = 5.0
+        bar.update(1)  # during a compile: no rate measured
+        assert bar.eta() is None
+        state["compiling"] = False
+        clock.t = 60.0  # the compile took a minute: it must not count
+        bar.update(1)  # the rate clock starts here (this update still included the wait)
+        assert bar.eta() is None
+        clock.t = 61.0
+        bar.update(8)  # 8 of 998 remaining, 1 s: too little to tell
+        assert bar.eta() is None
+        clock.t = 62.0
+        bar.update(40)  # 49 steps in 2 s since the clock started (at pos 1), 950 left
+        assert bar.eta() == pytest.approx(2 / 49 * 950)
+        state["compiling"] = True  # a compile in the middle of the run restarts the measurement
+        clock.t = 100.0
+        bar.update(10)
+        assert bar.eta() is None
+        state["compiling"] = False
+        clock.t = 101.0
+        bar.update(10)
+        clock.t = 105.0
+        bar.update(20)  # 30 steps in 4 s since the clock restarted (at pos 60; 4 s >= MIN_SECONDS)
+        assert bar.pos == 90 and bar.eta() == pytest.approx(4 / 30 * 910)
+        assert bar._eta_text().startswith("ETA ")
+    no_eta = progress_mod.Progress(10, stream=io.StringIO(), clock=clock, eta=False)
+    no_eta.update(5)
+    clock.t += 10
+    no_eta.update(1)
+    assert no_eta.eta() is None
+
+
+# --------------------------------------------------------------------------------------------------
+# the margin search's progress
+# --------------------------------------------------------------------------------------------------
+
+def test_margin_progress_settles_every_pair_once_and_changes_nothing():
+    blocks = [parse_column_spec("a:R=0.8,alpha=12"), parse_column_spec("b:R=2.5,alpha=9")]
+    confs = parse_configurations(["none", "linear:Tb=2,xi=0.1"])
+    pulses = [make_pulse("ricker-anti", 0.3 * G, 0.8), make_pulse("ricker-sym", 0.15 * G, 1.5)]
+    scenes = [(b, c.foundation, m) for b in blocks for m in pulses for c in confs]
+    n, m = len(scenes), COARSE_GRID.size
+    steps = []
+    found = find_overturn_scales(scenes, grid=COARSE_GRID, progress=steps.append)
+    assert all(k > 0 for k in steps) and sum(steps) == n * m
+    assert len(steps) > 2  # it moves during the search, not only at the end
+    assert found == find_overturn_scales(scenes, grid=COARSE_GRID)
+
+    known = simulate_many(scenes)
+    steps = []
+    assert find_overturn_scales(scenes, grid=COARSE_GRID, known=known, progress=steps.append) == found
+    assert all(k > 0 for k in steps) and sum(steps) == n * (m - 1)  # factor 1 was counted by the caller
+
+
+# --------------------------------------------------------------------------------------------------
+# the batch kernels compiled side by side
+# --------------------------------------------------------------------------------------------------
+
+class _Kernel:
+    def __init__(self, name, compiled=False):
+        self.signatures = ["sig"] if compiled else []
+        self.py_func = types.SimpleNamespace(__name__=name)
+        self.calls = 0
+
+
+def _fake_kernels(monkeypatch, cached, compiled=()):
+    from rockcli.kernels import batch
+
+    kernels = {name: _Kernel(name, name in compiled) for name in batch.BATCH_KERNELS}
+    for name, k in kernels.items():
+        monkeypatch.setitem(batch.__dict__, name, k)
+    monkeypatch.setattr(batch, "_cached", lambda k: cached[k.py_func.__name__])
+    calls = []
+    monkeypatch.setattr(batch, "_empty_call", lambda k: calls.append(k.py_func.__name__))
+    spawned = []
+
+    class _Popen:
+        def __init__(self, args, **kw):
+            spawned.append(args[-1])
+
+        def wait(self, timeout=None):
+            return 0
+
+        def poll(self):
+            return 0
+
+    monkeypatch.setattr(subprocess, "Popen", _Popen)
+    monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {0, 1}, raising=False)
+    return batch, calls, spawned
+
+
+def test_prepare_compiles_the_second_cold_kernel_in_a_child(monkeypatch):
+    batch, calls, spawned = _fake_kernels(monkeypatch, {"simulate_batch_rigid": False, "simulate_batch": False})
+    batch.prepare(["simulate_batch_rigid", "simulate_batch"])
+    assert len(spawned) == 1 and "_compile_child('simulate_batch_rigid')" in spawned[0]
+    # the isolated kernel compiled here while the child compiles the rigid one; then both loaded here
+    assert calls == ["simulate_batch", "simulate_batch_rigid", "simulate_batch"]
+
+
+@pytest.mark.parametrize("cached, names, compiled", [
+    ({"simulate_batch_rigid": True, "simulate_batch": False}, ["simulate_batch_rigid", "simulate_batch"], ()),
+    ({"simulate_batch_rigid": False, "simulate_batch": False}, ["simulate_batch_rigid"], ()),
+    ({"simulate_batch_rigid": None, "simulate_batch": None}, ["simulate_batch_rigid", "simulate_batch"], ()),
+    ({"simulate_batch_rigid": False, "simulate_batch": False}, ["simulate_batch_rigid", "simulate_batch"],
+     ("simulate_batch",)),
+])
+def test_prepare_spawns_nothing_unless_two_kernels_must_compile(monkeypatch, cached, names, compiled):
+    batch, calls, spawned = _fake_kernels(monkeypatch, cached, compiled)
+    batch.prepare(names)
+    assert spawned == []
+    assert calls == [n for n in names if n not in compiled]  # each kernel not in memory: loaded or compiled here
