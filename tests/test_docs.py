@@ -3,7 +3,8 @@
 Every ```bash block of README.md and docs/*.md (every page, found by glob, so pages added later are
 covered too) is run as a user would run it: from a folder laid out like a fresh clone (a copy of the
 repository's files, with ``../shared/records`` pointing at the first folder of ROCKCLI_RECORDS) and
-with ``ROCKCLI_RECORDS=../shared/records:../shared/records/extra``. Each block must exit with code 0,
+with ``ROCKCLI_RECORDS=../shared/records:../shared/records/extra``, each block on its own (``out/`` is
+removed before it, so a block that writes there must create it). Each block must exit with code 0,
 every file or folder under ``out/`` that it names must exist and be non-empty (a CSV with a header
 row, a JSON output that parses), and it must write nothing outside ``out/``: neither in the copy
 (the clone's files are compared before and after) nor in the repository itself (``git status``).
@@ -201,6 +202,7 @@ def test_documented_commands_run(page, script, directives, clone):
     to_run, reason = _apply(script, directives)
     if to_run is None:
         pytest.skip(reason)
+    shutil.rmtree(cwd / "out", ignore_errors=True)  # each block starts as on a fresh clone
     before_clone, before_repo = _snapshot(cwd), _git_status()
     done = subprocess.run(
         ["bash", "-e", "-o", "pipefail", "-c", to_run],
