@@ -2,7 +2,8 @@
 
 Every ```bash block of README.md and docs/*.md (every page, found by glob, so pages added later are
 covered too) is run as a user would run it: from a folder laid out like a fresh clone (a copy of the
-repository's files, with ``../shared/records`` pointing at the first folder of ROCKCLI_RECORDS) and
+repository's files, with ``../shared/records`` pointing at the first folder of ROCKCLI_RECORDS; the
+package itself is imported from the repository, so that its compiled-kernel cache is reused) and
 with ``ROCKCLI_RECORDS=../shared/records:../shared/records/extra``, each block on its own (``out/`` is
 removed before it, so a block that writes there must create it). Each block must exit with code 0,
 every file or folder under ``out/`` that it names must exist and be non-empty (a CSV with a header
@@ -44,7 +45,7 @@ ROOT = Path(__file__).resolve().parents[1]
 PAGES = [ROOT / "README.md"] + sorted((ROOT / "docs").glob("*.md"))
 
 FENCE = re.compile(r"^```bash[ \t]*\n(.*?)^```[ \t]*$", re.S | re.M)
-MARKER = re.compile(r"<!--\s*docs-test:(.*?)-->\s*$", re.S)
+MARKER = re.compile(r"<!--\s*docs-test:(.*?)-->", re.S)
 OUT_PATH = re.compile(r"(?<![\w./-])out/[\w.@%+=,/-]*[\w]")
 #: per block; the slowest (the README's main job on one record, a small map) take a few seconds
 TIMEOUT_S = 300
@@ -56,12 +57,13 @@ def _blocks(page: Path):
     for match in FENCE.finditer(text):
         before = text[: match.start()].rstrip()
         directives = []
-        while True:
-            comment = MARKER.search(before)
+        while before.endswith("-->"):
+            start = before.rfind("<!--")
+            comment = MARKER.fullmatch(before[start:]) if start >= 0 else None
             if comment is None:
                 break
             directives.insert(0, comment.group(1).strip())
-            before = before[: comment.start()].rstrip()
+            before = before[:start].rstrip()
         line = text.count("\n", 0, match.start()) + 1
         yield line, match.group(1), directives
 
@@ -145,7 +147,10 @@ def clone(tmp_path_factory):
     (base / "shared" / "records").symlink_to(Path(folders[0]).resolve(), target_is_directory=True)
     cwd = base / "rockcli"
     for src in _tracked_files():
-        dst = cwd / src.relative_to(ROOT)
+        rel = src.relative_to(ROOT)
+        if rel.parts[0] == "rockcli":  # the code runs from ROOT (PYTHONPATH), so numba's cache there is used
+            continue
+        dst = cwd / rel
         dst.parent.mkdir(parents=True, exist_ok=True)
         shutil.copy2(src, dst)
     bin_dir = base / "bin"
