@@ -136,15 +136,10 @@ def _git_status() -> str | None:
         return None
 
 
-@pytest.fixture(scope="module")
-def clone(tmp_path_factory):
-    """``(cwd, env)``: a copy of the repository next to ``shared/records``, and the environment."""
-    folders = [p for p in os.environ.get("ROCKCLI_RECORDS", "").split(os.pathsep) if p and Path(p).is_dir()]
-    if not folders:
-        pytest.skip("ROCKCLI_RECORDS names no folder of records: the documented commands need them")
-    base = tmp_path_factory.mktemp("docs")
+def _make_clone(base: Path, records: Path) -> tuple[Path, dict]:
+    """Lay out *base* like a clone next to ``shared/records`` (a link to *records*); ``(cwd, env)``."""
     (base / "shared").mkdir()
-    (base / "shared" / "records").symlink_to(Path(folders[0]).resolve(), target_is_directory=True)
+    (base / "shared" / "records").symlink_to(records.resolve(), target_is_directory=True)
     cwd = base / "rockcli"
     for src in _tracked_files():
         rel = src.relative_to(ROOT)
@@ -171,6 +166,15 @@ def clone(tmp_path_factory):
         MPLBACKEND="Agg",
     )
     return cwd, env
+
+
+@pytest.fixture(scope="module")
+def clone(tmp_path_factory):
+    """``(cwd, env)``: a copy of the repository next to ``shared/records``, and the environment."""
+    folders = [p for p in os.environ.get("ROCKCLI_RECORDS", "").split(os.pathsep) if p and Path(p).is_dir()]
+    if not folders:
+        pytest.skip("ROCKCLI_RECORDS names no folder of records: the documented commands need them")
+    return _make_clone(tmp_path_factory.mktemp("docs"), Path(folders[0]))
 
 
 # ---------------------------------------------------------------------------------------------------
