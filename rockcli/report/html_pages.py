@@ -65,6 +65,7 @@ def _critical(assessment, block):
 
 def _response_figures(assessment, block) -> str:
     """The critical record's full response on every configuration, side by side."""
+    from rockcli.report.figures import plot_grid_dt
     from rockcli.report.response import plot_response
     from rockcli.solve import simulate
 
@@ -73,11 +74,12 @@ def _response_figures(assessment, block) -> str:
         return ""
     figs = []
     for c in assessment.configurations:
-        resp = simulate(block, c.foundation, x.motion, history=True, **assessment.solver)
+        resp = simulate(block, c.foundation, x.motion, history=True, history_dt=plot_grid_dt(x.motion),
+                        **assessment.solver)
         if resp.status < 0:
             continue
-        title = f"{block.name}, {x.label}, {configuration_words(c)}"
-        png = png_of(lambda path: plot_response(resp, block, c.foundation, title, path, dpi=80))
+        png = png_of(lambda path: plot_response(resp, block, c.foundation, path, excitation=x.motion,
+                                                motion=x.label, dpi=80))
         figs.append(figure(png, f"{configuration_words(c)}: ground acceleration, tilt over alpha (beyond +-1 the "
                                 f"body is past its tipping point), rocking velocity"
                            + (", displacement of the isolated base" if c.isolated else "") + "; a red line marks "
@@ -353,7 +355,8 @@ def simulate_report(block, foundation, excitation, response, *, label: str, chec
               ("impacts", f"{response.n_impacts} during shaking, {response.n_impacts_total} in all"),
               ("peak base displacement", num(response.base_disp_max_m, ".4f", "m")),
               ("integration", f"{response.steps} steps, ended at {response.t_end_s:.2f} s")]
-    png = png_of(lambda path: plot_response(response, block, foundation, f"{block.name}, {label}, {where}", path,
+    motion = None if hasattr(excitation, "T_p") else label
+    png = png_of(lambda path: plot_response(response, block, foundation, path, excitation=excitation, motion=motion,
                                             dpi=90))
     items = []
     if checked:

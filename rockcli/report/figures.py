@@ -1,0 +1,176 @@
+"""What every figure shares: the words and symbols that name a scene's parameters, and the layout.
+
+* :func:`block_text`, :func:`foundation_text`, :func:`spec_text`, :func:`motion_text`: a body, an
+  isolation (a foundation, or a spectra spec with ``TbTp``) and a ground motion in the paper's
+  symbols (matplotlib mathtext: ``$\\alpha$``, ``$T_b$``, ``$\\xi$``, ``$\\gamma$``, ``$\\mu_1$``), with
+  units, so that a title or legend names every parameter a reader needs to redo the run;
+* :func:`new_figure`: a figure with constrained layout (titles, legends and axis labels are kept
+  inside the canvas at any size); :func:`footnote`: a note under the panels, wrapped to the width
+  of the figure and placed by the layout (a free ``fig.text`` is not, and was clipped);
+* :func:`plot_grid_dt`: the spacing of the dense history a response figure is drawn from.
+
+matplotlib is imported inside the functions (Agg backend).
+"""
+
+from __future__ import annotations
+
+import math
+import textwrap
+
+#: Words of the isolation kinds (the paper's abbreviations for the sliding bearings).
+KIND_WORDS = {"none": "rigid foundation", "linear": "linear bearings", "scss": "SCSS bearings",
+              "dcss": "DCSS bearings", "lrb": "lead-rubber bearings"}
+#: Symbol and unit of each spec key (``uy`` is drawn in mm).
+SPEC_SYMBOLS = {"TbTp": (r"$T_b/T_p$", ""), "Tb": (r"$T_b$", "s"), "xi": (r"$\xi$", ""), "gamma": (r"$\gamma$", ""),
+                "mu": (r"$\mu$", ""), "mu1": (r"$\mu_1$", ""), "mu2": (r"$\mu_2$", ""), "Q": (r"$Q/W$", ""),
+                "uy": (r"$u_y$", "mm"), "R1": (r"$R_1$", "m"), "R2": (r"$R_2$", "m"), "r": (r"$R_2/R_1$", ""),
+                "mu_e": (r"$\mu_e$", ""), "n": (r"$n$", ""), "beta": (r"$\beta$", ""), "gammabw": (r"$\gamma_{bw}$", "")}
+#: Words of the pulse shapes.
+SHAPE_WORDS = {"ricker-sym": "symmetric Ricker", "ricker-anti": "antisymmetric Ricker", "sine": "one-sine",
+               "cosine": "one-cosine"}
+
+
+def _num(v: float, digits: int = 3) -> str:
+    return f"{v:.{digits}g}"
+
+
+def item_text(key: str, value: str) -> str:
+    """One ``key=value`` item of a spec in symbols: ``mu1=0.03`` -> ``$\\mu_1$ = 0.03``."""
+    symbol, unit = SPEC_SYMBOLS.get(key, (key, ""))
+    if key == "uy":
+        try:
+            value = _num(float(value) * 1e3)
+        except ValueError:
+            pass
+    elif unit:
+        try:
+            value = _num(float(value), 4)
+        except ValueError:
+            pass
+    return f"{symbol} = {value}" + (f" {unit}" if unit else "")
+
+
+def spec_items(label: str) -> tuple[str, list[tuple[str, str]]]:
+    """``(kind, [(key, value), ...])`` of an isolation label such as ``linear:TbTp=2,xi=0.05,gamma=0.01``."""
+    kind, _, rest = label.partition(":")
+    return kind, [tuple(kv.split("=", 1)) for kv in rest.split(",") if "=" in kv]
+
+
+def spec_text(label: str) -> str:
+    """An isolation label in words and symbols: ``linear bearings, $T_b/T_p$ = 2, $\\xi$ = 0.05, ...``."""
+    kind, items = spec_items(label)
+    if kind == "none":
+        return KIND_WORDS["none"]
+    return ", ".join([KIND_WORDS.get(kind, kind)] + [item_text(k, v) for k, v in items])
+
+
+def foundation_text(foundation) -> str:
+    """A foundation (:mod:`rockcli.models`) with all its parameters; a DCSS adds its period and
+    effective friction (Eq 38)."""
+    label = foundation.label
+    kind, items = spec_items(label)
+    if kind == "dcss":
+        items = [("Tb", repr(foundation.T_b))] + items[:4] + [("mu_e", _num(foundation.mu_e))] + items[4:]
+    if kind == "none":
+        return KIND_WORDS["none"]
+    return ", ".join([KIND_WORDS.get(kind, kind)] + [item_text(k, v) for k, v in items])
+
+
+def block_text(block) -> str:
+    """``nemea: $R$ = 5.99 m, $\\alpha$ = 9.60°, $p$ = 1.11 rad/s``."""
+    return (f"{block.name}: $R$ = {block.R:.3g} m, $\\alpha$ = {block.alpha_deg:.3g}°, "
+            f"$p$ = {block.p:.3g} rad/s")
+
+
+def pulse_text(shape: str, a_p_g: float | None = None, T_p: float | None = None) -> str:
+    """``symmetric Ricker pulse, $a_p$ = 0.5 g, $T_p$ = 0.6 s`` (the values given)."""
+    parts = [f"{SHAPE_WORDS.get(shape, shape)} pulse"]
+    if a_p_g is not None:
+        parts.append(f"$a_p$ = {a_p_g:.3g} g")
+    if T_p is not None:
+        parts.append(f"$T_p$ = {T_p:.3g} s")
+    return ", ".join(parts)
+
+
+def motion_text(excitation, label: str | None = None) -> str:
+    """A ground motion: a pulse by its shape, ``a_p`` and ``T_p``; a record by ``label`` (or its name)
+    and its PGA as run (after any scaling)."""
+    if excitation is None:
+        return label or "free rocking (no ground motion)"
+    if hasattr(excitation, "T_p") and hasattr(excitation, "acceleration"):
+        text = pulse_text(excitation.shape, excitation.a_p_g, excitation.T_p)
+        return f"{label}: {text}" if label else text
+    name = label or f"record {excitation.name}"
+    return f"{name}, PGA = {excitation.pga_g:.3g} g"
+
+
+def plot_grid_dt(excitation) -> float:
+    """Spacing [s] of the dense history a response figure is drawn from: 1/400 of a pulse's period,
+    half a record's sample interval (at most 2.5 ms), 2 ms without ground motion."""
+    if excitation is None:
+        return 2e-3
+    if hasattr(excitation, "T_p") and hasattr(excitation, "acceleration"):
+        return excitation.T_p / 400.0
+    return min(0.5 * float(excitation.dt), 2.5e-3)
+
+
+def excitation_samples(excitation, t_begin: float, t_end: float):
+    """``(t, ag)`` [s, m/s^2] of the ground motion itself over ``[t_begin, t_end]``: a pulse evaluated
+    on its own fine grid (400 points per period), a record's samples (zero outside the record, as
+    the solver takes it)."""
+    import numpy as np
+
+    if excitation is None:
+        return np.array([t_begin, t_end]), np.zeros(2)
+    if hasattr(excitation, "T_p") and hasattr(excitation, "acceleration"):
+        n = int(min(200_000, max(2000, math.ceil((t_end - t_begin) / (excitation.T_p / 400.0)) + 1)))
+        t = np.linspace(t_begin, t_end, n)
+        return t, excitation.acceleration(t)
+    t, a = excitation.times, excitation.acc
+    keep = (t >= t_begin) & (t <= t_end)
+    t, a = t[keep], a[keep]
+    if t.size and t[-1] < t_end:  # the solver's ground is at rest after the record
+        t, a = np.append(t, [t[-1], t_end]), np.append(a, [0.0, 0.0])
+    return t, a
+
+
+def pyplot():
+    """matplotlib.pyplot on the Agg backend."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def new_figure(width: float, height: float, **kwargs):
+    """A figure of ``width`` x ``height`` inches with constrained layout (nothing falls off the canvas)."""
+    plt = pyplot()
+    fig = plt.figure(figsize=(width, height), layout="constrained", **kwargs)
+    return fig
+
+
+def wrap_to(fig, text: str, fontsize: float, share: float = 1.0) -> str:
+    """``text`` wrapped to ``share`` of the figure's width (about 0.5 em per character), never
+    inside a ``$...$`` formula."""
+    chars = max(20, int(share * fig.get_figwidth() * 72.0 / (0.52 * fontsize)))
+    parts = text.split("$")
+    glued = "$".join(p.replace(" ", "\0") if k % 2 else p for k, p in enumerate(parts))
+    lines = (textwrap.fill(line, chars) for line in glued.split("\n"))
+    return "\n".join(lines).replace("\0", " ")
+
+
+def footnote(fig, text: str, fontsize: float = 7.0) -> None:
+    """A note under the panels, wrapped to the figure's width; the layout makes room for it."""
+    fig.supxlabel(wrap_to(fig, text, fontsize, 0.97), fontsize=fontsize, x=0.01, ha="left", color="0.3")
+
+
+def title(fig_or_ax, text: str, fontsize: float = 9.0, **kwargs) -> None:
+    """A title wrapped to the width of the figure (``fig.suptitle`` for a figure, ``set_title`` for axes)."""
+    if hasattr(fig_or_ax, "suptitle"):
+        fig_or_ax.suptitle(wrap_to(fig_or_ax, text, fontsize), fontsize=fontsize, **kwargs)
+    else:
+        fig = fig_or_ax.get_figure()
+        share = fig_or_ax.get_position().width
+        fig_or_ax.set_title(wrap_to(fig, text, fontsize, share), fontsize=fontsize, **kwargs)
