@@ -64,6 +64,26 @@ def spec_text(label: str) -> str:
     return ", ".join([KIND_WORDS.get(kind, kind)] + [item_text(k, v) for k, v in items])
 
 
+def split_labels(labels) -> tuple[dict, str]:
+    """Legend texts of several isolation labels: ``({label: the items that differ between them}, the
+    items they share)``, both in words and symbols; ``none`` is the rigid foundation. With one
+    isolated label, its legend text is all of it and nothing is shared."""
+    labels = list(dict.fromkeys(labels))
+    isos = [lab for lab in labels if spec_items(lab)[0] != "none"]
+    items = {lab: [("kind", spec_items(lab)[0])] + spec_items(lab)[1] for lab in isos}
+    keys = list(dict.fromkeys(k for its in items.values() for k, _ in its))
+    varying = [k for k in keys if len({dict(its).get(k) for its in items.values()}) > 1]
+
+    def show(pairs):
+        return ", ".join(KIND_WORDS.get(v, v) if k == "kind" else item_text(k, v) for k, v in pairs)
+
+    out = {lab: KIND_WORDS["none"] for lab in labels if lab not in items}
+    if len(isos) < 2:
+        return {**out, **{lab: show(items[lab]) for lab in isos}}, ""
+    out.update({lab: show([(k, v) for k, v in items[lab] if k in varying]) for lab in isos})
+    return out, show([(k, v) for k, v in items[isos[0]] if k not in varying])
+
+
 def foundation_text(foundation) -> str:
     """A foundation (:mod:`rockcli.models`) with all its parameters; a DCSS adds its period and
     effective friction (Eq 38)."""
@@ -76,9 +96,14 @@ def foundation_text(foundation) -> str:
     return ", ".join([KIND_WORDS.get(kind, kind)] + [item_text(k, v) for k, v in items])
 
 
+def plain(text: str) -> str:
+    """``text`` (a name given by the user or a file) shown as written: a ``$`` does not open a formula."""
+    return str(text).replace("$", r"\$")
+
+
 def block_text(block) -> str:
     """``nemea: $R$ = 5.99 m, $\\alpha$ = 9.60°, $p$ = 1.11 rad/s``."""
-    return (f"{block.name}: $R$ = {block.R:.3g} m, $\\alpha$ = {block.alpha_deg:.3g}°, "
+    return (f"{plain(block.name)}: $R$ = {block.R:.3g} m, $\\alpha$ = {block.alpha_deg:.3g}°, "
             f"$p$ = {block.p:.3g} rad/s")
 
 
@@ -99,8 +124,8 @@ def motion_text(excitation, label: str | None = None) -> str:
         return label or "free rocking (no ground motion)"
     if hasattr(excitation, "T_p") and hasattr(excitation, "acceleration"):
         text = pulse_text(excitation.shape, excitation.a_p_g, excitation.T_p)
-        return f"{label}: {text}" if label else text
-    name = label or f"record {excitation.name}"
+        return f"{plain(label)}: {text}" if label else text
+    name = plain(label or f"record {excitation.name}")
     return f"{name}, PGA = {excitation.pga_g:.3g} g"
 
 
