@@ -15,6 +15,7 @@ from rockcli.assess.verdicts import (SURVIVES, TOPPLES, body_noun, body_words, c
                                      isolation_summary, outcome, question, scene_sentence, verdict_lines)
 from rockcli.report.html import (assumptions_section, body_section, card, configurations_section, esc, figure,
                                  num, page, plural, records_section, reproduce_section, table)
+from rockcli.report.figures import block_text
 from rockcli.report.html_figures import margins_png, png_of, share_png, stroke_png
 
 MARGIN_WORDS = (
@@ -205,14 +206,14 @@ def assessment_report(assessment, *, check=None, command: str = "") -> str:
         records = [x.label for x in assessment.excitations if x.motion is not None]
         rows = [r for r in assessment.rows if r.column == b.name]
         confs = assessment.configurations
-        figs.append(figure(margins_png(rows, records, confs, f"{b.name}: how far each record is from toppling it"),
+        figs.append(figure(margins_png(rows, records, confs, f"{block_text(b)}\nhow far each record is from toppling it"),
                            "Toppling factor per record and configuration (red: topples as recorded; green: "
                            "survives; amber: undecided). Right of the line at 1: the margin."))
         if n_ran > 1:
-            figs.append(figure(share_png(rows, confs, f"{b.name}: share of the records that topple it"),
+            figs.append(figure(share_png(rows, confs, f"{block_text(b)}\nshare of the records that topple it"),
                                "If every record were scaled by the same factor: the share of them that topple the "
                                "body (from each record's smallest toppling factor)."))
-        figs.append(figure(stroke_png(rows, records, confs, f"{b.name}: displacement demand on the bearings"),
+        figs.append(figure(stroke_png(rows, records, confs, f"{block_text(b)}\ndisplacement demand on the bearings"),
                            "Peak displacement of the isolated base relative to the ground: the stroke the bearings "
                            "and the gap around the base must allow (hatched: until the body toppled)."))
     sections = {
@@ -303,7 +304,7 @@ def fragility_report(fr, *, command: str = "") -> str:
     records = [x.label for x in fr.excitations if x.motion is not None]
     for b in blocks:
         rows = [r for r in fr.rows if r.column == b.name]
-        figs.append(figure(margins_png(rows, records, fr.configurations, f"{b.name}: toppling factor per record"),
+        figs.append(figure(margins_png(rows, records, fr.configurations, f"{block_text(b)}\ntoppling factor per record"),
                            "Toppling factor per record: right of the line at 1, the margin."))
     unproven = [r for r in fr.rows if "not proven" in r.margin_note]
     items = [f"The intervals come from {fr.n_boot} bootstrap resamples over the records (seed {fr.seed}); "

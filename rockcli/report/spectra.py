@@ -171,7 +171,7 @@ def _r_axis(ax, T_p):
         return np.sqrt(np.maximum(r, 0.0) * 16.0 * math.pi ** 2 / (3.0 * G * T_p ** 2))
 
     sec = ax.secondary_xaxis("top", functions=(fwd, inv))
-    sec.set_xlabel(f"R [m] for $T_p$ = {T_p:.3g} s", fontsize=7)
+    sec.set_xlabel(f"$R$ [m] for $T_p$ = {T_p:.3g} s", fontsize=7)
     sec.tick_params(labelsize=7)
 
 
