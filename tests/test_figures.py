@@ -46,7 +46,7 @@ def texts(fig) -> str:
     """The text of every visible text artist of ``fig`` (titles, labels, legends, notes), one per line."""
     from matplotlib.text import Text
 
-    return "\n".join(t.get_text() for t in fig.findobj(Text) if t.get_visible() and t.get_text())
+    return "\n".join(t.get_text() for t in fig.findobj(Text) if t.get_visible() and t.get_text()).replace("\u00a0", " ")
 
 
 def outside(fig, tol_in: float = 0.02) -> list[str]:

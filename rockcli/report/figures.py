@@ -25,6 +25,8 @@ SPEC_SYMBOLS = {"TbTp": (r"$T_b/T_p$", ""), "Tb": (r"$T_b$", "s"), "xi": (r"$\xi
                 "mu": (r"$\mu$", ""), "mu1": (r"$\mu_1$", ""), "mu2": (r"$\mu_2$", ""), "Q": (r"$Q/W$", ""),
                 "uy": (r"$u_y$", "mm"), "R1": (r"$R_1$", "m"), "R2": (r"$R_2$", "m"), "r": (r"$R_2/R_1$", ""),
                 "mu_e": (r"$\mu_e$", ""), "n": (r"$n$", ""), "beta": (r"$\beta$", ""), "gammabw": (r"$\gamma_{bw}$", "")}
+#: A space a title is never wrapped at (between a symbol, its value and its unit).
+NBSP = "\u00a0"
 #: Words of the pulse shapes.
 SHAPE_WORDS = {"ricker-sym": "symmetric Ricker", "ricker-anti": "antisymmetric Ricker", "sine": "one-sine",
                "cosine": "one-cosine"}
@@ -47,7 +49,7 @@ def item_text(key: str, value: str) -> str:
             value = _num(float(value), 4)
         except ValueError:
             pass
-    return f"{symbol} = {value}" + (f" {unit}" if unit else "")
+    return f"{symbol}{NBSP}={NBSP}{value}" + (f"{NBSP}{unit}" if unit else "")  # never wrapped apart
 
 
 def spec_items(label: str) -> tuple[str, list[tuple[str, str]]]:

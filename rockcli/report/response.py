@@ -113,7 +113,7 @@ def plot_response(response, block, foundation, path: str | os.PathLike, *, excit
         axes.append(fig.add_subplot(grid[i], sharex=axes[0]))
     for ax in axes[:-1]:
         ax.tick_params(labelbottom=False)
-    rows = H.rows if H.rows is not None else np.column_stack([H.t, H.ag, H.theta, H.theta_dot, H.u, H.u_dot])
+    rows = H.rows
     t, th, thd, u = rows[:, 0], rows[:, 2], rows[:, 3], rows[:, 4]
     tg, ag = excitation_samples(excitation, float(t[0]), float(t[-1]))
     axes[0].plot(tg, ag / G, lw=0.8, color="0.2")
@@ -138,7 +138,9 @@ def plot_response(response, block, foundation, path: str | os.PathLike, *, excit
     axes[-1].set_xlabel("time $t$ [s]")
     if loop:
         ax = fig.add_subplot(grid[n])
-        ax.plot(H.u, H.bearing_force / G, lw=0.8, color="tab:purple")
+        fu, ff = rows[:, 4], rows[:, 8]
+        ok = np.isfinite(ff)  # the peak rows carry no bearing force
+        ax.plot(fu[ok], ff[ok] / G, lw=0.8, color="tab:purple")
         ax.set_xlabel("base displacement $u$ [m]")
         ax.set_ylabel("bearing force / $W$")
         ax.set_title("force-displacement loop of the bearings ($W = (m + m_b)\\,g$)", fontsize=8)
