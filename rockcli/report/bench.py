@@ -163,7 +163,7 @@ def _pyplot():
     return pyplot()
 
 
-def plot_work_precision(scenes, path, dpi: int = 72) -> Path:
+def plot_work_precision(scenes, path, dpi: int = 100) -> Path:
     """Error against wall time, log-log, one panel per scene and one line per method.
 
     Survivors: the error in theta_max/alpha; overturning scenes: the error in the overturning time

@@ -15,6 +15,7 @@ matplotlib is imported inside the functions (Agg backend).
 from __future__ import annotations
 
 import math
+import re
 import textwrap
 
 #: Words of the isolation kinds (the paper's abbreviations for the sliding bearings).
@@ -184,6 +185,8 @@ def wrap_to(fig, text: str, fontsize: float, share: float = 1.0) -> str:
     chars = max(20, int(share * fig.get_figwidth() * 72.0 / (0.52 * fontsize)))
     parts = text.split("$")
     glued = "$".join(p.replace(" ", "\0") if k % 2 else p for k, p in enumerate(parts))
+    glued = re.sub(r" = (\S+)( (?:g|s|m|mm|rad/s|m/s)\b)?",
+                   lambda m: "\0=\0" + m.group(1) + (m.group(2) or "").replace(" ", "\0"), glued)
     lines = (textwrap.fill(line, chars) for line in glued.split("\n"))
     return "\n".join(lines).replace("\0", " ")
 
