@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import math
 import re
-import textwrap
 
 #: Words of the isolation kinds (the paper's abbreviations for the sliding bearings).
 KIND_WORDS = {"none": "rigid foundation", "linear": "linear bearings", "scss": "SCSS bearings",
@@ -179,16 +178,36 @@ def new_figure(width: float, height: float, **kwargs):
     return fig
 
 
+def text_width_pt(text: str, fontsize: float) -> float:
+    """Width [pt] of one line of ``text`` as matplotlib draws it (mathtext measured as rendered)."""
+    from matplotlib.font_manager import FontProperties
+    from matplotlib.textpath import TextToPath
+
+    width, _, _ = TextToPath().get_text_width_height_descent(text, FontProperties(size=fontsize),
+                                                             ismath=text.count("$") >= 2)
+    return width
+
+
 def wrap_to(fig, text: str, fontsize: float, share: float = 1.0) -> str:
-    """``text`` wrapped to ``share`` of the figure's width (about 0.5 em per character), never
-    inside a ``$...$`` formula."""
-    chars = max(20, int(share * fig.get_figwidth() * 72.0 / (0.52 * fontsize)))
+    """``text`` wrapped to ``share`` of the figure's width, by the measured width of each line, never
+    inside a ``$...$`` formula nor between a value and its symbol or unit (``$T_b$ = 2 s``)."""
+    room = 0.97 * share * fig.get_figwidth() * 72.0
     parts = text.split("$")
     glued = "$".join(p.replace(" ", "\0") if k % 2 else p for k, p in enumerate(parts))
     glued = re.sub(r" = (\S+)( (?:g|s|m|mm|rad/s|m/s)\b)?",
                    lambda m: "\0=\0" + m.group(1) + (m.group(2) or "").replace(" ", "\0"), glued)
-    lines = (textwrap.fill(line, chars) for line in glued.split("\n"))
-    return "\n".join(lines).replace("\0", " ")
+    out = []
+    for para in glued.split("\n"):
+        line = ""
+        for word in para.split(" "):
+            trial = f"{line} {word}" if line else word
+            if line and text_width_pt(trial.replace("\0", " "), fontsize) > room:
+                out.append(line)
+                line = word
+            else:
+                line = trial
+        out.append(line)
+    return "\n".join(out).replace("\0", " ")
 
 
 def footnote(fig, text: str, fontsize: float = 7.0) -> None:
