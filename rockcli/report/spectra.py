@@ -351,9 +351,10 @@ def _iso_label(isolation) -> str:
 
 def _pulse_words(pulse) -> str:
     """A spectra pulse in words: ``symmetric Ricker pulse`` (``, $T_p$ = 0.6 s`` when its period is set)."""
-    from rockcli.report.figures import pulse_text
+    from rockcli.report.figures import plain, pulse_text
 
-    return pulse_text(pulse.shape, None, pulse.T_p)
+    text = pulse_text(pulse.shape, None, pulse.T_p)
+    return text if pulse.source == "pulse" else f"{text} ({plain(pulse.source)})"
 
 
 def _search_note(curves) -> str:
