@@ -315,7 +315,8 @@ def plot_min_curves(curves, path, *, crossings=None, title: str | None = None, y
                 T_p = c.pulse.T_p
             for (xc, yc, lab) in (crossings or {}).get((a, sh), []):
                 ax.plot([xc], [yc], "o", ms=5, mfc="none", mec="k")
-                ax.annotate(lab, (xc, yc), textcoords="offset points", xytext=(4, -10), fontsize=6)
+                ax.annotate(lab, (xc, yc), textcoords="offset points", xytext=(4, -10), fontsize=6,
+                            bbox=dict(boxstyle="round,pad=0.15", fc="white", ec="none", alpha=0.85), zorder=5)
             put_title(ax, f"$\\alpha$ = {a:g}°, {_pulse_words(mine[0].pulse)}", fontsize=8)
             ax.set_xlabel(r"$\omega_p / p$", fontsize=8)
             ax.set_ylabel(r"minimum overturning $a_p / (g \tan\alpha)$", fontsize=8)
