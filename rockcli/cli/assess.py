@@ -402,7 +402,9 @@ def _write_histories(result, hist_dir, plot_dir, as_json=False):
 
     from rockcli.assess import history_runs, safe_name
     from rockcli.files import transaction
+    from rockcli.report.figures import plot_grid_dt
     from rockcli.report.response import plot_response, write_history_csv
+    from rockcli.solve import simulate
 
     n = 0
     with transaction() as outputs:
@@ -416,9 +418,11 @@ def _write_histories(result, hist_dir, plot_dir, as_json=False):
             label = x.label + (" (catalogued pulse)" if x.kind == "pulse" else "")
             if hist_dir:
                 write_history_csv(resp, block, Path(hist_dir) / f"{stem}.csv")
-            if plot_dir:
-                plot_response(resp, block, conf.foundation, f"{block.name}, {label}, {conf.label}",
-                              Path(plot_dir) / f"{stem}.png")
+            if plot_dir:  # drawn from the dense output between the steps
+                dense = simulate(block, conf.foundation, x.motion, history=True, history_dt=plot_grid_dt(x.motion),
+                                 **result.solver)
+                plot_response(dense, block, conf.foundation, Path(plot_dir) / f"{stem}.png", excitation=x.motion,
+                              motion=label)
             n += 1
     what = " and ".join(f"{k} in {d}" for k, d in (("histories", hist_dir), ("figures", plot_dir)) if d)
     click.echo(f"wrote {what} ({n} runs)", err=as_json)

@@ -178,15 +178,22 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
         from rockcli.report.response import write_history_csv
 
         write_history_csv(res, block, history_path)
+    shown = res  # the figures draw the response from the dense output between the steps
+    if (plot_path or report_path) and res.history.grid_dt is None:
+        from rockcli.report.figures import plot_grid_dt
+
+        shown = run(block, foundation, excitation, rtol=rtol, tail=tail, horizon=horizon, history=True,
+                    history_dt=plot_grid_dt(excitation), **solver)
+    motion = (None if pulse is not None else label) if vertical is None else f"{label}; vertical: {vlabel}"
     if plot_path:
         from rockcli.report.response import plot_response
 
-        plot_response(res, block, foundation, f"{block.name} on {foundation.label}, {label}", plot_path)
+        plot_response(shown, block, foundation, plot_path, excitation=excitation, motion=motion)
     if report_path:
         from rockcli.report.html import write_report
         from rockcli.report.html_pages import simulate_report
 
-        write_report(report_path, simulate_report(block, foundation, excitation, res, label=label, checked=checked,
+        write_report(report_path, simulate_report(block, foundation, excitation, shown, label=label, checked=checked,
                                                   command=command_line()))
 
     if as_json:

@@ -486,7 +486,8 @@ def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, 
         for r in result.rows:
             if r.wp_over_p_cross == r.wp_over_p_cross:
                 crossings.setdefault((r.alpha_deg, r.pulse), []).append(
-                    (r.wp_over_p_cross, r.ap_cross_over_g_tan_alpha, f"{r.R_critical_m:.2f} m"))
+                    (r.wp_over_p_cross, r.ap_cross_over_g_tan_alpha,
+                     f"$R$ = {r.R_critical_m:.2f} m ($T_p$ = {r.T_p_s:.3g} s, $T_b/T_p$ = {r.Tb_over_Tp:g})"))
         plot_min_curves(result.curves, plot_path, crossings=crossings)
         click.echo(f"wrote {plot_path}", err=as_json)
 

@@ -158,15 +158,12 @@ def format_wp_summary(summaries) -> str:
 
 
 def _pyplot():
-    import matplotlib
+    from rockcli.report.figures import pyplot
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
+    return pyplot()
 
 
-def plot_work_precision(scenes, path, dpi: int = 72) -> Path:
+def plot_work_precision(scenes, path, dpi: int = 100) -> Path:
     """Error against wall time, log-log, one panel per scene and one line per method.
 
     Survivors: the error in theta_max/alpha; overturning scenes: the error in the overturning time
@@ -177,11 +174,15 @@ def plot_work_precision(scenes, path, dpi: int = 72) -> Path:
     done = [ws for ws in scenes if ws.available and ws.runs]
     if not done:
         raise RockcliInputError("no scene ran: nothing to plot")
+    from rockcli.bench.scenes import resolve_scene
+    from rockcli.report.figures import block_text, foundation_text, motion_text, new_figure, title
+
     plt = _pyplot()
     n = len(done)
     ncol = min(3, n)
     nrow = math.ceil(n / ncol)
-    fig, axes = plt.subplots(nrow, ncol, figsize=(4.0 * ncol, 3.3 * nrow), squeeze=False)
+    fig = new_figure(4.4 * ncol, 4.0 * nrow + 0.4)
+    axes = fig.subplots(nrow, ncol, squeeze=False)
     for ax, ws in zip(axes.flat, done):
         methods = []
         for r in ws.runs:
@@ -202,9 +203,12 @@ def plot_work_precision(scenes, path, dpi: int = 72) -> Path:
                 ax.loglog(*zip(*bad), "x", color="red", ms=7, mew=1.5)
         if math.isfinite(ws.floor) and ws.floor > 0:
             ax.axhline(ws.floor, color="0.4", ls=":", lw=0.8)  # the reference's resolution
-        ax.set_title(ws.scene.name, fontsize=9)
+        block, foundation, exc = resolve_scene(ws.scene)
+        title(ax, f"{ws.scene.name}: {block_text(block)}; {motion_text(exc)}; {foundation_text(foundation)}",
+              fontsize=7)
         ax.set_xlabel("wall time [s]", fontsize=8)
-        ax.set_ylabel("error in t_overturn [s]" if ws.event == "overturn" else "error in theta_max/alpha", fontsize=8)
+        ax.set_ylabel(r"error in $t_{overturn}$ [s]" if ws.event == "overturn" else r"error in $\theta_{max}/\alpha$",
+                      fontsize=8)
         ax.tick_params(labelsize=7)
         ax.grid(True, which="major", lw=0.3)
     for ax in list(axes.flat)[n:]:
@@ -215,8 +219,7 @@ def plot_work_precision(scenes, path, dpi: int = 72) -> Path:
             if lab not in labels:
                 handles.append(h)
                 labels.append(lab)
-    fig.legend(handles, labels, loc="lower center", ncol=len(labels), fontsize=8, frameon=False)
-    fig.tight_layout(rect=(0, 0.05, 1, 1))
+    fig.legend(handles, labels, loc="outside lower center", ncol=len(labels), fontsize=8, frameon=False)
     try:
         return save_figure(fig, path, dpi=dpi)
     finally:

@@ -140,13 +140,10 @@ def plot_fragility(fr, path: str | os.PathLike, *, dpi: int = 90) -> Path:
     Filled markers: the records' capacities at their Kaplan-Meier plotting positions; open
     triangles: censored records at their bound (their capacity lies beyond it).
     """
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
     import numpy as np
 
     from rockcli.assess.fragility import CENSORED_RIGHT, empirical_points, fragility_probability
+    from rockcli.report.figures import block_text, footnote, new_figure, pyplot, split_labels, title
 
     path = check_output(path, image=True)
     im = fr.im
@@ -161,7 +158,10 @@ def plot_fragility(fr, path: str | os.PathLike, *, dpi: int = 90) -> Path:
         raise RockcliInputError("nothing to plot: no record has an exact capacity")
     x = np.geomspace(min(vals) / 1.2, max(vals) * 1.2, 300)
     ncol = len(fr.columns)
-    fig, axes = plt.subplots(1, ncol, figsize=(5.2 * ncol + 0.6, 4.4), squeeze=False, sharey=True)
+    plt = pyplot()
+    fig = new_figure(5.4 * ncol + 0.6, 5.0 + 0.25 * len(fr.configurations))
+    axes = fig.subplots(1, ncol, squeeze=False, sharey=True)
+    legend, common = split_labels(c.foundation.label for c in fr.configurations)
     colors = ["k"] + [plt.cm.viridis(v) for v in np.linspace(0.15, 0.85, max(1, len(fr.configurations) - 1))]
     try:
         for ax, b in zip(axes[0], fr.columns):
@@ -176,7 +176,7 @@ def plot_fragility(fr, path: str | os.PathLike, *, dpi: int = 90) -> Path:
                 ex = [(v, p) for v, p, cen in pts if cen != CENSORED_RIGHT]
                 ce = [(v, p) for v, p, cen in pts if cen == CENSORED_RIGHT and x[0] <= v <= x[-1]]
                 if math.isfinite(curve.median):
-                    label = (f"{c.header}: median {curve.median:.3f} {im.units}, beta {curve.beta:.2f}")
+                    label = (f"{legend[c.foundation.label]}: median {curve.median:.3g} {im.units}, $\\beta$ = {curve.beta:.2f}")
                     ax.plot(x, fragility_probability(x, curve.median, curve.beta), style, color=color, lw=1.8,
                             label=label)
                     if curve.boot_median is not None and curve.n_boot_ok >= 2:
@@ -186,7 +186,7 @@ def plot_fragility(fr, path: str | os.PathLike, *, dpi: int = 90) -> Path:
                         lo, hi = np.percentile(P, q, axis=0)
                         ax.fill_between(x, lo, hi, color=color, alpha=0.12, lw=0)
                 else:
-                    ax.plot([], [], style, color=color, label=f"{c.header}: no fit")
+                    ax.plot([], [], style, color=color, label=f"{legend[c.foundation.label]}: no fit")
                 if ex:
                     ax.plot(*zip(*ex), "o", ms=4, color=color, alpha=0.85)
                 if ce:
@@ -196,14 +196,16 @@ def plot_fragility(fr, path: str | os.PathLike, *, dpi: int = 90) -> Path:
             ax.set_ylim(-0.02, 1.02)
             ax.grid(True, which="both", color="0.9", lw=0.5)
             ax.set_xlabel(f"{im.name} [{im.units}]")
-            ax.set_title(f"{b.name}: R = {b.R:.2f} m, alpha = {b.alpha_deg:.2f} deg", fontsize=10, loc="left")
-            ax.legend(loc="upper left", fontsize=7.5, frameon=False)
+            title(ax, block_text(b), fontsize=10, loc="left")
+            ax.legend(loc="upper left", fontsize=7, frameon=False)
         axes[0, 0].set_ylabel("P(overturn)")
-        fig.text(0.99, 0.01, f"lines: lognormal MLE; bands: {100 * fr.level:g}% bootstrap ({fr.n_boot} resamples); "
-                             f"dots: records (Kaplan-Meier positions); open triangles: no overturning up to "
-                             f"{fr.grid[1]:g}x (drawn where inside the axis)", ha="right", va="bottom", fontsize=7, color="0.3")
-        fig.tight_layout(rect=(0, 0.03, 1, 1))
+        if common:
+            title(fig, f"isolated configurations: {common}", fontsize=9)
+        footnote(fig, f"lines: lognormal MLE; bands: {100 * fr.level:g} % bootstrap ({fr.n_boot} resamples); "
+                      f"dots: records (Kaplan-Meier positions); open triangles: no overturning up to {fr.grid[1]:g}x "
+                      f"(drawn where inside the axis)")
         save_figure(fig, path, dpi=dpi)
     finally:
         plt.close(fig)
     return path
+

@@ -39,12 +39,28 @@ def png_of(draw) -> bytes:
 
 
 def _pyplot():
-    import matplotlib
+    from rockcli.report.figures import pyplot
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    return pyplot()
 
-    return plt
+
+def _figure(width: float, height: float):
+    """A figure with one axes, in constrained layout."""
+    from rockcli.report.figures import new_figure
+
+    fig = new_figure(width, height)
+    return fig, fig.add_subplot()
+
+
+def _title(ax, title: str, configurations) -> dict:
+    """Put ``title`` (and the isolation parameters the configurations share) on ``ax``; returns the
+    legend text of each configuration (what differs between them, in symbols)."""
+    from rockcli.report.figures import split_labels
+    from rockcli.report.figures import title as put_title
+
+    legend, common = split_labels(c.foundation.label for c in configurations)
+    put_title(ax, title + (f"\nisolation: {common}" if common else ""), fontsize=9, loc="left")
+    return {c.header: legend[c.foundation.label] for c in configurations}
 
 
 def _bytes(fig, dpi: int = 90) -> bytes:
@@ -84,7 +100,8 @@ def margins_png(rows, records, configurations, title: str) -> bytes | None:
     plt = _pyplot()
     n_c = len(configurations)
     height = 0.8 / n_c
-    fig, ax = plt.subplots(figsize=(8.0, 1.0 + 0.32 * n_c * len(records) + 0.4))
+    fig, ax = _figure(8.0, 1.3 + 0.32 * n_c * len(records) + 0.4)
+    names = _title(ax, title, configurations)
     for j, c in enumerate(configurations):
         for i, rec in enumerate(records):
             r = by.get((rec, c.header))
@@ -97,7 +114,7 @@ def margins_png(rows, records, configurations, title: str) -> bytes | None:
             colour = COLOURS[outcome(r)] if hasattr(r, "overturned") else _CONF_COLOURS[j % len(_CONF_COLOURS)]
             ax.barh(y, value - 0.1, left=0.1, height=height * 0.9, color=colour, alpha=0.85,
                     edgecolor=_CONF_COLOURS[j % len(_CONF_COLOURS)], lw=1.2)
-            ax.text(value * 1.03, y, (">4 (nothing up to 4x topples it)" if capped else f"{s:.2f}") + f"  {c.header}",
+            ax.text(value * 1.03, y, (">4 (nothing up to 4x topples it)" if capped else f"{s:.2f}") + f"  {names[c.header]}",
                     va="center", fontsize=7)
     ax.axvline(1.0, color="k", lw=1.0)
     _scale_axis(ax, (0.1, 12), (0.1, 0.2, 0.5, 1, 2, 4, 10))
@@ -105,9 +122,7 @@ def margins_png(rows, records, configurations, title: str) -> bytes | None:
     ax.set_yticklabels(records, fontsize=7)
     ax.invert_yaxis()
     ax.set_xlabel("smallest scale factor of the record that topples the body (log scale)")
-    ax.set_title(title, fontsize=9, loc="left")
     ax.grid(True, axis="x", which="both", color="0.9", lw=0.5)
-    fig.tight_layout()
     return _bytes(fig)
 
 
@@ -120,7 +135,8 @@ def share_png(rows, configurations, title: str) -> bytes | None:
     import numpy as np
 
     plt = _pyplot()
-    fig, ax = plt.subplots(figsize=(8.0, 3.6))
+    fig, ax = _figure(8.0, 3.9)
+    names = _title(ax, title, configurations)
     drawn = False
     s = np.geomspace(0.1, 4.0, 400)
     for j, c in enumerate(configurations):
@@ -130,7 +146,7 @@ def share_png(rows, configurations, title: str) -> bytes | None:
         scales = np.array([r.overturn_scale for r in mine], dtype=float)
         share = [(np.isfinite(scales) & (scales <= v)).sum() / len(mine) for v in s]
         ax.step(s, share, where="post", color=_CONF_COLOURS[j % len(_CONF_COLOURS)], lw=1.8,
-                label=f"{c.header} ({len(mine)} records)")
+                label=f"{names[c.header]} ({len(mine)} records)")
         drawn = True
     if not drawn:
         plt.close(fig)
@@ -140,10 +156,8 @@ def share_png(rows, configurations, title: str) -> bytes | None:
     ax.set_ylim(-0.02, 1.02)
     ax.set_xlabel("every record scaled by the same factor (log scale)")
     ax.set_ylabel("share of the records\nthat topple the body")
-    ax.set_title(title, fontsize=9, loc="left")
     ax.grid(True, which="both", color="0.9", lw=0.5)
     ax.legend(fontsize=8, frameon=False, loc="upper left")
-    fig.tight_layout()
     return _bytes(fig)
 
 
@@ -158,7 +172,8 @@ def stroke_png(rows, records, configurations, title: str) -> bytes | None:
     plt = _pyplot()
     n_c = len(iso)
     height = 0.8 / n_c
-    fig, ax = plt.subplots(figsize=(8.0, 1.0 + 0.32 * n_c * len(records) + 0.4))
+    fig, ax = _figure(8.0, 1.3 + 0.32 * n_c * len(records) + 0.4)
+    names = _title(ax, title, iso)
     top = 0.0
     for j, c in enumerate(iso):
         for i, rec in enumerate(records):
@@ -169,7 +184,7 @@ def stroke_png(rows, records, configurations, title: str) -> bytes | None:
             toppled = outcome(r) == TOPPLES
             ax.barh(y, r.base_disp_max_m, height=height * 0.9, color=_CONF_COLOURS[(j + 1) % len(_CONF_COLOURS)],
                     hatch="//" if toppled else None, alpha=0.85)
-            ax.text(r.base_disp_max_m, y, f" {r.base_disp_max_m:.2f} m  {c.header}"
+            ax.text(r.base_disp_max_m, y, f" {r.base_disp_max_m:.2f} m  {names[c.header]}"
                     + (" (until it toppled)" if toppled else ""), va="center", fontsize=7)
             top = max(top, r.base_disp_max_m)
     ax.set_xlim(0, max(top, 1e-3) * 1.45)
@@ -177,7 +192,5 @@ def stroke_png(rows, records, configurations, title: str) -> bytes | None:
     ax.set_yticklabels(records, fontsize=7)
     ax.invert_yaxis()
     ax.set_xlabel("peak displacement of the isolated base relative to the ground [m]")
-    ax.set_title(title, fontsize=9, loc="left")
     ax.grid(True, axis="x", color="0.9", lw=0.5)
-    fig.tight_layout()
     return _bytes(fig)

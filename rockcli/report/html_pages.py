@@ -15,6 +15,7 @@ from rockcli.assess.verdicts import (SURVIVES, TOPPLES, body_noun, body_words, c
                                      isolation_summary, outcome, question, scene_sentence, verdict_lines)
 from rockcli.report.html import (assumptions_section, body_section, card, configurations_section, esc, figure,
                                  num, page, plural, records_section, reproduce_section, table)
+from rockcli.report.figures import block_text
 from rockcli.report.html_figures import margins_png, png_of, share_png, stroke_png
 
 MARGIN_WORDS = (
@@ -65,6 +66,7 @@ def _critical(assessment, block):
 
 def _response_figures(assessment, block) -> str:
     """The critical record's full response on every configuration, side by side."""
+    from rockcli.report.figures import plot_grid_dt
     from rockcli.report.response import plot_response
     from rockcli.solve import simulate
 
@@ -73,11 +75,12 @@ def _response_figures(assessment, block) -> str:
         return ""
     figs = []
     for c in assessment.configurations:
-        resp = simulate(block, c.foundation, x.motion, history=True, **assessment.solver)
+        resp = simulate(block, c.foundation, x.motion, history=True, history_dt=plot_grid_dt(x.motion),
+                        **assessment.solver)
         if resp.status < 0:
             continue
-        title = f"{block.name}, {x.label}, {configuration_words(c)}"
-        png = png_of(lambda path: plot_response(resp, block, c.foundation, title, path, dpi=80))
+        png = png_of(lambda path: plot_response(resp, block, c.foundation, path, excitation=x.motion,
+                                                motion=x.label, dpi=80))
         figs.append(figure(png, f"{configuration_words(c)}: ground acceleration, tilt over alpha (beyond +-1 the "
                                 f"body is past its tipping point), rocking velocity"
                            + (", displacement of the isolated base" if c.isolated else "") + "; a red line marks "
@@ -203,14 +206,14 @@ def assessment_report(assessment, *, check=None, command: str = "") -> str:
         records = [x.label for x in assessment.excitations if x.motion is not None]
         rows = [r for r in assessment.rows if r.column == b.name]
         confs = assessment.configurations
-        figs.append(figure(margins_png(rows, records, confs, f"{b.name}: how far each record is from toppling it"),
+        figs.append(figure(margins_png(rows, records, confs, f"{block_text(b)}\nhow far each record is from toppling it"),
                            "Toppling factor per record and configuration (red: topples as recorded; green: "
                            "survives; amber: undecided). Right of the line at 1: the margin."))
         if n_ran > 1:
-            figs.append(figure(share_png(rows, confs, f"{b.name}: share of the records that topple it"),
+            figs.append(figure(share_png(rows, confs, f"{block_text(b)}\nshare of the records that topple it"),
                                "If every record were scaled by the same factor: the share of them that topple the "
                                "body (from each record's smallest toppling factor)."))
-        figs.append(figure(stroke_png(rows, records, confs, f"{b.name}: displacement demand on the bearings"),
+        figs.append(figure(stroke_png(rows, records, confs, f"{block_text(b)}\ndisplacement demand on the bearings"),
                            "Peak displacement of the isolated base relative to the ground: the stroke the bearings "
                            "and the gap around the base must allow (hatched: until the body toppled)."))
     sections = {
@@ -301,7 +304,7 @@ def fragility_report(fr, *, command: str = "") -> str:
     records = [x.label for x in fr.excitations if x.motion is not None]
     for b in blocks:
         rows = [r for r in fr.rows if r.column == b.name]
-        figs.append(figure(margins_png(rows, records, fr.configurations, f"{b.name}: toppling factor per record"),
+        figs.append(figure(margins_png(rows, records, fr.configurations, f"{block_text(b)}\ntoppling factor per record"),
                            "Toppling factor per record: right of the line at 1, the margin."))
     unproven = [r for r in fr.rows if "not proven" in r.margin_note]
     items = [f"The intervals come from {fr.n_boot} bootstrap resamples over the records (seed {fr.seed}); "
@@ -353,7 +356,8 @@ def simulate_report(block, foundation, excitation, response, *, label: str, chec
               ("impacts", f"{response.n_impacts} during shaking, {response.n_impacts_total} in all"),
               ("peak base displacement", num(response.base_disp_max_m, ".4f", "m")),
               ("integration", f"{response.steps} steps, ended at {response.t_end_s:.2f} s")]
-    png = png_of(lambda path: plot_response(response, block, foundation, f"{block.name}, {label}, {where}", path,
+    motion = None if hasattr(excitation, "T_p") else label
+    png = png_of(lambda path: plot_response(response, block, foundation, path, excitation=excitation, motion=motion,
                                             dpi=90))
     items = []
     if checked:

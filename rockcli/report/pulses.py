@@ -76,40 +76,39 @@ def plot_pulse_fits(records, fits, path, *, candidates=None, dpi: int = 120) -> 
     path : path-like
         Image file; the format follows the suffix (``.png``, ``.pdf``, ``.svg``).
     """
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
     import numpy as np
 
+    from rockcli.report.figures import SHAPE_WORDS, new_figure, plain, pyplot, title
+
     path = check_output(path, image=True)
+    plt = pyplot()
     n = len(fits)
-    fig, axes = plt.subplots(n, 1, figsize=(8.0, 2.3 * n + 0.4), squeeze=False)
+    fig = new_figure(8.0, 2.5 * n + 0.4)
+    axes = fig.subplots(n, 1, squeeze=False)
     colors = ("tab:red", "tab:blue", "tab:green", "tab:orange", "tab:purple", "tab:brown", "tab:pink", "tab:olive")
     try:
         for k, (ax, rec, fit) in enumerate(zip(axes[:, 0], records, fits)):
             t = rec.times
-            ax.plot(t, rec.acc / G, color="0.55", lw=0.6, label="record")
+            ax.plot(t, rec.acc / G, color="0.55", lw=0.6, label=f"record (PGA = {rec.pga_g:.3g} g)")
             s0, s1 = fit.pulse.support()
             tp = np.linspace(max(s0, t[0]), min(s1, t[-1]), 1500)
             ax.plot(tp, fit.pulse.acceleration(tp) / G, color="k", lw=2.2,
-                    label=f"{'symmetric' if fit.wavelet == 'symmetric' else 'antisymmetric'} Ricker")
+                    label=f"fitted {SHAPE_WORDS.get(fit.shape, fit.shape)} pulse")
             others = [c for c in (candidates[k] if candidates else []) if c.pulse != fit.pulse]
-            for n, c in enumerate(others):
+            for j, c in enumerate(others):
                 c0, c1 = c.pulse.support()
                 tc = np.linspace(max(c0, t[0]), min(c1, t[-1]), 1500)
-                ax.plot(tc, c.pulse.acceleration(tc) / G, "--", color=colors[n % len(colors)], lw=1.6,
-                        label=f"{c.wavelet[:4]}. $T_p$ = {c.T_p_s:.2f} s, $a_p$ = {c.a_p_g:+.2f} g, "
-                              f"energy {c.energy_fraction:.2f}")
+                ax.plot(tc, c.pulse.acceleration(tc) / G, "--", color=colors[j % len(colors)], lw=1.6,
+                        label=f"{SHAPE_WORDS.get(c.shape, c.shape)}: $T_p$ = {c.T_p_s:.2f} s, "
+                              f"$a_p$ = {c.a_p_g:+.2f} g, energy fraction {c.energy_fraction:.2f}")
             ax.axhline(0.0, color="0.8", lw=0.5)
-            ax.set_ylabel("acceleration [g]")
-            ax.set_title(f"{fit.record_name}: $a_p$ = {fit.a_p_g:+.3f} g, $T_p$ = {fit.T_p_s:.3f} s, "
-                         f"$t_0$ = {fit.t0_s:.2f} s, energy fraction {fit.energy_fraction:.2f}",
-                         fontsize=9, loc="left")
-            ax.legend(loc="upper right", fontsize=8, frameon=False)
+            ax.set_ylabel(r"$\ddot u_g$ [g]")
+            title(ax, f"{plain(fit.record_name)}: {SHAPE_WORDS.get(fit.shape, fit.shape)} pulse, "
+                      f"$a_p$ = {fit.a_p_g:+.3f} g, $T_p$ = {fit.T_p_s:.3f} s, $t_0$ = {fit.t0_s:.2f} s, "
+                      f"energy fraction {fit.energy_fraction:.2f}", fontsize=9, loc="left")
+            ax.legend(loc="upper right", fontsize=7, frameon=False)
             ax.set_xlim(t[0], t[-1])
-        axes[-1, 0].set_xlabel("time [s]")
-        fig.tight_layout()
+        axes[-1, 0].set_xlabel("time $t$ [s]")
         save_figure(fig, path, dpi=dpi)
     finally:
         plt.close(fig)

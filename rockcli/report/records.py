@@ -40,28 +40,29 @@ def plot_record(record, path: str | os.PathLike, baseline: str = "linear") -> Pa
     baseline : {"none", "linear"}
         Baseline treatment of the integration (see :func:`rockcli.records.motion.integrate`).
     """
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     from rockcli.records.motion import integrate
+    from rockcli.report.figures import new_figure, plain, pyplot, title
     from rockcli.units import G
 
     check_output(path, image=True)
+    plt = pyplot()
     vel, disp = integrate(record, baseline)
     t = record.times
-    fig, axes = plt.subplots(3, 1, sharex=True, figsize=(8, 7), constrained_layout=True)
+    fig = new_figure(8, 7)
+    axes = fig.subplots(3, 1, sharex=True)
     for ax, y, label in zip(axes, (record.acc / G, vel, disp),
-                            ("acceleration [g]", "velocity [m/s]", "displacement [m]")):
+                            (r"acceleration $\ddot u_g$ [g]", r"velocity $\dot u_g$ [m/s]", "displacement $u_g$ [m]")):
         ax.plot(t, y, lw=0.7, color="k")
         ax.axhline(0.0, lw=0.4, color="0.6")
         ax.set_ylabel(label)
         ax.grid(True, lw=0.3, alpha=0.5)
-    axes[-1].set_xlabel("time [s]")
+    axes[-1].set_xlabel("time $t$ [s]")
+    axes[-1].set_xlim(t[0], t[-1])
     treatment = ("trapezoidal integration, linear baseline removed from velocity" if baseline == "linear"
                  else "trapezoidal integration of the record as given")
-    axes[0].set_title(f"{record.name}  (PGA {record.pga_g:.3f} g; {treatment})", fontsize=9)
+    units = record.meta.get("units")
+    title(fig, f"record {plain(record.name)}: PGA = {record.pga_g:.3g} g, {record.npts} samples, $\\Delta t$ = "
+               f"{record.dt:g} s" + (f" (units as read: {units})" if units else "") + f"\n{treatment}", fontsize=9)
     try:
         return save_figure(fig, path, dpi=120)
     finally:

@@ -77,26 +77,35 @@ def write_history_csv(response, block, path: str | os.PathLike) -> Path:
     return write_text(path, header + "\n" + body)
 
 
-def plot_response(response, block, foundation, title: str, path: str | os.PathLike, *, dpi: int = 120) -> Path:
+def plot_response(response, block, foundation, path: str | os.PathLike, *, excitation=None, motion: str | None = None,
+                  dpi: int = 120) -> Path:
     """Ground acceleration [g], theta/alpha, theta_dot/p and (isolated) base displacement [m] vs time.
 
     The layout of the paper's Figures 1 and 12; the overturning instant is marked. On hysteretic
     bearings (sliding, lead-rubber) a last panel draws the bearing's force-displacement loop
     (force over the weight of block + base against u).
-    """
-    import matplotlib
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    The ground acceleration is drawn from ``excitation`` itself (a pulse evaluated on its own fine
+    grid, a record's samples), not from the solver's steps; the response from the history's rows
+    (run with ``history_dt``, e.g. :func:`rockcli.report.figures.plot_grid_dt`, for the dense output
+    between steps; the event rows sit among them). The title names the body (R, alpha, p), the
+    motion (``motion``, else the record's name; a pulse's a_p and T_p) and the foundation with all
+    its parameters.
+    """
+    import numpy as np
+
+    from rockcli.report.figures import (block_text, excitation_samples, foundation_text, motion_text, new_figure,
+                                        pyplot, title)
 
     H = response.history
     if H is None:
         raise ValueError("this response was computed without history (simulate(..., history=True))")
     check_output(path, image=True)
+    plt = pyplot()
     isolated = getattr(foundation, "kind", 0) != 0
     loop = H.z is not None and H.bearing_force is not None
     n = 4 if isolated else 3
-    fig = plt.figure(figsize=(8.0, 1.9 * n + 0.8 + (3.0 if loop else 0.0)))
+    fig = new_figure(8.0, 1.9 * n + 1.2 + (3.0 if loop else 0.0))
     heights = [1.0] * n + ([1.7] if loop else [])
     grid = fig.add_gridspec(len(heights), 1, height_ratios=heights)
     axes = [fig.add_subplot(grid[0])]
@@ -104,38 +113,43 @@ def plot_response(response, block, foundation, title: str, path: str | os.PathLi
         axes.append(fig.add_subplot(grid[i], sharex=axes[0]))
     for ax in axes[:-1]:
         ax.tick_params(labelbottom=False)
-    axes[0].plot(H.t, H.ag / G, lw=0.8, color="0.2")
-    axes[0].set_ylabel("ground acc. [g]")
-    axes[1].plot(H.t, H.theta / block.alpha, lw=1.0, color="tab:blue")
+    rows = H.rows
+    t, th, thd, u = rows[:, 0], rows[:, 2], rows[:, 3], rows[:, 4]
+    tg, ag = excitation_samples(excitation, float(t[0]), float(t[-1]))
+    axes[0].plot(tg, ag / G, lw=0.8, color="0.2")
+    axes[0].axhline(0.0, color="0.6", lw=0.5)
+    axes[0].set_ylabel(r"ground acc. $\ddot u_g$ [g]")
+    axes[1].plot(t, th / block.alpha, lw=1.0, color="tab:blue")
     axes[1].set_ylabel(r"$\theta/\alpha$")
     for y in (-1, 1):
         axes[1].axhline(y, color="0.6", lw=0.6, ls="--")
-    axes[2].plot(H.t, H.theta_dot / block.p, lw=1.0, color="tab:orange")
+    axes[2].plot(t, thd / block.p, lw=1.0, color="tab:orange")
     axes[2].set_ylabel(r"$\dot\theta/p$")
     if isolated:
-        axes[3].plot(H.t, H.u, lw=1.0, color="tab:green")
-        axes[3].set_ylabel("base disp. u [m]")
+        axes[3].plot(t, u, lw=1.0, color="tab:green")
+        axes[3].set_ylabel("base displacement $u$ [m]")
     if response.verdict == "overturned":
         for ax in axes:
             ax.axvline(response.t_overturn_s, color="tab:red", lw=0.8)
         axes[1].set_ylim(-math.pi / 2 / block.alpha * 1.05, math.pi / 2 / block.alpha * 1.05)
     for ax in axes:
         ax.grid(True, lw=0.3)
-    axes[-1].set_xlabel("time [s]")
+    axes[0].set_xlim(float(t[0]), float(t[-1]))
+    axes[-1].set_xlabel("time $t$ [s]")
     if loop:
         ax = fig.add_subplot(grid[n])
-        ax.plot(H.u, H.bearing_force / G, lw=0.8, color="tab:purple")
-        ax.set_xlabel("base displacement u [m]")
-        ax.set_ylabel("bearing force / W")
-        ax.set_title("force-displacement loop of the bearings (W = (m + m_b) g)", fontsize=8)
+        fu, ff = rows[:, 4], rows[:, 8]
+        ok = np.isfinite(ff)  # the peak rows carry no bearing force
+        ax.plot(fu[ok], ff[ok] / G, lw=0.8, color="tab:purple")
+        ax.set_xlabel("base displacement $u$ [m]")
+        ax.set_ylabel("bearing force / $W$")
+        ax.set_title("force-displacement loop of the bearings ($W = (m + m_b)\\,g$)", fontsize=8)
         ax.grid(True, lw=0.3)
-    verdict = {"overturned": f"OVERTURNS at {response.t_overturn_s:.2f} s",
-               "rocked": f"survives, peak |theta|/alpha = {response.theta_max_over_alpha:.2f}",
+    verdict = {"overturned": f"OVERTURNS at $t$ = {response.t_overturn_s:.2f} s",
+               "rocked": f"survives, peak $|\\theta|/\\alpha$ = {response.theta_max_over_alpha:.2f}",
                "no_uplift": "no uplift"}[response.verdict]
-    import textwrap
-
-    axes[0].set_title(textwrap.fill(title, 95) + f"\n{verdict}", fontsize=9)
-    fig.tight_layout()
+    title(fig, f"{block_text(block)}\n{motion_text(excitation, motion)}\n{foundation_text(foundation)}\n{verdict}",
+          fontsize=9)
     try:
         return save_figure(fig, path, dpi=dpi)
     finally:

@@ -76,21 +76,19 @@ def _save(fig, path, dpi):
     return save_figure(fig, path, dpi=dpi)
 
 
-def _finish(fig, path, dpi, title, *, bottom, top):
-    """Title (if any), tight layout leaving ``bottom`` for a legend and ``top`` for the title, save."""
+def _finish(fig, path, dpi, title):
+    """Title (if any; wrapped to the figure), save (constrained layout keeps everything on the canvas)."""
+    from rockcli.report.figures import title as put_title
+
     if title:
-        fig.suptitle(title, fontsize=9)
-    fig.tight_layout(rect=(0, bottom, 1, top if title else 1))
+        put_title(fig, title, fontsize=9)
     return _save(fig, path, dpi)
 
 
 def _pyplot():
-    import matplotlib
+    from rockcli.report.figures import pyplot
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
+    return pyplot()
 
 
 # --------------------------------------------------------------------------------------------------
@@ -143,9 +141,19 @@ def write_map_csv(maps, path, extra: dict | None = None) -> Path:
     return write_text(path, constant_columns(fh.getvalue(), extra))
 
 
-def _panel_grid(n_rows, n_cols, plt, width=3.4, height=3.0):
-    fig, axes = plt.subplots(n_rows, n_cols, figsize=(width * n_cols + 0.4, height * n_rows + 0.5), squeeze=False)
-    return fig, axes
+def _panel_grid(n_rows, n_cols, plt, width=3.4, height=3.0, extra=0.5, legend_rows: float = 0.0):
+    """A figure of ``n_rows`` x ``n_cols`` panels; with ``legend_rows`` > 0 a last row of that height
+    (in panel heights) holds an empty axes for the legend (returned as the third value)."""
+    from rockcli.report.figures import new_figure
+
+    fig = new_figure(width * n_cols + 0.4, height * (n_rows + legend_rows) + extra)
+    if not legend_rows:
+        return fig, fig.subplots(n_rows, n_cols, squeeze=False)
+    grid = fig.add_gridspec(n_rows + 1, n_cols, height_ratios=[1.0] * n_rows + [legend_rows])
+    axes = grid[:n_rows, :].subgridspec(n_rows, n_cols).subplots(squeeze=False)
+    under = fig.add_subplot(grid[n_rows, :])
+    under.axis("off")
+    return fig, axes, under
 
 
 def _r_axis(ax, T_p):
@@ -163,7 +171,7 @@ def _r_axis(ax, T_p):
         return np.sqrt(np.maximum(r, 0.0) * 16.0 * math.pi ** 2 / (3.0 * G * T_p ** 2))
 
     sec = ax.secondary_xaxis("top", functions=(fwd, inv))
-    sec.set_xlabel(f"R [m] for $T_p$ = {T_p:.3g} s", fontsize=7)
+    sec.set_xlabel(f"$R$ [m] for $T_p$ = {T_p:.3g} s", fontsize=7)
     sec.tick_params(labelsize=7)
 
 
@@ -177,6 +185,9 @@ def plot_maps(maps, path, *, n_cols: int | None = None, title: str | None = None
     from matplotlib.colors import BoundaryNorm, ListedColormap
     from matplotlib.patches import Patch
 
+    from rockcli.report.figures import split_labels
+    from rockcli.report.figures import title as put_title
+
     _check_image_path(path)
     plt = _pyplot()
     maps = list(maps)
@@ -185,6 +196,7 @@ def plot_maps(maps, path, *, n_cols: int | None = None, title: str | None = None
         n_cols = max(1, len(maps) // len(alphas))
     n_rows = math.ceil(len(maps) / n_cols)
     fig, axes = _panel_grid(n_rows, n_cols, plt)
+    legend, common = split_labels(_iso_label(m.isolation) for m in maps)
     cmap = ListedColormap(list(MAP_COLOURS))
     norm = BoundaryNorm([-0.5, 0.5, 1.5, 2.5], 3)
     try:
@@ -199,16 +211,18 @@ def plot_maps(maps, path, *, n_cols: int | None = None, title: str | None = None
             dy = (y[-1] - y[0]) / max(1, y.size - 1) if y.size > 1 else 1.0
             ax.imshow(code, origin="lower", aspect="auto", cmap=cmap, norm=norm, interpolation="nearest",
                       extent=(x[0] - dx / 2, x[-1] + dx / 2, y[0] - dy / 2, y[-1] + dy / 2))
-            ax.set_title(f"$\\alpha$ = {m.alpha_deg:g}$\\degree$, {m.pulse.shape}\n{m.isolation.short_label}",
-                         fontsize=8)
+            put_title(ax, f"$\\alpha$ = {m.alpha_deg:g}°, {_pulse_words(m.pulse)}\n{legend[_iso_label(m.isolation)]}",
+                      fontsize=8)
             ax.set_xlabel(r"$\omega_p / p$", fontsize=8)
             ax.set_ylabel(r"$a_p / (g \tan\alpha)$", fontsize=8)
             ax.tick_params(labelsize=7)
             _r_axis(ax, m.pulse.T_p)
         handles = [Patch(facecolor=c, edgecolor="0.5", label=lab)
                    for c, lab in zip(MAP_COLOURS, ("no uplift", "no overturning", "overturning"))]
-        fig.legend(handles=handles, loc="lower center", ncol=3, fontsize=8, frameon=False)
-        return _finish(fig, path, dpi, title, bottom=0.05, top=0.97)
+        fig.legend(handles=handles, loc="outside lower center", ncol=3, fontsize=8, frameon=False)
+        if common and not title:
+            title = f"isolation: {common}"
+        return _finish(fig, path, dpi, title)
     finally:
         plt.close(fig)
 
@@ -249,6 +263,10 @@ def plot_min_curves(curves, path, *, crossings=None, title: str | None = None, y
     """Minimum overturning acceleration like the paper's Figures 7, 8, 11: one panel per
     ``(alpha, pulse)``, one curve per configuration, the rigid foundation as a heavy dark line.
 
+    Each isolated curve has its own colour, line style and marker (every tenth point), so that
+    overlapping curves (Figure 11's six bearings) stay apart in print and in grey. The legend names
+    what differs between the curves, the title what they share (xi, gamma, mu, ...).
+
     ``crossings``: optional ``{(alpha_deg, shape): [(x, y, label), ...]}`` points to mark.
     A curve is drawn only where something overturns up to its ``ap_max``. A note under the panels
     says how the minima were found (:attr:`rockcli.spectra.MinCurve.found_by`) and how many of them
@@ -256,28 +274,40 @@ def plot_min_curves(curves, path, *, crossings=None, title: str | None = None, y
     """
     import numpy as np
 
+    from rockcli.report.figures import footnote, split_labels
+    from rockcli.report.figures import title as put_title
+
     _check_image_path(path)
     plt = _pyplot()
     panels = _panels(curves)
     alphas = list(dict.fromkeys(a for a, _, _ in panels))
     shapes = list(dict.fromkeys(s for _, s, _ in panels))
-    fig, axes = _panel_grid(len(alphas), len(shapes), plt, width=4.2, height=3.3)
-    styles = ["-", "--", "-.", ":"]
+    n_iso = max(sum(not c.isolation.rigid for c in mine) for _, _, mine in panels)
+    legend, common = split_labels(_iso_label(c.isolation) for c in curves)
+    chars = max(len(lab.replace("$", "")) for lab in legend.values())
+    n_leg = len(legend)
+    ncol = max(1, min(n_leg, int((4.6 * len(shapes) + 0.4) * 72.0 / (chars * 0.5 * 7.0 + 40.0))))
+    fig, axes, under = _panel_grid(len(alphas), len(shapes), plt, width=4.6, height=3.6, extra=0.7,
+                                   legend_rows=0.065 * math.ceil(n_leg / ncol) / len(alphas) ** 0.5)
+    styles = ["-", "--", "-.", ":", (0, (5, 1, 1, 1, 1, 1)), (0, (1, 1))]
+    markers = ["o", "s", "^", "D", "v", "P", "X", "*"]
     try:
         for (a, sh, mine) in panels:
             ax = axes[alphas.index(a), shapes.index(sh)]
             k = 0
             top = 0.0
-            labels, common = _curve_labels([c.isolation for c in mine])
             for c in mine:
                 y = np.asarray(c.ap_min, dtype=float)
                 if np.isfinite(y).any():
                     top = max(top, float(np.nanmax(y)))
                 if c.isolation.rigid:
-                    ax.plot(c.wp_over_p, y, color="k", lw=2.6, label="rigid foundation", zorder=3)
+                    ax.plot(c.wp_over_p, y, color="k", lw=2.6, label=legend[_iso_label(c.isolation)], zorder=3)
                 else:
+                    every = max(1, c.wp_over_p.size // 10)
                     ax.plot(c.wp_over_p, y, ls=styles[k % len(styles)], lw=1.3, color=f"C{k % 10}",
-                            label=labels[c.isolation])
+                            marker=markers[k % len(markers)], ms=4, mfc="none", mew=0.9,
+                            markevery=(int(k * every / max(1, n_iso)) % every, every),
+                            label=legend[_iso_label(c.isolation)])
                     k += 1
                 if c.refined is not None and c.refined.any():
                     ax.plot(c.wp_over_p[c.refined], y[c.refined], "x", ms=3.5, mew=0.8,
@@ -285,20 +315,47 @@ def plot_min_curves(curves, path, *, crossings=None, title: str | None = None, y
                 T_p = c.pulse.T_p
             for (xc, yc, lab) in (crossings or {}).get((a, sh), []):
                 ax.plot([xc], [yc], "o", ms=5, mfc="none", mec="k")
-                ax.annotate(lab, (xc, yc), textcoords="offset points", xytext=(4, -10), fontsize=6)
-            ax.set_title(f"$\\alpha$ = {a:g}$\\degree$, {sh}" + (f"\n{common}" if common else ""), fontsize=8)
+                ax.annotate(lab, (xc, yc), textcoords="offset points", xytext=(4, -10), fontsize=6,
+                            bbox=dict(boxstyle="round,pad=0.15", fc="white", ec="none", alpha=0.85), zorder=5)
+            put_title(ax, f"$\\alpha$ = {a:g}°, {_pulse_words(mine[0].pulse)}", fontsize=8)
             ax.set_xlabel(r"$\omega_p / p$", fontsize=8)
             ax.set_ylabel(r"minimum overturning $a_p / (g \tan\alpha)$", fontsize=8)
             ax.set_ylim(0.0, y_max if y_max is not None else max(2.0, 1.05 * top))
             ax.set_xlim(c.wp_over_p[0], c.wp_over_p[-1])
             ax.grid(color="0.9", lw=0.5)
             ax.tick_params(labelsize=7)
-            ax.legend(fontsize=6, frameon=False, loc="upper left")
             _r_axis(ax, T_p)
-        fig.text(0.01, 0.005, _search_note(curves), fontsize=6, va="bottom", ha="left", wrap=True)
-        return _finish(fig, path, dpi, title, bottom=0.035, top=0.96)
+        handles = {}
+        for ax in axes.ravel():
+            for h, lab in zip(*ax.get_legend_handles_labels()):
+                handles.setdefault(lab, h)
+        under.legend(handles.values(), handles.keys(), loc="upper center", ncol=ncol, fontsize=7, frameon=False)
+        footnote(fig, _search_note(curves), fontsize=6.5)
+        if common and not title:
+            title = f"isolation: {common}"
+        return _finish(fig, path, dpi, title)
     finally:
         plt.close(fig)
+
+
+def _iso_label(isolation) -> str:
+    """The resolved spec of a spectra isolation, a double concave bearing with its effective friction
+    ``mu_e`` (Eq 38), ``uy`` and ``gamma`` as well (its spec keeps ``TbTp``, ``mu1``, ``mu2``, ``r``)."""
+    label = isolation.label
+    if isolation.kind == "dcss":
+        f = isolation.foundation(1.0)
+        keys = {k for k, _ in isolation.params}
+        label += f",mu_e={f.mu_e:.4g}" + ("" if "uy" in keys else f",uy={f.u_y!r}") + \
+            ("" if "gamma" in keys else f",gamma={f.gamma!r}")
+    return label
+
+
+def _pulse_words(pulse) -> str:
+    """A spectra pulse in words: ``symmetric Ricker pulse`` (``, $T_p$ = 0.6 s`` when its period is set)."""
+    from rockcli.report.figures import plain, pulse_text
+
+    text = pulse_text(pulse.shape, None, pulse.T_p)
+    return text if pulse.source == "pulse" else f"{text} ({plain(pulse.source)})"
 
 
 def _search_note(curves) -> str:
@@ -310,29 +367,6 @@ def _search_note(curves) -> str:
     if any(c.refine > 0 for c in curves):
         note += f"; x: in a window the first scan stepped over ({refined} of {points} points)"
     return note
-
-
-def _curve_labels(isolations):
-    """Legend labels of isolated curves: the parameters that differ between them; the shared ones
-    are returned once (for the panel title)."""
-    isos = [iso for iso in isolations if not iso.rigid]
-    items = {}
-    for iso in isos:
-        kind, _, rest = iso.label.partition(":")
-        items[iso] = [("kind", kind)] + [tuple(kv.split("=", 1)) for kv in rest.split(",") if "=" in kv]
-    keys = list(dict.fromkeys(k for its in items.values() for k, _ in its))
-    varying = [k for k in keys if len({dict(its).get(k) for its in items.values()}) > 1]
-    names = {"TbTp": "$T_b/T_p$", "xi": r"$\xi$", "gamma": r"$\gamma$", "mu": r"$\mu$"}
-
-    def show(pairs):
-        return ", ".join(v if k == "kind" else f"{names.get(k, k)} = {v}" for k, v in pairs)
-
-    if len(isos) < 2:
-        return {iso: show(items[iso]) for iso in isos}, ""
-    labels = {iso: show([(k, v) for k, v in items[iso] if k in varying]) for iso in isos}
-    first = items[isos[0]]
-    common = show([(k, v) for k, v in first if k not in varying])
-    return labels, (f"isolation: {common}" if common else "")
 
 
 def format_min_table(curves, n_rows: int = 12) -> str:
