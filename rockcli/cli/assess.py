@@ -9,7 +9,7 @@ import click
 
 from rockcli.cli.errors import InputError, user_errors
 from rockcli.cli.options import (azimuth_options, cap_ratio_option, check_outputs, command_line, custom_block_options,
-                                 given_azimuth, given_component, given_suite,
+                                 given_azimuth, given_component, given_gain, given_suite,
                                  horizon_option, progress_bar, report_option, restitution_option)
 from rockcli.cli.types import NUMBER, SEED, Number
 
@@ -42,9 +42,9 @@ def _cap_ratio_kw(cap_ratio, configurations) -> dict:
 
 def _headerless_options(func):
     """``--units`` and ``--dt`` for record files that do not state them (headerless text, SAC, ...)."""
-    from rockcli.cli.options import component_option, suite_options
+    from rockcli.cli.options import component_option, gain_option, suite_options
 
-    func = suite_options(component_option(func))
+    func = suite_options(gain_option(component_option(func)))
     func = click.option("--dt", type=NUMBER, default=None, metavar="SECONDS",
                         help="Time step [s] of the record files that state none (it fills in only what a file "
                              "does not state). Catalogue files are read as the catalogue says.")(func)
@@ -193,7 +193,7 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
     if azimuth["azimuth"] is not None and not records:
         raise InputError("--azimuth needs pairs of horizontal components: give them with --records A+B "
                          "(or multi-component files)")
-    excitations, unavailable = resolve_excitations(records, excitation, units=units, dt=dt,
+    excitations, unavailable = resolve_excitations(records, excitation, units=units, dt=dt, gain=given_gain(),
                                                    component=given_component(), azimuth=azimuth["azimuth"],
                                                    **given_suite())
     if not excitations:
@@ -399,8 +399,8 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
     if azimuth == "worst":
         raise InputError("assess fragility takes one --azimuth DEG (the rocking plane of every pair); "
                          "--azimuth worst is not supported here yet (run 'assess column --azimuth worst')")
-    excitations, unavailable = resolve_excitations(records, "record", units=units, dt=dt, azimuth=azimuth,
-                                                   component=given_component(), **given_suite())
+    excitations, unavailable = resolve_excitations(records, "record", units=units, dt=dt, gain=given_gain(),
+                                                   azimuth=azimuth, component=given_component(), **given_suite())
     _refuse_if_none_can_run(excitations)
     _add_record_inputs(excitations)
 

@@ -8,7 +8,8 @@ from rockcli.cli.types import NUMBER, WHOLE
 
 
 def record_options(func=None, *, column_flag: str = "--column"):
-    """Add ``--units``, ``--dt``, ``--format`` and ``--column``: what ``read_record`` takes.
+    """Add ``--units``, ``--dt``, ``--format``, ``--column`` (and ``--component``, ``--gain``): what
+    ``read_record`` takes.
 
     The command receives them as the keyword arguments ``units``, ``dt``, ``fmt`` and ``column``.
     Commands where ``--column`` means something else (``simulate --column nemea``) rename the
@@ -29,6 +30,7 @@ def record_options(func=None, *, column_flag: str = "--column"):
                          help="1-based column of a multi-column text file (a time column counts), or "
                               "component/trace of a multi-component file."),
             component_option,
+            gain_option,
         ]
         return _stacked(f, options)
 
@@ -50,6 +52,21 @@ component_option = click.option(
     "--component", default=None, metavar="NAME", expose_value=False, callback=_remember("rockcli.component"),
     help="Component of a multi-component file: its channel code (HN1, HNE, HNZ, EW2, N28W, ...), N, E or UP, "
          "or an azimuth in degrees ('rockcli records show FILE' lists them).")
+
+
+#: ``--gain FACTOR``: counts -> ``--units``, for a file in raw counts. Kept on the click context like
+#: ``--component``; :func:`record_kwargs` adds it.
+gain_option = click.option(
+    "--gain", default=None, metavar="FACTOR", expose_value=False, callback=_remember("rockcli.gain"),
+    help="Factor from raw counts to --units, for a file in counts (integer MiniSEED/GSE2 samples, 'units: "
+         "counts'): --gain 1.2e-6 --units m/s^2 reads count x 1.2e-6 m/s^2. Refused for files that state "
+         "physical units.")
+
+
+def given_gain():
+    """The ``--gain`` of the running command (None when not given; checked by the reader)."""
+    ctx = click.get_current_context(silent=True)
+    return None if ctx is None else ctx.meta.get("rockcli.gain")
 
 
 def azimuth_options(func=None, *, suite: bool = False):
@@ -129,7 +146,8 @@ def given_component():
 
 def record_kwargs(units, dt, fmt, column) -> dict:
     """The keyword arguments of ``read_record`` from the values of :func:`record_options` (and ``--component``)."""
-    return {"units": units, "dt": dt, "format": fmt, "column": column, "component": given_component()}
+    return {"units": units, "dt": dt, "format": fmt, "column": column, "component": given_component(),
+            "gain": given_gain()}
 
 
 def block_options(func):
