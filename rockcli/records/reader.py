@@ -154,33 +154,46 @@ def read_record(source, *, format=None, units=None, dt=None, column=None, compon
     if isinstance(source, Record):
         return source
     if isinstance(source, str) and not Path(source).exists():
-        from rockcli.records.catalog import find_file, get_entry, load_catalog, search_path
-
-        # a catalogue that cannot be read is said as such, not as "no such file, nor a catalogue id"
-        if os.sep not in source and "/" not in source and any(e.id == source for e in load_catalog()):
-            entry = get_entry(source)
-            if not entry.available:
-                raise RockcliInputError(f"catalogue record {entry.id!r} has no public file ({entry.notes})")
-            path = find_file(entry)
-            if path is None:
-                folders = ", ".join(str(f) for f in search_path())
-                raise RockcliInputError(
-                    f"catalogue record {entry.id!r}: file {entry.file!r} not found in {folders} "
-                    f"(set ROCKCLI_RECORDS to the folder holding it)")
-            rec = _read_path(path, fmt or entry.format or None, units or entry.units, dt or entry.dt,
-                             column or entry.column, given_by="caller" if units else "catalogue", gain=gain)
-            from rockcli.records.components import orientation_meta
-
-            orient = orientation_meta(entry.component, "catalogue")
-            if orient["azimuth_deg"] is None and not orient["vertical"]:
-                orient = {k: rec.meta.get(k) for k in ("azimuth_deg", "vertical", "orientation_source")}
-            meta = {**rec.meta, "catalog_id": entry.id, "event": entry.event, "year": entry.year,
-                    "station": entry.station, "component": entry.component, **orient,
-                    "file_meta": {k: rec.meta.get(k) for k in ("event", "station", "component")}}
-            return Record(acc=rec.acc, dt=rec.dt, name=entry.id, t_start=rec.t_start, meta=meta)
+        entry = _catalog_entry(source)
+        if entry is not None:
+            return _read_entry(entry, entry.component, entry.file, fmt, units, dt, column, gain)
         if os.sep not in source and "/" not in source:
             raise RockcliInputError(f"{source}: no such file, nor a catalogue id (see 'rockcli records list')")
     return _read_path(Path(source), fmt, units, dt, column, given_by="suite" if fill_in else "caller", gain=gain)
+
+
+def _catalog_entry(source):
+    """The catalogue entry ``source`` names (None when it is not a catalogue id); a catalogue that cannot be
+    read is said as such, not as "no such file, nor a catalogue id"."""
+    if not isinstance(source, str) or os.sep in source or "/" in source or Path(source).exists():
+        return None
+    from rockcli.records.catalog import load_catalog
+
+    return next((e for e in load_catalog() if e.id == source), None)
+
+
+def _read_entry(entry, component: str, file: str, fmt, units, dt, column, gain) -> Record:
+    """One component (``component``, in ``file``) of a catalogue entry, read as the catalogue says."""
+    from rockcli.records.catalog import find_file, search_path
+    from rockcli.records.components import orientation_meta
+
+    if not entry.available:
+        raise RockcliInputError(f"catalogue record {entry.id!r} has no public file ({entry.notes})")
+    path = find_file(entry, file)
+    if path is None:
+        folders = ", ".join(str(f) for f in search_path())
+        which = "" if file == entry.file else f" (component {component})"
+        raise RockcliInputError(f"catalogue record {entry.id!r}: file {file!r}{which} not found in {folders} "
+                                f"(set ROCKCLI_RECORDS to the folder holding it)")
+    rec = _read_path(path, fmt or entry.format or None, units or entry.units, dt or entry.dt,
+                     column or entry.column, given_by="caller" if units else "catalogue", gain=gain)
+    orient = orientation_meta(component, "catalogue")
+    if orient["azimuth_deg"] is None and not orient["vertical"]:
+        orient = {k: rec.meta.get(k) for k in ("azimuth_deg", "vertical", "orientation_source")}
+    meta = {**rec.meta, "catalog_id": entry.id, "event": entry.event, "year": entry.year,
+            "station": entry.station, "component": component, **orient,
+            "file_meta": {k: rec.meta.get(k) for k in ("event", "station", "component")}}
+    return Record(acc=rec.acc, dt=rec.dt, name=entry.id, t_start=rec.t_start, meta=meta)
 
 
 def _label(source, comps) -> str:
@@ -191,6 +204,11 @@ def read_components(source, *, format=None, units=None, dt=None, gain=None, fill
     """Every component of a record file (or catalogue id), each a :class:`Record` with its name and
     orientation in ``meta`` (``component``, ``azimuth_deg``, ``vertical``); one for a one-component file."""
     kw = {"format": format, "units": units, "dt": dt, "gain": gain, "fill_in": fill_in}
+    entry = _catalog_entry(source)
+    if entry is not None and len(entry.components) > 1:  # a catalogue row naming several components
+        fmt = str(format).strip().upper() if format else None
+        return [_read_entry(entry, comp, file, fmt, _check_units(units), _check_dt(dt), None, check_gain(gain, units))
+                for comp, file in entry.components]
     try:
         return [read_record(source, **kw)]
     except MultiComponent as multi:
