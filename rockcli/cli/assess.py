@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import math
 from functools import partial
 
 import click
@@ -395,24 +396,33 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
         from rockcli.distributed import check_scheduler
 
         check_scheduler(scheduler)
-    azimuth = given_azimuth()["azimuth"]
-    if azimuth == "worst":
-        raise InputError("assess fragility takes one --azimuth DEG (the rocking plane of every pair); "
-                         "--azimuth worst is not supported here yet (run 'assess column --azimuth worst')")
+    given = given_azimuth()
+    azimuth = given["azimuth"]
+    if azimuth == "worst" and report_path:
+        raise InputError("--report shows one fragility per configuration: with --azimuth worst (two, the median "
+                         "and the worst orientation) write --csv and --plot instead, or give one --azimuth DEG")
     excitations, unavailable = resolve_excitations(records, "record", units=units, dt=dt, gain=given_gain(),
                                                    azimuth=azimuth, component=given_component(), **given_suite())
     _refuse_if_none_can_run(excitations)
     _add_record_inputs(excitations)
 
+    run, n_runs = run_fragility, count_fragility_runs(columns, excitations, configurations)
+    if azimuth == "worst":
+        from rockcli.assess.fragility_azimuth import run_fragility_azimuths
+        from rockcli.records.orientation import sweep_azimuths
+
+        azimuths = sweep_azimuths(given["step"])
+        run, n_runs = partial(run_fragility_azimuths, azimuths=azimuths), n_runs * len(azimuths)
     if scheduler is not None:
         from rockcli.assess.fragility import run_fragility_distributed
 
         result = run_fragility_distributed(scheduler, columns, excitations, configurations, im=im, n_boot=n_boot,
-                                           seed=seed, unavailable=unavailable, horizon=horizon, **solver)
+                                           seed=seed, unavailable=unavailable, horizon=horizon, run=run, **solver)
     else:
-        result = _run_counted(count_fragility_runs(columns, excitations, configurations),
-                              partial(run_fragility, columns, excitations, configurations, im=im, n_boot=n_boot,
-                                      seed=seed, unavailable=unavailable, horizon=horizon, **solver))
+        result = _run_counted(n_runs, partial(run, columns, excitations, configurations, im=im, n_boot=n_boot,
+                                              seed=seed, unavailable=unavailable, horizon=horizon, **solver))
+    if azimuth == "worst":
+        return _echo_fragility_azimuths(result, solver, csv_path, plot_path, len(azimuths))
 
     from rockcli.report.fragility import format_fragility, format_fragility_notes
 
@@ -436,3 +446,37 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
 
         write_report(report_path, fragility_report(result, command=command_line()))
         click.echo(f"wrote {report_path} (HTML report)")
+
+
+def _echo_fragility_azimuths(results: dict, solver: dict, csv_path, plot_path, n_azimuths: int):
+    """``assess fragility --azimuth worst``: the fit over the median orientation of each pair and over the worst
+    one, the worst azimuth of each pair, the notes, the CSV (both, with ``orientation`` and ``azimuth_deg``
+    columns) and the figure (the worst orientation's curves)."""
+    from rockcli.report.fragility import format_fragility, format_fragility_notes
+
+    median, worst = results["median"], results["worst"]
+    click.echo(f"Median orientation of each pair (capacities over {n_azimuths} orientations; a pair's IM is the "
+               f"median of its projections' IMs, RotD50-like):")
+    click.echo(format_fragility(median))
+    click.echo("")
+    click.echo("Worst orientation of each pair (its smallest capacity, the rocking analogue of RotD100):")
+    lines = [format_fragility(worst), "", "Worst azimuth of each pair [deg clockwise from north]:"]
+    lines += [f"  {r.column} / {r.record} / {r.configuration}: {r.azimuth_deg:g} deg, capacity "
+              f"{'>' if r.censored == 'right' else ('<' if r.censored == 'left' else '')}{r.capacity:.3g} "
+              f"{worst.im.units}" for r in worst.rows if not r.error and math.isfinite(r.azimuth_deg)]
+    notes = (f"With --azimuth worst a record is a pair of horizontal components: its IM is the median of the IMs of "
+             f"its projections onto the {n_azimuths} orientations, and each orientation's capacity is its smallest "
+             f"overturning factor x that IM.\n" + format_fragility_notes(worst))
+    if solver:
+        notes += f"\nImpacts: coefficient of restitution E = {solver['restitution']:g} (README, Restitution)."
+    _echo_result(worst, "\n".join(lines), notes)
+    if csv_path:
+        from rockcli.report.fragility import write_fragility_csv
+
+        write_fragility_csv([median, worst], csv_path, solver)
+        click.echo(f"wrote {csv_path} ({len(median.rows) + len(worst.rows)} rows)")
+    if plot_path:
+        from rockcli.report.fragility import plot_fragility
+
+        plot_fragility(worst, plot_path)
+        click.echo(f"wrote {plot_path} (the worst orientation's curves)")

@@ -118,10 +118,25 @@ def fragility_frame(fr):
 
 
 def write_fragility_csv(fr, path: str | os.PathLike, extra: dict | None = None) -> Path:
-    """Write the fragility CSV (see :func:`fragility_columns`; ``extra``: constant columns appended), atomically."""
+    """Write the fragility CSV (see :func:`fragility_columns`; ``extra``: constant columns appended), atomically.
+
+    ``fr`` may be a list of results (``--azimuth worst``: the median and the worst orientation): their rows
+    one after the other, with the columns ``orientation`` and ``azimuth_deg`` after ``configuration``."""
     from rockcli.report.spectra import constant_columns
 
-    df = fragility_frame(fr)
+    if isinstance(fr, (list, tuple)):
+        import pandas as pd
+
+        frames = []
+        for one in fr:
+            df = fragility_frame(one)
+            at = df.columns.get_loc("configuration") + 1
+            df.insert(at, "orientation", [r.orientation for r in one.rows])
+            df.insert(at + 1, "azimuth_deg", [r.azimuth_deg for r in one.rows])
+            frames.append(df)
+        df = pd.concat(frames, ignore_index=True)
+    else:
+        df = fragility_frame(fr)
     return write_text(path, constant_columns(df.to_csv(index=False, float_format="%.6g", lineterminator="\n"), extra))
 
 
