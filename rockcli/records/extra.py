@@ -22,6 +22,11 @@ from rockcli.errors import RockcliInputError
 INSTALL_HINT = "the optional extra reads it: pip install \"rockcli[formats]\" (USGS gmprocess)"
 
 
+#: Units of a COSMOS file that gmprocess 2.8 converts to cm/s^2 while ``stats.standard.units`` keeps the file's
+#: word (``gmprocess.io.cosmos.core``: ``data *= UNIT_CONVERSIONS[unit]``): taken as the cm/s^2 they are.
+_COSMOS_CONVERTED = {"g", "g/10", "g*10", "mg", "in/s/s"}
+
+
 def available() -> bool:
     """True when gmprocess is installed (found without importing it)."""
     import importlib.util
@@ -62,6 +67,8 @@ def read_with_extra(path: Path, column, recognised: str | None = None) -> dict[s
     if str(std.get("units_type", "acc")) != "acc":
         raise RockcliInputError(f"{path}: gmprocess reads {std.get('units_type')}, not acceleration")
     units = str(std.get("units", "") or "")
+    if str(std.get("source_format", "")).lower() == "cosmos" and units.lower() in _COSMOS_CONVERTED:
+        units = "cm/s^2"  # gmprocess's COSMOS reader converts the samples to cm/s^2 but keeps the file's label
     units = {"cm/s/s": "cm/s^2", "cm/s**2": "cm/s^2"}.get(units, units) or None
     channel = str(tr.stats.channel)
     orient = orientation_meta(channel, "gmprocess")
