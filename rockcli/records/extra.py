@@ -57,7 +57,10 @@ def read_with_extra(path: Path, column, recognised: str | None = None) -> dict[s
         except Exception as exc:  # noqa: BLE001 -- gmprocess raises many kinds; one sentence for the user
             text = str(exc).strip().splitlines()
             if recognised:  # rockcli knows the format (it refuses it): a damaged or unusual file, not a non-record
-                raise RockcliInputError(f"{path}: a {recognised} file that gmprocess cannot read either "
+                from rockcli.records.formats import FORMAT_NAMES
+
+                raise RockcliInputError(f"{path}: a {FORMAT_NAMES.get(recognised, recognised)} file that gmprocess "
+                                        f"cannot read either "
                                         f"({text[0] if text else type(exc).__name__})") from None
             raise NotARecord(f"{path}: format not recognised by rockcli, ObsPy or gmprocess "
                              f"({text[0] if text else type(exc).__name__})") from None
