@@ -197,7 +197,8 @@ def test_fragility_takes_one_azimuth(pair_files, tmp_path):
     # the motion along 60 deg is the 0.32 g pulse itself
     assert df.record[0] == "n.txt+e.txt@60" and df.pga_g[0] == pytest.approx(0.32, rel=1e-3)
     # --azimuth worst: every orientation (tests/test_fragility_azimuth.py); the worst is the motion's own, 60 deg
-    res = CliRunner().invoke(main, [*args, "--azimuth", "worst", "--azimuth-step", "30", "--csv", str(tmp_path / "w.csv")])
+    res = CliRunner().invoke(main, [*args, "--azimuth", "worst", "--azimuth-step", "30",
+                                    "--csv", str(tmp_path / "w.csv")])
     assert res.exit_code == 0, res.output
     w = pd.read_csv(tmp_path / "w.csv")
     worst = w[w.orientation == "worst"].iloc[0]

@@ -463,9 +463,9 @@ def _finish(path: Path, out: dict[str, Any], units, dt, given_by: str, gain=None
                                 f"only to a file in counts")
     if counts or (stated_units is None and gain is not None):
         if gain is None:
-            raise RockcliInputError(f"{name}: the samples are raw counts ({out.get('units_source') or 'the file says so'}"
-                                    f"); give --gain FACTOR with --units UNITS, the factor from counts to those units "
-                                    f"(e.g. --gain 1.2e-6 --units m/s^2)")
+            said = out.get("units_source") or "the file says so"
+            raise RockcliInputError(f"{name}: the samples are raw counts ({said}); give --gain FACTOR with --units "
+                                    f"UNITS, the factor from counts to those units (e.g. --gain 1.2e-6 --units m/s^2)")
         factor = gain * accel_factor(units)
         used_units = "counts"
         units_source = (f"{out.get('units_source') or 'file'}; gain {_num(gain)} {units} per count "
