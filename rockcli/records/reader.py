@@ -411,7 +411,7 @@ def _from_obspy(path: Path, fmt: str, column) -> dict[str, Any]:
     elif values.size and np.issubdtype(tr.data.dtype, np.integer):
         # integer samples (MiniSEED, GSE2, ... in counts): raw digitizer output, refused unless a gain is given
         units = "counts"
-        meta["units_note"] = f"{fmt_name} holds integer samples: raw counts"
+        meta["units_note"] = f"integer samples in the {fmt_name} file"
     if fmt_name == "SAC":
         # SAC's IDEP says what the quantity is, not its units (and writers rarely follow its nm
         # convention): the units are not stated.
@@ -463,7 +463,7 @@ def _finish(path: Path, out: dict[str, Any], units, dt, given_by: str, gain=None
                                 f"only to a file in counts")
     if counts or (stated_units is None and gain is not None):
         if gain is None:
-            said = out.get("units_source") or "the file says so"
+            said = out.get("units_source") if out.get("units_source") not in (None, "file") else "stated by the file"
             raise RockcliInputError(f"{name}: the samples are raw counts ({said}); give --gain FACTOR with --units "
                                     f"UNITS, the factor from counts to those units (e.g. --gain 1.2e-6 --units m/s^2)")
         factor = gain * accel_factor(units)
