@@ -3,7 +3,6 @@
 
 from __future__ import annotations
 
-import math
 from functools import partial
 
 import click
@@ -449,34 +448,22 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
 
 
 def _echo_fragility_azimuths(results: dict, solver: dict, csv_path, plot_path, n_azimuths: int):
-    """``assess fragility --azimuth worst``: the fit over the median orientation of each pair and over the worst
-    one, the worst azimuth of each pair, the notes, the CSV (both, with ``orientation`` and ``azimuth_deg``
-    columns) and the figure (the worst orientation's curves)."""
-    from rockcli.report.fragility import format_fragility, format_fragility_notes
+    """``assess fragility --azimuth worst``: both fits and the worst azimuths
+    (:func:`rockcli.report.fragility.format_fragility_azimuths`), the CSV (both sets of rows) and the figure
+    (the worst orientation's curves)."""
+    from rockcli.report.fragility import format_fragility_azimuths
 
-    median, worst = results["median"], results["worst"]
-    click.echo(f"Median orientation of each pair (capacities over {n_azimuths} orientations; a pair's IM is the "
-               f"median of its projections' IMs, RotD50-like):")
-    click.echo(format_fragility(median))
-    click.echo("")
-    click.echo("Worst orientation of each pair (its smallest capacity, the rocking analogue of RotD100):")
-    lines = [format_fragility(worst), "", "Worst azimuth of each pair [deg clockwise from north]:"]
-    lines += [f"  {r.column} / {r.record} / {r.configuration}: {r.azimuth_deg:g} deg, capacity "
-              f"{'>' if r.censored == 'right' else ('<' if r.censored == 'left' else '')}{r.capacity:.3g} "
-              f"{worst.im.units}" for r in worst.rows if not r.error and math.isfinite(r.azimuth_deg)]
-    notes = (f"With --azimuth worst a record is a pair of horizontal components: its IM is the median of the IMs of "
-             f"its projections onto the {n_azimuths} orientations, and each orientation's capacity is its smallest "
-             f"overturning factor x that IM.\n" + format_fragility_notes(worst))
+    table, notes = format_fragility_azimuths(results, n_azimuths)
     if solver:
         notes += f"\nImpacts: coefficient of restitution E = {solver['restitution']:g} (README, Restitution)."
-    _echo_result(worst, "\n".join(lines), notes)
+    _echo_result(results["worst"], table, notes)
     if csv_path:
         from rockcli.report.fragility import write_fragility_csv
 
-        write_fragility_csv([median, worst], csv_path, solver)
-        click.echo(f"wrote {csv_path} ({len(median.rows) + len(worst.rows)} rows)")
+        write_fragility_csv([results["median"], results["worst"]], csv_path, solver)
+        click.echo(f"wrote {csv_path} ({sum(len(r.rows) for r in results.values())} rows)")
     if plot_path:
         from rockcli.report.fragility import plot_fragility
 
-        plot_fragility(worst, plot_path)
+        plot_fragility(results["worst"], plot_path)
         click.echo(f"wrote {plot_path} (the worst orientation's curves)")

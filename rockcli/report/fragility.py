@@ -85,6 +85,24 @@ def format_fragility_notes(fr) -> str:
     return "\n".join(lines)
 
 
+def format_fragility_azimuths(results: dict, n_azimuths: int) -> tuple[str, str]:
+    """``assess fragility --azimuth worst`` as text: (the fits over the median and over the worst orientation of
+    each pair, with each pair's worst azimuth; the notes)."""
+    median, worst = results["median"], results["worst"]
+    mark = {"right": ">", "left": "<"}
+    lines = [f"Median orientation of each pair (capacities over {n_azimuths} orientations; a pair's IM is the median "
+             f"of its projections' IMs, RotD50-like):", format_fragility(median), "",
+             "Worst orientation of each pair (its smallest capacity, the rocking analogue of RotD100):",
+             format_fragility(worst), "", "Worst azimuth of each pair [deg clockwise from north]:"]
+    lines += [f"  {r.column} / {r.record} / {r.configuration}: {r.azimuth_deg:g} deg, capacity "
+              f"{mark.get(r.censored, '')}{r.capacity:.3g} {worst.im.units}"
+              for r in worst.rows if not r.error and math.isfinite(r.azimuth_deg)]
+    notes = (f"With --azimuth worst a record is a pair of horizontal components: its IM is the median of the IMs of "
+             f"its projections onto the {n_azimuths} orientations, and each orientation's capacity is its smallest "
+             f"overturning factor x that IM.\n" + format_fragility_notes(worst))
+    return "\n".join(lines), notes
+
+
 def fragility_columns(im) -> tuple:
     """CSV columns for intensity measure ``im`` (the IM and capacity columns carry its unit)."""
     s = im.suffix
