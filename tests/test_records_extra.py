@@ -93,7 +93,11 @@ def test_cosmos_units_as_gmprocess_converts_them(tmp_path, monkeypatch):
     monkeypatch.setitem(sys.modules, "gmprocess", types.ModuleType("gmprocess"))
     monkeypatch.setitem(sys.modules, "gmprocess.io", types.ModuleType("gmprocess.io"))
     monkeypatch.setitem(sys.modules, "gmprocess.io.read", fake)
+    import logging
+
+    level = logging.getLogger().level
     out = read_with_extra(tmp_path / "x.V1", None)
     assert out["units"] == "cm/s^2" and out["meta"]["azimuth_deg"] == 40.0
+    assert logging.getLogger().level == level  # quiet while gmprocess reads, then as it was
     tr.stats.standard = {**tr.stats.standard, "source_format": "esm", "units": "g"}  # other readers: as stated
     assert read_with_extra(tmp_path / "x.V1", None)["units"] == "g"

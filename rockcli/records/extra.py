@@ -47,23 +47,28 @@ def read_with_extra(path: Path, column, recognised: str | None = None) -> dict[s
 
     from rockcli.records.components import NotARecord, orientation_meta, pick_trace
 
-    logging.getLogger().setLevel(max(logging.getLogger().level, logging.ERROR))  # gmprocess logs every file
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        from gmprocess.io.read import read_data
+    root = logging.getLogger()
+    level = root.level
+    root.setLevel(max(level, logging.ERROR))  # gmprocess logs every file it reads; the level is restored after
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            from gmprocess.io.read import read_data
 
-        try:
-            streams = read_data(str(path))
-        except Exception as exc:  # noqa: BLE001 -- gmprocess raises many kinds; one sentence for the user
-            text = str(exc).strip().splitlines()
-            if recognised:  # rockcli knows the format (it refuses it): a damaged or unusual file, not a non-record
-                from rockcli.records.formats import FORMAT_NAMES
+            try:
+                streams = read_data(str(path))
+            except Exception as exc:  # noqa: BLE001 -- gmprocess raises many kinds; one sentence for the user
+                text = str(exc).strip().splitlines()
+                if recognised:  # rockcli knows the format: a damaged or unusual file, not a non-record
+                    from rockcli.records.formats import FORMAT_NAMES
 
-                raise RockcliInputError(f"{path}: a {FORMAT_NAMES.get(recognised, recognised)} file that gmprocess "
-                                        f"cannot read either "
-                                        f"({text[0] if text else type(exc).__name__})") from None
-            raise NotARecord(f"{path}: format not recognised by rockcli, ObsPy or gmprocess "
-                             f"({text[0] if text else type(exc).__name__})") from None
+                    raise RockcliInputError(f"{path}: a {FORMAT_NAMES.get(recognised, recognised)} file that "
+                                            f"gmprocess cannot read either "
+                                            f"({text[0] if text else type(exc).__name__})") from None
+                raise NotARecord(f"{path}: format not recognised by rockcli, ObsPy or gmprocess "
+                                 f"({text[0] if text else type(exc).__name__})") from None
+    finally:
+        root.setLevel(level)
     traces = [tr for st in streams for tr in st]
     tr = pick_trace(traces, column, path, ", ".join(t.stats.channel for t in traces), "components")
     std = tr.stats.get("standard", {})
