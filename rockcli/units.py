@@ -32,3 +32,12 @@ def accel_factor(unit: str) -> float:
     if key not in ACCEL_UNITS:
         raise RockcliInputError(f"unknown acceleration unit {unit!r} (known: {KNOWN_UNITS})")
     return ACCEL_UNITS[key]
+
+
+#: Words a file uses for raw digitizer counts (refused unless a gain converts them).
+COUNTS_WORDS = {"counts", "count", "digitalcounts"}
+
+
+def is_counts(unit) -> bool:
+    """True when ``unit`` names raw counts (``counts``), which need a gain to become an acceleration."""
+    return str(unit).strip().lower().replace(" ", "") in COUNTS_WORDS

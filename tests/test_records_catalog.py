@@ -15,7 +15,8 @@ from rockcli.records.catalog import (COLUMNS, catalog_path, find_file, format_ca
 
 IDS = ["parkfield-1966-c02-065", "vrancea-1977-bucharest", "imperialvalley-1979-elcentro6-230",
        "irpinia-1980-sturno-270", "sansalvador-1986-gic", "superstition-1987-parachute-225",
-       "erzincan-1992-erzincan-ew", "northridge-1994-jensen-022", "kobe-1995-takarazuka-000",
+       "erzincan-1992-erzincan-ew", "northridge-1994-jensen-022", "northridge-1994-jensen-admin-022",
+       "kobe-1995-takarazuka-000",
        "chichi-1999-chy101-e", "chichi-1999-chy128-n", "coyotelake-1979-gilroy6-230", "aigio-1995-ote-fp"]
 
 #: Table II of the paper: id -> (Mw, distance [km], PGA [g], PGV [m/s]).
@@ -140,3 +141,95 @@ def test_caller_overrides_catalogue_units_only_when_consistent(find_record, monk
     find_record("RSN1119_KOBE_TAZ000.AT2")
     with pytest.raises(RockcliInputError, match=r"states units 'G' but 'gal' was given"):
         read_record("kobe-1995-takarazuka-000", units="gal")
+
+
+#: The catalogue's two-component rows (issue 24 item 5): id -> (first, second) azimuths [deg] and files.
+PAIRS = {
+    "imperialvalley-1979-elcentro6-230": ((230.0, 140.0),
+                                          ("RSN181_IMPVALL.H_H-E06230.AT2", "RSN181_IMPVALL.H_H-E06140.AT2")),
+    "superstition-1987-parachute-225": ((225.0, 315.0), ("RSN723_SUPER.B_B-PTS225.AT2", "RSN723_SUPER.B_B-PTS315.AT2")),
+    "northridge-1994-jensen-admin-022": ((22.0, 292.0), ("RSN982_NORTHR_JEN022.AT2", "RSN982_NORTHR_JEN292.AT2")),
+    "coyotelake-1979-gilroy6-230": ((230.0, 320.0), ("G06-230", "G06-320")),
+    "chichi-1999-chy128-n": ((0.0, 90.0), ("TCU128-000", "TCU128-090")),
+}
+
+
+def test_catalogue_pairs_name_their_components():
+    by_id = {e.id: e for e in load_catalog()}
+    for e in by_id.values():
+        if e.id not in PAIRS:
+            assert [f for _, f in e.components] == ([e.file] if e.file else [])
+    for rid, (_, files) in PAIRS.items():
+        assert [f for _, f in by_id[rid].components] == list(files)
+
+
+def test_catalogue_pair_components_and_projection(records_dirs, monkeypatch):
+    """A pair id gives its two components (each as its own file reads, oriented by the catalogue); --azimuth
+    of a component's own orientation is that component sample for sample; --component picks one."""
+    from rockcli.records.orientation import project, read_pair
+    from rockcli.records.reader import read_components
+
+    monkeypatch.setenv("ROCKCLI_RECORDS", os.pathsep.join(map(str, records_dirs)))
+    for rid, (azimuths, files) in PAIRS.items():
+        entry = get_entry(rid)
+        if any(find_file(entry, f) is None for f in files):
+            pytest.skip(f"the files of {rid} are not in ROCKCLI_RECORDS")
+        comps = read_components(rid)
+        assert [c.meta["azimuth_deg"] for c in comps] == list(azimuths)
+        for c, f in zip(comps, files):
+            assert c.meta["path"] == str(find_file(entry, f)) and c.meta["catalog_id"] == rid
+            # the catalogue's units and dt, as for the first file
+            alone = read_record(find_file(entry, f), units=entry.units, dt=entry.dt)
+            np.testing.assert_array_equal(c.acc, alone.acc)
+        np.testing.assert_array_equal(read_record(rid).acc, comps[0].acc)  # the id alone: its first component
+        a, b = read_pair(rid)
+        np.testing.assert_array_equal(project(a, b, azimuths[0]).acc, comps[0].acc)
+        np.testing.assert_array_equal(project(a, b, azimuths[1]).acc[:b.npts], comps[1].acc)
+        picked = read_record(rid, component=f"{azimuths[1]:g}")
+        np.testing.assert_array_equal(picked.acc, comps[1].acc)
+
+
+def test_catalogue_without_the_component_columns_loads(tmp_path):
+    """An older catalogue (no file_2, component_2, file_vertical columns) still loads, one component per row."""
+    import csv
+    import io
+
+    rows = list(csv.DictReader(io.StringIO(catalog_path().read_text())))
+    keep = [c for c in COLUMNS if c not in ("file_2", "component_2", "file_vertical")]
+    out = io.StringIO()
+    w = csv.DictWriter(out, fieldnames=keep, extrasaction="ignore", lineterminator="\n")
+    w.writeheader()
+    w.writerows(rows)
+    (tmp_path / "old.csv").write_text(out.getvalue())
+    entries = load_catalog(tmp_path / "old.csv")
+    assert [e.id for e in entries] == IDS and all(len(e.components) <= 1 for e in entries)
+
+
+def test_records_list_shows_components(records_dirs, monkeypatch, tmp_path):
+    import json
+
+    from click.testing import CliRunner
+
+    from rockcli.cli import main
+
+    monkeypatch.setenv("ROCKCLI_RECORDS", os.pathsep.join(map(str, records_dirs)))
+    res = CliRunner().invoke(main, ["records", "list", "--json"])
+    assert res.exit_code == 0, res.output
+    rows = {r["id"]: r for r in json.loads(res.output)}
+    assert list(rows) == IDS
+    for rid, (azimuths, files) in PAIRS.items():
+        comps = rows[rid]["components"]
+        assert [c["azimuth_deg"] for c in comps] == list(azimuths) and [c["file"] for c in comps] == list(files)
+        assert all(c["path"] and not c["vertical"] for c in comps)
+    assert rows["vrancea-1977-bucharest"]["components"] == []
+    text = CliRunner().invoke(main, ["records", "list"]).output
+    line = next(x for x in text.splitlines() if x.startswith("imperialvalley-1979-elcentro6-230"))
+    assert " 230+140 " in line
+    # a component whose file is missing is said so
+    only = tmp_path / "only"
+    only.mkdir()
+    (only / "RSN181_IMPVALL.H_H-E06230.AT2").symlink_to(find_file(get_entry("imperialvalley-1979-elcentro6-230")))
+    monkeypatch.setenv("ROCKCLI_RECORDS", str(only))
+    text = CliRunner().invoke(main, ["records", "list"]).output
+    line = next(x for x in text.splitlines() if x.startswith("imperialvalley-1979-elcentro6-230"))
+    assert "230+140 (140 missing)" in line

@@ -26,7 +26,11 @@ def test_list_and_csv(tmp_path, records_dirs):
     assert "kobe-1995-takarazuka-000" in res.output and "not available" in res.output
     with open(out, newline="") as fh:
         rows = list(csv.DictReader(fh))
-    assert len(rows) == 13
+    from rockcli.records.catalog import load_catalog
+
+    assert [r["id"] for r in rows] == [e.id for e in load_catalog()]  # every row of the catalogue (14)
+    assert len(rows) == 14
+    assert {r["id"]: r["present"] for r in rows}["imperialvalley-1979-elcentro6-230"] == "230+140"
     status = {r["id"]: r["status"] for r in rows}
     assert status["vrancea-1977-bucharest"] == "not available" and status["aigio-1995-ote-fp"] == "not available"
     assert status["kobe-1995-takarazuka-000"] == "found"

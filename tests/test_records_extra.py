@@ -12,7 +12,6 @@ import sys
 
 import pytest
 
-from rockcli.records.extra import available
 from rockcli.records.reader import read_components
 from rockcli.errors import RockcliInputError
 
@@ -26,9 +25,12 @@ def formats_rows(records_dirs):
     pytest.skip("records/formats not found in ROCKCLI_RECORDS")
 
 
-def test_refusals_name_the_extra(formats_rows):
-    if available():
-        pytest.skip("the formats extra is installed: these files load")
+def test_refusals_name_the_extra(formats_rows, monkeypatch):
+    """Without the extra (or with it, pretended absent): every agency file it would read is refused in one
+    sentence naming it."""
+    from rockcli.records import extra
+
+    monkeypatch.setattr(extra, "available", lambda: False)
     folder, rows = formats_rows
     refused = 0
     for name in sorted({r["file"] for r in rows}):
@@ -71,3 +73,31 @@ def test_every_format_loads_with_the_extra(formats_rows):
             if az not in ("", "nan") and not row["channel"].endswith("Z"):
                 assert any(c.meta.get("azimuth_deg") is not None and abs(c.meta["azimuth_deg"] - float(az) % 360) < 1e-6
                            for c in comps), (name, az)
+
+
+def test_cosmos_units_as_gmprocess_converts_them(tmp_path, monkeypatch):
+    """gmprocess's COSMOS reader multiplies a file in g by 980.665 (to cm/s^2) but leaves ``units`` = "g": the
+    samples are read as the cm/s^2 they are, not converted a second time (a stand-in for read_data here)."""
+    import types
+
+    import numpy as np
+    from obspy import Trace
+
+    from rockcli.records.extra import read_with_extra
+
+    data = np.array([0.0, 49.0, -98.0665, 12.5])  # cm/s^2, as gmprocess returns them
+    tr = Trace(data=data, header={"delta": 0.01, "network": "AK", "station": "BMR", "channel": "HN1"})
+    tr.stats.standard = {"units": "g", "units_type": "acc", "source_format": "cosmos", "horizontal_orientation": 40.0}
+    fake = types.ModuleType("gmprocess.io.read")
+    fake.read_data = lambda path: [[tr]]
+    monkeypatch.setitem(sys.modules, "gmprocess", types.ModuleType("gmprocess"))
+    monkeypatch.setitem(sys.modules, "gmprocess.io", types.ModuleType("gmprocess.io"))
+    monkeypatch.setitem(sys.modules, "gmprocess.io.read", fake)
+    import logging
+
+    level = logging.getLogger().level
+    out = read_with_extra(tmp_path / "x.V1", None)
+    assert out["units"] == "cm/s^2" and out["meta"]["azimuth_deg"] == 40.0
+    assert logging.getLogger().level == level  # quiet while gmprocess reads, then as it was
+    tr.stats.standard = {**tr.stats.standard, "source_format": "esm", "units": "g"}  # other readers: as stated
+    assert read_with_extra(tmp_path / "x.V1", None)["units"] == "g"

@@ -196,5 +196,26 @@ def test_fragility_takes_one_azimuth(pair_files, tmp_path):
     df = pd.read_csv(tmp_path / "f.csv")
     # the motion along 60 deg is the 0.32 g pulse itself
     assert df.record[0] == "n.txt+e.txt@60" and df.pga_g[0] == pytest.approx(0.32, rel=1e-3)
-    res = CliRunner().invoke(main, [*args, "--azimuth", "worst"])
-    assert res.exit_code == 2 and "--azimuth worst is not supported here yet" in res.output
+    # --azimuth worst: every orientation (tests/test_fragility_azimuth.py); the worst is the motion's own, 60 deg
+    res = CliRunner().invoke(main, [*args, "--azimuth", "worst", "--azimuth-step", "30",
+                                    "--csv", str(tmp_path / "w.csv")])
+    assert res.exit_code == 0, res.output
+    w = pd.read_csv(tmp_path / "w.csv")
+    worst = w[w.orientation == "worst"].iloc[0]
+    assert worst.azimuth_deg == 60.0 and worst.overturn_scale == df.overturn_scale[0]
+
+
+def test_catalogue_pair_id_with_azimuth(find_record):
+    """A catalogue id naming two components takes --azimuth: onto its first component's own orientation the
+    run is the id's single-component run (bar the label); --record-2 is not needed."""
+    find_record("TCU128-090")
+    base = ["simulate", "--column", "bassae", "--json", "--record", "chichi-1999-chy128-n"]
+    single = CliRunner().invoke(main, base)
+    own = CliRunner().invoke(main, [*base, "--azimuth", "0"])
+    assert single.exit_code == 0 and own.exit_code == 0, own.output
+    one, via = json.loads(single.output), json.loads(own.output)
+    assert {k: v for k, v in via.items() if k != "excitation"} == {k: v for k, v in one.items() if k != "excitation"}
+    # the other component's orientation is the other file's run (--component E)
+    east = json.loads(CliRunner().invoke(main, [*base, "--component", "E"]).output)
+    via_e = json.loads(CliRunner().invoke(main, [*base, "--azimuth", "90"]).output)
+    assert {k: v for k, v in via_e.items() if k != "excitation"} == {k: v for k, v in east.items() if k != "excitation"}

@@ -198,7 +198,7 @@ def table_ii_entries() -> list:
 
 
 def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto", *, units: str | None = None,
-                        dt: float | None = None, component: str | None = None, azimuth=None,
+                        dt: float | None = None, gain=None, component: str | None = None, azimuth=None,
                         glob: Sequence[str] = (), exclude: Sequence[str] = ()):
     """Turn record sources into excitations.
 
@@ -215,6 +215,8 @@ def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto"
         text, SAC, ...), passed to :func:`rockcli.records.read_record` with ``fill_in=True``: they
         fill in only what a file does not state (a file that states others is read as it states
         them). Files the catalogue lists are read as the catalogue says.
+    gain : float, optional
+        Factor from raw counts to ``units`` for the files in counts (or stating no units).
     component : str, optional
         The component of each multi-component file (channel code, ``N``/``E``/``UP`` or azimuth);
         one-component files are taken as they are.
@@ -247,7 +249,7 @@ def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto"
 
     if mode not in EXCITATION_MODES:
         raise RockcliInputError(f"excitation mode {mode!r} is not one of {', '.join(EXCITATION_MODES)}")
-    file_kwargs = _file_read_kwargs(units, dt)
+    file_kwargs = _file_read_kwargs(units, dt, gain)
     if component is not None:
         file_kwargs["component"] = str(component)
     entries = load_catalog()
@@ -329,11 +331,14 @@ def _relabel(x: Excitation, label: str) -> Excitation:
     return replace(x, label=label)
 
 
-def _file_read_kwargs(units, dt) -> dict:
+def _file_read_kwargs(units, dt, gain=None) -> dict:
     """``read_record`` keywords for files outside the catalogue (validated once, up front)."""
+    from rockcli.records.reader import check_gain
     from rockcli.units import accel_factor
 
     kwargs = {}
+    if gain is not None:
+        kwargs["gain"] = check_gain(gain, units)
     if units is not None:
         accel_factor(units)  # an unknown units word is one error up front, not one per file
         kwargs["units"] = str(units)
@@ -363,7 +368,7 @@ def _select(files, glob: Sequence[str], exclude: Sequence[str]) -> list:
 
 
 #: Columns of a manifest CSV: ``file`` and what the files lack.
-MANIFEST_COLUMNS = ("file", "units", "dt", "component", "azimuth", "file_2", "azimuth_2", "label")
+MANIFEST_COLUMNS = ("file", "units", "dt", "gain", "component", "azimuth", "file_2", "azimuth_2", "label")
 
 
 def is_manifest(path: Path) -> bool:
@@ -374,7 +379,7 @@ def is_manifest(path: Path) -> bool:
     except OSError:
         return False
     names = [h.strip().lower() for h in head.split(",")]
-    return "file" in names and any(k in names for k in ("units", "dt", "component", "azimuth"))
+    return "file" in names and any(k in names for k in ("units", "dt", "gain", "component", "azimuth"))
 
 
 def read_manifest(path: Path, defaults: dict) -> list:
@@ -402,6 +407,11 @@ def read_manifest(path: Path, defaults: dict) -> list:
             kwargs["units"] = row["units"]
         if row.get("dt"):
             kwargs["dt"] = parse_number(row["dt"], f"{where}: dt", lo=0, lo_open=True, unit="s")
+        if row.get("gain"):
+            kwargs["gain"] = parse_number(row["gain"], f"{where}: gain", lo=0, lo_open=True)
+            if not kwargs.get("units"):
+                raise RockcliInputError(f"{where}: the gain needs the units it yields in the row's units column "
+                                        f"(or --units)")
         if kwargs.get("units") or kwargs.get("dt"):
             kwargs["fill_in"] = True
         if row.get("component"):

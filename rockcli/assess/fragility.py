@@ -136,6 +136,8 @@ class FragilityRow:
     censored: str = ""
     margin_note: str = ""
     error: str = ""
+    azimuth_deg: float = math.nan  #: with --azimuth worst: the orientation whose capacity is kept
+    orientation: str = ""  #: with --azimuth worst: "median" or "worst" (:mod:`rockcli.assess.fragility_azimuth`)
 
 
 @dataclass
@@ -408,8 +410,9 @@ def empirical_points(rows) -> list[tuple[float, float, str]]:
 
 
 def run_fragility_distributed(scheduler, columns, excitations, configurations, *, chunks_per_worker: int = 2,
-                              **kwargs) -> Fragility:
-    """:func:`run_fragility` with the margin searches on a Dask cluster (:mod:`rockcli.distributed`).
+                              run: Callable | None = None, **kwargs) -> Fragility:
+    """:func:`run_fragility` (or ``run``, which takes the same arguments and passes ``runner`` and
+    ``chunk_size`` on to it) with the margin searches on a Dask cluster (:mod:`rockcli.distributed`).
 
     ``scheduler`` is ``"local"`` (a LocalCluster here), ``"tcp://HOST:PORT"`` or a ``distributed.Client``.
     The scenes are split into about ``chunks_per_worker`` chunks per worker; each chunk's search
@@ -421,5 +424,5 @@ def run_fragility_distributed(scheduler, columns, excitations, configurations, *
     with open_client(scheduler) as client:
         workers = max(1, len(client.scheduler_info().get("workers", {})))
         size = max(1, -(-n_scenes // (workers * chunks_per_worker)))
-        return run_fragility(columns, excitations, configurations, chunk_size=size,
-                             runner=lambda func, chunks: dask_map(client, func, chunks), **kwargs)
+        return (run or run_fragility)(columns, excitations, configurations, chunk_size=size,
+                                      runner=lambda func, chunks: dask_map(client, func, chunks), **kwargs)

@@ -9,7 +9,7 @@ import click
 
 from rockcli.cli.errors import InputError, user_errors
 from rockcli.cli.options import (QuietSpellingOption, alias_option, azimuth_options, cap_ratio_option, check_outputs, command_line, custom_block_options,
-                                 echo_json, given_azimuth, given_component, given_suite, horizon_option,
+                                 echo_json, given_azimuth, given_component, given_gain, given_suite, horizon_option,
                                  is_quiet, json_option, progress_bar, quiet_option, report_option,
                                  restitution_option, vertical_options)
 from rockcli.cli.options import GAMMA_HELP, Group
@@ -89,9 +89,9 @@ def _vertical_note(result) -> str:
 
 def _headerless_options(func):
     """``--units`` and ``--dt`` for record files that do not state them (headerless text, SAC, ...)."""
-    from rockcli.cli.options import component_option, suite_options
+    from rockcli.cli.options import component_option, gain_option, suite_options
 
-    func = suite_options(component_option(func))
+    func = suite_options(gain_option(component_option(func)))
     func = click.option("--dt", type=NUMBER, default=None, metavar="SECONDS",
                         help="Time step [s] of the record files that state none (it fills in only what a file "
                              "does not state). Catalogue files are read as the catalogue says.")(func)
@@ -266,7 +266,7 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
     if azimuth["azimuth"] is not None and not records:
         raise InputError("--azimuth needs pairs of horizontal components: give them with --records A+B "
                          "(or multi-component files)")
-    excitations, unavailable = resolve_excitations(records, excitation, units=units, dt=dt,
+    excitations, unavailable = resolve_excitations(records, excitation, units=units, dt=dt, gain=given_gain(),
                                                    component=given_component(), azimuth=azimuth["azimuth"],
                                                    **given_suite())
     if not excitations:
@@ -498,26 +498,35 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
         from rockcli.distributed import check_scheduler
 
         check_scheduler(scheduler)
-    azimuth = given_azimuth()["azimuth"]
-    if azimuth == "worst":
-        raise InputError("assess fragility takes one --azimuth DEG (the rocking plane of every pair); "
-                         "--azimuth worst is not supported here yet (run 'assess column --azimuth worst')")
-    excitations, unavailable = resolve_excitations(records, "record", units=units, dt=dt, azimuth=azimuth,
-                                                   component=given_component(), **given_suite())
+    given = given_azimuth()
+    azimuth = given["azimuth"]
+    if azimuth == "worst" and report_path:
+        raise InputError("--report shows one fragility per configuration: with --azimuth worst (two, the median "
+                         "and the worst orientation) write --csv and --plot instead, or give one --azimuth DEG")
+    excitations, unavailable = resolve_excitations(records, "record", units=units, dt=dt, gain=given_gain(),
+                                                   azimuth=azimuth, component=given_component(), **given_suite())
     excitations = _with_vertical(excitations, configurations, units, dt)
     _refuse_if_none_can_run(excitations)
     _add_record_inputs(excitations)
 
+    run, n_runs = run_fragility, count_fragility_runs(columns, excitations, configurations)
+    if azimuth == "worst":
+        from rockcli.assess.fragility_azimuth import run_fragility_azimuths
+        from rockcli.records.orientation import sweep_azimuths
+
+        azimuths = sweep_azimuths(given["step"])
+        run, n_runs = partial(run_fragility_azimuths, azimuths=azimuths), n_runs * len(azimuths)
     if scheduler is not None:
         from rockcli.assess.fragility import run_fragility_distributed
         from rockcli.cli.options import dask_client
 
         result = run_fragility_distributed(dask_client(scheduler), columns, excitations, configurations, im=im, n_boot=n_boot,
-                                           seed=seed, unavailable=unavailable, horizon=horizon, **solver)
+                                           seed=seed, unavailable=unavailable, horizon=horizon, run=run, **solver)
     else:
-        result = _run_counted(count_fragility_runs(columns, excitations, configurations),
-                              partial(run_fragility, columns, excitations, configurations, im=im, n_boot=n_boot,
-                                      seed=seed, unavailable=unavailable, horizon=horizon, **solver))
+        result = _run_counted(n_runs, partial(run, columns, excitations, configurations, im=im, n_boot=n_boot,
+                                              seed=seed, unavailable=unavailable, horizon=horizon, **solver))
+    if azimuth == "worst":
+        return _echo_fragility_azimuths(result, solver, csv_path, plot_path, len(azimuths), as_json)
 
     from rockcli.report.fragility import format_fragility, format_fragility_notes
 
@@ -554,3 +563,28 @@ def _fragility_json(fr, solver) -> dict:
                         "beta": c.beta, "beta_ci": list(c.beta_ci), "median_ratio_to_none": c.ratio_to_rigid,
                         "n_records": c.n_records, "n_censored": c.n_right + c.n_left} for c in fr.curves],
             "rows": fragility_rows(fr)}
+
+
+def _echo_fragility_azimuths(results: dict, solver: dict, csv_path, plot_path, n_azimuths: int, as_json=False):
+    """``assess fragility --azimuth worst``: both fits and the worst azimuths
+    (:func:`rockcli.report.fragility.format_fragility_azimuths`), or with ``--json`` both fits as
+    ``{"median": ..., "worst": ...}`` (each as without --azimuth worst); the CSV (both sets of rows) and the
+    figure (the worst orientation's curves)."""
+    from rockcli.report.fragility import format_fragility_azimuths
+
+    table, notes = format_fragility_azimuths(results, n_azimuths)
+    if solver:
+        notes += f"\nImpacts: coefficient of restitution E = {solver['restitution']:g} (README, Restitution)."
+    _echo_result(results["worst"], table, notes,
+                 as_json={"azimuths_run": n_azimuths, **{k: _fragility_json(results[k], solver)
+                                                         for k in ("median", "worst")}} if as_json else None)
+    if csv_path:
+        from rockcli.report.fragility import write_fragility_csv
+
+        write_fragility_csv([results["median"], results["worst"]], csv_path, solver)
+        click.echo(f"wrote {csv_path} ({sum(len(r.rows) for r in results.values())} rows)", err=as_json)
+    if plot_path:
+        from rockcli.report.fragility import plot_fragility
+
+        plot_fragility(results["worst"], plot_path)
+        click.echo(f"wrote {plot_path} (the worst orientation's curves)", err=as_json)

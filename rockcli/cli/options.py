@@ -88,7 +88,8 @@ def alias_option(old: str, target: str, new: str, **kwargs):
 
 
 def record_options(func=None, *, column_alias: bool = False):
-    """Add ``--units``, ``--dt``, ``--format``, ``--record-column`` and ``--component``: what ``read_record`` takes.
+    """Add ``--units``, ``--dt``, ``--format``, ``--record-column`` (and ``--component``, ``--gain``): what
+    ``read_record`` takes.
 
     The command receives them as the keyword arguments ``units``, ``dt``, ``fmt`` and ``column``.
     ``column_alias=True`` also accepts the old ``--column N`` (``records show``, ``records export``,
@@ -110,6 +111,7 @@ def record_options(func=None, *, column_alias: bool = False):
                               "component/trace of a multi-component file."),
             *([alias_option("--column", "column", "--record-column", type=WHOLE)] if column_alias else []),
             component_option,
+            gain_option,
         ]
         return _stacked(f, options)
 
@@ -131,6 +133,21 @@ component_option = click.option(
     "--component", default=None, metavar="NAME", expose_value=False, callback=_remember("rockcli.component"),
     help="Component of a multi-component file: its channel code (HN1, HNE, HNZ, EW2, N28W, ...), N, E or UP, "
          "or an azimuth in degrees ('rockcli records show FILE' lists them).")
+
+
+#: ``--gain FACTOR``: counts -> ``--units``, for a file in raw counts. Kept on the click context like
+#: ``--component``; :func:`record_kwargs` adds it.
+gain_option = click.option(
+    "--gain", default=None, metavar="FACTOR", expose_value=False, callback=_remember("rockcli.gain"),
+    help="Factor from raw counts to --units, for a file in counts (integer MiniSEED/GSE2 samples, 'units: "
+         "counts'): --gain 1.2e-6 --units m/s^2 reads count x 1.2e-6 m/s^2. Refused for files that state "
+         "physical units.")
+
+
+def given_gain():
+    """The ``--gain`` of the running command (None when not given; checked by the reader)."""
+    ctx = click.get_current_context(silent=True)
+    return None if ctx is None else ctx.meta.get("rockcli.gain")
 
 
 def azimuth_options(func=None, *, suite: bool = False):
@@ -329,7 +346,8 @@ def given_component():
 
 def record_kwargs(units, dt, fmt, column) -> dict:
     """The keyword arguments of ``read_record`` from the values of :func:`record_options` (and ``--component``)."""
-    return {"units": units, "dt": dt, "format": fmt, "column": column, "component": given_component()}
+    return {"units": units, "dt": dt, "format": fmt, "column": column, "component": given_component(),
+            "gain": given_gain()}
 
 
 #: The isolation defaults (:data:`rockcli.models.DEFAULT_XI`, :data:`rockcli.models.DEFAULT_GAMMA`, written out

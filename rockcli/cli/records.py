@@ -15,16 +15,33 @@ def records():
 
 def _status_rows() -> list[dict]:
     from rockcli.records.catalog import find_file, load_catalog
+    from rockcli.records.components import orientation_meta
 
     rows = []
     for e in load_catalog():
         path = find_file(e) if e.available else None
         status = "not available" if not e.available else ("found" if path else "missing")
+        comps = []
+        for comp, file in e.components:
+            found = find_file(e, file) if e.available else None
+            orient = orientation_meta(comp, "catalogue")
+            comps.append({"component": comp, "file": file, "azimuth_deg": orient["azimuth_deg"],
+                          "vertical": orient["vertical"], "path": str(found) if found else None})
         rows.append({"id": e.id, "event": e.event, "year": e.year, "station": e.station,
                      "component": e.component, "mw": e.mw, "distance_km": e.distance_km,
                      "pga_published_g": e.pga_published_g, "pgv_published_mps": e.pgv_published_mps,
-                     "file": e.file, "status": status, "path": str(path) if path else ""})
+                     "file": e.file, "status": status, "path": str(path) if path else "",
+                     "components": comps, "present": _present(comps)})
     return rows
+
+
+def _present(comps: list[dict]) -> str:
+    """The components a row names, each marked when its file is missing: ``230+140``, ``000+090 (090 missing)``."""
+    if not comps:
+        return "-"
+    missing = [c["component"] for c in comps if c["path"] is None]
+    text = "+".join(c["component"] or "?" for c in comps)
+    return text + (f" ({', '.join(missing)} missing)" if missing and len(missing) < len(comps) else "")
 
 
 def _fmt(value, spec: str) -> str:
@@ -40,7 +57,8 @@ def list_records(csv_path, as_json):
     """List the catalogue and, for each id, whether and where its file was found.
 
     Files are looked up in the folders of ROCKCLI_RECORDS (path list), then in the repository's
-    records/ folder.
+    records/ folder. The components column names the components a row gives (230+140: two horizontal
+    ones, usable with --azimuth; UP: the vertical one), with those whose file is missing.
 
     \b
     Examples:
@@ -51,7 +69,7 @@ def list_records(csv_path, as_json):
 
     check_outputs((csv_path, "--csv", False))
     rows = _status_rows()
-    add_inputs([r["path"] for r in rows], "the record file")
+    add_inputs([c["path"] for r in rows for c in r["components"]], "the record file")
     found = sum(r["status"] == "found" for r in rows)
     if as_json:
         echo_json({"records": rows, "found": found, "searched": [str(p) for p in search_path()]})
@@ -65,10 +83,11 @@ def list_records(csv_path, as_json):
 
 
 def _echo_list(rows, found, searched) -> None:
-    table = [("id", "event", "PGA [g]", "PGV [m/s]", "status", "path")]
+    table = [("id", "event", "PGA [g]", "PGV [m/s]", "components", "status", "path")]
     for r in rows:
         table.append((r["id"], f"{r['event']} {r['year']}", _fmt(r["pga_published_g"], ".2f"),
-                      _fmt(r["pgv_published_mps"], ".2f"), r["status"], r["path"] or r["file"] or "-"))
+                      _fmt(r["pgv_published_mps"], ".2f"), r["present"], r["status"],
+                      r["path"] or r["file"] or "-"))
     widths = [max(len(row[i]) for row in table) for i in range(len(table[0]) - 1)]
     for row in table:
         click.echo("  ".join(cell.ljust(w) for cell, w in zip(row, widths)) + "  " + row[-1])
@@ -119,6 +138,13 @@ def show(source, units, dt, fmt, column, plot_path, as_json):
         if meta.get(key):
             lines.append((key, str(meta[key])))
     lines.append(("component", _component_text(rec)))
+    if meta.get("catalog_id"):
+        from rockcli.records.catalog import get_entry
+
+        others = [c for c, _ in get_entry(meta["catalog_id"]).components if c != meta.get("component")]
+        if others:
+            lines.append(("other components", f"{', '.join(others)} (--component NAME; two horizontal ones: "
+                                              f"--azimuth DEG|worst)"))
     lines += [
         ("units in file", f"{meta.get('units')} (from the {meta.get('units_source')}; x{meta.get('factor'):.6g} to m/s^2)"),
         ("npts", str(rec.npts)),

@@ -51,6 +51,12 @@ class CatalogEntry:
         Provenance and choices (which candidate file and why).
     pulse_shape, a_p_g, T_p_s, t0_s, pulse_energy : str, float, float, float, float or None
         Equivalent pulse, filled by the pulse fitter's generator command (empty until then).
+    file_2, component_2 : str
+        The other horizontal component of the record (file, and its azimuth in degrees or N/E), read
+        like ``file`` (same format, units, dt); empty when the catalogue names one component. With it the
+        id is a pair: ``--azimuth`` projects the two, ``--component`` picks one.
+    file_vertical : str
+        The vertical component's file (empty when none is named).
     """
 
     id: str
@@ -74,9 +80,25 @@ class CatalogEntry:
     T_p_s: float | None = None
     t0_s: float | None = None
     pulse_energy: float | None = None
+    file_2: str = ""
+    component_2: str = ""
+    file_vertical: str = ""
+
+    @property
+    def components(self) -> list[tuple[str, str]]:
+        """``(component, file)`` of every component the row names: the first, the other horizontal one,
+        the vertical one (``UP``)."""
+        out = [(self.component, self.file)] if self.file else []
+        if self.file_2:
+            out.append((self.component_2, self.file_2))
+        if self.file_vertical:
+            out.append(("UP", self.file_vertical))
+        return out
 
 
 COLUMNS = tuple(f.name for f in fields(CatalogEntry))
+#: Columns a catalogue may leave out (written by :func:`format_catalog`; an older catalogue lacks them).
+OPTIONAL_COLUMNS = ("file_2", "component_2", "file_vertical")
 _FLOATS = {"mw", "distance_km", "pga_published_g", "pgv_published_mps", "dt", "a_p_g", "T_p_s", "t0_s", "pulse_energy"}
 _INTS = {"year", "column"}
 _OPTIONAL_STR = {"units", "pulse_shape"}
@@ -137,13 +159,13 @@ def load_catalog(path: str | os.PathLike | None = None) -> list[CatalogEntry]:
     path = Path(path) if path is not None else catalog_path()
     text = _read_catalog_text(path)
     reader = csv.DictReader(io.StringIO(text))
-    missing = [c for c in COLUMNS if c not in (reader.fieldnames or [])]
+    missing = [c for c in COLUMNS if c not in (reader.fieldnames or []) and c not in OPTIONAL_COLUMNS]
     if missing:
         raise RockcliInputError(f"record catalogue {path} lacks the columns {', '.join(missing)}")
     entries, seen = [], set()
     for line, row in enumerate(reader, start=2):
         where = f"{path}, line {line}"
-        entry = CatalogEntry(**{c: _parse_cell(c, row[c] or "", where) for c in COLUMNS})
+        entry = CatalogEntry(**{c: _parse_cell(c, row.get(c) or "", where) for c in COLUMNS})
         if entry.id in seen:
             raise RockcliInputError(f"{where}: id {entry.id!r} appears twice")
         seen.add(entry.id)
@@ -258,12 +280,14 @@ def _check_records_folder(folder: Path) -> None:
         raise RockcliInputError(f"{where}, which cannot be read (permission denied)")
 
 
-def find_file(entry: CatalogEntry) -> Path | None:
-    """Path of the entry's file in the first folder of :func:`search_path` that holds it (None if none)."""
-    if not entry.file:
+def find_file(entry: CatalogEntry, file: str | None = None) -> Path | None:
+    """Path of the entry's file (or of ``file``, another of its components) in the first folder of
+    :func:`search_path` that holds it (None if none)."""
+    name = entry.file if file is None else file
+    if not name:
         return None
     for folder in search_path():
-        candidate = folder / entry.file
+        candidate = folder / name
         if candidate.is_file():
             return candidate
     return None

@@ -22,6 +22,11 @@ from rockcli.errors import RockcliInputError
 INSTALL_HINT = "the optional extra reads it: pip install \"rockcli[formats]\" (USGS gmprocess)"
 
 
+#: Units of a COSMOS file that gmprocess 2.8 converts to cm/s^2 while ``stats.standard.units`` keeps the file's
+#: word (``gmprocess.io.cosmos.core``: ``data *= UNIT_CONVERSIONS[unit]``): taken as the cm/s^2 they are.
+_COSMOS_CONVERTED = {"g", "g/10", "g*10", "mg", "in/s/s"}
+
+
 def available() -> bool:
     """True when gmprocess is installed (found without importing it)."""
     import importlib.util
@@ -42,26 +47,36 @@ def read_with_extra(path: Path, column, recognised: str | None = None) -> dict[s
 
     from rockcli.records.components import NotARecord, orientation_meta, pick_trace
 
-    logging.getLogger().setLevel(max(logging.getLogger().level, logging.ERROR))  # gmprocess logs every file
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        from gmprocess.io.read import read_data
+    root = logging.getLogger()
+    level = root.level
+    root.setLevel(max(level, logging.ERROR))  # gmprocess logs every file it reads; the level is restored after
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            from gmprocess.io.read import read_data
 
-        try:
-            streams = read_data(str(path))
-        except Exception as exc:  # noqa: BLE001 -- gmprocess raises many kinds; one sentence for the user
-            text = str(exc).strip().splitlines()
-            if recognised:  # rockcli knows the format (it refuses it): a damaged or unusual file, not a non-record
-                raise RockcliInputError(f"{path}: a {recognised} file that gmprocess cannot read either "
-                                        f"({text[0] if text else type(exc).__name__})") from None
-            raise NotARecord(f"{path}: format not recognised by rockcli, ObsPy or gmprocess "
-                             f"({text[0] if text else type(exc).__name__})") from None
+            try:
+                streams = read_data(str(path))
+            except Exception as exc:  # noqa: BLE001 -- gmprocess raises many kinds; one sentence for the user
+                text = str(exc).strip().splitlines()
+                if recognised:  # rockcli knows the format: a damaged or unusual file, not a non-record
+                    from rockcli.records.formats import FORMAT_NAMES
+
+                    raise RockcliInputError(f"{path}: a {FORMAT_NAMES.get(recognised, recognised)} file that "
+                                            f"gmprocess cannot read either "
+                                            f"({text[0] if text else type(exc).__name__})") from None
+                raise NotARecord(f"{path}: format not recognised by rockcli, ObsPy or gmprocess "
+                                 f"({text[0] if text else type(exc).__name__})") from None
+    finally:
+        root.setLevel(level)
     traces = [tr for st in streams for tr in st]
     tr = pick_trace(traces, column, path, ", ".join(t.stats.channel for t in traces), "components")
     std = tr.stats.get("standard", {})
     if str(std.get("units_type", "acc")) != "acc":
         raise RockcliInputError(f"{path}: gmprocess reads {std.get('units_type')}, not acceleration")
     units = str(std.get("units", "") or "")
+    if str(std.get("source_format", "")).lower() == "cosmos" and units.lower() in _COSMOS_CONVERTED:
+        units = "cm/s^2"  # gmprocess's COSMOS reader converts the samples to cm/s^2 but keeps the file's label
     units = {"cm/s/s": "cm/s^2", "cm/s**2": "cm/s^2"}.get(units, units) or None
     channel = str(tr.stats.channel)
     orient = orientation_meta(channel, "gmprocess")

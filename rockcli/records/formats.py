@@ -266,6 +266,11 @@ def _is_cwb(lines):
 EXTRA_FIRST: dict[str, Callable] = {"CWB": _is_cwb}
 
 
+#: How messages name the formats rockcli recognises but leaves to the extra.
+FORMAT_NAMES = {"USC_VOL1": "USC Volume I", "BHRC_VOL1": "BHRC VOL1", "UNAM_ASA": "UNAM ASA 2.0", "SMC": "USGS SMC",
+                "CWB": "CWB"}
+
+
 def probe(lines: list[str]) -> str | None:
     """Name of the format of a text file from its first lines (None when not recognised)."""
     for name, is_fmt in {**{k: v[0] for k, v in {**READERS, **REFUSED}.items()}, **EXTRA_FIRST}.items():

@@ -57,6 +57,19 @@ def _check_dt(dt):
     return value
 
 
+def check_gain(gain, units):
+    """``gain`` as a positive finite float (None when not given); it needs ``units``, the units it yields."""
+    if gain is None:
+        return None
+    from rockcli.inputs import parse_number
+
+    value = parse_number(gain, "--gain", lo=0, lo_open=True)
+    if units is None:
+        raise RockcliInputError(f"--gain {_num(value)} needs --units: the units the gain yields from counts "
+                                f"(g, m/s^2, cm/s^2, gal, mm/s^2, g/10)")
+    return value
+
+
 def _check_column(column):
     if column is None:
         return None
@@ -69,7 +82,7 @@ def _check_column(column):
     return value
 
 
-def read_record(source, *, format=None, units=None, dt=None, column=None, component=None,
+def read_record(source, *, format=None, units=None, dt=None, column=None, component=None, gain=None,
                 fill_in: bool = False) -> Record:
     """Read a ground-acceleration record from a file or the catalogue.
 
@@ -95,9 +108,14 @@ def read_record(source, *, format=None, units=None, dt=None, column=None, compon
         Component of a multi-component file by name: its channel code (``HN1``, ``HNE``, ``N28W``,
         ``EW2``), ``N``/``E``/``UP`` or an azimuth in degrees (see
         :func:`rockcli.records.components.select_component`).
+    gain : float, optional
+        Factor from raw counts to ``units`` (which must then be given: the units the gain yields,
+        ``gain=1.2e-6, units="m/s^2"``). A file in raw counts (integer samples read by ObsPy, a text
+        file or gmprocess stating ``counts``) is refused without it; a file that states physical
+        units is refused with it (unless ``fill_in``); a file that states no units is taken as counts.
     fill_in : bool
-        ``units`` and ``dt`` only fill in what the file does not state (a suite's defaults): a file
-        that states other ones is read as it states them, not refused.
+        ``units``, ``dt`` and ``gain`` only fill in what the file does not state (a suite's defaults): a
+        file that states other ones is read as it states them, not refused.
 
     Returns
     -------
@@ -122,6 +140,7 @@ def read_record(source, *, format=None, units=None, dt=None, column=None, compon
     """
     units = _check_units(units)
     dt = _check_dt(dt)
+    gain = check_gain(gain, units)
     column = _check_column(column)
     fmt = str(format).strip().upper() if format else None
     if component is not None:
@@ -129,56 +148,74 @@ def read_record(source, *, format=None, units=None, dt=None, column=None, compon
             raise RockcliInputError("give the component either by --component NAME or by --record-column N, not both")
         from rockcli.records.components import select_component
 
-        comps = read_components(source, format=format, units=units, dt=dt, fill_in=fill_in)
+        comps = read_components(source, format=format, units=units, dt=dt, gain=gain, fill_in=fill_in)
         return select_component(comps, component, _label(source, comps))
 
     if isinstance(source, Record):
         return source
     if isinstance(source, str) and not Path(source).exists():
-        from rockcli.records.catalog import find_file, get_entry, load_catalog, search_path
-
-        # a catalogue that cannot be read is said as such, not as "no such file, nor a catalogue id"
-        if os.sep not in source and "/" not in source and any(e.id == source for e in load_catalog()):
-            entry = get_entry(source)
-            if not entry.available:
-                raise RockcliInputError(f"catalogue record {entry.id!r} has no public file ({entry.notes})")
-            path = find_file(entry)
-            if path is None:
-                folders = ", ".join(str(f) for f in search_path())
-                raise RockcliInputError(
-                    f"catalogue record {entry.id!r}: file {entry.file!r} not found in {folders} "
-                    f"(set ROCKCLI_RECORDS to the folder holding it)")
-            rec = _read_path(path, fmt or entry.format or None, units or entry.units, dt or entry.dt,
-                             column or entry.column, given_by="caller" if units else "catalogue")
-            from rockcli.records.components import orientation_meta
-
-            orient = orientation_meta(entry.component, "catalogue")
-            if orient["azimuth_deg"] is None and not orient["vertical"]:
-                orient = {k: rec.meta.get(k) for k in ("azimuth_deg", "vertical", "orientation_source")}
-            meta = {**rec.meta, "catalog_id": entry.id, "event": entry.event, "year": entry.year,
-                    "station": entry.station, "component": entry.component, **orient,
-                    "file_meta": {k: rec.meta.get(k) for k in ("event", "station", "component")}}
-            return Record(acc=rec.acc, dt=rec.dt, name=entry.id, t_start=rec.t_start, meta=meta)
+        entry = _catalog_entry(source)
+        if entry is not None:
+            return _read_entry(entry, entry.component, entry.file, fmt, units, dt, column, gain)
         if os.sep not in source and "/" not in source:
             raise RockcliInputError(f"{source}: no such file, nor a catalogue id (see 'rockcli records list')")
-    return _read_path(Path(source), fmt, units, dt, column, given_by="suite" if fill_in else "caller")
+    return _read_path(Path(source), fmt, units, dt, column, given_by="suite" if fill_in else "caller", gain=gain)
+
+
+def _catalog_entry(source):
+    """The catalogue entry ``source`` names (None when it is not a catalogue id); a catalogue that cannot be
+    read is said as such, not as "no such file, nor a catalogue id"."""
+    if not isinstance(source, str) or os.sep in source or "/" in source or Path(source).exists():
+        return None
+    from rockcli.records.catalog import load_catalog
+
+    return next((e for e in load_catalog() if e.id == source), None)
+
+
+def _read_entry(entry, component: str, file: str, fmt, units, dt, column, gain) -> Record:
+    """One component (``component``, in ``file``) of a catalogue entry, read as the catalogue says."""
+    from rockcli.records.catalog import find_file, search_path
+    from rockcli.records.components import orientation_meta
+
+    if not entry.available:
+        raise RockcliInputError(f"catalogue record {entry.id!r} has no public file ({entry.notes})")
+    path = find_file(entry, file)
+    if path is None:
+        folders = ", ".join(str(f) for f in search_path())
+        which = "" if file == entry.file else f" (component {component})"
+        raise RockcliInputError(f"catalogue record {entry.id!r}: file {file!r}{which} not found in {folders} "
+                                f"(set ROCKCLI_RECORDS to the folder holding it)")
+    rec = _read_path(path, fmt or entry.format or None, units or entry.units, dt or entry.dt,
+                     column or entry.column, given_by="caller" if units else "catalogue", gain=gain)
+    orient = orientation_meta(component, "catalogue")
+    if orient["azimuth_deg"] is None and not orient["vertical"]:
+        orient = {k: rec.meta.get(k) for k in ("azimuth_deg", "vertical", "orientation_source")}
+    meta = {**rec.meta, "catalog_id": entry.id, "event": entry.event, "year": entry.year,
+            "station": entry.station, "component": component, **orient,
+            "file_meta": {k: rec.meta.get(k) for k in ("event", "station", "component")}}
+    return Record(acc=rec.acc, dt=rec.dt, name=entry.id, t_start=rec.t_start, meta=meta)
 
 
 def _label(source, comps) -> str:
     return str(comps[0].meta.get("path") or source) if comps else str(source)
 
 
-def read_components(source, *, format=None, units=None, dt=None, fill_in: bool = False) -> list[Record]:
+def read_components(source, *, format=None, units=None, dt=None, gain=None, fill_in: bool = False) -> list[Record]:
     """Every component of a record file (or catalogue id), each a :class:`Record` with its name and
     orientation in ``meta`` (``component``, ``azimuth_deg``, ``vertical``); one for a one-component file."""
+    kw = {"format": format, "units": units, "dt": dt, "gain": gain, "fill_in": fill_in}
+    entry = _catalog_entry(source)
+    if entry is not None and len(entry.components) > 1:  # a catalogue row naming several components
+        fmt = str(format).strip().upper() if format else None
+        return [_read_entry(entry, comp, file, fmt, _check_units(units), _check_dt(dt), None, check_gain(gain, units))
+                for comp, file in entry.components]
     try:
-        return [read_record(source, format=format, units=units, dt=dt, fill_in=fill_in)]
+        return [read_record(source, **kw)]
     except MultiComponent as multi:
-        return [read_record(source, format=format, units=units, dt=dt, column=k, fill_in=fill_in)
-                for k in range(1, multi.count + 1)]
+        return [read_record(source, column=k, **kw) for k in range(1, multi.count + 1)]
 
 
-def _read_path(path: Path, fmt, units, dt, column, given_by: str = "caller") -> Record:
+def _read_path(path: Path, fmt, units, dt, column, given_by: str = "caller", gain=None) -> Record:
     from rockcli.records.at2 import check_record_file
 
     name = str(path)
@@ -194,7 +231,7 @@ def _read_path(path: Path, fmt, units, dt, column, given_by: str = "caller") -> 
     if kind is not None:
         from rockcli.records.compressed import read_compressed
 
-        return read_compressed(path, kind, lambda inner: _read_path(inner, fmt, units, dt, column, given_by))
+        return read_compressed(path, kind, lambda inner: _read_path(inner, fmt, units, dt, column, given_by, gain))
     from rockcli.records.at2 import strip_bom
 
     head = strip_bom(head)
@@ -235,7 +272,7 @@ def _read_path(path: Path, fmt, units, dt, column, given_by: str = "caller") -> 
                     raise NotARecord(f"{exc}; if it is an agency format, {extra.INSTALL_HINT}") from None
                 out = extra.read_with_extra(path, column)  # imported only now: rockcli's readers and ObsPy failed
     out.setdefault("format", fmt)
-    return _finish(path, out, units, dt, given_by)
+    return _finish(path, out, units, dt, given_by, gain)
 
 
 def compression(head: bytes) -> str | None:
@@ -371,7 +408,11 @@ def _from_obspy(path: Path, fmt: str, column) -> dict[str, Any]:
         units = "gal"
         meta.update(units_note="counts x the stated scale factor (gal)",
                     processing="mean removed (as the header's Max. Acc.)", knet=dict(stats.knet))
-    elif fmt_name == "SAC":
+    elif values.size and np.issubdtype(tr.data.dtype, np.integer):
+        # integer samples (MiniSEED, GSE2, ... in counts): raw digitizer output, refused unless a gain is given
+        units = "counts"
+        meta["units_note"] = f"integer samples in the {fmt_name} file"
+    if fmt_name == "SAC":
         # SAC's IDEP says what the quantity is, not its units (and writers rarely follow its nm
         # convention): the units are not stated.
         meta["sac_idep"] = int(stats.sac.get("idep", -12345))
@@ -386,6 +427,7 @@ def _from_obspy(path: Path, fmt: str, column) -> dict[str, Any]:
         i = int(np.argmax(~np.isfinite(values)))
         raise RockcliInputError(f"{path}: sample {i + 1} is {float(values[i])!r}, not a finite number")
     return {"values": values, "dt": float(stats.delta), "dt_source": "header", "units": units,
+            "units_source": meta.get("units_note", "file") if units == "counts" else "file",
             "t_start": 0.0, "meta": meta, "format": fmt_name}
 
 
@@ -409,13 +451,26 @@ def _orientation(path: Path, fmt, component) -> dict:
     return found
 
 
-def _finish(path: Path, out: dict[str, Any], units, dt, given_by: str) -> Record:
+def _finish(path: Path, out: dict[str, Any], units, dt, given_by: str, gain=None) -> Record:
     """Reconcile stated and given units and time step, convert to m/s^2, build the Record."""
-    from rockcli.units import accel_factor
+    from rockcli.units import accel_factor, is_counts
 
     name = str(path)
     stated_units = out.get("units")
-    if stated_units is not None:
+    counts = stated_units is not None and is_counts(stated_units)
+    if stated_units is not None and not counts and gain is not None and given_by != "suite":
+        raise RockcliInputError(f"{name}: the file states units {stated_units!r}, not raw counts; --gain applies "
+                                f"only to a file in counts")
+    if counts or (stated_units is None and gain is not None):
+        if gain is None:
+            said = out.get("units_source") if out.get("units_source") not in (None, "file") else "stated by the file"
+            raise RockcliInputError(f"{name}: the samples are raw counts ({said}); give --gain FACTOR with --units "
+                                    f"UNITS, the factor from counts to those units (e.g. --gain 1.2e-6 --units m/s^2)")
+        factor = gain * accel_factor(units)
+        used_units = "counts"
+        units_source = (f"{out.get('units_source') or 'file'}; gain {_num(gain)} {units} per count "
+                        f"({'given' if given_by != 'catalogue' else 'from the catalogue'})")
+    elif stated_units is not None:
         try:
             factor = accel_factor(stated_units)
         except RockcliInputError:
@@ -466,4 +521,6 @@ def _finish(path: Path, out: dict[str, Any], units, dt, given_by: str) -> Record
         meta.update(_orientation(path, out.get("format"), meta.get("component")))
     meta.update(units=used_units, units_source=units_source, factor=factor, dt_source=dt_source,
                 format=out.get("format"), path=str(path))
+    if used_units == "counts":
+        meta.update(gain=gain, gain_units=units)
     return Record(acc=values * factor, dt=used_dt, name=path.name, t_start=float(out.get("t_start", 0.0)), meta=meta)

@@ -85,6 +85,24 @@ def format_fragility_notes(fr) -> str:
     return "\n".join(lines)
 
 
+def format_fragility_azimuths(results: dict, n_azimuths: int) -> tuple[str, str]:
+    """``assess fragility --azimuth worst`` as text: (the fits over the median and over the worst orientation of
+    each pair, with each pair's worst azimuth; the notes)."""
+    median, worst = results["median"], results["worst"]
+    mark = {"right": ">", "left": "<"}
+    lines = [f"Median orientation of each pair (capacities over {n_azimuths} orientations; a pair's IM is the median "
+             f"of its projections' IMs, RotD50-like):", format_fragility(median), "",
+             "Worst orientation of each pair (its smallest capacity, the rocking analogue of RotD100):",
+             format_fragility(worst), "", "Worst azimuth of each pair [deg clockwise from north]:"]
+    lines += [f"  {r.column} / {r.record} / {r.configuration}: {r.azimuth_deg:g} deg, capacity "
+              f"{mark.get(r.censored, '')}{r.capacity:.3g} {worst.im.units}"
+              for r in worst.rows if not r.error and math.isfinite(r.azimuth_deg)]
+    notes = (f"With --azimuth worst a record is a pair of horizontal components: its IM is the median of the IMs of "
+             f"its projections onto the {n_azimuths} orientations, and each orientation's capacity is its smallest "
+             f"overturning factor x that IM.\n" + format_fragility_notes(worst))
+    return "\n".join(lines), notes
+
+
 def fragility_columns(im) -> tuple:
     """CSV columns for intensity measure ``im`` (the IM and capacity columns carry its unit)."""
     s = im.suffix
@@ -124,13 +142,29 @@ def fragility_frame(fr):
 
 
 def write_fragility_csv(fr, path: str | os.PathLike, extra: dict | None = None) -> Path:
-    """Write the fragility CSV (see :func:`fragility_columns`; ``extra``: constant columns appended), atomically."""
+    """Write the fragility CSV (see :func:`fragility_columns`; ``extra``: constant columns appended), atomically.
+
+    ``fr`` may be a list of results (``--azimuth worst``: the median and the worst orientation): their rows
+    one after the other, with the columns ``orientation`` and ``azimuth_deg`` after ``configuration``."""
     from rockcli.report.spectra import constant_columns
 
     from rockcli.report.tables import _vertical_column
 
-    df = fragility_frame(fr)
-    _vertical_column(df, fr)
+    if isinstance(fr, (list, tuple)):
+        import pandas as pd
+
+        frames = []
+        for one in fr:
+            df = fragility_frame(one)
+            _vertical_column(df, one)
+            at = df.columns.get_loc("configuration") + 1
+            df.insert(at, "orientation", [r.orientation for r in one.rows])
+            df.insert(at + 1, "azimuth_deg", [r.azimuth_deg for r in one.rows])
+            frames.append(df)
+        df = pd.concat(frames, ignore_index=True)
+    else:
+        df = fragility_frame(fr)
+        _vertical_column(df, fr)
     return write_text(path, constant_columns(df.to_csv(index=False, float_format="%.6g", lineterminator="\n"), extra))
 
 

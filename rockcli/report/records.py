@@ -15,7 +15,7 @@ from rockcli.files import check_output, save_figure, write_text
 
 #: Columns of the ``rockcli records list --csv`` table.
 LIST_COLUMNS = ("id", "event", "year", "station", "component", "mw", "distance_km", "pga_published_g",
-                "pgv_published_mps", "file", "status", "path")
+                "pgv_published_mps", "file", "status", "path", "present")
 
 
 def write_list_csv(rows: list[dict], path: str | os.PathLike) -> Path:
