@@ -215,7 +215,7 @@ def test_records_list_shows_components(records_dirs, monkeypatch, tmp_path):
     monkeypatch.setenv("ROCKCLI_RECORDS", os.pathsep.join(map(str, records_dirs)))
     res = CliRunner().invoke(main, ["records", "list", "--json"])
     assert res.exit_code == 0, res.output
-    rows = {r["id"]: r for r in json.loads(res.output)}
+    rows = {r["id"]: r for r in json.loads(res.output)["records"]}
     assert list(rows) == IDS
     for rid, (azimuths, files) in PAIRS.items():
         comps = rows[rid]["components"]
