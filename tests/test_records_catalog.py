@@ -114,7 +114,7 @@ def test_not_available_record():
 
 
 def test_unknown_id():
-    with pytest.raises(RockcliInputError, match=r"no such file, nor a catalogue id"):
+    with pytest.raises(RockcliInputError, match=r"no such file here or in the ROCKCLI_RECORDS folders, nor a catalogue id"):
         read_record("kobe-1995-takarazuka-999")
 
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import csv
+import os
 
 import numpy as np
 import pytest
@@ -159,8 +160,30 @@ def test_obspy_unknown_binary(tmp_path):
 def test_missing_file(tmp_path):
     with pytest.raises(RockcliInputError, match=r"no such file"):
         read_record(tmp_path / "nope.AT2")
-    with pytest.raises(RockcliInputError, match=r"nope: no such file, nor a catalogue id"):
+    with pytest.raises(RockcliInputError, match=r"nope: no such file here or in the ROCKCLI_RECORDS folders, "
+                                                r"nor a catalogue id"):
         read_record("nope")
+
+
+def test_a_bare_file_name_is_found_in_the_records_folders(tmp_path, monkeypatch):
+    """``RSN1119_KOBE_TAZ000.AT2`` typed as a bare name: not in the current folder, so the first
+    ROCKCLI_RECORDS folder that holds a file of that name gives it (as for a catalogue record's file);
+    a file of that name in the current folder comes first."""
+    from conftest import write_pulse_record
+
+    first, second, here = tmp_path / "a", tmp_path / "b", tmp_path / "here"
+    for d in (first, second, here):
+        d.mkdir()
+    write_pulse_record(second / "pulse.txt", a_p_g=0.3)
+    monkeypatch.setenv("ROCKCLI_RECORDS", f"{first}{os.pathsep}{second}")
+    monkeypatch.chdir(here)
+    rec = read_record("pulse.txt")
+    assert rec.meta["path"] == str(second / "pulse.txt")
+    assert rec.pga_g == pytest.approx(0.3, rel=1e-3)
+    write_pulse_record(first / "pulse.txt", a_p_g=0.4)
+    assert read_record("pulse.txt").pga_g == pytest.approx(0.4, rel=1e-3)
+    write_pulse_record(here / "pulse.txt", a_p_g=0.5)
+    assert read_record("pulse.txt").pga_g == pytest.approx(0.5, rel=1e-3)
 
 
 def test_empty_file(tmp_path):

@@ -158,8 +158,25 @@ def read_record(source, *, format=None, units=None, dt=None, column=None, compon
         if entry is not None:
             return _read_entry(entry, entry.component, entry.file, fmt, units, dt, column, gain)
         if os.sep not in source and "/" not in source:
-            raise RockcliInputError(f"{source}: no such file, nor a catalogue id (see 'rockcli records list')")
+            found = _in_records_folders(source)
+            if found is None:
+                raise RockcliInputError(f"{source}: no such file here or in the ROCKCLI_RECORDS folders, nor a "
+                                        f"catalogue id (see 'rockcli records list')")
+            source = found
     return _read_path(Path(source), fmt, units, dt, column, given_by="suite" if fill_in else "caller", gain=gain)
+
+
+def _in_records_folders(name: str) -> Path | None:
+    """A bare file name that is not in the current folder: the file of that name in the first folder of
+    :func:`rockcli.records.catalog.search_path` (``ROCKCLI_RECORDS``) that holds one, as for a catalogue
+    record's file (None when none does)."""
+    from rockcli.records.catalog import search_path
+
+    for folder in search_path():
+        candidate = folder / name
+        if candidate.is_file():
+            return candidate
+    return None
 
 
 def _catalog_entry(source):
