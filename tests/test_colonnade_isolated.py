@@ -279,7 +279,7 @@ def test_cli_spectrum_and_assess_run_isolated_colonnades(tmp_path):
 
     runner = CliRunner()
     path = tmp_path / "map.csv"
-    out = runner.invoke(main, ["spectrum", "overturning", "--alpha", "10", "--wp-p", "2:6:3", "--ap", "2:6:3",
+    out = runner.invoke(main, ["spectrum", "overturning", "--alpha", "10", "--wp-over-p", "2:6:3", "--ap", "2:6:3",
                                "--isolation", "none", "--isolation", "linear:TbTp=2,gamma=0.5", "--csv", str(path),
                                "--full-peaks", "--cap-ratio", "0.5"])
     assert out.exit_code == 0, out.output

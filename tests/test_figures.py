@@ -184,7 +184,7 @@ def test_assess_column_figures_and_report(pulse_records, tmp_path, drawn):
 
 
 def test_simulate_report_figure(tmp_path, drawn):
-    run(["simulate", "--column", "nemea", "--pulse", "ricker-anti:ap=0.4,Tp=1.2", "--isolation", "linear:Tb=3",
+    run(["simulate", "--body", "nemea", "--pulse", "ricker-anti:ap=0.4,Tp=1.2", "--isolation", "linear:Tb=3",
          "--report", tmp_path / "r.html"])
     check(drawn[-1], "nemea", "$a_p$ = 0.4 g", "$T_p$ = 1.2 s", "$T_b$ = 3 s", r"$\xi$ = 0.1")
 
@@ -207,7 +207,7 @@ def test_fragility_figures_one_and_two_columns(pulse_records, tmp_path, drawn):
 # --------------------------------------------------------------------------------------------------
 def test_spectrum_map_figures(tmp_path, drawn):
     for isos in (["linear:TbTp=2,xi=0.05"], ["none", "linear:TbTp=2,xi=0.05", "scss:TbTp=2,mu=0.05"]):
-        run(["spectrum", "overturning", "--alpha", 16, "--wp-p", "1:6:4", "--ap", "1:4:4",
+        run(["spectrum", "overturning", "--alpha", 16, "--wp-over-p", "1:6:4", "--ap", "1:4:4",
              *[a for i in isos for a in ("--isolation", i)], "--plot", tmp_path / f"m{len(isos)}.png"])
         check(drawn[-1], r"$\alpha$ = 16°", "symmetric Ricker", "$T_b/T_p$ = 2", r"$\omega_p / p$", "overturning")
     assert r"$\xi$ = 0.05" in texts(drawn[-1]) and r"$\mu$ = 0.05" in texts(drawn[-1])
@@ -216,7 +216,7 @@ def test_spectrum_map_figures(tmp_path, drawn):
 def test_min_overturning_figure11_curves_are_told_apart(tmp_path, drawn):
     isos = ["none", "dcss:TbTp=2,mu1=0.03,mu2=0.07,r=1", "dcss:TbTp=2,mu1=0.03,mu2=0.06,r=2", "scss:TbTp=2,mu=0.05",
             "dcss:TbTp=3,mu1=0.03,mu2=0.07,r=1", "dcss:TbTp=3,mu1=0.03,mu2=0.06,r=2", "scss:TbTp=3,mu=0.05"]
-    run(["spectrum", "min-overturning", "--alpha", 16, "--wp-p", "2:4:2", "--step", 0.2, "--refine", 0,
+    run(["spectrum", "min-overturning", "--alpha", 16, "--wp-over-p", "2:4:2", "--step", 0.2, "--refine", 0,
          *[a for i in isos for a in ("--isolation", i)], "--plot", tmp_path / "f11.png"])
     fig = drawn[-1]
     check(fig, r"$\mu_1$ = 0.03", r"$\mu_2$ = 0.06", r"$R_2/R_1$ = 2", r"$\mu_e$ = 0.05", "$T_b/T_p$ = 3",
@@ -229,11 +229,11 @@ def test_min_overturning_figure11_curves_are_told_apart(tmp_path, drawn):
 
 def test_min_overturning_and_critical_size_panels(tmp_path, drawn):
     run(["spectrum", "min-overturning", "--alpha", "10,20", "--pulse", "ricker-sym", "--pulse", "ricker-anti",
-         "--wp-p", "2:4:2", "--step", 0.2, "--refine", 0, "--plot", tmp_path / "f7.png"])
+         "--wp-over-p", "2:4:2", "--step", 0.2, "--refine", 0, "--plot", tmp_path / "f7.png"])
     check(drawn[-1], r"$\alpha$ = 10°", r"$\alpha$ = 20°", "antisymmetric Ricker", "$T_b/T_p$ = 4", r"$\xi$ = 0.05",
           r"$\gamma$ = 0.01")
-    run(["spectrum", "critical-size", "--alpha", 10, "--pulse", "ricker-sym:Tp=0.6", "--tb-tp", 2,
-         "--wp-p", "1:8:8", "--step", 0.2, "--refine", 0, "--plot", tmp_path / "t1.png"])
+    run(["spectrum", "critical-size", "--alpha", 10, "--pulse", "ricker-sym:Tp=0.6", "--tbtp", 2,
+         "--wp-over-p", "1:8:8", "--step", 0.2, "--refine", 0, "--plot", tmp_path / "t1.png"])
     check(drawn[-1], "$R$ = ", "m ($T_p$ = 0.6 s, $T_b/T_p$ = 2)", r"$\xi$ = 0.05")
 
 

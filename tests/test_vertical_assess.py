@@ -139,12 +139,12 @@ def test_simulate_reads_the_vertical_component_of_a_three_component_file(find_re
     path = str(find_record("20161113_110259_WTMC_20.V2A"))
     comps = {c.meta["component"]: c for c in read_components(path)}
     lib = simulate(parse_column_spec("bassae"), Rigid(), comps["S62W"], vertical=comps["Up"].scaled(0.5))
-    base = ["simulate", "--column", "bassae", "--record", path, "--component", "S62W", "--vertical", path,
+    base = ["simulate", "--body", "bassae", "--record", path, "--component", "S62W", "--vertical", path,
             "--vertical-scale", "0.5", "--json"]
     for extra in ([], ["--vertical-component", "UP"], ["--vertical-column", "3"]):
         out = _cli(base + extra)
         assert out.exit_code == 0, out.output
-        got = json.loads(out.output)
+        got = json.loads(out.stdout)
         assert got["theta_max"] == lib.theta_max and got["verdict"] == lib.verdict, extra
         assert "component Up" in got["vertical"] or extra, got["vertical"]
     bad = _cli(base + ["--vertical-component", "UP", "--vertical-column", "3"])
@@ -239,7 +239,7 @@ def test_min_overturning_under_a_vertical_pulse_brackets_the_simulate_runs():
 
 @pytest.mark.parametrize("command", ["overturning", "min-overturning"])
 def test_spectrum_vertical_pulse_is_reported_and_refused_on_isolated_bases(command, tmp_path):
-    base = ["spectrum", command, "--alpha", "10", "--wp-p", "2:3:2"] + (["--ap", "0:4:3"] if command == "overturning"
+    base = ["spectrum", command, "--alpha", "10", "--wp-over-p", "2:3:2"] + (["--ap", "0:4:3"] if command == "overturning"
                                                                        else ["--isolation", "none"])
     out = _cli(base + ["--vertical-pulse", "sine:ap=0.3", "--csv", str(tmp_path / "v.csv")])
     assert out.exit_code == 0, out.output
