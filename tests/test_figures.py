@@ -16,6 +16,7 @@ import pytest
 from click.testing import CliRunner
 
 from rockcli.cli import main
+from rockcli.models import DEFAULT_GAMMA, DEFAULT_XI
 from rockcli.pulses import make_pulse
 from rockcli.units import G
 
@@ -230,11 +231,11 @@ def test_min_overturning_figure11_curves_are_told_apart(tmp_path, drawn):
 def test_min_overturning_and_critical_size_panels(tmp_path, drawn):
     run(["spectrum", "min-overturning", "--alpha", "10,20", "--pulse", "ricker-sym", "--pulse", "ricker-anti",
          "--wp-over-p", "2:4:2", "--step", 0.2, "--refine", 0, "--plot", tmp_path / "f7.png"])
-    check(drawn[-1], r"$\alpha$ = 10°", r"$\alpha$ = 20°", "antisymmetric Ricker", "$T_b/T_p$ = 4", r"$\xi$ = 0.05",
-          r"$\gamma$ = 0.01")
+    check(drawn[-1], r"$\alpha$ = 10°", r"$\alpha$ = 20°", "antisymmetric Ricker", "$T_b/T_p$ = 4",
+          rf"$\xi$ = {DEFAULT_XI:g}", rf"$\gamma$ = {DEFAULT_GAMMA:g}")  # the one set of defaults
     run(["spectrum", "critical-size", "--alpha", 10, "--pulse", "ricker-sym:Tp=0.6", "--tbtp", 2,
          "--wp-over-p", "1:8:8", "--step", 0.2, "--refine", 0, "--plot", tmp_path / "t1.png"])
-    check(drawn[-1], "$R$ = ", "m ($T_p$ = 0.6 s, $T_b/T_p$ = 2)", r"$\xi$ = 0.05")
+    check(drawn[-1], "$R$ = ", "m ($T_p$ = 0.6 s, $T_b/T_p$ = 2)", rf"$\xi$ = {DEFAULT_XI:g}")
 
 
 # --------------------------------------------------------------------------------------------------
