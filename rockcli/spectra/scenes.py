@@ -198,19 +198,6 @@ class Isolation:
             return re.sub(r"\bTb=[^,]*", f"TbTp={self.ratio:g}", resolved, count=1)
         return ",".join([f"{self.kind}:TbTp={self.ratio:g}"] + [f"{k}={v}" for k, v in self.params])
 
-    @property
-    def short_label(self) -> str:
-        """The panel title: kind, T_b/T_p and every other parameter, defaults included (a map's title
-        states the xi and gamma it used, given or not)."""
-        if self.rigid:
-            return "rigid foundation"
-        kind, _, rest = self.label.partition(":")
-        names = {"xi": r"$\xi$", "gamma": r"$\gamma$", "mu": r"$\mu$", "mu1": r"$\mu_1$", "mu2": r"$\mu_2$",
-                 "uy": "$u_y$"}
-        pairs = [kv.split("=", 1) for kv in rest.split(",") if "=" in kv and not kv.startswith("TbTp=")]
-        extras = ", ".join(f"{names.get(k, k)} = {v}" for k, v in pairs)
-        return f"{kind}, $T_b/T_p$ = {self.ratio:g}" + (f", {extras}" if extras else "")
-
 
 def parse_isolation(text: str) -> Isolation:
     """Parse ``none`` or ``KIND:TbTp=<T_b/T_p>,...`` (e.g. ``linear:TbTp=2,xi=0.05,gamma=0.01``).
