@@ -128,9 +128,11 @@ def test_bad_sliding_specs_are_one_sentence(spec, words):
 # The Bouc-Wen element: exact branches against Eq (34) integrated as an ODE
 # ------------------------------------------------------------------------------------------
 @pytest.mark.parametrize("n, beta", [(2, 0.5), (2, 0.1), (1, 0.5), (1, 0.2), (2, -0.3)])
-def test_exact_branches_match_eq34_integrated_by_radau(n, beta):
+def test_exact_branches_match_eq34_integrated_as_an_ode(n, beta):
     """z from the closed-form branches (the kernels' bearings module) under an imposed
-    u(t) = U sin(t) + small harmonics, against Eq (34) integrated by Radau at tight tolerance."""
+    u(t) = U sin(t) + small harmonics, against Eq (34) integrated by SciPy's DOP853 at tight tolerance
+    (an explicit 8th-order method: Radau gives the same z to 1e-12 here at 30 times the cost; with
+    |u'|/u_y <= 14 1/s along this path Eq (34) is not stiff)."""
     uy = 2e-3
     f = SingleConcaveSliding(3.0, 0.05, uy, n=n, beta=beta, gamma_bw=1 - beta)
     U = 0.01
@@ -151,11 +153,11 @@ def test_exact_branches_match_eq34_integrated_by_radau(n, beta):
     v = ud_of(fine)
     turns = [brentq(ud_of, fine[k], fine[k + 1], xtol=1e-15) for k in np.nonzero(v[:-1] * v[1:] < 0)[0]]
     t = np.unique(np.concatenate([t, turns]))
-    ref = solve_ivp(rhs, (0.0, 12.0), [0.0], method="Radau", rtol=1e-12, atol=1e-13, t_eval=t, max_step=0.002).y[0]
+    ref = solve_ivp(rhs, (0.0, 12.0), [0.0], method="DOP853", rtol=1e-12, atol=1e-13, t_eval=t).y[0]
     path = np.concatenate([[0.0], u_of(t)])  # from the centred bearing at u = 0
     z = bearing_force_path(f, path)["z"][1:]
     assert len(turns) > 10
-    assert np.max(np.abs(z - ref)) < 2e-7
+    assert np.max(np.abs(z - ref)) < 1e-8  # measured <= 1.4e-9 (the reference's own error)
     assert np.max(np.abs(z)) > 0.9 and np.max(np.abs(z)) <= 1.0
 
 

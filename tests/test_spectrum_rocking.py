@@ -21,7 +21,8 @@ from rockcli.cli import main
 from rockcli.errors import RockcliInputError
 from rockcli.models import Block, Rigid, parse_isolation_spec
 from rockcli.records import read_record
-from rockcli.report.rocking import ROCKING_COLUMNS, foundation_legend
+from rockcli.report.figures import NBSP, spec_text
+from rockcli.report.rocking import ROCKING_COLUMNS
 from rockcli.solve import simulate
 from rockcli.spectra import Runner, rocking_spectrum, size_grid
 from rockcli.units import G
@@ -220,8 +221,8 @@ def test_cli_point_equals_cli_simulate(tmp_path, synthetic):
 
 
 def test_legend_names_the_bearing_parameters():
-    assert foundation_legend("none") == "rigid foundation"
-    text = foundation_legend("linear:Tb=2.5,xi=0.05,gamma=0.01")
-    assert text.startswith("linear") and "$T_b$ = 2.5 s" in text and r"$\xi$ = 0.05" in text
+    assert spec_text("none") == "rigid foundation"
+    text = spec_text("linear:Tb=2.5,xi=0.05,gamma=0.01").replace(NBSP, " ")
+    assert text.startswith("linear bearings") and "$T_b$ = 2.5 s" in text and r"$\xi$ = 0.05" in text
     assert r"$\gamma$ = 0.01" in text
 

@@ -11,6 +11,7 @@ import io
 from pathlib import Path
 
 from rockcli.files import check_output, save_figure, write_text
+from rockcli.report.figures import spec_text
 from rockcli.report.spectra import _column_text, _pyplot, constant_columns
 
 #: Columns of ``rockcli spectrum rocking --csv`` (one row per block size of every curve); the same names
@@ -53,26 +54,6 @@ def rocking_json(curves) -> list:
         out.append({"alpha_deg": float(c.alpha_deg), "isolation": c.isolation,
                     **{k: cols[k].tolist() for k in ROCKING_COLUMNS[4:]}})
     return out
-
-
-#: How the legend writes a bearing's parameters (others as ``key = value``).
-_PARAM_NAMES = {"Tb": ("$T_b$", " s"), "xi": (r"$\xi$", ""), "gamma": (r"$\gamma$", ""), "mu": (r"$\mu$", ""),
-                "mu1": (r"$\mu_1$", ""), "mu2": (r"$\mu_2$", ""), "Q": ("$Q/W$", ""), "uy": ("$u_y$", " m"),
-                "R1": ("$R_1$", " m"), "R2": ("$R_2$", " m")}
-
-
-def foundation_legend(label: str) -> str:
-    """``linear:Tb=2.5,xi=0.05,gamma=0.01`` -> ``linear, T_b = 2.5 s, xi = 0.05, gamma = 0.01`` (mathtext);
-    ``none`` -> ``rigid foundation``."""
-    if label == "none":
-        return "rigid foundation"
-    kind, _, rest = label.partition(":")
-    items = []
-    for item in filter(None, rest.split(",")):
-        key, _, value = item.partition("=")
-        name, unit = _PARAM_NAMES.get(key, (key, ""))
-        items.append(f"{name} = {value}{unit}")
-    return ", ".join([kind] + items)
 
 
 _STYLES = ("-", "--", ":", "-.")
@@ -119,7 +100,7 @@ def plot_rocking_spectrum(curves, path, *, title: str, dpi: int = 120) -> Path:
             style = _STYLES[alphas.index(c.alpha_deg) % len(_STYLES)]
             rigid = c.isolation == "none"
             colour = "k" if rigid else f"C{isolated.index(c.isolation) % 10}"
-            label = f"$\\alpha$ = {c.alpha_deg:g}$\\degree$, {foundation_legend(c.isolation)}"
+            label = f"$\\alpha$ = {c.alpha_deg:g}$\\degree$, {spec_text(c.isolation)}"
             ax.plot(c.R, c.plotted, ls=style, lw=2.6 if rigid else 1.3, color=colour, label=label,
                     zorder=3 if rigid else 4)
             over = np.asarray(c.overturned, bool)
