@@ -36,7 +36,7 @@ def test_column_specs():
     c = parse_column_spec("cab:height=2,width=0.5")
     assert c.height == pytest.approx(2.0) and c.width == pytest.approx(0.5)
     assert custom_column("x", height=5.95, width=1.11).R == pytest.approx(column("bassae").R)
-    for bad, words in [("doric", "unknown column 'doric'"), ("s:R=1", "go together"),
+    for bad, words in [("doric", "unknown body 'doric'"), ("s:R=1", "go together"),
                        ("s:R=1,alpha=10,height=2", "not both"), ("s:R=-1,alpha=10", "positive"),
                        ("s:R=one,alpha=10", "must be a number"), ("s:depth=3", "not one of"),
                        (":R=1,alpha=10", "needs a name"), ("s:R=1,alpha=95", "between 0 and 90")]:

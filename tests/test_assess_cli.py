@@ -96,7 +96,7 @@ def test_junk_file_in_folder_is_reported_in_its_rows(pulse_records, tmp_path):
 
 
 @pytest.mark.parametrize("args, words", [
-    (["doric"], "unknown column 'doric'"),
+    (["doric"], "unknown body 'doric'"),
     (["bassae", "--isolation", "linear:Tb=-2"], "isolation period Tb must be positive"),
     (["bassae", "--isolation", "springs"], "unknown isolation 'springs'"),
     (["bassae", "--records", "no/such/file.AT2"], "no/such/file.AT2: no such file or folder"),

@@ -265,7 +265,7 @@ CLI_CASES = {
                             ["alpha = 1e-09 deg"]),
     "assess-custom-R": (["assess", "column", "--R", "1e-6", "--alpha", "10", "--records", "good.AT2"],
                         ["R = 1e-06 m"]),
-    "assess-unknown-column": (["assess", "column", "parthenon", "--records", "good.AT2"], ["unknown column 'parthenon'"]),
+    "assess-unknown-column": (["assess", "column", "parthenon", "--records", "good.AT2"], ["unknown body 'parthenon'"]),
     "fragility-all-nan": (["assess", "fragility", "bassae", "--records", "nan.AT2", "--csv", "f.csv"],
                           BAD_FILE_WORDS["nan.AT2"]),
     "fragility-csv-under-file": (["assess", "fragility", "bassae", "--records", "good.AT2", "--csv", "afile/f.csv"],

@@ -123,9 +123,9 @@ def test_old_spelling_runs_with_one_note_on_stderr():
 # messages that suggest the right syntax
 # --------------------------------------------------------------------------------------------------
 @pytest.mark.parametrize("args, words", [
-    (["simulate", "--body", "statue", *SINE], ["unknown column 'statue'", "statue:height=", "NAME:R=<m>,alpha=<deg>"]),
+    (["simulate", "--body", "statue", *SINE], ["unknown body 'statue'", "statue:height=", "NAME:R=<m>,alpha=<deg>"]),
     (["simulate", "--body", "nemia", *SINE], ["did you mean 'nemea'"]),
-    (["assess", "column", "statue", "--records", "x"], ["unknown column 'statue'", "NAME:height=<m>,width=<m>"]),
+    (["assess", "column", "statue", "--records", "x"], ["unknown body 'statue'", "NAME:height=<m>,width=<m>"]),
     (["simulate", "--bdy", "bassae", *SINE], ["--body"]),
     (["spectrum", "overturning", "--alpha", "10", "--wp-over", "1:2:2"], ["--wp-over-p"]),
     (["simulate", "--body", "bassae", *SINE, "--isolation", "linar:Tb=2"], ["'linear:Tb=2.5,xi=0.1,gamma=0.01'"]),

@@ -110,7 +110,7 @@ def test_check_tolerance_reports_a_well_and_an_ill_conditioned_run(tmp_path):
 
 
 @pytest.mark.parametrize("args, words", [
-    (["--body", "parthenon", "--pulse", "sine:ap=1,Tp=1"], "unknown column"),
+    (["--body", "parthenon", "--pulse", "sine:ap=1,Tp=1"], "unknown body"),
     (["--R", "1", "--pulse", "sine:ap=1,Tp=1"], "--R and --alpha"),
     (["--R", "-1", "--alpha", "10", "--pulse", "sine:ap=1,Tp=1"], "positive"),
     (["--body", "bassae", "--column-x"], "No such option"),

@@ -124,8 +124,8 @@ def column(name: str) -> Block:
 
         close = difflib.get_close_matches(key, COLUMN_PRESETS, n=1)
         raise RockcliInputError(
-            f"unknown column {name!r}" + (f" (did you mean {close[0]!r}?)" if close else "")
-            + f": the presets are {' and '.join(sorted(COLUMN_PRESETS))}; a body of your own is written "
+            f"unknown body {name!r}" + (f" (did you mean {close[0]!r}?)" if close else "")
+            + f": the presets are the columns {' and '.join(sorted(COLUMN_PRESETS))}; a body of your own is written "
               f"NAME:R=<m>,alpha=<deg> or NAME:height=<m>,width=<m>, e.g. {key or 'statue'}:height=1.7,width=0.45")
     height, width, _ = COLUMN_PRESETS[key]
     return Block.from_dimensions(height, width, key)
