@@ -228,3 +228,23 @@ def test_parse_pulse_spec_errors(spec, match):
     with pytest.raises(RockcliInputError, match=match) as info:
         parse_pulse_spec(spec)
     assert "\n" not in str(info.value)
+
+
+def test_one_time_gives_the_bits_of_the_general_path():
+    """``acceleration(t)`` for one float takes a shortcut (no arrays; the slow references call it ~10^5
+    times per scene): the same value, bit for bit, as the general path on a 0-d array, at 40,000 random
+    times in and around the support of 80 random pulses of every shape, and at the support's ends and
+    the floats beside them."""
+    rng = np.random.default_rng(25)
+    for i in range(80):
+        p = make_pulse(list(PULSE_SHAPES)[i % 4], rng.uniform(-30.0, 30.0), rng.uniform(0.05, 5.0), rng.uniform(0.0, 3.0))
+        lo, hi = p.support()
+        ends = [lo, hi, np.nextafter(lo, -np.inf), np.nextafter(lo, np.inf), np.nextafter(hi, -np.inf),
+                np.nextafter(hi, np.inf)]
+        for t in np.concatenate([rng.uniform(lo - 1.0, hi + 1.0, 500), ends]):
+            general = p.acceleration(np.asarray(t))  # a 0-d array: the general path
+            assert isinstance(general, float)
+            for one in (float(t), np.float64(t)):
+                fast = p.acceleration(one)
+                assert type(fast) is float and fast == general and math.copysign(1, fast) == math.copysign(1, general)
+    assert p.acceleration(hi + 1.0) == 0.0 and p.acceleration(lo - 1.0) == 0.0

@@ -186,6 +186,10 @@ class Pulse:
 
     def acceleration(self, t):
         """Ground acceleration [m/s^2] at times ``t`` [s] (scalar or array)."""
+        if isinstance(t, float):  # one time (a Python or numpy float): the same operations, without arrays
+            tau = t - self.t0
+            ts, te = self._tau_bounds()
+            return float(self._A(np.float64(tau))) if ts <= tau <= te else 0.0
         t = np.asarray(t, dtype=float)
         tau = t - self.t0
         ts, te = self._tau_bounds()
