@@ -236,8 +236,9 @@ def test_one_time_gives_the_bits_of_the_general_path():
     times in and around the support of 80 random pulses of every shape, and at the support's ends and
     the floats beside them."""
     rng = np.random.default_rng(25)
+    shapes = list(PULSE_SHAPES)
     for i in range(80):
-        p = make_pulse(list(PULSE_SHAPES)[i % 4], rng.uniform(-30.0, 30.0), rng.uniform(0.05, 5.0), rng.uniform(0.0, 3.0))
+        p = make_pulse(shapes[i % 4], rng.uniform(-30.0, 30.0), rng.uniform(0.05, 5.0), rng.uniform(0.0, 3.0))
         lo, hi = p.support()
         ends = [lo, hi, np.nextafter(lo, -np.inf), np.nextafter(lo, np.inf), np.nextafter(hi, -np.inf),
                 np.nextafter(hi, np.inf)]
