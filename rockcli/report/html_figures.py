@@ -72,7 +72,7 @@ def _figure(width: float, height: float):
     from rockcli.report.figures import new_figure
 
     with _rc():
-        fig = new_figure(width, height)
+        fig = new_figure(width, height, dpi=DPI)
         return fig, fig.add_subplot()
 
 
@@ -91,28 +91,58 @@ def _title(ax, title: str, configurations=()) -> None:
     put_title(ax, title + (f"\n{key}" if key else ""), fontsize=9.5, loc="left")
 
 
-def readability_problems(fig, min_pt: float = MIN_FONT_PT) -> list[str]:
-    """Texts of ``fig`` smaller than ``min_pt`` or (partly) outside the canvas, one line each (empty: none)."""
-    from matplotlib.text import Text
+def _drawn_texts(fig) -> list:
+    """The text artists ``fig`` draws: its own texts, and per axes the titles, axis labels, texts, legend
+    and the tick labels of the ticks in view."""
+    out = list(fig.texts) + [t for t in (fig._suptitle, fig._supxlabel, fig._supylabel) if t is not None]
+    for ax in fig.axes:
+        if not ax.get_visible():
+            continue
+        out += [ax.title, ax._left_title, ax._right_title, ax.xaxis.label, ax.yaxis.label, *ax.texts]
+        legend = ax.get_legend()
+        if legend is not None:
+            out += list(legend.get_texts())
+        for axis in (ax.xaxis, ax.yaxis):
+            for tick in axis._update_ticks():  # the ticks in view, as drawn
+                out += [t for t in (tick.label1, tick.label2) if t.get_visible()]
+    return [t for t in out if t.get_visible() and t.get_text().strip()]
 
-    fig.canvas.draw()
+
+def readability_problems(fig, min_pt: float = MIN_FONT_PT, *, drawn: bool = False) -> list[str]:
+    """What makes ``fig`` hard to read where the report embeds it: texts smaller than ``min_pt`` and texts
+    (or anything else drawn) outside the canvas, one line each (empty: none). ``drawn``: the figure has just
+    been drawn (saved at its own dpi): measure its layout as it is instead of laying it out again."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    if not hasattr(fig.canvas, "get_renderer"):  # a figure pyplot has closed
+        FigureCanvasAgg(fig)
+    if not drawn:
+        fig.draw_without_rendering()  # the layout as drawn, without the pixels
     renderer = fig.canvas.get_renderer()
     box = fig.bbox
     out = []
-    for t in fig.findobj(Text):
-        if not t.get_visible() or not t.get_text().strip():
-            continue
+
+    def outside(e) -> bool:
+        return e.x0 < box.x0 - 1 or e.y0 < box.y0 - 1 or e.x1 > box.x1 + 1 or e.y1 > box.y1 + 1
+
+    for t in _drawn_texts(fig):
         if t.get_fontsize() < min_pt - 1e-9:
             out.append(f"{t.get_text()!r}: {t.get_fontsize():g} pt < {min_pt:g} pt")
         e = t.get_window_extent(renderer)
-        if e.x0 < box.x0 - 1 or e.y0 < box.y0 - 1 or e.x1 > box.x1 + 1 or e.y1 > box.y1 + 1:
+        if outside(e):
             out.append(f"{t.get_text()!r}: outside the figure ({e.x0:.0f}..{e.x1:.0f} x {e.y0:.0f}..{e.y1:.0f} "
                        f"of {box.x1:.0f} x {box.y1:.0f} px)")
+    tight = fig.get_tightbbox(renderer).transformed(fig.dpi_scale_trans)
+    if outside(tight):
+        out.append(f"something drawn lies outside the figure ({tight})")
     return out
 
 
-def _bytes(fig, dpi: int = DPI) -> bytes:
+def _bytes(fig) -> bytes:
+    """The PNG of ``fig`` at its own resolution (:data:`DPI`: the figures are made at the resolution they are
+    saved at, so that what is measured after saving, e.g. a legend's place, is what was saved)."""
     plt = _pyplot()
+    dpi = fig.dpi
     buf = io.BytesIO()
     try:
         fig.savefig(buf, format="png", dpi=dpi)
@@ -207,7 +237,7 @@ def responses_png(runs, block, excitation, label: str) -> bytes | None:
     tilt = min(2.0, max(1.2, 1.05 * peak))
     width = PAGE_WIDTH_IN if n > 1 else FIGURE_WIDTH_IN
     with _rc():
-        fig = new_figure(width, 0.75 + 1.55 * len(keys))
+        fig = new_figure(width, 0.75 + 1.55 * len(keys), dpi=DPI)
         grid = fig.add_gridspec(len(keys), n)
         axes, first = {}, None
         for j in range(n):
