@@ -74,6 +74,11 @@ def test_safe_island_no_uplift_undecided_and_stroke():
     iso = _row(configuration="Tb=2.5s", theta_max_over_alpha=0.2, base_disp_max_m=0.3369)
     assert "the base moves up to 0.34 m" in scene_sentence(iso, isolated=True)
     assert "base moves" not in scene_sentence(iso, isolated=False)
+    # a toppled run's displacement is no stroke to design for: said as such
+    fell = _row(configuration="Tb=2.5s", verdict="overturned", overturned=True, t_overturn_s=6.6, base_disp_max_m=0.524)
+    words = scene_sentence(fell, isolated=True)
+    assert "the base had moved up to 0.52 m when it toppled (not a stroke to design for)" in words
+    assert "the stroke the bearings must allow" not in words
 
 
 def test_configuration_sentence_over_several_records():
@@ -198,6 +203,7 @@ def test_assess_column_report(find_record, tmp_path):
     alts = " ".join(a["alt"] for a in images)
     assert "standing on the ground" in alts and "linear (rubber) bearings" in alts
     assert "assess column" in page.text["reproduce"]
+    assert "Margins are found on a grid" in page.text["assumptions"]
 
     # the terminal: the answer in plain words after the table, readable without the legend
     out = res.output
@@ -207,6 +213,9 @@ def test_assess_column_report(find_record, tmp_path):
         word = "topples" if row.overturned else "survives"
         where = "standing on the ground" if row.configuration == "none" else "on linear (rubber) bearings, Tb=2.5s"
         assert f"{where}: {word}" in plain
+    if df.overturned.tolist() == [True, False]:  # the README's words for one record
+        assert re.search(r"In short: the statue topples on the ground; isolation Tb=2\.5s saves it, provided the "
+                         r"bearings can move \d\.\d\d m\.", re.sub(r"\s+", " ", plain))
 
 
 def test_simulate_report_with_pulse(tmp_path):
@@ -226,6 +235,9 @@ def test_simulate_report_with_pulse(tmp_path):
     assert (TOPPLES if out["verdict"] == "overturned" else SURVIVES) in classes.split()
     assert f"{out['base_disp_max_m']:.2f} m" in text
     assert "idealised" in page.text["records"].lower() and "sine" in page.text["records"]
+    # simulate searches no margin: the page does not speak of margins or toppling factors
+    for sid, text in page.text.items():
+        assert "margin" not in text.lower() and "toppling factor" not in text.lower(), sid
 
 
 def test_fragility_report(tmp_path):
@@ -263,3 +275,59 @@ def test_the_self_contained_check_catches_external_resources(bad, tmp_path):
     p.write_text(f"<html><body><section id='answer'>{bad}</section></body></html>")
     with pytest.raises(AssertionError):
         assert_self_contained(parse(p), p.read_text())
+
+
+# --------------------------------------------------------------------------------------------------
+# provenance, unavailable records, the pulse's sign, the command to reproduce it
+# --------------------------------------------------------------------------------------------------
+
+def test_units_provenance_says_where_the_units_came_from(find_record, tmp_path):
+    """A catalogue record without a header is read with the catalogue's units: said so, not "given"."""
+    from rockcli.assess.excitations import resolve_excitations
+    from rockcli.report.html import records_section
+
+    find_record("C02-065")
+    (x,), _ = resolve_excitations(["parkfield-1966-c02-065"])
+    assert x.motion.meta["units_source"] == "catalogue"
+    text = records_section([x])
+    assert "from rockcli&#x27;s record catalogue" in text and "given" not in text
+    assert "time step from rockcli&#x27;s record catalogue" in text
+    # the same file outside the catalogue, with --units and --dt given: given by the user
+    copy = tmp_path / "headerless.txt"
+    copy.write_bytes(find_record("C02-065").read_bytes())
+    (y,), _ = resolve_excitations([str(copy)], units="g", dt=0.01)
+    assert "as given by the user (--units" in records_section([y])
+    # a file that states its units
+    (z,), _ = resolve_excitations([str(write_pulse_record(tmp_path / "p.txt", -0.5, 0.5, "ricker-anti"))])
+    text = records_section([z])
+    assert "as stated in the file" in text
+    # the fitted pulse's sign in words: a direction along the record's axis
+    assert "a_p &lt; 0: its first peak accelerates the ground toward the negative side of the record&#x27;s axis" in text
+
+
+def test_unavailable_and_skipped_records_are_listed():
+    from rockcli.assess.excitations import Skipped, Unavailable
+    from rockcli.report.html import records_section
+
+    text = records_section([], [Unavailable("vrancea-1977-bucharest", "no public file is known"),
+                                Skipped("SOURCES.csv", "not a record")])
+    assert "Not available" in text and "vrancea-1977-bucharest: no public file is known" in text
+    assert "Skipped 1 file" in text and "SOURCES.csv" in text
+
+
+def test_reproduce_command_has_its_folder_and_environment():
+    from rockcli.report.html import reproduce_command
+
+    cmd = ("rockcli assess column statue:height=1.79,width=0.5 --records kobe-1995-takarazuka-000 --records "
+           "'my file.AT2' --isolation none --report out/s.html")
+    got = reproduce_command(cmd, {"ROCKCLI_RECORDS": "/data/records:/data/extra", "HOME": "/root"}, "/work/x y")
+    lines = got.splitlines()
+    assert lines[0] == "cd '/work/x y'"
+    assert lines[1].startswith("ROCKCLI_RECORDS=/data/records:/data/extra rockcli assess column statue:")
+    assert "HOME" not in got and "--records 'my file.AT2' \\" in got and lines[-1].strip() == "--report out/s.html"
+    import shlex
+
+    # what a shell would run is the command given, word for word
+    joined = " ".join(line.rstrip(" \\") for line in lines[1:])
+    assert shlex.split(joined) == ["ROCKCLI_RECORDS=/data/records:/data/extra", *shlex.split(cmd)]
+    assert "ROCKCLI_RECORDS" not in reproduce_command(cmd, {}, "/w")

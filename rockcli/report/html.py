@@ -401,11 +401,13 @@ def reproduce_section(command: str) -> str:
             + f"<p class='note'>Written {esc(when)} on {esc(platform.system())} {esc(platform.machine())}.</p>")
 
 
-def page(title: str, subtitle: str, sections: dict) -> str:
-    """The whole page: ``sections`` maps every id of :data:`SECTIONS` to its HTML body."""
-    nav = " ".join(f'<a href="#{sid}">{esc(name)}</a>' for sid, name in SECTIONS[1:])
+def page(title: str, subtitle: str, sections: dict, names: dict | None = None) -> str:
+    """The whole page: ``sections`` maps every id of :data:`SECTIONS` to its HTML body; ``names`` renames
+    sections (``simulate`` has a verdict and no margins)."""
+    named = [(sid, (names or {}).get(sid, name)) for sid, name in SECTIONS]
+    nav = " ".join(f'<a href="#{sid}">{esc(name)}</a>' for sid, name in named[1:])
     body = []
-    for sid, name in SECTIONS:
+    for sid, name in named:
         head = f"<h1>{esc(title)}</h1><p class='subtitle'>{esc(subtitle)}</p>" if sid == "answer" else \
             f"<h2>{esc(name)}</h2>"
         body.append(f'<section id="{sid}">{head}\n{sections[sid]}\n' + (f"<nav>Contents: {nav}</nav>"

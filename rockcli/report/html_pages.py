@@ -482,7 +482,8 @@ def simulate_report(block, foundation, excitation, response, *, label: str, chec
         "figures": figure(png, caption.strip()), "certainty": _list(items),
         "assumptions": assumptions_section(margins=False), "reproduce": reproduce_section(command),
     }
-    return page(_title([block]), "rockcli simulate: the rocking response of one body to one ground motion", sections)
+    return page(_title([block]), "rockcli simulate: the rocking response of one body to one ground motion", sections,
+                names={"verdicts": "The verdict"})
 
 
 __all__ = ["assessment_report", "fragility_report", "simulate_report"]
