@@ -136,7 +136,8 @@ def _deciding(df) -> dict:
         if len(fell):
             out[conf] = set(fell.record)
         else:
-            key = rows.overturn_scale.fillna(math.inf) if rows.overturn_scale.notna().any() else -rows.theta_max_over_alpha
+            margins = rows.overturn_scale.notna().any()
+            key = rows.overturn_scale.fillna(math.inf) if margins else -rows.theta_max_over_alpha
             out[conf] = {rows.record[key.idxmin()]}
     return out
 
@@ -222,7 +223,8 @@ def _assessment(rows_by_conf: dict):
     confs = parse_configurations(["none", "linear:Tb=2"])
     labels = [r.record for r in next(iter(rows_by_conf.values()))]
     rows = {(r.record, h): r for h, rs in rows_by_conf.items() for r in rs}
-    return SimpleNamespace(configurations=confs, excitations=[SimpleNamespace(label=lab, motion=object()) for lab in labels],
+    excitations = [SimpleNamespace(label=lab, motion=object()) for lab in labels]
+    return SimpleNamespace(configurations=confs, excitations=excitations,
                            row=lambda column, record, header: rows[(record, header)])
 
 
@@ -236,7 +238,7 @@ def _row(record, fell=False, scale=math.nan, peak=0.0, proven=True, error=""):
 def test_deciding_records_rules():
     """Every toppling record (smallest factor first); else the undecided runs; else the closest call: the
     smallest toppling factor, or without margins the largest peak; a failed run decides nothing."""
-    from rockcli.report.html_pages import deciding_records
+    from rockcli.report.html_deciding import deciding_records
 
     a = _assessment({"none": [_row("a", True, 0.8), _row("b", scale=1.3, peak=0.5), _row("c", True, 0.4),
                               _row("d", error="unreadable")],

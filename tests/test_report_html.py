@@ -90,7 +90,8 @@ def test_configuration_sentence_over_several_records():
     # the records that topple it, smallest factor first; the closest call among the survivors; the largest stroke
     # where it survives (b, in which it toppled, moved the base 0.45 m: no stroke to design for, left out)
     assert s.startswith("topples under 2 of 4 records (d already at 0.50 times, b already at 0.70 times)")
-    assert "the closest call is c: 1.30 times stronger" in s and "where it survives, the base moves up to 0.31 m (c;" in s
+    assert "the closest call is c: 1.30 times stronger" in s
+    assert "where it survives, the base moves up to 0.31 m (c;" in s
     assert "0.45" not in s
     assert "up to 0.31 m (c;" in configuration_sentence([rows[0], rows[2]], isolated=True)
     assert "where it survives" not in configuration_sentence([rows[0], rows[2]], isolated=True)
@@ -284,7 +285,7 @@ def test_the_self_contained_check_catches_external_resources(bad, tmp_path):
 def test_units_provenance_says_where_the_units_came_from(find_record, tmp_path):
     """A catalogue record without a header is read with the catalogue's units: said so, not "given"."""
     from rockcli.assess.excitations import resolve_excitations
-    from rockcli.report.html import records_section
+    from rockcli.report.html_records import records_section
 
     find_record("C02-065")
     (x,), _ = resolve_excitations(["parkfield-1966-c02-065"])
@@ -302,12 +303,13 @@ def test_units_provenance_says_where_the_units_came_from(find_record, tmp_path):
     text = records_section([z])
     assert "as stated in the file" in text
     # the fitted pulse's sign in words: a direction along the record's axis
-    assert "a_p &lt; 0: its first peak accelerates the ground toward the negative side of the record&#x27;s axis" in text
+    assert ("a_p &lt; 0: its first peak accelerates the ground toward the negative side of the record&#x27;s axis"
+            in text)
 
 
 def test_unavailable_and_skipped_records_are_listed():
     from rockcli.assess.excitations import Skipped, Unavailable
-    from rockcli.report.html import records_section
+    from rockcli.report.html_records import records_section
 
     text = records_section([], [Unavailable("vrancea-1977-bucharest", "no public file is known"),
                                 Skipped("SOURCES.csv", "not a record")])

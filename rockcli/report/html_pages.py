@@ -2,8 +2,9 @@
 (:func:`fragility_report`) and ``simulate`` (:func:`simulate_report`).
 
 Each returns the page as a string (see :mod:`rockcli.report.html` for its sections); the CLI writes
-it with :func:`rockcli.report.html.write_report`. Drawing the figures reruns the critical record
-of each body with its full history (a few runs); everything else comes from the results passed in.
+it with :func:`rockcli.report.html.write_report`. Drawing the figures reruns the records that decide
+each verdict with their full history (:mod:`rockcli.report.html_deciding`: a few runs); everything
+else comes from the results passed in.
 """
 
 from __future__ import annotations
@@ -11,11 +12,13 @@ from __future__ import annotations
 import math
 from types import SimpleNamespace
 
-from rockcli.assess.verdicts import (SURVIVES, TOPPLES, UNDECIDED, body_noun, body_words, configuration_words,
+from rockcli.assess.verdicts import (SURVIVES, TOPPLES, body_noun, body_words, configuration_words,
                                      isolation_summary, outcome, question, scene_sentence, survivor_stroke,
                                      verdict_lines)
 from rockcli.report.html import (assumptions_section, body_section, card, configurations_section, esc, figure,
-                                 num, page, plural, records_section, reproduce_section, table)
+                                 num, page, plural, reproduce_section, table)
+from rockcli.report.html_deciding import response_figures
+from rockcli.report.html_records import records_section
 from rockcli.report.figures import block_text
 from rockcli.report.html_figures import margins_png, png_of, share_png, stroke_png
 
@@ -49,112 +52,6 @@ def _list(items) -> str:
 # --------------------------------------------------------------------------------------------------
 # assess column
 # --------------------------------------------------------------------------------------------------
-
-#: At most this many records per configuration get a response figure (the most severe first: the smallest
-#: toppling factor); the others that decide its verdict are named under the figures.
-MAX_DECIDING = 4
-
-
-def _severity(r):
-    """Sort key of the rows that topple a body: smallest toppling factor first, then earliest fall."""
-    s = r.overturn_scale
-    return (s if math.isfinite(s) else math.inf, r.t_overturn_s if math.isfinite(r.t_overturn_s) else math.inf)
-
-
-def _closeness(r):
-    """Sort key of surviving rows: the closest call first (smallest toppling factor, then largest peak)."""
-    s = r.overturn_scale
-    return (s if math.isfinite(s) else math.inf, -r.theta_max_over_alpha)
-
-
-def deciding_records(assessment, block) -> dict:
-    """The records that decide the verdict of ``block`` on each configuration.
-
-    Returns ``{configuration header: (why, rows)}``: ``why`` is :data:`TOPPLES` (``rows``: every record
-    that topples it there, the most severe first), ``undecided`` (no record topples it, ``rows``: the
-    runs not proven) or ``survives`` (``rows``: the closest call alone, the smallest toppling factor,
-    else the largest peak tilt). Records that could not be run decide nothing.
-    """
-    out = {}
-    ran = [x.label for x in assessment.excitations if x.motion is not None]
-    for c in assessment.configurations:
-        rows = [assessment.row(block.name, lab, c.header) for lab in ran]
-        rows = [r for r in rows if not r.error]
-        topples = sorted((r for r in rows if outcome(r) == TOPPLES), key=_severity)
-        undecided = [r for r in rows if outcome(r) == UNDECIDED]
-        survived = sorted((r for r in rows if outcome(r) == SURVIVES), key=_closeness)
-        if topples:
-            out[c.header] = (TOPPLES, topples)
-        elif undecided:
-            out[c.header] = (UNDECIDED, undecided)
-        elif survived:
-            out[c.header] = (SURVIVES, survived[:1])
-    return out
-
-
-def _why_words(why: str, c, noun: str) -> str:
-    where = configuration_words(c)
-    return {TOPPLES: f"topples {noun} {where}", UNDECIDED: f"leaves {noun} undecided {where}",
-            SURVIVES: f"comes closest to toppling {noun} {where} (which it survives)"}[why]
-
-
-def _response_figures(assessment, block) -> str:
-    """For every configuration, the records that decide its verdict (:func:`deciding_records`: each
-    toppling record, else the closest call), rerun with their history; each record on every configuration
-    side by side, on common axes (:func:`rockcli.report.html_figures.responses_png`)."""
-    from rockcli.report.figures import plot_grid_dt
-    from rockcli.report.html_figures import responses_png
-    from rockcli.solve import simulate
-
-    deciding = deciding_records(assessment, block)
-    confs = {c.header: c for c in assessment.configurations}
-    noun = body_noun(block)
-    drawn, reasons, left = [], {}, []
-    for header, (why, rows) in deciding.items():
-        for r in rows[:MAX_DECIDING]:
-            reasons.setdefault(r.record, []).append(_why_words(why, confs[header], noun))
-        if len(rows) > MAX_DECIDING:
-            left.append(f"{_why_words(why, confs[header], noun)}: also {', '.join(r.record for r in rows[MAX_DECIDING:])}"
-                        f" (the {MAX_DECIDING} with the smallest toppling factors are drawn)")
-    by_label = {x.label: x for x in assessment.excitations}
-    out = []
-    for x in assessment.excitations:
-        if x.label not in reasons:
-            continue
-        runs, notes = [], []
-        for c in assessment.configurations:
-            resp = simulate(block, c.foundation, x.motion, history=True, history_dt=plot_grid_dt(x.motion),
-                            **assessment.solver)
-            if resp.status < 0:
-                notes.append(f"{configuration_words(c)}: the rerun failed ({resp.message})")
-                continue
-            row = assessment.row(block.name, x.label, c.header)
-            if bool(resp.overturned) != bool(row.overturned):
-                notes.append(f"{configuration_words(c)}: the rerun with its history gives another verdict than "
-                             "the table (a knife-edge case)")
-            runs.append((c, resp))
-        drawn.append(x.label)
-        figs = []
-        for k in range(0, len(runs), 3):
-            part = runs[k:k + 3]
-            fell = any(r.overturned for _, r in part)
-            caption = (f"{x.label} {' and '.join(configuration_words(c) for c, _ in part)}: ground acceleration; "
-                       "tilt over alpha (beyond the dashed lines at +-1 the body leans past its tipping point)" + ("; displacement of the isolated base" if any(c.isolated for c, _ in part)
-                                           else "") + ". "
-                       + ("A red line marks the instant it topples." if fell else "It topples in none of these runs.")
-                       + " The panels share their axes; they end when the motion has died out (every curve under "
-                       "5 % of its peak).")
-            figs.append(figure(responses_png(part, block, by_label[x.label].motion, x.label), caption))
-        out.append(f"<h3>{esc(x.label)}: the record that {esc('; and that '.join(reasons[x.label]))}</h3>"
-                   + "".join(figs) + ("<p class='note'>" + esc("; ".join(notes)) + ".</p>" if notes else ""))
-    if left:
-        out.append("<p>" + esc("; ".join(left)) + ".</p>")
-    if not out:
-        return ""
-    return (f"<p>For each configuration, the records that decide {esc(noun)}'s verdict: every record that topples "
-            f"it (at most {MAX_DECIDING}, the most severe first), else the closest call; each on every configuration, "
-            "side by side.</p>" + "".join(out))
-
 
 def _peak_cell(r) -> str:
     if r.error or r.overturned:
@@ -293,7 +190,7 @@ def assessment_report(assessment, *, check=None, command: str = "") -> str:
     first.append(_facts(facts))
     figs = []
     for b in blocks:
-        figs.append(_response_figures(assessment, b))
+        figs.append(response_figures(assessment, b))
         records = [x.label for x in assessment.excitations if x.motion is not None]
         rows = [r for r in assessment.rows if r.column == b.name]
         confs = assessment.configurations
