@@ -292,8 +292,8 @@ def _suite_clause(c, cmp: dict, g_rows, i_rows, stroke: str, noun: str) -> str:
     under and those it topples it under although it survives them on the ground."""
     n, kg, ki = cmp["n"], len(cmp["ground"]), len(cmp["isolated"])
     iso = f"isolation {c.header}"
-    counts = (f"{noun} topples under {ki} of {n} records on the bearings against {kg} of {n} on the ground"
-              if ki != kg else f"{noun} topples under {ki} of {n} records either way")
+    counts = (f"in all, {ki} of {n} records topple it on the bearings against {kg} of {n} on the ground"
+              if ki != kg else f"in all, {ki} of {n} records topple it either way")
     s = "s" if len(cmp["saved"]) == 1 else ""
     saved = f"saves {noun} under {_names(cmp['saved'])} (which topple{s} it on the ground)"
     harmed = f"topples it under {_names(cmp['harmed'])} (which it survives on the ground)"
@@ -301,8 +301,8 @@ def _suite_clause(c, cmp: dict, g_rows, i_rows, stroke: str, noun: str) -> str:
     if effect == "mixed":
         return f"{iso} helps under some records and hurts under others: it {saved} but {harmed}; {counts}"
     if effect == "worse":
-        harmed = f"topples {noun} under {_names(cmp['harmed'])} (which it survives on the ground)"
-        return f"{iso} makes it worse: it {harmed}; {counts}"
+        return f"{iso} makes it worse: it topples {noun} under {_names(cmp['harmed'])} (which it survives on the " \
+               f"ground); {counts}"
     if effect == "better":
         if ki == 0:
             return (f"{iso} saves {noun}: it survives all {n} records on the bearings{stroke}, against {kg} of {n} "
@@ -347,7 +347,7 @@ def isolation_summary(assessment, block) -> str:
             parts.append(_one_record_clause(c, g_word, w, stroke))
             continue
         cmp = compare_foundations(g_rows, i_rows)
-        noun = body_noun(block) if not parts else "it"
+        noun = body_noun(block)
         clause = (_suite_clause(c, cmp, g_rows, i_rows, stroke, noun) if cmp["n"] else
                   f"on isolation {c.header} {noun} is {w}")
         if cmp["open"]:
