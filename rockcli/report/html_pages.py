@@ -33,6 +33,12 @@ MARGIN_WORDS = (
     "1.10 topple it: 0 or 21 of 21 is a firm verdict, anything between says the answer is on a knife's "
     "edge.</p>")
 
+NO_MARGIN_WORDS = (
+    "<p>The margins (toppling factors) were not searched (<code>--no-margin</code>): each verdict is that of the "
+    "record as given. <b>Peak rocking</b> is the largest tilt as a share of the angle beyond which the body falls "
+    "(alpha). The <b>&plusmn;10 % share</b> (when run) says how many of the records scaled by 0.90, 0.91, ..., "
+    "1.10 topple it.</p>")
+
 
 def _title(blocks) -> str:
     return f"Will {body_noun(blocks[0])} topple?" if len(blocks) == 1 else "Will these bodies topple?"
@@ -198,7 +204,7 @@ def assessment_report(assessment, *, check=None, command: str = "") -> str:
                            "Toppling factor per record and configuration (red: topples as recorded; green: "
                            "survives; amber: undecided), labelled with the configuration's short name (see 'How it "
                            "stands'). Right of the line at 1: the margin."))
-        if n_ran > 1:
+        if n_ran > 1 and assessment.margin:
             figs.append(figure(share_png(rows, confs, f"{block_text(b)}\nshare of the records that topple it"),
                                "If every record were scaled by the same factor: the share of them that topple the "
                                "body (from each record's smallest toppling factor)."))
@@ -211,7 +217,8 @@ def assessment_report(assessment, *, check=None, command: str = "") -> str:
         "body": body_section(blocks),
         "configurations": configurations_section(assessment.configurations),
         "records": records_section(assessment.excitations, assessment.unavailable),
-        "verdicts": MARGIN_WORDS + "\n".join(_verdict_table(assessment, b) for b in blocks),
+        "verdicts": (MARGIN_WORDS if assessment.margin else NO_MARGIN_WORDS)
+                    + "\n".join(_verdict_table(assessment, b) for b in blocks),
         "figures": "\n".join(f for f in figs if f) or "<p>No run to draw.</p>",
         "certainty": _certainty(assessment, check),
         "assumptions": assumptions_section(margins=assessment.margin),
