@@ -333,3 +333,23 @@ def test_reproduce_command_has_its_folder_and_environment():
     joined = " ".join(line.rstrip(" \\") for line in lines[1:])
     assert shlex.split(joined) == ["ROCKCLI_RECORDS=/data/records:/data/extra", *shlex.split(cmd)]
     assert "ROCKCLI_RECORDS" not in reproduce_command(cmd, {}, "/w")
+
+
+def test_figures_are_embedded_at_their_drawn_size():
+    """A figure w inches wide is shown 96 w CSS pixels wide, whatever its dpi, so that 8 pt is 10.7 px; a
+    figure whose smallest text is 7 pt is enlarged to keep it at 10 px."""
+    import io
+
+    from rockcli.report.figures import new_figure
+    from rockcli.report.html import figure, png_size
+
+    for dpi in (90, 144):
+        fig = new_figure(5.0, 2.0, dpi=dpi)
+        fig.add_subplot().plot([0, 1])
+        buf = io.BytesIO()
+        fig.savefig(buf, format="png", dpi=dpi)
+        png = buf.getvalue()
+        width, _, got_dpi = png_size(png)
+        assert abs(got_dpi - dpi) < 0.5 and width == 5 * dpi
+        assert 'width="480"' in figure(png, "x")
+        assert f'width="{round(480 * 10 / (7 * 96 / 72))}"' in figure(png, "x", smallest_pt=7.0)
