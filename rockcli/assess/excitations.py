@@ -166,6 +166,17 @@ def _entry_read_kwargs(entry) -> dict:
     return {"format": entry.format or None, "units": entry.units, "dt": entry.dt, "column": entry.column}
 
 
+def _entry_excitation(entry, path: Path) -> Excitation:
+    """A catalogue entry's file, read as the catalogue says; the units and time step the catalogue supplies
+    (for a file without a header) are credited to the catalogue, not to the command line."""
+    x = _read_excitation(entry.id, path, _entry_read_kwargs(entry))
+    if x.motion is not None:
+        for key in ("units_source", "dt_source"):
+            if x.motion.meta.get(key) == "caller":  # only the catalogue's values were passed
+                x.motion.meta[key] = "catalogue"
+    return x
+
+
 def _has_pulse(entry) -> bool:
     return bool(entry.pulse_shape) and entry.a_p_g is not None and entry.T_p_s is not None
 
@@ -176,7 +187,7 @@ def _from_entry(entry, mode: str):
 
     path = find_file(entry) if (entry.available and mode != "pulse") else None
     if path is not None:
-        return _read_excitation(entry.id, path, _entry_read_kwargs(entry))
+        return _entry_excitation(entry, path)
     if mode != "record" and _has_pulse(entry):
         return _pulse_excitation(entry)
     if not entry.available:
@@ -355,7 +366,7 @@ def _file_excitation(path: Path, by_file: dict, read_kwargs: dict | None = None,
     """A record file; one the catalogue lists is read as the catalogue says and labelled by its id."""
     entry = by_file.get(path.name)
     if entry is not None:
-        return _read_excitation(entry.id, path, _entry_read_kwargs(entry))
+        return _entry_excitation(entry, path)
     return _read_excitation(path.name, path, dict(read_kwargs or {}), skip=skip)
 
 
