@@ -150,7 +150,10 @@ def open_client(scheduler, *, n_workers: int | None = None, processes: bool = Tr
         yield scheduler
         return
     distributed = _import_distributed()
+    from rockcli.progress import announce
+
     if scheduler == "local":
+        announce("starting a Dask LocalCluster on this machine ...")
         cluster = distributed.LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=processes,
                                            dashboard_address=None)
         client = distributed.Client(cluster)
@@ -160,6 +163,7 @@ def open_client(scheduler, *, n_workers: int | None = None, processes: bool = Tr
             client.close()
             cluster.close()
         return
+    announce(f"connecting to the Dask scheduler at {scheduler} (waiting up to {timeout:g} s) ...")
     probe_scheduler(scheduler, timeout)
     try:
         client = distributed.Client(scheduler, timeout=timeout)

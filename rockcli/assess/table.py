@@ -139,7 +139,9 @@ def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
         Also run 0.90x..1.10x of every record and store the share that overturns
         (``overturn_share_pm10``, see :func:`overturn_shares`).
     progress : callable, optional
-        ``progress(n)`` after each chunk of ``n`` runs; :func:`count_runs` gives the total.
+        ``progress(n)`` after each chunk of ``n`` steps: runs, and in the margin search (scene, factor)
+        pairs settled (:func:`find_overturn_scales`); :func:`count_runs` gives the total. Each part
+        (verdicts, margin search, neighbourhood) is announced with :func:`rockcli.progress.phase`.
     **solver
         Passed to :func:`rockcli.solve.simulate_many` (``rtol``, ``tail``, ...).
 
@@ -169,7 +171,10 @@ def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
     chunk_progress = None
     if progress is not None:
         chunk_progress = _Advance(progress)
+    from rockcli.progress import phase
     from rockcli.solve import VERDICT_ERROR, JobError, simulate_many
+
+    phase(progress, "verdicts", len(scenes), unit="runs")
 
     responses = simulate_many([_scaled_job(*s, 1.0) for s in scenes], progress=chunk_progress, **solver)
     # a run stopped by the step cap is a numerical failure, not a result: an error row like a refused job
@@ -190,6 +195,8 @@ def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
     if margin:
         t0 = time.perf_counter()
         ok = [i for i, r in enumerate(responses) if r.verdict != VERDICT_ERROR]
+        # (scene, factor) pairs, factor 1 known: how far each search goes is what it finds out (no ETA)
+        phase(progress, "margin search", len(ok) * (MARGIN_GRID.size - 1), known=False)
         found = find_overturn_scales([scenes[i] for i in ok], known=[responses[i] for i in ok], progress=progress,
                                      **solver)
         for i, (hi, lo, note) in zip(ok, found):
@@ -198,6 +205,7 @@ def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
     if neighbourhood:
         t0 = time.perf_counter()
         ok = [i for i, r in enumerate(responses) if r.verdict != VERDICT_ERROR]
+        phase(progress, "neighbourhood", len(ok) * NEIGHBOURHOOD.size, unit="runs")
         shares = overturn_shares([scenes[i] for i in ok], progress=_Advance(progress) if progress else None, **solver)
         for i, share in zip(ok, shares):
             run_rows[i].overturn_share_pm10 = share

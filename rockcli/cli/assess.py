@@ -101,12 +101,10 @@ def _headerless_options(func):
 
 
 def _run_counted(total: int, run):
-    """``run(progress=...)`` under a progress bar of ``total`` runs (none when piped): its result."""
+    """``run(progress=...)`` under progress lines (none when piped; the run announces its parts, and a part
+    whose steps were not all needed is completed when the next begins): its result."""
     with progress_bar(total) as bar:
-        result = run(progress=bar.update if bar else None)
-        if bar and bar.pos < total:  # the margin's grid and bisection bounds: what was not needed
-            bar.update(total - bar.pos)
-    return result
+        return run(progress=bar)
 
 
 def _echo_result(result, table: str, notes: str, plain: str | None = None, *, as_json=None):
@@ -520,8 +518,11 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
         from rockcli.assess.fragility import run_fragility_distributed
         from rockcli.cli.options import dask_client
 
-        result = run_fragility_distributed(dask_client(scheduler), columns, excitations, configurations, im=im, n_boot=n_boot,
-                                           seed=seed, unavailable=unavailable, horizon=horizon, run=run, **solver)
+        client = dask_client(scheduler)
+        with progress_bar(n_runs, "margin search on Dask") as bar:  # the run announces it in scenes
+            result = run_fragility_distributed(client, columns, excitations, configurations, im=im, n_boot=n_boot,
+                                               seed=seed, unavailable=unavailable, horizon=horizon, run=run,
+                                               progress=bar, **solver)
     else:
         result = _run_counted(n_runs, partial(run, columns, excitations, configurations, im=im, n_boot=n_boot,
                                               seed=seed, unavailable=unavailable, horizon=horizon, **solver))

@@ -553,10 +553,11 @@ def is_quiet() -> bool:
     return bool(ctx is not None and ctx.meta.get("rockcli.quiet"))
 
 
-def progress_bar(total: int, label: str = "runs", *, eta: bool = True):
-    """A progress bar on stderr when it is a terminal, else nothing: a context manager yielding the
-    bar (call ``bar.update(n)``; :class:`rockcli.cli.progress.Progress`, whose ETA waits for the
-    kernels and for enough work to measure) or ``None`` (piped output and ``--quiet`` stay quiet)."""
+def progress_bar(total: int, label: str = "runs", *, eta: bool = True, unit: str | None = None):
+    """Progress lines on stderr when it is a terminal, else nothing: a context manager yielding the
+    :class:`rockcli.cli.progress.Progress` (call it with increments; the library may begin parts with
+    :func:`rockcli.progress.phase`; ``eta=False``: the steps do not measure the time left) or ``None``
+    (piped output and ``--quiet`` stay quiet)."""
     import contextlib
     import sys
 
@@ -564,7 +565,7 @@ def progress_bar(total: int, label: str = "runs", *, eta: bool = True):
         return contextlib.nullcontext(None)
     from rockcli.cli.progress import Progress
 
-    return Progress(total, label, eta=eta, stream=sys.stderr)
+    return Progress(total, label, eta=eta, unit=unit, stream=sys.stderr)
 
 
 def dask_client(scheduler):
