@@ -195,6 +195,14 @@ class Fragility:
     def rows_of(self, column: str, configuration: str) -> list:
         return [r for r in self.rows if r.column == column and r.configuration == configuration]
 
+    def to_dataframe(self):
+        """The rows as a pandas DataFrame, the columns of the CSV (``assess fragility --csv``; docs/fragility.md),
+        each with the fit of its column and configuration: :func:`rockcli.report.fragility.fragility_table`
+        (pandas is imported there, on first use)."""
+        from rockcli.report.fragility import fragility_table
+
+        return fragility_table(self)
+
     @property
     def failed(self) -> list:
         """Excitations that could not be read or measured (their rows carry the error)."""
@@ -270,9 +278,11 @@ def run_fragility(columns: Sequence[Block], excitations: Sequence[Excitation],
         raise RockcliInputError("no isolation configuration to assess")
     if int(n_boot) < 0 or not (0 < level < 1):
         raise RockcliInputError("n_boot must be >= 0 and the confidence level between 0 and 1")
+    from rockcli.assess.table import check_excitations
+
     timings = {}
     t0 = time.perf_counter()
-    excitations, im_values = _measure(list(excitations), im)
+    excitations, im_values = _measure(check_excitations(excitations, "run_fragility"), im)
     timings["im_s"] = time.perf_counter() - t0
 
     rows, scenes, run_rows = [], [], []

@@ -89,6 +89,13 @@ class Assessment:
     #: the solver options the scenes ran with (``horizon``, ``rtol``, ...), for the reruns
     solver: dict = field(default_factory=dict)
 
+    def to_dataframe(self):
+        """The rows as a pandas DataFrame, the columns of the CSV report (``assess column --csv``; docs/assess.md):
+        :func:`rockcli.report.tables.assessment_table` (pandas is imported there, on first use)."""
+        from rockcli.report.tables import assessment_table
+
+        return assessment_table(self)
+
     @property
     def unproven(self) -> list:
         """Rows whose run reached the solver's horizon with the verdict unproven."""
@@ -157,6 +164,7 @@ def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
         raise RockcliInputError("no column to assess: name a preset (bassae, nemea) or give a custom block")
     if not configurations:
         raise RockcliInputError("no isolation configuration to assess")
+    excitations = check_excitations(excitations, "run_assessment")
     timings = {}
     rows, scenes, run_rows = [], [], []
     for b in columns:
@@ -212,6 +220,18 @@ def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
         timings["neighbourhood_s"] = time.perf_counter() - t0
     return Assessment(list(columns), list(excitations), list(configurations), rows, list(unavailable), margin,
                       timings, neighbourhood, dict(solver))
+
+
+def check_excitations(excitations, who: str) -> list:
+    """``excitations`` as a list of :class:`Excitation`, else a TypeError in one sentence saying what to pass
+    (the usual slip: passing what :func:`resolve_excitations` returns, the pair (excitations, unavailable))."""
+    items = list(excitations)
+    for x in items:
+        if not isinstance(x, Excitation):
+            got = "a list (the pair resolve_excitations returns?)" if isinstance(x, list) else type(x).__name__
+            raise TypeError(f"{who}: excitations must be the Excitation objects of resolve_excitations, unpacked: "
+                            f"excitations, unavailable = resolve_excitations([...]); got {got}")
+    return items
 
 
 class _Advance:

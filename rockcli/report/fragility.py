@@ -148,24 +148,28 @@ def write_fragility_csv(fr, path: str | os.PathLike, extra: dict | None = None) 
     one after the other, with the columns ``orientation`` and ``azimuth_deg`` after ``configuration``."""
     from rockcli.report.spectra import constant_columns
 
-    from rockcli.report.tables import _vertical_column
-
     if isinstance(fr, (list, tuple)):
         import pandas as pd
 
-        frames = []
-        for one in fr:
-            df = fragility_frame(one)
-            _vertical_column(df, one)
-            at = df.columns.get_loc("configuration") + 1
-            df.insert(at, "orientation", [r.orientation for r in one.rows])
-            df.insert(at + 1, "azimuth_deg", [r.azimuth_deg for r in one.rows])
-            frames.append(df)
-        df = pd.concat(frames, ignore_index=True)
+        df = pd.concat([fragility_table(one) for one in fr], ignore_index=True)
     else:
-        df = fragility_frame(fr)
-        _vertical_column(df, fr)
+        df = fragility_table(fr)
     return write_text(path, constant_columns(df.to_csv(index=False, float_format="%.6g", lineterminator="\n"), extra))
+
+
+def fragility_table(fr):
+    """The CSV's rows of one result as a pandas DataFrame (:func:`fragility_frame`, the ``vertical`` column when
+    a record ran under one, and ``orientation``, ``azimuth_deg`` after ``configuration`` for a result of
+    ``--azimuth worst``; :meth:`rockcli.assess.Fragility.to_dataframe`)."""
+    from rockcli.report.tables import _vertical_column
+
+    df = fragility_frame(fr)
+    _vertical_column(df, fr)
+    if any(r.orientation for r in fr.rows):
+        at = df.columns.get_loc("configuration") + 1
+        df.insert(at, "orientation", [r.orientation for r in fr.rows])
+        df.insert(at + 1, "azimuth_deg", [r.azimuth_deg for r in fr.rows])
+    return df
 
 
 def plot_fragility(fr, path: str | os.PathLike, *, dpi: int = 90) -> Path:

@@ -213,14 +213,20 @@ def assessment_rows(assessment, check=None) -> list[dict]:
             for i, r in enumerate(assessment.rows)]
 
 
-def write_assessment_csv(assessment, path: str | os.PathLike, check=None) -> Path:
-    """Write the CSV report (one row per column x record x configuration), atomically: :data:`CSV_COLUMNS`
-    and :func:`extra_columns`."""
+def assessment_table(assessment, check=None):
+    """The CSV report as a pandas DataFrame (one row per column x record x configuration): :data:`CSV_COLUMNS`
+    and :func:`extra_columns` (:meth:`rockcli.assess.Assessment.to_dataframe`)."""
     df = assessment_frame(assessment)
     for key, values in extra_columns(assessment, check).items():
         df[key] = values
     if check is not None:
         df["ill_conditioned"] = df["ill_conditioned"].astype("boolean")
+    return df
+
+
+def write_assessment_csv(assessment, path: str | os.PathLike, check=None) -> Path:
+    """Write the CSV report (:func:`assessment_table`), atomically."""
+    df = assessment_table(assessment, check)
     return write_text(path, df.to_csv(index=False, float_format="%.6g", lineterminator="\n"))
 
 
