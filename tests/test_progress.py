@@ -139,7 +139,8 @@ def test_parts_leave_their_lines_complete_and_an_error_clears_the_line(no_compil
         clock.t = 6.0
         bar(84)
     lines = _screen(tty.getvalue())
-    assert [ln.split("  [")[0] for ln in lines] == ["verdicts", "rockcli: a notice", "margin search", "neighbourhood", ""]
+    assert [ln.split("  [")[0] for ln in lines] == ["verdicts", "rockcli: a notice", "margin search", "neighbourhood",
+                                                    ""]
     assert lines[0].endswith("]  4/4 runs  0:02") and lines[2].endswith("]  100%  0:03")  # its own time
     assert lines[3].endswith("]  84/84 runs  0:01")
 

@@ -273,7 +273,7 @@ def run_fragility(columns: Sequence[Block], excitations: Sequence[Excitation],
     if im not in IMS:
         raise RockcliInputError(f"intensity measure {im!r} is not one of {', '.join(IMS)}")
     if not columns:
-        raise RockcliInputError("no column to assess: name a preset (bassae, nemea) or give a custom block")
+        raise RockcliInputError("no body to assess: name a preset (bassae, nemea) or give a body of your own")
     if not configurations:
         raise RockcliInputError("no isolation configuration to assess")
     if int(n_boot) < 0 or not (0 < level < 1):

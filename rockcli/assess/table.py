@@ -161,7 +161,7 @@ def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
     import time
 
     if not columns:
-        raise RockcliInputError("no column to assess: name a preset (bassae, nemea) or give a custom block")
+        raise RockcliInputError("no body to assess: name a preset (bassae, nemea) or give a body of your own")
     if not configurations:
         raise RockcliInputError("no isolation configuration to assess")
     excitations = check_excitations(excitations, "run_assessment")

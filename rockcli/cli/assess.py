@@ -182,7 +182,9 @@ def _columns(names, R, alpha, height, width, name):
         if b.name in seen:
             raise InputError(f"column name {b.name!r} is given twice; give each column its own name")
         seen.add(b.name)
-    return columns
+    from rockcli.cli.options import warn_size
+
+    return [warn_size(b) for b in columns]
 
 
 @assess.command(name="column")
@@ -533,7 +535,7 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
 
     notes = format_fragility_notes(result) + _vertical_note(result)
     if solver:
-        notes += f"\nImpacts: coefficient of restitution E = {solver['restitution']:g} (README, Restitution)."
+        notes += f"\nImpacts: coefficient of restitution E = {solver['restitution']:g} (docs/simulate.md, Restitution)."
     _echo_result(result, format_fragility(result), notes, as_json=_fragility_json(result, solver) if as_json else None)
     if csv_path:
         from rockcli.report.fragility import write_fragility_csv
@@ -575,7 +577,7 @@ def _echo_fragility_azimuths(results: dict, solver: dict, csv_path, plot_path, n
 
     table, notes = format_fragility_azimuths(results, n_azimuths)
     if solver:
-        notes += f"\nImpacts: coefficient of restitution E = {solver['restitution']:g} (README, Restitution)."
+        notes += f"\nImpacts: coefficient of restitution E = {solver['restitution']:g} (docs/simulate.md, Restitution)."
     _echo_result(results["worst"], table, notes,
                  as_json={"azimuths_run": n_azimuths, **{k: _fragility_json(results[k], solver)
                                                          for k in ("median", "worst")}} if as_json else None)

@@ -147,7 +147,8 @@ def _vertical_choice(isolations, fix):
 
 def _echo_impacts(runner, err=False):
     if runner.restitution is not None:
-        click.echo(f"impacts: coefficient of restitution E = {runner.restitution:g} (README, Restitution)", err=err)
+        click.echo(f"impacts: coefficient of restitution E = {runner.restitution:g} (docs/simulate.md, "
+                   f"Restitution)", err=err)
     if runner.cap_ratio > 0.0:
         click.echo(f"capped colonnades: beam/columns mass gamma_c = {runner.cap_ratio:g} (docs/physics-colonnade.md)",
                    err=err)

@@ -100,7 +100,7 @@ def format_notes(assessment) -> str:
                      "(up to 3600 s) follows it longer.")
     if assessment.solver.get("restitution") is not None:
         lines.append(f"Impacts: coefficient of restitution E = {assessment.solver['restitution']:g} (on the ground "
-                     "theta_dot+ = E theta_dot-; on isolators the map of the README's Restitution section), not "
+                     "theta_dot+ = E theta_dot-; on isolators lowered by the base, docs/simulate.md, Restitution), not "
                      "Housner's 1 - 1.5 sin^2 alpha.")
     if assessment.solver.get("cap_ratio"):
         lines.append(f"Capped colonnades: each column stands in a colonnade carrying a beam of gamma_c = "
@@ -114,8 +114,9 @@ def format_notes(assessment) -> str:
     if worst:
         rank = ("the smallest margin xS, then the earliest overturn at 1x, then the largest peak |theta|/alpha"
                 if assessment.margin else "the earliest overturn, then the largest peak |theta|/alpha")
-        lines.append(f"@A: the most adverse orientation of the two horizontal components, of the {worst[0].azimuths_run} "
-                     f"orientations run (0-179 deg; A = azimuth of the normal to the rocking axis, clockwise from north): {rank}.")
+        lines.append(f"@A: the most adverse orientation of the two horizontal components, of the "
+                     f"{worst[0].azimuths_run} orientations run (0-179 deg; A = azimuth of the normal to the rocking "
+                     f"axis, clockwise from north): {rank}.")
         tied = [r for r in worst if math.isnan(r.azimuth_deg)]
         if tied:
             calm = all(r.verdict == "no_uplift" and (not assessment.margin or math.isnan(r.overturn_scale))
