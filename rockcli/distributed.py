@@ -160,8 +160,18 @@ def open_client(scheduler, *, n_workers: int | None = None, processes: bool = Tr
         try:
             yield client
         finally:
-            client.close()
-            cluster.close()
+            import logging
+
+            # a worker process slow to exit (a loaded machine) is killed by its nanny after 4 s with a WARNING:
+            # a shutdown detail after the results are in, which read as a fault at the end of a good run
+            nanny = logging.getLogger("distributed.nanny")
+            level = nanny.level
+            nanny.setLevel(logging.ERROR)
+            try:
+                client.close()
+                cluster.close()
+            finally:
+                nanny.setLevel(level)
         return
     announce(f"connecting to the Dask scheduler at {scheduler} (waiting up to {timeout:g} s) ...")
     probe_scheduler(scheduler, timeout)

@@ -19,6 +19,7 @@ from rockcli import progress as library
 from rockcli.assess import NEIGHBOURHOOD, MARGIN_GRID, parse_column_spec, parse_configurations, run_assessment
 from rockcli.assess.excitations import Excitation
 from rockcli.cli import progress as display
+from rockcli.errors import RockcliInputError
 from rockcli.pulses import make_pulse
 from rockcli.units import G
 
@@ -253,4 +254,9 @@ def test_the_first_read_through_gmprocess_says_so_once(fresh_waits, monkeypatch,
     for _ in range(2):
         with pytest.raises(NotARecord):
             extra.read_with_extra(path, None)
-    assert len(said) == 1 and said[0].startswith("reading x.v2 with gmprocess") and "5-20 s" in said[0]
+    assert len(said) == 1 and "5-20 s" in said[0]
+    assert said[0].startswith("x.v2: no built-in reader recognises it; trying gmprocess (the formats extra;")
+    monkeypatch.setattr(extra, "_loaded", False)
+    with pytest.raises(RockcliInputError, match="gmprocess cannot read either"):  # a format rockcli knows (USGS SMC)
+        extra.read_with_extra(path, None, recognised="SMC")
+    assert said[1].startswith("reading x.v2 with gmprocess (the formats extra;")

@@ -55,8 +55,9 @@ def read_with_extra(path: Path, column, recognised: str | None = None) -> dict[s
     if not _loaded:  # the first read_data loads gmprocess's readers: seconds without a sign of life otherwise
         from rockcli.progress import announce
 
-        announce(f"reading {Path(path).name} with gmprocess (the formats extra; its first file takes 5-20 s "
-                 f"while it loads its readers) ...")
+        how = (f"reading {Path(path).name} with gmprocess (the formats extra" if recognised else
+               f"{Path(path).name}: no built-in reader recognises it; trying gmprocess (the formats extra")
+        announce(f"{how}; its first file takes 5-20 s while it loads its readers) ...")
         _loaded = True
     root = logging.getLogger()
     level = root.level
