@@ -150,16 +150,30 @@ def open_client(scheduler, *, n_workers: int | None = None, processes: bool = Tr
         yield scheduler
         return
     distributed = _import_distributed()
+    from rockcli.progress import announce
+
     if scheduler == "local":
+        announce("starting a Dask LocalCluster on this machine ...")
         cluster = distributed.LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=processes,
                                            dashboard_address=None)
         client = distributed.Client(cluster)
         try:
             yield client
         finally:
-            client.close()
-            cluster.close()
+            import logging
+
+            # a worker process slow to exit (a loaded machine) is killed by its nanny after 4 s with a WARNING:
+            # a shutdown detail after the results are in, which read as a fault at the end of a good run
+            nanny = logging.getLogger("distributed.nanny")
+            level = nanny.level
+            nanny.setLevel(logging.ERROR)
+            try:
+                client.close()
+                cluster.close()
+            finally:
+                nanny.setLevel(level)
         return
+    announce(f"connecting to the Dask scheduler at {scheduler} (waiting up to {timeout:g} s) ...")
     probe_scheduler(scheduler, timeout)
     try:
         client = distributed.Client(scheduler, timeout=timeout)

@@ -1,6 +1,6 @@
-"""The first run: the compile notice, a progress bar whose ETA is not fooled by a compile, the margin
-search's progress (every (scene, factor) pair settled exactly once), and the batch kernels compiled
-side by side (``rockcli.kernels.batch.prepare``)."""
+"""The first run: the compile notice, the margin search's progress (every (scene, factor) pair settled
+exactly once), and the batch kernels compiled side by side (``rockcli.kernels.batch.prepare``). The
+progress lines' ETA, which a compile does not fool: tests/test_progress.py."""
 
 from __future__ import annotations
 
@@ -101,55 +101,6 @@ def test_kernels_report_only_real_compiles():
         assert len(watch) == 1
     finally:
         unsubscribe()
-
-
-# --------------------------------------------------------------------------------------------------
-# the progress bar's ETA
-# --------------------------------------------------------------------------------------------------
-
-class _Clock:
-    def __init__(self):
-        self.t = 0.0
-
-    def __call__(self):
-        return self.t
-
-
-def test_eta_waits_for_the_kernels_and_for_work_to_measure(monkeypatch):
-    clock = _Clock()
-    bar = progress_mod.Progress(1000, stream=io.StringIO(), clock=clock)
-    state = {"compiling": True}
-    monkeypatch.setattr(compiling, "compiling", lambda: state["compiling"])
-    with bar:
-        clock.t = 5.0
-        bar.update(1)  # during a compile: no rate measured
-        assert bar.eta() is None
-        state["compiling"] = False
-        clock.t = 60.0  # the compile took a minute: it must not count
-        bar.update(1)  # the rate clock starts here (this update still included the wait)
-        assert bar.eta() is None
-        clock.t = 61.0
-        bar.update(8)  # 8 of 998 remaining, 1 s: too little to tell
-        assert bar.eta() is None
-        clock.t = 62.0
-        bar.update(40)  # 49 steps in 2 s since the clock started (at pos 1), 950 left
-        assert bar.eta() == pytest.approx(2 / 49 * 950)
-        state["compiling"] = True  # a compile in the middle of the run restarts the measurement
-        clock.t = 100.0
-        bar.update(10)
-        assert bar.eta() is None
-        state["compiling"] = False
-        clock.t = 101.0
-        bar.update(10)
-        clock.t = 105.0
-        bar.update(20)  # 30 steps in 4 s since the clock restarted (at pos 60; 4 s >= MIN_SECONDS)
-        assert bar.pos == 90 and bar.eta() == pytest.approx(4 / 30 * 910)
-        assert bar._eta_text().startswith("ETA ")
-    no_eta = progress_mod.Progress(10, stream=io.StringIO(), clock=clock, eta=False)
-    no_eta.update(5)
-    clock.t += 10
-    no_eta.update(1)
-    assert no_eta.eta() is None
 
 
 # --------------------------------------------------------------------------------------------------

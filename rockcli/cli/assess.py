@@ -101,12 +101,10 @@ def _headerless_options(func):
 
 
 def _run_counted(total: int, run):
-    """``run(progress=...)`` under a progress bar of ``total`` runs (none when piped): its result."""
+    """``run(progress=...)`` under progress lines (none when piped; the run announces its parts, and a part
+    whose steps were not all needed is completed when the next begins): its result."""
     with progress_bar(total) as bar:
-        result = run(progress=bar.update if bar else None)
-        if bar and bar.pos < total:  # the margin's grid and bisection bounds: what was not needed
-            bar.update(total - bar.pos)
-    return result
+        return run(progress=bar)
 
 
 def _echo_result(result, table: str, notes: str, plain: str | None = None, *, as_json=None):
@@ -184,7 +182,9 @@ def _columns(names, R, alpha, height, width, name):
         if b.name in seen:
             raise InputError(f"column name {b.name!r} is given twice; give each column its own name")
         seen.add(b.name)
-    return columns
+    from rockcli.cli.options import warn_size
+
+    return [warn_size(b) for b in columns]
 
 
 @assess.command(name="column")
@@ -520,8 +520,11 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
         from rockcli.assess.fragility import run_fragility_distributed
         from rockcli.cli.options import dask_client
 
-        result = run_fragility_distributed(dask_client(scheduler), columns, excitations, configurations, im=im, n_boot=n_boot,
-                                           seed=seed, unavailable=unavailable, horizon=horizon, run=run, **solver)
+        client = dask_client(scheduler)
+        with progress_bar(n_runs, "margin search on Dask") as bar:  # the run announces it in scenes
+            result = run_fragility_distributed(client, columns, excitations, configurations, im=im, n_boot=n_boot,
+                                               seed=seed, unavailable=unavailable, horizon=horizon, run=run,
+                                               progress=bar, **solver)
     else:
         result = _run_counted(n_runs, partial(run, columns, excitations, configurations, im=im, n_boot=n_boot,
                                               seed=seed, unavailable=unavailable, horizon=horizon, **solver))
@@ -532,7 +535,7 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
 
     notes = format_fragility_notes(result) + _vertical_note(result)
     if solver:
-        notes += f"\nImpacts: coefficient of restitution E = {solver['restitution']:g} (README, Restitution)."
+        notes += f"\nImpacts: coefficient of restitution E = {solver['restitution']:g} (docs/simulate.md, Restitution)."
     _echo_result(result, format_fragility(result), notes, as_json=_fragility_json(result, solver) if as_json else None)
     if csv_path:
         from rockcli.report.fragility import write_fragility_csv
@@ -574,7 +577,7 @@ def _echo_fragility_azimuths(results: dict, solver: dict, csv_path, plot_path, n
 
     table, notes = format_fragility_azimuths(results, n_azimuths)
     if solver:
-        notes += f"\nImpacts: coefficient of restitution E = {solver['restitution']:g} (README, Restitution)."
+        notes += f"\nImpacts: coefficient of restitution E = {solver['restitution']:g} (docs/simulate.md, Restitution)."
     _echo_result(results["worst"], table, notes,
                  as_json={"azimuths_run": n_azimuths, **{k: _fragility_json(results[k], solver)
                                                          for k in ("median", "worst")}} if as_json else None)

@@ -433,10 +433,11 @@ def restitution_option(func):
     """``--restitution E``: the coefficient of restitution of every impact (``restitution`` keyword of
     :func:`rockcli.solve.simulate`); the command checks it (:func:`rockcli.impact.check_restitution`)."""
     return click.option("--restitution", type=NUMBER, default=None, metavar="E",
-                        help="Coefficient of restitution, 0 < E <= 1: theta_dot after / before an impact on a rigid "
-                             "foundation [default: Housner's 1 - 1.5 sin^2 alpha]. On an isolated base the impact "
-                             "keeps the horizontal momentum and theta_dot+ = (1 - 4 (1 - E)/(4 - 3 gamma cos^2 "
-                             "alpha)) theta_dot- (README, Restitution).")(func)
+                        help="Coefficient of restitution, 0 < E <= 1: theta_dot after / before an impact on rigid "
+                             "ground [default: Housner's 1 - 1.5 sin^2 alpha]. E is always this rigid-ground ratio: "
+                             "on an isolated base the impact also keeps the horizontal momentum, which lowers the "
+                             "ratio to (4 E - 3 gamma cos^2 alpha)/(4 - 3 gamma cos^2 alpha) (docs/simulate.md, "
+                             "Restitution).")(func)
 
 
 def cap_ratio_option(func):
@@ -455,7 +456,8 @@ BLOCK_FLAGS = {"preset": "--body NAME|SPEC", "R": "--R", "alpha": "--alpha", "he
 
 
 def block_from_options(column_name=None, R=None, alpha=None, height=None, width=None, name=None):
-    """The :class:`Block` named by exactly one of the three forms of :func:`block_options`."""
+    """The :class:`Block` named by exactly one of the three forms of :func:`block_options` (a size that looks
+    like centimetres is warned about on stderr: :func:`warn_size`)."""
     from rockcli.models import build_block
 
     if column_name is not None and ":" in column_name:  # --body NAME:R=..,alpha=.. or NAME:height=..,width=..
@@ -467,9 +469,20 @@ def block_from_options(column_name=None, R=None, alpha=None, height=None, width=
             raise RockcliInputError(f"--body {column_name} names the body already; leave out --name")
         from rockcli.assess import parse_column_spec
 
-        return parse_column_spec(column_name)
-    return build_block(preset=column_name, R=R, alpha_deg=alpha, height=height, width=width, name=name,
-                       labels=BLOCK_FLAGS)
+        return warn_size(parse_column_spec(column_name))
+    return warn_size(build_block(preset=column_name, R=R, alpha_deg=alpha, height=height, width=width, name=name,
+                                 labels=BLOCK_FLAGS))
+
+
+def warn_size(block):
+    """``block``, after a warning on stderr when its size looks like centimetres given as metres
+    (:func:`rockcli.models.block.size_warning`; the run goes on)."""
+    from rockcli.models.block import size_warning
+
+    text = size_warning(block)
+    if text:
+        click.echo(f"Warning: {text}", err=True)
+    return block
 
 
 def check_outputs(*files, folders=(), catalogue_is_input: bool = True):
@@ -553,10 +566,11 @@ def is_quiet() -> bool:
     return bool(ctx is not None and ctx.meta.get("rockcli.quiet"))
 
 
-def progress_bar(total: int, label: str = "runs", *, eta: bool = True):
-    """A progress bar on stderr when it is a terminal, else nothing: a context manager yielding the
-    bar (call ``bar.update(n)``; :class:`rockcli.cli.progress.Progress`, whose ETA waits for the
-    kernels and for enough work to measure) or ``None`` (piped output and ``--quiet`` stay quiet)."""
+def progress_bar(total: int, label: str = "runs", *, eta: bool = True, unit: str | None = None):
+    """Progress lines on stderr when it is a terminal, else nothing: a context manager yielding the
+    :class:`rockcli.cli.progress.Progress` (call it with increments; the library may begin parts with
+    :func:`rockcli.progress.phase`; ``eta=False``: the steps do not measure the time left) or ``None``
+    (piped output and ``--quiet`` stay quiet)."""
     import contextlib
     import sys
 
@@ -564,7 +578,7 @@ def progress_bar(total: int, label: str = "runs", *, eta: bool = True):
         return contextlib.nullcontext(None)
     from rockcli.cli.progress import Progress
 
-    return Progress(total, label, eta=eta, stream=sys.stderr)
+    return Progress(total, label, eta=eta, unit=unit, stream=sys.stderr)
 
 
 def dask_client(scheduler):

@@ -202,3 +202,21 @@ def impact_coefficient(alpha: float, gamma: float) -> float:
     cot2 = (math.cos(alpha) / math.sin(alpha)) ** 2
     k = (4.0 - 3.0 * gamma) * cot2
     return max(0.0, (k - 2.0) / (k + 4.0))
+
+
+#: Height or width [m] above which a body is larger than any free-standing body ever set up (the tallest
+#: monolith erected, the Lateran obelisk in Rome, is 32 m tall): such a size is most likely centimetres
+#: written as metres (``statue:height=180,width=50``, a 180 m statue). :func:`size_warning` says so and
+#: the run goes on: sizes up to R = 100 m are accepted (:data:`R_RANGE_M`), only a warning is given.
+PLAUSIBLE_SIZE_M = 35.0
+
+
+def size_warning(block: Block) -> str:
+    """One sentence when ``block`` is taller or wider than :data:`PLAUSIBLE_SIZE_M` (sizes that look like
+    centimetres), naming the sizes in centimetres' reading; else an empty string."""
+    h, w = block.height, block.width
+    if max(h, w) <= PLAUSIBLE_SIZE_M:
+        return ""
+    return (f"{block.name} is {h:.3g} m tall and {w:.3g} m wide, larger than any free-standing body (the tallest "
+            f"monolith ever set up, the Lateran obelisk, is 32 m); sizes are in metres: if these are centimetres, "
+            f"give height={h / 100:.3g},width={w / 100:.3g}")

@@ -107,7 +107,10 @@ def _parse_title(line: str) -> dict[str, str]:
     parts = [p.strip() for p in line.split(",")]
     if len(parts) < 3:
         return {}
-    out = {"event": parts[0], "component": parts[-1]}
+    component = parts[-1]
+    if component.isdigit() and int(component) < 360:  # an azimuth [deg]: three digits, as the catalogue and
+        component = f"{int(component):03d}"          # PEER's file names write it (Takarazuka "0" is "000")
+    out = {"event": parts[0], "component": component}
     station = []
     for p in parts[1:-1]:
         if "date" not in out and _DATE_RE.match(p):

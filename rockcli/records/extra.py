@@ -27,6 +27,10 @@ INSTALL_HINT = "the optional extra reads it: pip install \"rockcli[formats]\" (U
 _COSMOS_CONVERTED = {"g", "g/10", "g*10", "mg", "in/s/s"}
 
 
+#: gmprocess has read a file in this process (its first read is the slow one: it loads its readers).
+_loaded = False
+
+
 def available() -> bool:
     """True when gmprocess is installed (found without importing it)."""
     import importlib.util
@@ -47,6 +51,14 @@ def read_with_extra(path: Path, column, recognised: str | None = None) -> dict[s
 
     from rockcli.records.components import NotARecord, orientation_meta, pick_trace
 
+    global _loaded
+    if not _loaded:  # the first read_data loads gmprocess's readers: seconds without a sign of life otherwise
+        from rockcli.progress import announce
+
+        how = (f"reading {Path(path).name} with gmprocess (the formats extra" if recognised else
+               f"{Path(path).name}: no built-in reader recognises it; trying gmprocess (the formats extra")
+        announce(f"{how}; its first file takes 5-20 s while it loads its readers) ...")
+        _loaded = True
     root = logging.getLogger()
     level = root.level
     root.setLevel(max(level, logging.ERROR))  # gmprocess logs every file it reads; the level is restored after
