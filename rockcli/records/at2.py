@@ -147,6 +147,12 @@ def parse_at2_header(lines: list[str], filename: str = "AT2 file") -> dict[str, 
         raise RockcliInputError(
             f"{filename}: truncated AT2 header: the file has {len(lines)} line(s) where an AT2 file has 4 header "
             f"lines before its samples (line 4 states NPTS and DT, e.g. 'NPTS=  4096, DT= .0100 SEC')")
+    comma = re.search(r"(?:\b(?:NPTS|DT)\s*=\s*)?[-+]?\d*,\d+", lines[3], re.I)
+    if comma is not None and re.search(r"\d,\d", comma.group(0)):  # DT=0,01 would read as DT=0
+        written = comma.group(0).strip()
+        raise RockcliInputError(f"{filename}, line 4: {written} is written with a decimal comma; rockcli reads a "
+                                f"point as the decimal mark (write {written.replace(',', '.')}) and a comma as a "
+                                f"separator, which would read it as {written.split(',')[0]}")
     found = _match_npts_dt(lines[3])
     if found is None:
         raise _diagnose_line4(lines[3], filename)

@@ -27,11 +27,13 @@ from typing import Sequence
 from rockcli.errors import RockcliInputError
 
 class MultiComponent(RockcliInputError):
-    """A file holding several components was read without choosing one (``count`` of them)."""
+    """A file holding several components was read without choosing one (``count`` of them, read with the
+    ``columns`` 1 to ``count`` unless the reader names others: a CWB table's channels are its columns 2-4)."""
 
-    def __init__(self, message: str, count: int):
+    def __init__(self, message: str, count: int, columns=None):
         super().__init__(message)
         self.count = count
+        self.columns = list(columns) if columns is not None else list(range(1, count + 1))
 
 
 class NotARecord(RockcliInputError):

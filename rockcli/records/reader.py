@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 import os
 import re
+import warnings
 from pathlib import Path
 from typing import Any
 
@@ -229,7 +230,7 @@ def read_components(source, *, format=None, units=None, dt=None, gain=None, fill
     try:
         return [read_record(source, **kw)]
     except MultiComponent as multi:
-        return [read_record(source, column=k, **kw) for k in range(1, multi.count + 1)]
+        return [read_record(source, column=k, **kw) for k in multi.columns]
 
 
 def _read_path(path: Path, fmt, units, dt, column, given_by: str = "caller", gain=None) -> Record:
@@ -258,6 +259,9 @@ def _read_path(path: Path, fmt, units, dt, column, given_by: str = "caller", gai
     if fmt is None:
         fmt = _detect(path, head_lines, is_text)
     if fmt in AT2_FORMATS:
+        if column is not None:
+            raise RockcliInputError(f"{name}: --record-column {column} applies to text tables (and picks a component "
+                                    f"of a multi-component file); a PEER AT2 file holds one component: leave it out")
         out = _from_at2(path)
     elif fmt in TEXT_FORMATS:
         out = _from_text(path, column)
@@ -266,11 +270,8 @@ def _read_path(path: Path, fmt, units, dt, column, given_by: str = "caller", gai
 
         from rockcli.records import extra
 
-        if fmt in formats.REFUSED or fmt in formats.EXTRA_FIRST:
+        if fmt in formats.REFUSED:
             if not extra.available():
-                if fmt in formats.EXTRA_FIRST:
-                    raise RockcliInputError(f"{name}: format {fmt} is read by the optional extra: pip install "
-                                            f"\"rockcli[formats]\" (without it, read it as TEXT with --record-column)")
                 raise formats.refusal(fmt, name)
             out = extra.read_with_extra(path, column, recognised=fmt)
         elif fmt in formats.READERS:
@@ -393,7 +394,9 @@ def _from_obspy(path: Path, fmt: str, column) -> dict[str, Any]:
     import obspy
 
     try:
-        st = obspy.read(str(path), format=None if fmt == "OBSPY" else fmt)
+        with warnings.catch_warnings():  # a K-NET scale factor of 0 is refused below, in one sentence
+            warnings.filterwarnings("ignore", message="Calibration factor set to 0")
+            st = obspy.read(str(path), format=None if fmt == "OBSPY" else fmt)
     except TypeError as exc:  # ObsPy: "Unknown format for file ..." / "Format ... is not supported"
         if fmt != "OBSPY" and "not supported" in str(exc):
             raise RockcliInputError(
@@ -420,7 +423,9 @@ def _from_obspy(path: Path, fmt: str, column) -> dict[str, Any]:
     if fmt_name == "KNET":
         # ObsPy's calib converts counts to m/s^2 from the stated "Scale Factor ...(gal)/..."; the
         # NIED peak ("Max. Acc.") is measured after removing the mean, so we remove it too.
-        values = values * float(stats.calib) * 100.0  # ObsPy's calib gives m/s^2; the file states gal
+        from rockcli.records.knet import knet_factor
+
+        values = values * knet_factor(path, values, stats.calib)  # the header's gal per count, checked
         values = values - values.mean()
         units = "gal"
         meta.update(units_note="counts x the stated scale factor (gal)",
@@ -502,7 +507,8 @@ def _finish(path: Path, out: dict[str, Any], units, dt, given_by: str, gain=None
         used_units, units_source = units, given_by
         factor = accel_factor(units)
     else:
-        raise RockcliInputError(f"{name}: the file does not state its units; give them with --units "
+        why = f" ({out['units_missing']})" if out.get("units_missing") else ""
+        raise RockcliInputError(f"{name}: the file does not state its units{why}; give them with --units "
                                 f"(g, m/s^2, cm/s^2, gal, mm/s^2, g/10)")
 
     stated_dt = out.get("dt")
