@@ -254,7 +254,7 @@ def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto"
         file_kwargs["component"] = str(component)
     entries = load_catalog()
     by_id = {e.id: e for e in entries}
-    by_file = {e.file: e for e in entries if e.file}
+    by_file = {f: e for e in entries for f in (e.file_2, e.file) if f}  # a pair's second file is read as its first
     out, unavailable, seen = [], [], {}
 
     def add(x, path=None):
@@ -320,8 +320,10 @@ def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto"
                 raise RockcliInputError(f"record {src!r} cannot be run: {x.reason}")
             add(x, Path(x.source) if x.kind == EXCITATION_RECORD else None)
         else:
-            raise RockcliInputError(f"--records {src}: no such file or folder, nor a catalogue id "
-                                    f"(see 'rockcli records list')")
+            from rockcli.records.catalog import did_you_mean
+
+            raise RockcliInputError(f"--records {src}: no such file or folder, nor a catalogue id"
+                                    f"{did_you_mean(src, entries)} (see 'rockcli records list')")
     return out, unavailable
 
 
@@ -355,7 +357,7 @@ def _file_excitation(path: Path, by_file: dict, read_kwargs: dict | None = None,
     """A record file; one the catalogue lists is read as the catalogue says and labelled by its id."""
     entry = by_file.get(path.name)
     if entry is not None:
-        return _read_excitation(entry.id, path, _entry_read_kwargs(entry))
+        return _read_excitation(entry.id if path.name == entry.file else path.name, path, _entry_read_kwargs(entry))
     return _read_excitation(path.name, path, dict(read_kwargs or {}), skip=skip)
 
 

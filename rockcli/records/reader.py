@@ -154,28 +154,42 @@ def read_record(source, *, format=None, units=None, dt=None, column=None, compon
 
     if isinstance(source, Record):
         return source
-    if isinstance(source, str) and not Path(source).exists():
+    if isinstance(source, str) and not path_exists(source):
         entry = _catalog_entry(source)
         if entry is not None:
             return _read_entry(entry, entry.component, entry.file, fmt, units, dt, column, gain)
         if os.sep not in source and "/" not in source:
             found = _in_records_folders(source)
             if found is None:
+                from rockcli.records.catalog import did_you_mean
+
                 raise RockcliInputError(f"{source}: no such file here or in the ROCKCLI_RECORDS folders, nor a "
-                                        f"catalogue id (see 'rockcli records list')")
+                                        f"catalogue id{did_you_mean(source)} (see 'rockcli records list')")
             source = found
     return _read_path(Path(source), fmt, units, dt, column, given_by="suite" if fill_in else "caller", gain=gain)
+
+
+def path_exists(text) -> bool:
+    """``Path(text).exists()``, True for a path that is there but cannot be looked at (a folder without
+    permission: the reader then says "cannot be read (permission denied)") and False for text that is no path
+    (a NUL byte), instead of the exceptions pathlib raises."""
+    try:
+        return Path(text).exists()
+    except OSError:
+        return True
+    except ValueError:
+        return False
 
 
 def _in_records_folders(name: str) -> Path | None:
     """A bare file name that is not in the current folder: the file of that name in the first folder of
     :func:`rockcli.records.catalog.search_path` (``ROCKCLI_RECORDS``) that holds one, as for a catalogue
     record's file (None when none does)."""
-    from rockcli.records.catalog import search_path
+    from rockcli.records.catalog import is_file, search_path
 
     for folder in search_path():
         candidate = folder / name
-        if candidate.is_file():
+        if is_file(candidate):
             return candidate
     return None
 
@@ -183,7 +197,7 @@ def _in_records_folders(name: str) -> Path | None:
 def _catalog_entry(source):
     """The catalogue entry ``source`` names (None when it is not a catalogue id); a catalogue that cannot be
     read is said as such, not as "no such file, nor a catalogue id"."""
-    if not isinstance(source, str) or os.sep in source or "/" in source or Path(source).exists():
+    if not isinstance(source, str) or os.sep in source or "/" in source or path_exists(source):
         return None
     from rockcli.records.catalog import load_catalog
 
