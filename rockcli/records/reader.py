@@ -419,6 +419,12 @@ def _from_obspy(path: Path, fmt: str, column) -> dict[str, Any]:
         raise NotARecord(f"{path}: format not recognised ({_first_line(exc)}); "
                          f"give it with --format, or convert the record to text") from None
     except Exception as exc:  # noqa: BLE001 -- ObsPy readers raise many kinds; one sentence for the user
+        sizes = re.search(r"Actual/Theoretical:\s*(\d+)/(\d+)", str(exc))  # SAC: NPTS against the file's size
+        if sizes:
+            from rockcli.records.checks import disagree
+
+            raise disagree(path, f"a SAC file of {sizes.group(2)} bytes (its NPTS samples after the header)",
+                           f"the file holds {sizes.group(1)} bytes") from None
         raise RockcliInputError(f"{path}: format not recognised, or a damaged file (ObsPy: {_first_line(exc)}); "
                                 f"give the format with --format, or convert the record to text") from None
     from rockcli.records.components import pick_trace
@@ -544,6 +550,9 @@ def _finish(path: Path, out: dict[str, Any], units, dt, given_by: str, gain=None
                                 f"supported {lo:g} s to {hi:g} s (strong-motion records are sampled at 50 Hz to "
                                 f"a few kHz); check its unit")
     values = np.asarray(out["values"], dtype=np.float64)
+    if not np.all(np.isfinite(values)):
+        i = int(np.argmax(~np.isfinite(values)))
+        raise RockcliInputError(f"{name}: sample {i + 1} is {float(values[i])!r}, not a finite number")
     if values.size < 2:
         raise RockcliInputError(f"{name}: the record has {values.size} sample(s); at least 2 are needed")
     peak = float(np.max(np.abs(values)))
