@@ -104,7 +104,7 @@ def _read_itaca(lines: list[str], filename: str, column: int | None) -> dict[str
             header[m.group(1).strip()] = m.group(2).strip()
             line_of[m.group(1).strip()] = i + 1
             continue
-        m = re.match(r"^\s*Accel\w*\s+time\s+series\s+in\s+(\S+)", line, re.I)
+        m = re.match(r"^\s*Accel\w*\s+time\s+series(?:\s+in)?(?:\s+(\S+))?", line, re.I)
         if m:
             units, units_line = m.group(1), i + 1
             start = i + 1
@@ -136,7 +136,8 @@ def _read_itaca(lines: list[str], filename: str, column: int | None) -> dict[str
             "component": header.get("Orientation", ""), "header": header}
     out = {"values": values, "dt": dt, "units": units, "t_start": 0.0, "meta": meta}
     if units is None:
-        out["units_missing"] = "no line 'Acceleration time series in UNITS' before the samples"
+        out["units_missing"] = ("no line 'Acceleration time series in UNITS' before the samples" if units_line is None
+                                else f"line {units_line} names no units")
     return out
 
 
