@@ -9,7 +9,7 @@ reads every number after the header, whatever the header says about them. The 17
     Scale Factor      3920(gal)/6182761   <- gal per count
     Max. Acc. (gal)   4.078               <- peak of the record after removing its mean
 
-:func:`knet_factor` reads them again and refuses a file whose samples disagree: a number of samples other
+:func:`knet_gal` reads them again and refuses a file whose samples disagree: a number of samples other
 than duration x frequency (a data block cut short or run on: USGS gmprocess reads exactly that many), a
 scale factor that is not a positive number (0 would load zeros), or a peak (after removing the mean, as
 NIED measures it) that is not the stated Max. Acc. (:mod:`rockcli.records.checks`).
@@ -43,11 +43,11 @@ def _header(path: Path) -> dict[str, tuple[int, str]]:
     return out
 
 
-def knet_factor(path: Path, counts: np.ndarray, obspy_calib: float) -> float:
-    """The factor from the file's counts to gal, the header checked against ``counts`` (ObsPy's samples).
+def knet_gal(path: Path, counts: np.ndarray, obspy_calib: float) -> np.ndarray:
+    """``counts`` (ObsPy's samples) in gal, the header checked against them.
 
-    Returns ObsPy's factor (``calib`` x 100, bit for bit as before these checks) when it is the header's
-    ``N(gal)/D``, else the header's (ObsPy keeps only the leading digits of ``N``).
+    ObsPy's factor (``counts x calib x 100``, bit for bit as before these checks) when it is the header's
+    ``N(gal)/D``, else the header's (ObsPy keeps only the leading digits of ``N``: 3920.5 is read as 3920).
     """
     head = _header(path)
 
@@ -64,9 +64,7 @@ def knet_factor(path: Path, counts: np.ndarray, obspy_calib: float) -> float:
     num, den = float(m.group(1)), float(m.group(2))
     factor = num / den if den != 0 else math.inf
     check_positive_scale(path, factor, text, f"line {line}: 'Scale Factor {text}'")
-    obspy_factor = float(obspy_calib) * 100.0
-    if math.isclose(obspy_factor, factor, rel_tol=1e-12):
-        factor = obspy_factor
+    obspy_agrees = math.isclose(float(obspy_calib) * 100.0, factor, rel_tol=1e-12)
 
     f_line, f_text = field("Sampling Freq(Hz)", "e.g. '100Hz'")
     d_line, d_text = field("Duration Time(s)", "e.g. '102'")
@@ -84,4 +82,4 @@ def knet_factor(path: Path, counts: np.ndarray, obspy_calib: float) -> float:
         check_peak(path, counts - counts.mean(), float(a_text), a_text,
                    f"line {a_line}: 'Max. Acc. (gal) {a_text}', the peak after removing the mean; the scale factor "
                    f"is {text}", "gal", factor)
-    return factor
+    return counts * float(obspy_calib) * 100.0 if obspy_agrees else counts * factor

@@ -443,9 +443,9 @@ def _from_obspy(path: Path, fmt: str, column) -> dict[str, Any]:
     if fmt_name == "KNET":
         # ObsPy's calib converts counts to m/s^2 from the stated "Scale Factor ...(gal)/..."; the
         # NIED peak ("Max. Acc.") is measured after removing the mean, so we remove it too.
-        from rockcli.records.knet import knet_factor
+        from rockcli.records.knet import knet_gal
 
-        values = values * knet_factor(path, values, stats.calib)  # the header's gal per count, checked
+        values = knet_gal(path, values, stats.calib)  # counts x the header's gal per count, checked
         values = values - values.mean()
         units = "gal"
         meta.update(units_note="counts x the stated scale factor (gal)",
