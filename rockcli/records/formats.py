@@ -7,7 +7,9 @@ a dict with ``values`` (units as stated), ``dt`` [s], ``units`` (as stated), ``t
 naming the format and why it is refused instead of a parse error.
 
 Supported: ESM ASCII (DYNA 1.2), ITACA ``.cor.acc``, COSMOS Volume 2 (acceleration block),
-GeoNet Volume 2A (one of its three components, chosen with ``column``).
+GeoNet Volume 2A (one of its three components, chosen with ``column``; :mod:`rockcli.records.geonet`),
+CWB ``.dat`` (three channels; :mod:`rockcli.records.cwb`). Each reader checks what its header says against
+the data it reads (:mod:`rockcli.records.checks`).
 Refused: USC Volume I (uneven sampling), BHRC VOL1 (uncorrected, several components in one file),
 UNAM ASA 2.0 and USGS SMC (out of scope).
 """

@@ -92,10 +92,12 @@ def read_record(source, *, format=None, units=None, dt=None, column=None, compon
     source : str or path-like
         A file path, or a catalogue id (see :func:`rockcli.records.catalog.load_catalog`).
         Files: PEER NGA ``.AT2`` (all header layouts), plain text, ESM ASCII, ITACA ``.cor.acc``,
-        COSMOS V2, GeoNet V2A, and any format ObsPy reads (SAC, MiniSEED, K-NET/KiK-net, ...).
+        COSMOS V2, GeoNet V2A, CWB, and any format ObsPy reads (SAC, MiniSEED, K-NET/KiK-net, ...).
+        Every reader checks what the file's header says against its data (counts, durations, peaks,
+        scale factors, units words) and refuses a disagreement.
         The format is detected unless ``format`` is given.
     format : str, optional
-        ``PEER_AT2``, ``TEXT``, ``ESM``, ``ITACA``, ``COSMOS``, ``GEONET_V2A`` or an ObsPy
+        ``PEER_AT2``, ``TEXT``, ``ESM``, ``ITACA``, ``COSMOS``, ``GEONET_V2A``, ``CWB`` or an ObsPy
         format name (``SAC``, ``MSEED``, ``KNET``, ...).
     units : str, optional
         Units of the values in the file (``g``, ``m/s^2``, ``cm/s^2``, ``gal``, ``mm/s^2``,
@@ -103,11 +105,12 @@ def read_record(source, *, format=None, units=None, dt=None, column=None, compon
     dt : float, optional
         Time step [s]. Required when the file does not state it; must agree with the file when it does.
     column : int, optional
-        1-based column of a multi-column text file (a time column counts), or component of a
-        multi-component file (GeoNet V2A) or trace of a multi-trace ObsPy stream.
+        1-based column of a multi-column text file or CWB table (a time column counts), or component of
+        a multi-component file (GeoNet V2A) or trace of a multi-trace ObsPy stream; refused for a file
+        of one component (AT2, ESM, ITACA, COSMOS).
     component : str, optional
         Component of a multi-component file by name: its channel code (``HN1``, ``HNE``, ``N28W``,
-        ``EW2``), ``N``/``E``/``UP`` or an azimuth in degrees (see
+        ``EW2``), ``N``/``E``/``UP`` or an azimuth in degrees, its sign kept (-242 is 118 deg; see
         :func:`rockcli.records.components.select_component`).
     gain : float, optional
         Factor from raw counts to ``units`` (which must then be given: the units the gain yields,
@@ -414,7 +417,7 @@ def _from_obspy(path: Path, fmt: str, column) -> dict[str, Any]:
     except TypeError as exc:  # ObsPy: "Unknown format for file ..." / "Format ... is not supported"
         if fmt != "OBSPY" and "not supported" in str(exc):
             raise RockcliInputError(
-                f"{path}: unknown format {fmt!r} (rockcli reads PEER_AT2, TEXT, ESM, ITACA, COSMOS, GEONET_V2A "
+                f"{path}: unknown format {fmt!r} (rockcli reads PEER_AT2, TEXT, ESM, ITACA, COSMOS, GEONET_V2A, CWB "
                 f"and ObsPy's formats such as SAC, MSEED, KNET)") from None
         raise NotARecord(f"{path}: format not recognised ({_first_line(exc)}); "
                          f"give it with --format, or convert the record to text") from None
