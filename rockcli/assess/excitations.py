@@ -166,10 +166,11 @@ def _entry_read_kwargs(entry) -> dict:
     return {"format": entry.format or None, "units": entry.units, "dt": entry.dt, "column": entry.column}
 
 
-def _entry_excitation(entry, path: Path) -> Excitation:
-    """A catalogue entry's file, read as the catalogue says; the units and time step the catalogue supplies
-    (for a file without a header) are credited to the catalogue, not to the command line."""
-    x = _read_excitation(entry.id, path, _entry_read_kwargs(entry))
+def _entry_excitation(entry, path: Path, label: str | None = None) -> Excitation:
+    """A catalogue entry's file (or its pair's second file), read as the catalogue says and labelled ``label``
+    (default the entry's id); the units and time step the catalogue supplies (for a file without a header) are
+    credited to the catalogue, not to the command line."""
+    x = _read_excitation(label or entry.id, path, _entry_read_kwargs(entry))
     if x.motion is not None:
         for key in ("units_source", "dt_source"):
             if x.motion.meta.get(key) == "caller":  # only the catalogue's values were passed
@@ -265,7 +266,7 @@ def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto"
         file_kwargs["component"] = str(component)
     entries = load_catalog()
     by_id = {e.id: e for e in entries}
-    by_file = {e.file: e for e in entries if e.file}
+    by_file = {f: e for e in entries for f in (e.file_2, e.file) if f}  # a pair's second file is read as its first
     out, unavailable, seen = [], [], {}
 
     def add(x, path=None):
@@ -331,8 +332,10 @@ def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto"
                 raise RockcliInputError(f"record {src!r} cannot be run: {x.reason}")
             add(x, Path(x.source) if x.kind == EXCITATION_RECORD else None)
         else:
-            raise RockcliInputError(f"--records {src}: no such file or folder, nor a catalogue id "
-                                    f"(see 'rockcli records list')")
+            from rockcli.records.catalog import did_you_mean
+
+            raise RockcliInputError(f"--records {src}: no such file or folder, nor a catalogue id"
+                                    f"{did_you_mean(src, entries)} (see 'rockcli records list')")
     return out, unavailable
 
 
@@ -366,7 +369,7 @@ def _file_excitation(path: Path, by_file: dict, read_kwargs: dict | None = None,
     """A record file; one the catalogue lists is read as the catalogue says and labelled by its id."""
     entry = by_file.get(path.name)
     if entry is not None:
-        return _entry_excitation(entry, path)
+        return _entry_excitation(entry, path, entry.id if path.name == entry.file else path.name)
     return _read_excitation(path.name, path, dict(read_kwargs or {}), skip=skip)
 
 

@@ -69,7 +69,10 @@ def read_with_extra(path: Path, column, recognised: str | None = None) -> dict[s
 
             try:
                 streams = read_data(str(path))
-            except Exception as exc:  # noqa: BLE001 -- gmprocess raises many kinds; one sentence for the user
+            except (KeyboardInterrupt, SystemExit, GeneratorExit):
+                raise
+            except BaseException as exc:  # noqa: BLE001 -- gmprocess raises many kinds (its DMG reader a bare
+                # BaseException for a damaged header); one sentence for the user
                 text = str(exc).strip().splitlines()
                 if recognised:  # rockcli knows the format: a damaged or unusual file, not a non-record
                     from rockcli.records.formats import FORMAT_NAMES

@@ -48,7 +48,9 @@ def split_source(text: str):
     that exists as written is never split."""
     s = str(text)
     m = re.fullmatch(r"(.+)@\s*([-+]?\d+(?:\.\d+)?)\s*", s)
-    if m is None or Path(s).exists():
+    from rockcli.records.reader import path_exists
+
+    if m is None or path_exists(s):
         return s, None
     return m.group(1), float(m.group(2))
 
