@@ -54,6 +54,17 @@ def test_the_record_table_is_the_exact_linear_response():
             z = solve_ivp(f, (0.0, dt), z, rtol=1e-13, atol=1e-16, method="DOP853").y[:, -1]
             worst = max(worst, float(np.max(np.abs(z - tab[j + 1, :2]) / np.max(np.abs(tab[:, :2]), axis=0))))
         assert worst < 1e-11
+    # the step against a closed-form solution: under ag = a0 + s t the base can move as u = c0 + c1 t
+    # (c1 = -s/w^2, c0 = -(a0 + 2 xi w c1)/w^2), up to w dt = 4 (16 halvings of the step, doubled back)
+    for w, xi, h in ((2.5, 0.1, 0.01), (60.0, 0.0, 0.02), (200.0, 0.3, 0.02), (3.0, 2.0, 0.005)):
+        p00, p01, p10, p11, g0u, g0v, g1u, g1v = k._base_transition(w, xi, h)
+        for a0, s in ((1.0, 0.0), (0.0, 1.0), (0.3, -2.0)):
+            c1 = -s / w ** 2
+            c0 = -(a0 + 2 * xi * w * c1) / w ** 2
+            u1 = p00 * c0 + p01 * c1 + g0u * a0 + g1u * s
+            v1 = p10 * c0 + p11 * c1 + g0v * a0 + g1v * s
+            assert u1 == pytest.approx(c0 + c1 * h, rel=2e-12, abs=0.0)
+            assert v1 == pytest.approx(c1, rel=2e-12, abs=2e-12 * w * abs(c0))  # (u, u'/w) to 2e-12
 
 
 @pytest.mark.parametrize("xi", [0.0, 0.05, 0.3, 0.5, 0.8, 2.0])

@@ -311,40 +311,46 @@ def base_norm_of(c, w, u, v):
 
 @njit(cache=True)
 def _base_transition(w, xi, dt):
-    """``exp(M dt)`` for the state ``(u, u', ag, ag')`` of a linear base under a ground acceleration
-    that is linear in time (``u'' = -w^2 u - 2 xi w u' - ag``, ``ag'' = 0``): the exact step from one
-    sample of a record to the next (any xi >= 0), by scaling and squaring a Taylor series."""
-    M = np.zeros((4, 4))
-    M[0, 1] = dt
-    M[1, 0] = -w * w * dt
-    M[1, 1] = -2.0 * xi * w * dt
-    M[1, 2] = -dt
-    M[2, 3] = dt
-    norm = 0.0
-    for i in range(4):
-        norm = max(norm, abs(M[i, 0]) + abs(M[i, 1]) + abs(M[i, 2]) + abs(M[i, 3]))
+    """The exact step of a linear base over ``dt`` under a ground acceleration linear in time (``u'' = -w^2 u
+    - 2 xi w u' - ag``, ``ag = a0 + slope tau``): ``(P00, P01, P10, P11, g0u, g0v, g1u, g1v)`` with
+    ``(u, u')(dt) = P (u, u') + g0 a0 + g1 slope`` (any xi >= 0).
+
+    ``P = exp(A dt)``, ``g0 = int_0^dt exp(A (dt - tau)) b dtau``, ``g1 = int_0^dt exp(A (dt - tau)) b tau dtau``
+    (``b = (0, -1)``) from their Taylor series on ``dt/2^m`` (``||A dt/2^m|| <= 1/4``: 18 terms leave
+    less than 1e-22), then doubled m times: ``g1 <- P g1 + g1 + h g0``, ``g0 <- P g0 + g0``, ``P <- P^2``
+    (the second half of a step of ``2 h`` sees ``a0 + slope h`` at its start). Scalars only: it compiles
+    in a fraction of the time of the same on arrays."""
+    a10 = -w * w
+    a11 = -2.0 * xi * w
     m = 0
-    while norm > 0.25:
-        norm *= 0.5
+    h = dt
+    while h * max(1.0, abs(a10) + abs(a11)) > 0.25:
+        h *= 0.5
         m += 1
-    M *= 0.5 ** m
-    E = np.eye(4)
-    T = np.eye(4)
-    for n in range(1, 19):  # ||M|| <= 1/4: the series' remainder is below 1e-22
-        T = _mul4(T, M) / n
-        E += T
+    # T = (A h)^n/n!; P = sum T; Q0 = sum T h/(n+1); Q1 = sum T h^2/((n+1)(n+2)); g = Q b = -(Q01, Q11)
+    t00, t01, t10, t11 = 1.0, 0.0, 0.0, 1.0
+    p00, p01, p10, p11 = 1.0, 0.0, 0.0, 1.0
+    q01, q11 = 0.0, h
+    r01, r11 = 0.0, 0.5 * h * h
+    for n in range(1, 19):
+        t00, t01, t10, t11 = ((t01 * a10) * h / n, (t00 + t01 * a11) * h / n,
+                              (t11 * a10) * h / n, (t10 + t11 * a11) * h / n)
+        p00 += t00
+        p01 += t01
+        p10 += t10
+        p11 += t11
+        q01 += t01 * h / (n + 1)
+        q11 += t11 * h / (n + 1)
+        r01 += t01 * h * h / ((n + 1) * (n + 2))
+        r11 += t11 * h * h / ((n + 1) * (n + 2))
+    g0u, g0v, g1u, g1v = -q01, -q11, -r01, -r11
     for _ in range(m):
-        E = _mul4(E, E)
-    return E
-
-
-@njit(cache=True)
-def _mul4(A, B):
-    C = np.zeros((4, 4))
-    for i in range(4):
-        for j in range(4):
-            C[i, j] = A[i, 0] * B[0, j] + A[i, 1] * B[1, j] + A[i, 2] * B[2, j] + A[i, 3] * B[3, j]
-    return C
+        g1u, g1v = p00 * g1u + p01 * g1v + g1u + h * g0u, p10 * g1u + p11 * g1v + g1v + h * g0v
+        g0u, g0v = p00 * g0u + p01 * g0v + g0u, p10 * g0u + p11 * g0v + g0v
+        p00, p01, p10, p11 = (p00 * p00 + p01 * p10, p00 * p01 + p01 * p11,
+                              p10 * p00 + p11 * p10, p10 * p01 + p11 * p11)
+        h *= 2.0
+    return p00, p01, p10, p11, g0u, g0v, g1u, g1v
 
 
 @njit(cache=True)
@@ -356,10 +362,10 @@ def linear_base_table(acc, dt, w, xi):
     maximum of ``S_j + dt (|a_j| + |a_j+1|)/2``, since inside a sample interval S grows by at most
     ``int |ag| <= dt (|a_j| + |a_j+1|)/2`` (|ag| of a linear piece is at most the chord of |a|), and
     after the last sample (the ground still) S never grows. The steps are exact
-    (:func:`_base_transition`); rounding leaves a relative error of order 1e-13 over 10^5 samples.
+    (:func:`_base_transition`: to rounding, 2e-16 relative for ``w dt <= 1/4``, 1.4e-12 at ``w dt = 4``).
     """
     n = acc.shape[0]
-    E = _base_transition(w, xi, dt)
+    p00, p01, p10, p11, g0u, g0v, g1u, g1v = _base_transition(w, xi, dt)
     c = base_norm(xi)[0]
     tab = np.empty((n, 3))
     u = 0.0
@@ -372,8 +378,8 @@ def linear_base_table(acc, dt, w, xi):
             a0 = acc[k]
             slope = (acc[k + 1] - a0) / dt
             tab[k, 2] = S + 0.5 * dt * (abs(a0) + abs(acc[k + 1]))
-            u, v = (E[0, 0] * u + E[0, 1] * v + E[0, 2] * a0 + E[0, 3] * slope,
-                    E[1, 0] * u + E[1, 1] * v + E[1, 2] * a0 + E[1, 3] * slope)
+            u, v = (p00 * u + p01 * v + g0u * a0 + g1u * slope,
+                    p10 * u + p11 * v + g0v * a0 + g1v * slope)
         else:
             tab[k, 2] = S
     for k in range(n - 2, -1, -1):
