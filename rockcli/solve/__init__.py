@@ -63,7 +63,9 @@ Solver contract
   ``early=True`` (verdict-only sweeps) also stops during the excitation once survival is proven
   by the energy the rest of the ground motion can still supply, or overturning once the block,
   past alpha, can no longer be brought back; its ``theta_max`` is then only a lower bound and
-  ``t_overturn_s`` may be NaN (``peak_final = False``).
+  ``t_overturn_s`` may be NaN (``peak_final = False``). On an isolated base it stops once a block
+  at rest on its base can never be lifted again (its peak stays final) and leaves the base's peak
+  displacement NaN unless it is proven final.
 """
 
 from rockcli.solve.options import (DEFAULT_HORIZON, DEFAULT_MAX_STEPS, DEFAULT_REST_TOL, DEFAULT_RTOL,

@@ -50,8 +50,9 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float | No
     horizon : float
         Longest free motion followed after the excitation to prove the verdict [s].
     early : bool
-        Verdict only: also stop during the excitation once survival is proven (then
-        ``peak_final`` is False). Not with ``history``.
+        Verdict only: also stop during the excitation once the verdict is proven (on a rigid
+        foundation ``peak_final`` is then False; on an isolated base ``base_disp_max_m`` is NaN
+        unless proven final). Not with ``history``.
     max_steps : int
         Safety cap on integrator steps.
     restitution : float, optional
