@@ -503,12 +503,11 @@ def catalog_file():
 
 
 def add_inputs(paths, what: str) -> None:
-    """Files the command reads (records, the catalogue): an output on one of them is refused."""
-    from rockcli.files import current
+    """Files the command reads (records, the catalogue): an output on one of them is refused
+    (:func:`rockcli.files.note_inputs`)."""
+    from rockcli.files import note_inputs
 
-    outputs = current()
-    if outputs is not None:
-        outputs.add_inputs([p for p in paths if p], what)
+    note_inputs([p for p in paths if p], what)
 
 
 def json_option(func):
