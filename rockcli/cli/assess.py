@@ -63,10 +63,9 @@ def _with_vertical(excitations, configurations, units, dt) -> list:
     from rockcli.assess.vertical import attach_verticals
 
     if v["component"] is not None and v["source"] is None:
-        import math
+        from rockcli.inputs import check_scale
 
-        if not math.isfinite(v["scale"]) or v["scale"] == 0:
-            raise InputError(f"--vertical-scale must be a finite non-zero number, got {v['scale']!r}")
+        check_scale(v["scale"], 0.0, "--vertical-scale")  # each record's own peak: attach_verticals
         return attach_verticals(excitations, component=v["component"], scale=v["scale"],
                                 read_kwargs=_file_read_kwargs(units, dt))
     motion, label = read_vertical(v["source"], v["column"], v["pulse"], v["scale"], {"units": units, "dt": dt},

@@ -69,10 +69,10 @@ def validate_options(rtol=None, tail=DEFAULT_TAIL, rest_tol=DEFAULT_REST_TOL, ho
                                 f"shows after the excitation), got {format_number(tail)}")
     if not (math.isfinite(horizon) and 0 <= horizon <= HORIZON_MAX):
         raise RockcliInputError(f"horizon must be a time between 0 and {HORIZON_MAX:g} s (the free motion followed "
-                                f"after the excitation to prove a verdict), got {horizon:g}")
+                                f"after the excitation to prove a verdict), got {format_number(horizon)}")
     if not (math.isfinite(rest_tol) and REST_TOL_MIN <= rest_tol < 1):
         raise RockcliInputError(
             f"rest_tol must satisfy {REST_TOL_MIN:g} <= rest_tol < 1 (without a rest rule a train of impacts never "
-            f"ends), got {rest_tol:g}")
+            f"ends), got {format_number(rest_tol)}")
     if isinstance(max_steps, bool) or not isinstance(max_steps, (int, np.integer)) or max_steps < 1:
         raise RockcliInputError(f"max_steps must be a whole number >= 1, got {max_steps!r}")
