@@ -215,6 +215,39 @@ def range_words(lo, hi, lo_open=False, hi_open=False, unit="") -> str:
     return f"must be {'<' if hi_open else '<='} {hi}{u}"
 
 
+def type_words(value) -> str:
+    """What a wrong argument is, for a message: its type and (shortened) value, ``str 'none'``, ``list [2, 3]``."""
+    text = " ".join(repr(value).split())  # one line (a numpy array's repr has several)
+    if len(text) > 40:
+        text = text[:37] + "..."
+    return f"{type(value).__name__} {text}"
+
+
+def check_type(value, types, what: str, expected: str):
+    """``value`` when it is an instance of ``types`` (a bool is not a number), else one sentence:
+    ``<what> must be <expected>, got <type value>``."""
+    if not isinstance(value, types) or (isinstance(value, bool) and bool not in (types if isinstance(types, tuple)
+                                                                                  else (types,))):
+        raise RockcliInputError(f"{what} must be {expected}, got {type_words(value)}")
+    return value
+
+
+def as_list(value, what: str, expected: str, *, one=()) -> list:
+    """The items of a sequence argument (a list, a tuple, a numpy array, any other iterable that is not text or a
+    mapping) as a list; a single value of the types ``one`` (e.g. ``str`` for one spec) is a list of itself; anything
+    else is refused in one sentence (``<what> must be <expected>, got <type value>``)."""
+    import os
+
+    if one and isinstance(value, one):
+        return [value]
+    if isinstance(value, (str, bytes, os.PathLike, dict)) or value is None:
+        raise RockcliInputError(f"{what} must be {expected}, got {type_words(value)}")
+    try:
+        return list(value)
+    except TypeError:
+        raise RockcliInputError(f"{what} must be {expected}, got {type_words(value)}") from None
+
+
 def spec_items(rest: str, what: str) -> list[tuple[str, str, bool]]:
     """The items of ``key=value,key=value``: ``(key, value, has_equals)``, blanks stripped, empty items skipped.
 

@@ -287,6 +287,14 @@ def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto"
 
     if mode not in EXCITATION_MODES:
         raise RockcliInputError(f"excitation mode {mode!r} is not one of {', '.join(EXCITATION_MODES)}")
+    if sources is not None:
+        import os
+
+        from rockcli.inputs import as_list, check_type
+
+        sources = as_list(sources, "sources", "a list of catalogue ids, files or folders", one=(str, os.PathLike))
+        for src in sources:
+            check_type(src, (str, os.PathLike), "sources: each source", "a catalogue id, a file or a folder (text)")
     file_kwargs = _file_read_kwargs(units, dt, gain)
     if component is not None:
         file_kwargs["component"] = str(component)

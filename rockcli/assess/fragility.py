@@ -261,12 +261,17 @@ def run_fragility(columns: Sequence[Block], excitations: Sequence[Excitation],
         Rows in the order column, excitation, configuration; curves in the order column,
         configuration.
     """
+    from rockcli.assess.scenes import check_scenes
+
+    columns, excitations, configurations = check_scenes(columns, excitations, configurations)
     if im not in IMS:
         raise RockcliInputError(f"intensity measure {im!r} is not one of {', '.join(IMS)}")
     if not columns:
         raise RockcliInputError("no column to assess: name a preset (bassae, nemea) or give a custom block")
     if not configurations:
         raise RockcliInputError("no isolation configuration to assess")
+    if not excitations:
+        raise RockcliInputError("no record to run: the suite holds none (a fragility needs records)")
     if int(n_boot) < 0 or not (0 < level < 1):
         raise RockcliInputError("n_boot must be >= 0 and the confidence level between 0 and 1")
     timings = {}

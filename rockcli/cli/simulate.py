@@ -144,7 +144,7 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
 
         if any(v is not None for v in (units, dt, fmt, column)):
             raise RockcliInputError("--units, --dt, --format and --record-column apply to --record, not to --pulse")
-        excitation = scaled(parse_pulse_spec(pulse), factor, "--scale", "the pulse")
+        excitation = _flipped(scaled(parse_pulse_spec(pulse), scale, "--scale", "the pulse"), flip)
         label = f"{excitation.shape} pulse"
     else:
         from rockcli.cli.azimuth import read_excitation, run_worst, wants_worst
@@ -153,8 +153,8 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
         label = f"record {excitation.name}" + (f" x {format_number(factor)}" if factor != 1.0 else "")
         # every orientation of a pair peaks at most at max_t |(a_1, a_2)| (perpendicular components): checked
         # for --azimuth worst, which runs them all
-        record = scaled(excitation, factor, "--scale", "the record",
-                       peak_g=_pair_peak_g(pair) if pair is not None and wants_worst() else None)
+        record = _flipped(scaled(excitation, scale, "--scale", "the record",
+                                 peak_g=_pair_peak_g(pair) if pair is not None and wants_worst() else None), flip)
         if pair is not None and wants_worst():
             if history_path or plot_path or report_path or check or moving:
                 raise RockcliInputError("--azimuth worst runs every orientation verdict-only: --history, --plot, "
@@ -243,6 +243,11 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     if not res.settled:
         click.echo(f"NOTE: the verdict is NOT PROVEN: at {res.t_end_s:.1f} s (the horizon) the base could still lift "
                    "the block; lengthen --horizon to follow it")
+
+
+def _flipped(motion, flip: bool):
+    """``--flip``: the motion times -1 (exact: ``scaled(scale)`` then ``scaled(-1)`` is ``scaled(-scale)``)."""
+    return motion.scaled(-1.0) if flip else motion
 
 
 def _pair_peak_g(pair) -> float:

@@ -8,12 +8,12 @@ import numpy as np
 
 from rockcli.errors import RockcliInputError
 from rockcli.impact import check_restitution
-from rockcli.inputs import format_number
+from rockcli.inputs import format_number, type_words
 from rockcli.initial import check_initial_state, still_ground_arrays
-from rockcli.models import Block, Rigid
+from rockcli.models import Block
 from rockcli.solve.excitation import _excitation_arrays, _vertical_arrays, attached_vertical
 from rockcli.solve.options import (DEFAULT_HORIZON, DEFAULT_MAX_STEPS, DEFAULT_REST_TOL, DEFAULT_TAIL, _kernel,
-                                   validate_options)
+                                   check_foundation, validate_options)
 from rockcli.solve.parameters import _parameters
 from rockcli.solve.response import Response, _response
 from rockcli.solve.work import _check_work
@@ -84,10 +84,10 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float | No
     -------
     Response
     """
-    if foundation is None:
-        foundation = Rigid()
     if not isinstance(block, Block):
-        raise RockcliInputError(f"block must be a rockcli.models.Block, got {type(block).__name__}")
+        raise RockcliInputError(f"block must be a rockcli.models.Block (Block(R, alpha), Block.from_dimensions(height, "
+                                f"width), column('bassae')), got {type_words(block)}")
+    foundation = check_foundation(foundation)
     theta0, theta_dot0 = check_initial_state(theta0, theta_dot0)
     if excitation is None and theta0 == 0.0 and theta_dot0 == 0.0:
         raise RockcliInputError("simulate needs an excitation (a record or a pulse), or a start away from rest "
@@ -149,12 +149,18 @@ def grid_rows(history_dt: float, t_begin: float, t_show_end: float) -> int:
     operations (``kg = ceil(t_begin / hdt)``, rows while ``kg * hdt <= t_show_end``). The kernels write no grid
     row after ``t_show_end`` (a run that goes on to prove its verdict adds only its step and event rows), so a
     run has at most this many grid rows (fewer when it overturns earlier)."""
+    span = (t_show_end - t_begin) / history_dt
+    if not span < 2.0 ** 50:  # far beyond any cap (and beyond counting one by one in floats): the estimate
+        return int(min(span, 2.0 ** 62))
     first = math.ceil(t_begin / history_dt)
     last = math.floor(t_show_end / history_dt)
-    while (last + 1) * history_dt <= t_show_end:
-        last += 1
-    while last >= first and last * history_dt > t_show_end:
-        last -= 1
+    for _ in range(4):  # the quotients may be one off the kernel's products k * hdt
+        if (last + 1) * history_dt <= t_show_end:
+            last += 1
+        elif last >= first and last * history_dt > t_show_end:
+            last -= 1
+        else:
+            break
     return max(0, last - first + 1)
 
 
@@ -162,7 +168,8 @@ def _check_grid_rows(history_dt: float, t_begin: float, t_show_end: float) -> No
     """Refuse a grid of more than :data:`HISTORY_GRID_ROWS_MAX` rows (:func:`grid_rows`), before any work."""
     n = grid_rows(history_dt, t_begin, t_show_end)
     if n > HISTORY_GRID_ROWS_MAX:
+        rows = f"{n:,}" if n < 2 ** 50 else f"about {(t_show_end - t_begin) / history_dt:.3g}"
         raise RockcliInputError(f"a history every {format_number(history_dt)} s from {format_number(t_begin)} s to "
-                                f"{format_number(t_show_end)} s (the excitation's end plus the tail) would be {n:,} "
+                                f"{format_number(t_show_end)} s (the excitation's end plus the tail) would be {rows} "
                                 f"rows, more than the {HISTORY_GRID_ROWS_MAX:,} allowed: choose a coarser grid or a "
                                 f"shorter tail")

@@ -353,8 +353,12 @@ def min_overturning_curves(alphas_deg: Sequence[float], pulses: Sequence[PulseCh
                            step: float = DEFAULT_STEP, tol: float = DEFAULT_TOL, refine: float = DEFAULT_REFINE,
                            refine_band: float = DEFAULT_REFINE_BAND, R: float = REFERENCE_R,
                            runner: Optional[Runner] = None, progress=None) -> list[MinCurve]:
-    """Minimum overturning curves for every ``alpha x pulse x isolation`` (nesting order), one search."""
-    xs = np.asarray(wp_values, dtype=float)
+    """Minimum overturning curves for every ``alpha x pulse x isolation`` (nesting order), one search. Pulses and
+    isolations may be spec strings; a wrong type is one sentence (:mod:`rockcli.spectra.arguments`)."""
+    from rockcli.spectra.arguments import as_alphas, as_isolations, as_pulses, as_values
+
+    alphas_deg, pulses, isolations = as_alphas(alphas_deg), as_pulses(pulses), as_isolations(isolations)
+    xs = as_values(wp_values, "wp_values", positive=True)
     keys = [(a, pc, iso) for a in alphas_deg for pc in pulses for iso in isolations]
     families = [Family(math.radians(a), pc.shape, iso, R) for a, pc, iso in keys]
     fam = np.repeat(np.arange(len(families)), xs.size)
