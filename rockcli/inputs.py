@@ -98,8 +98,8 @@ def check_scale(factor, peak_g: float, what: str, motion: str = "the motion") ->
     if peak_g > 0.0 and abs(k) > MOTION_PEAK_MAX_G / peak_g:
         reached = abs(k) * peak_g
         to = f"{reached:.4g} g" if math.isfinite(reached) else "beyond double precision"
-        raise RockcliInputError(f"{what} {format_number(factor)} takes the peak of {motion} from {peak_g:.4g} g to {to}, "
-                                f"beyond the supported {MOTION_PEAK_MAX_G:g} g (recorded peaks reach about 4 g; "
+        raise RockcliInputError(f"{what} {format_number(factor)} takes the peak of {motion} from {peak_g:.4g} g to "
+                                f"{to}, beyond the supported {MOTION_PEAK_MAX_G:g} g (recorded peaks reach about 4 g; "
                                 f"at most {_floor4(MOTION_PEAK_MAX_G / peak_g)} here)")
     return k
 

@@ -270,8 +270,6 @@ def run_fragility(columns: Sequence[Block], excitations: Sequence[Excitation],
         raise RockcliInputError("no column to assess: name a preset (bassae, nemea) or give a custom block")
     if not configurations:
         raise RockcliInputError("no isolation configuration to assess")
-    if not excitations:
-        raise RockcliInputError("no record to run: the suite holds none (a fragility needs records)")
     if int(n_boot) < 0 or not (0 < level < 1):
         raise RockcliInputError("n_boot must be >= 0 and the confidence level between 0 and 1")
     timings = {}

@@ -80,8 +80,10 @@ from rockcli.solve.single import simulate
 from rockcli.solve.batch import _run_many, _scene_arrays, _threads, simulate_many, simulate_verdicts
 
 __all__ = ["DEFAULT_HORIZON", "DEFAULT_MAX_STEPS", "DEFAULT_REST_TOL", "DEFAULT_RTOL", "DEFAULT_RTOL_HYSTERETIC",
-           "DEFAULT_TAIL", "FOUNDATION_TYPES", "HORIZON_MAX", "N_IMPULSE_TABLE", "PULSE_START_MAX_PERIODS", "REST_TOL_MIN", "TAIL_MAX",
+           "DEFAULT_TAIL", "FOUNDATION_TYPES", "HORIZON_MAX", "N_IMPULSE_TABLE", "PULSE_START_MAX_PERIODS",
+           "REST_TOL_MIN", "TAIL_MAX",
            "VERDICT_ERROR", "VERDICT_NO_UPLIFT", "VERDICT_OVERTURNED", "VERDICT_ROCKED", "History", "JobError",
-           "Response", "Verdicts", "attached_vertical", "bearing_force_path", "check_foundation", "default_rtol", "pulse_impulse_table",
+           "Response", "Verdicts", "attached_vertical", "bearing_force_path", "check_foundation", "default_rtol",
+           "pulse_impulse_table",
            "record_impulse_table", "simulate", "simulate_many", "simulate_verdicts", "validate_options",
            "vertical_label", "with_vertical"]

@@ -203,13 +203,12 @@ def _vertical_arrays(vertical, excitation, foundation, g: float):
             raise RockcliInputError(f"vertical pulse {shape}: a_p must be finite and T_p positive")
         if ts < 0.0:
             raise RockcliInputError(f"vertical pulse {shape} starts at {format_number(ts)} s, before the run starts at "
-                                    f"t = 0 s: "
-                                    f"give a larger t0")
+                                    f"t = 0 s: give a larger t0")
         vdt = T_p / VERTICAL_PULSE_SAMPLES
         n = int(math.ceil(te / vdt)) + 1
         if n > 50_000_000:
-            raise RockcliInputError(f"vertical pulse {shape} ends too late ({format_number(te)} s) for its period: give a "
-                                    f"smaller t0")
+            raise RockcliInputError(f"vertical pulse {shape} ends too late ({format_number(te)} s) for its period: "
+                                    f"give a smaller t0")
         tt = vdt * np.arange(n)
         vacc = np.where((tt >= ts) & (tt <= te), np.asarray(vertical.acceleration(tt), dtype=float), 0.0)
         label = f"pulse {shape} a_p={float(vertical.a_p):g}m/s2 T_p={T_p:g}s t0={float(vertical.t0):g}s"
