@@ -270,6 +270,9 @@ def run_fragility(columns: Sequence[Block], excitations: Sequence[Excitation],
         Rows in the order column, excitation, configuration; curves in the order column,
         configuration.
     """
+    from rockcli.assess.scenes import check_scenes
+
+    columns, excitations, configurations = check_scenes(columns, excitations, configurations)
     if im not in IMS:
         raise RockcliInputError(f"intensity measure {im!r} is not one of {', '.join(IMS)}")
     if not columns:

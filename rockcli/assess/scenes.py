@@ -85,6 +85,24 @@ def column_title(block: Block) -> str:
 # configurations
 # --------------------------------------------------------------------------------------------------
 
+def check_scenes(columns, excitations, configurations) -> tuple[list, list, list]:
+    """The three lists of an assessment (:func:`rockcli.assess.run_assessment`, :func:`rockcli.assess.run_fragility`)
+    with the types they must hold, else one sentence naming the argument and what was given."""
+    from rockcli.inputs import as_list, check_type
+
+    cols = as_list(columns, "columns", "a list of Block (parse_column_spec('bassae'), ...)", one=Block)
+    exc = as_list(excitations, "excitations", "a list of Excitation (resolve_excitations(...))", one=Excitation)
+    conf = as_list(configurations, "configurations", "a list of Configuration (parse_configurations(...))",
+                   one=Configuration)
+    for items, kind, what, expected in ((cols, Block, "columns", "a Block"),
+                                        (exc, Excitation, "excitations", "an Excitation (resolve_excitations)"),
+                                        (conf, Configuration, "configurations", "a Configuration "
+                                                                                "(parse_configurations)")):
+        for x in items:
+            check_type(x, kind, f"{what}: each item", expected)
+    return cols, exc, conf
+
+
 @dataclass(frozen=True)
 class Configuration:
     """A foundation and how the user wrote it."""
@@ -118,7 +136,13 @@ def parse_configurations(specs: Sequence[str] | None = None) -> list[Configurati
     Headers are short (``none``, ``Tb=2s``) when that is unambiguous, else the spec as written.
     Any spec :func:`rockcli.models.parse_isolation_spec` accepts works.
     """
-    specs = list(specs) if specs else list(DEFAULT_ISOLATION)
+    from rockcli.inputs import as_list, check_type
+
+    specs = [] if specs is None else as_list(specs, "specs", "a list of isolation specs ('none', 'linear:Tb=2.5', "
+                                                          "...)", one=str)
+    specs = specs or list(DEFAULT_ISOLATION)
+    for s in specs:
+        check_type(s, str, "specs: each spec", "an isolation spec such as 'none' or 'linear:Tb=2.5'")
     out, seen = [], set()
     for s in specs:
         f = parse_isolation_spec(s)

@@ -160,6 +160,9 @@ def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
     """
     import time
 
+    from rockcli.assess.scenes import check_scenes
+
+    columns, excitations, configurations = check_scenes(columns, excitations, configurations)
     if not columns:
         raise RockcliInputError("no body to assess: name a preset (bassae, nemea) or give a body of your own")
     if not configurations:

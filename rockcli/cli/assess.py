@@ -63,10 +63,9 @@ def _with_vertical(excitations, configurations, units, dt) -> list:
     from rockcli.assess.vertical import attach_verticals
 
     if v["component"] is not None and v["source"] is None:
-        import math
+        from rockcli.inputs import check_scale
 
-        if not math.isfinite(v["scale"]) or v["scale"] == 0:
-            raise InputError(f"--vertical-scale must be a finite non-zero number, got {v['scale']!r}")
+        check_scale(v["scale"], 0.0, "--vertical-scale")  # each record's own peak: attach_verticals
         return attach_verticals(excitations, component=v["component"], scale=v["scale"],
                                 read_kwargs=_file_read_kwargs(units, dt))
     motion, label = read_vertical(v["source"], v["column"], v["pulse"], v["scale"], {"units": units, "dt": dt},
@@ -139,9 +138,18 @@ def _warn_pulses(result, mode: str):
                f"--excitation record refuses this, --excitation pulse asks for it", err=True)
 
 
-def _refuse_if_none_can_run(excitations):
-    """Nothing to report when no record can be run: exit 2 with one sentence per record, nothing written."""
-    if excitations and all(x.motion is None for x in excitations):
+def _refuse_if_none_can_run(excitations, unavailable=()):
+    """Nothing to report when no record can be run (none found, or none readable): exit 2 with one sentence
+    per record or skipped file, nothing written (``assess column`` and ``assess fragility`` alike)."""
+    from rockcli.assess.excitations import Duplicate, Skipped
+
+    if not excitations:
+        skipped = [u for u in unavailable if isinstance(u, Skipped)]
+        missing = [f"{u.label}: {u.reason}" for u in unavailable if not isinstance(u, (Skipped, Duplicate))]
+        why = (([f"no file of the folder(s) is a record ({'; '.join(u.reason for u in skipped)})"] if skipped else [])
+               + missing)
+        raise InputError("no record to run: " + ("; ".join(why) if why else "the sources name none"))
+    if all(x.motion is None for x in excitations):
         failed = [x.error or f"{x.label}: cannot be run" for x in excitations]
         raise InputError(failed[0] if len(failed) == 1 else
                          f"none of the {len(failed)} records can be run:\n" + "\n".join(failed))
@@ -269,8 +277,7 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
     excitations, unavailable = resolve_excitations(records, excitation, units=units, dt=dt, gain=given_gain(),
                                                    component=given_component(), azimuth=azimuth["azimuth"],
                                                    **given_suite())
-    if not excitations:
-        raise InputError("no record to run: " + "; ".join(f"{u.label}: {u.reason}" for u in unavailable))
+    _refuse_if_none_can_run(excitations, unavailable)
     excitations = _with_vertical(excitations, configurations, units, dt)
     _refuse_if_none_can_run(excitations)
     _add_record_inputs(excitations)
@@ -505,6 +512,7 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
                          "and the worst orientation) write --csv and --plot instead, or give one --azimuth DEG")
     excitations, unavailable = resolve_excitations(records, "record", units=units, dt=dt, gain=given_gain(),
                                                    azimuth=azimuth, component=given_component(), **given_suite())
+    _refuse_if_none_can_run(excitations, unavailable)
     excitations = _with_vertical(excitations, configurations, units, dt)
     _refuse_if_none_can_run(excitations)
     _add_record_inputs(excitations)

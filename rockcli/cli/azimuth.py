@@ -20,6 +20,11 @@ def read_excitation(source, kwargs: dict):
         rec = read_record(source, **kwargs)
         add_inputs([rec.meta.get("path")], "the record")
         return rec, None
+    from rockcli.assess.excitations import one_file_pair
+
+    one = one_file_pair(source, given["record_2"], ("--record", "--record-2"))
+    if one:
+        raise RockcliInputError(one)
     pair = read_pair(source, given["record_2"], **kwargs)
     add_inputs([r.meta.get("path") for r in pair], "the record")
     return project(*pair, 0.0 if given["azimuth"] == "worst" else given["azimuth"]), pair

@@ -193,7 +193,21 @@ def given_azimuth() -> dict:
         raise RockcliInputError("--record-2 is the second horizontal component for --azimuth: give --azimuth DEG|worst")
     if step is not None and azimuth != "worst":
         raise RockcliInputError("--azimuth-step applies to --azimuth worst")
+    if step is not None and not AZIMUTH_STEP_RANGE_DEG[0] <= step <= AZIMUTH_STEP_RANGE_DEG[1]:
+        from rockcli.inputs import format_number
+
+        lo, hi = AZIMUTH_STEP_RANGE_DEG
+        raise RockcliInputError(f"--azimuth-step {format_number(step)} must lie between {format_number(lo)} deg "
+                                f"({round(180 / lo):,} orientations of each pair, less than 0.2 % of the motion "
+                                f"apart) and {format_number(hi)} deg (two orientations)")
     return {"record_2": record_2, "azimuth": azimuth, "step": AZIMUTH_STEP if step is None else step}
+
+
+#: Accepted ``--azimuth-step`` [deg]. The floor: the projection ``a_1 cos(theta - phi_1) + a_2 cos(theta - phi_2)``
+#: changes by at most ``|a| dtheta`` between orientations ``dtheta`` apart, 0.17 % of the horizontal motion at 0.1 deg
+#: (finer than the margin's 1 % bisection), and 0.1 deg already runs 1,800 orientations of every pair (``1e-9``
+#: would build 1.8e11); the ceiling: 90 deg still runs two orientations, 0 and 90 deg.
+AZIMUTH_STEP_RANGE_DEG = (0.1, 90.0)
 
 
 def _kept(flag: str, **kwargs):
@@ -250,20 +264,30 @@ def given_vertical() -> dict:
             "scale_given": scale is not None}
 
 
+def scaled(motion, factor, option: str, what: str, peak_g: float | None = None):
+    """``motion`` (a record or a pulse) times the user's ``factor``, checked first
+    (:func:`rockcli.inputs.check_scale`: finite, non-zero, the peak within 100 g); ``peak_g`` overrides the
+    motion's own peak (the largest of every orientation of a pair)."""
+    from rockcli.inputs import check_scale
+
+    if peak_g is None:
+        peak_g = motion.pga_g if hasattr(motion, "pga_g") else abs(motion.a_p_g)
+    k = check_scale(factor, peak_g, option, what)
+    return motion if k == 1.0 else motion.scaled(k)
+
+
 def read_vertical(source, column, pulse, scale, read_kwargs: dict, component=None):
     """``(vertical motion or None, its label)`` from ``--vertical SOURCE`` (read with ``read_kwargs``; of a
     multi-component file its ``--vertical-component`` or ``--vertical-column``, else its one vertical component)
     or ``--vertical-pulse SPEC``, times ``--vertical-scale``. The horizontal record's ``--component`` does not
     apply to it."""
-    import math
-
     from rockcli.errors import RockcliInputError
+    from rockcli.inputs import check_scale, format_number
 
     if source is not None and pulse is not None:
         raise RockcliInputError("give the vertical ground motion as at most one of --vertical SOURCE or "
                                 "--vertical-pulse SPEC")
-    if not math.isfinite(scale) or scale == 0:
-        raise RockcliInputError(f"--vertical-scale must be a finite non-zero number, got {scale!r}")
+    check_scale(scale, 0.0, "--vertical-scale")
     if source is None and pulse is None:
         if column is not None or scale != 1.0 or component is not None:
             raise RockcliInputError("--vertical-column, --vertical-component and --vertical-scale apply to "
@@ -275,18 +299,15 @@ def read_vertical(source, column, pulse, scale, read_kwargs: dict, component=Non
         if column is not None or component is not None:
             raise RockcliInputError("--vertical-column and --vertical-component apply to --vertical, not to "
                                     "--vertical-pulse")
-        vertical = parse_pulse_spec(pulse)
-        if scale != 1.0:
-            vertical = vertical.scaled(scale)
-        return vertical, f"{vertical.shape} pulse" + (f" x {scale:g}" if scale != 1.0 else "")
+        vertical = scaled(parse_pulse_spec(pulse), scale, "--vertical-scale", "the vertical pulse")
+        return vertical, f"{vertical.shape} pulse" + (f" x {format_number(scale)}" if scale != 1.0 else "")
     vertical = _read_vertical_record(source, column, component,
                                      {k: v for k, v in read_kwargs.items() if k not in ("component", "column")})
     add_inputs([vertical.meta.get("path")], "the vertical record")
     comp = vertical.meta.get("component")
-    if scale != 1.0:
-        vertical = vertical.scaled(scale)
+    vertical = scaled(vertical, scale, "--vertical-scale", "the vertical record")
     return vertical, (f"record {vertical.name}" + (f" component {comp}" if comp else "")
-                      + (f" x {scale:g}" if scale != 1.0 else ""))
+                      + (f" x {format_number(scale)}" if scale != 1.0 else ""))
 
 
 def _read_vertical_record(source, column, component, kwargs):
@@ -516,12 +537,11 @@ def catalog_file():
 
 
 def add_inputs(paths, what: str) -> None:
-    """Files the command reads (records, the catalogue): an output on one of them is refused."""
-    from rockcli.files import current
+    """Files the command reads (records, the catalogue): an output on one of them is refused
+    (:func:`rockcli.files.note_inputs`)."""
+    from rockcli.files import note_inputs
 
-    outputs = current()
-    if outputs is not None:
-        outputs.add_inputs([p for p in paths if p], what)
+    note_inputs([p for p in paths if p], what)
 
 
 def json_option(func):

@@ -673,8 +673,8 @@ def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, ta
         n0 = nh
         if grid:  # the step's grid rows, before its events move W[W_Y] (those past an event are dropped below)
             i0 = np.int64(2) if rs[RS_PHASE] == PHASE_STUCK else np.int64(0)  # stuck: theta = theta_dot = 0
-            H, nh, kg = _hist_grid(H, nh, kg, hdt, rs[RS_T], hs, t_new, fkind, prm, _hy(rs), _seg(rs), epar, W, i0,
-                                   nst)
+            H, nh, kg = _hist_grid(H, nh, kg, hdt, rs[RS_T], hs, min(t_new, t_show_end), fkind, prm, _hy(rs), _seg(rs),
+                                   epar, W, i0, nst)  # no grid row after t_show_end: counted before the run
 
         if rs[RS_PHASE] == PHASE_STUCK:
             _after_stuck_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, epar)

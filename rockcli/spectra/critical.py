@@ -84,7 +84,11 @@ def critical_sizes(pulses: Sequence[PulseChoice], alphas_deg: Sequence[float], i
     better": isolation brings nothing there), refined by bisection in ``x`` to ``xtol`` (relative).
     Rows come in the order pulse, alpha, isolation.
     """
-    if not (math.isfinite(xtol) and TOL_MIN <= xtol <= 0.5):
+    from rockcli.spectra.arguments import as_alphas, as_grid, as_isolations, as_pulses
+
+    pulses, alphas_deg, isolations = as_pulses(pulses), as_alphas(alphas_deg), as_isolations(isolations)
+    wp_grid = as_grid(wp_grid, "wp_grid")
+    if not (isinstance(xtol, (int, float)) and math.isfinite(xtol) and TOL_MIN <= xtol <= 0.5):
         raise RockcliInputError(f"xtol must lie in [{TOL_MIN:g}, 0.5] (relative; double precision cannot bisect "
                                 f"finer), got {xtol!r}")
     for pc in pulses:

@@ -54,6 +54,7 @@ from typing import Optional, Sequence
 import numpy as np
 
 from rockcli.errors import RockcliInputError
+from rockcli.inputs import format_number
 from rockcli.spectra.runner import Runner
 from rockcli.spectra.scenes import REFERENCE_R, Family, Isolation, PulseChoice
 
@@ -125,6 +126,26 @@ def _check(step, tol, refine, refine_band, ap_max):
         raise RockcliInputError(f"ap_max must be > 1 (in units of g tan alpha), got {ap_max!r}")
 
 
+#: The most columns (curve x omega_p/p value) one search takes: about 150 runs each with the default settings
+#: (100 to 1,000), so 100,000 columns are some 15 million runs, about half an hour on 2 cores.
+MAX_COLUMNS = 100_000
+#: The largest ``ap_max`` [g tan alpha]: a column that never overturns scans ``ln(ap_max / y_uplift) / ln(1 + step)``
+#: values, at most 930 at the default step and 92,000 at the floor (1e-4); ``ap_max = 1e300`` would be 6.9 million.
+#: Beyond 5,730 not even the most slender supported block (alpha = 1 deg) keeps its pulses within 100 g.
+AP_MAX_MAX = 1e4
+
+
+def _check_size(n: int, ap_max: float) -> None:
+    """Before any run: at most :data:`MAX_COLUMNS` columns and ``ap_max`` at most :data:`AP_MAX_MAX`."""
+    if n > MAX_COLUMNS:
+        raise RockcliInputError(f"the search has {n:,} columns (curves x omega_p/p values); at most {MAX_COLUMNS:,} "
+                                f"are searched at once (about 150 runs each): use fewer values or curves")
+    if ap_max > AP_MAX_MAX:
+        raise RockcliInputError(f"ap_max must be at most {AP_MAX_MAX:g} (in units of g tan alpha: a column that never "
+                                f"overturns scans up to it, and beyond 5730 even a block of alpha = 1 deg needs pulses "
+                                f"of more than 100 g), got {format_number(ap_max)}")
+
+
 def search_min_overturning(families: Sequence[Family], fam, x, *, ap_max: float = DEFAULT_AP_MAX,
                            step: float = DEFAULT_STEP, tol: float = DEFAULT_TOL, refine: float = DEFAULT_REFINE,
                            refine_band: float = DEFAULT_REFINE_BAND, runner: Optional[Runner] = None,
@@ -142,6 +163,7 @@ def search_min_overturning(families: Sequence[Family], fam, x, *, ap_max: float 
     fam = np.asarray(fam, dtype=np.int64)
     x = np.asarray(x, dtype=float)
     n = len(x)
+    _check_size(n, ap_max)
     runs = 0
     unproven = 0
 
@@ -331,8 +353,12 @@ def min_overturning_curves(alphas_deg: Sequence[float], pulses: Sequence[PulseCh
                            step: float = DEFAULT_STEP, tol: float = DEFAULT_TOL, refine: float = DEFAULT_REFINE,
                            refine_band: float = DEFAULT_REFINE_BAND, R: float = REFERENCE_R,
                            runner: Optional[Runner] = None, progress=None) -> list[MinCurve]:
-    """Minimum overturning curves for every ``alpha x pulse x isolation`` (nesting order), one search."""
-    xs = np.asarray(wp_values, dtype=float)
+    """Minimum overturning curves for every ``alpha x pulse x isolation`` (nesting order), one search. Pulses and
+    isolations may be spec strings; a wrong type is one sentence (:mod:`rockcli.spectra.arguments`)."""
+    from rockcli.spectra.arguments import as_alphas, as_isolations, as_pulses, as_values
+
+    alphas_deg, pulses, isolations = as_alphas(alphas_deg), as_pulses(pulses), as_isolations(isolations)
+    xs = as_values(wp_values, "wp_values", positive=True)
     keys = [(a, pc, iso) for a in alphas_deg for pc in pulses for iso in isolations]
     families = [Family(math.radians(a), pc.shape, iso, R) for a, pc, iso in keys]
     fam = np.repeat(np.arange(len(families)), xs.size)
