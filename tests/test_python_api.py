@@ -12,6 +12,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from rockcli.errors import RockcliInputError
+
 ROOT = Path(__file__).resolve().parents[1]
 HEAVY = ("numba", "obspy", "pandas", "matplotlib", "scipy")
 
@@ -87,9 +89,9 @@ def test_the_pair_resolve_excitations_returns_is_refused_in_one_sentence():
     columns, _, confs = _pulse_suite()
     pair = resolve_excitations(["kobe-1995-takarazuka-000"], "pulse")
     for run in (run_assessment, run_fragility):
-        with pytest.raises(TypeError, match=r"unavailable = resolve_excitations\(\[\.\.\.\]\); got a list"):
+        with pytest.raises(RockcliInputError, match=r"unavailable = resolve_excitations\(\[\.\.\.\]\); got a list"):
             run(columns, pair, confs)
-    with pytest.raises(TypeError, match="got str"):
+    with pytest.raises(RockcliInputError, match="got str"):
         run_assessment(columns, ["kobe-1995-takarazuka-000"], confs)
 
 

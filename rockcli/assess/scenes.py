@@ -99,6 +99,9 @@ def check_scenes(columns, excitations, configurations) -> tuple[list, list, list
                                         (conf, Configuration, "configurations", "a Configuration "
                                                                                 "(parse_configurations)")):
         for x in items:
+            if kind is Excitation and isinstance(x, list):  # the usual slip: the pair resolve_excitations returns
+                raise RockcliInputError("excitations must be the Excitation objects of resolve_excitations, "
+                                        "unpacked: excitations, unavailable = resolve_excitations([...]); got a list")
             check_type(x, kind, f"{what}: each item", expected)
     return cols, exc, conf
 

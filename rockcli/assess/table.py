@@ -167,7 +167,6 @@ def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
         raise RockcliInputError("no body to assess: name a preset (bassae, nemea) or give a body of your own")
     if not configurations:
         raise RockcliInputError("no isolation configuration to assess")
-    excitations = check_excitations(excitations, "run_assessment")
     timings = {}
     rows, scenes, run_rows = [], [], []
     for b in columns:
@@ -223,18 +222,6 @@ def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
         timings["neighbourhood_s"] = time.perf_counter() - t0
     return Assessment(list(columns), list(excitations), list(configurations), rows, list(unavailable), margin,
                       timings, neighbourhood, dict(solver))
-
-
-def check_excitations(excitations, who: str) -> list:
-    """``excitations`` as a list of :class:`Excitation`, else a TypeError in one sentence saying what to pass
-    (the usual slip: passing what :func:`resolve_excitations` returns, the pair (excitations, unavailable))."""
-    items = list(excitations)
-    for x in items:
-        if not isinstance(x, Excitation):
-            got = "a list (the pair resolve_excitations returns?)" if isinstance(x, list) else type(x).__name__
-            raise TypeError(f"{who}: excitations must be the Excitation objects of resolve_excitations, unpacked: "
-                            f"excitations, unavailable = resolve_excitations([...]); got {got}")
-    return items
 
 
 class _Advance:
