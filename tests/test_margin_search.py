@@ -119,10 +119,10 @@ def _same(a, b):
 
 @pytest.mark.parametrize("seed,known", [(331, False), (332, True)])
 def test_search_equals_the_full_scan_on_random_scenes(seed, known):
-    """240 random scenes (rigid, linear, sliding and lead-rubber bases; records and pulses; undamped bases,
+    """200 random scenes (rigid, linear, sliding and lead-rubber bases; records and pulses; undamped bases,
     a short horizon so that some runs end unproven): the search returns exactly the full scan's results,
     notes included, with and without the responses at 1x given."""
-    scenes = _scenes(seed, 120)
+    scenes = _scenes(seed, 100)
     solver = {"horizon": 3.0}
     responses = simulate_many([_scaled_job(*s, 1.0) for s in scenes], **solver) if known else None
     got = find_overturn_scales(scenes, grid=GRID, known=responses, **solver)
@@ -166,7 +166,7 @@ def test_the_search_leaves_out_the_runs_it_can():
 
 def test_the_liftoff_floor_is_a_proof_and_tight():
     """Just below each floor (rigid and linear bases) the run never lifts the block and is proven; on linear
-    bearings 1 % above the floor (which is 0.1 % below the exact lift-off factor) it lifts."""
+    bearings 1 % above the floor (at most 0.1 % below the exact lift-off factor) it lifts."""
     rng = np.random.default_rng(334)
     scenes = []
     for _ in range(60):
@@ -177,7 +177,7 @@ def test_the_liftoff_floor_is_a_proof_and_tight():
     assert all(r.verdict == "no_uplift" and r.settled for r in below)
     above = simulate_many([_scaled_job(*s, f * 1.01) for s, f in zip(scenes, floors)], early=True)
     assert all(r.verdict != "no_uplift" for r in above), [(s[1], r.verdict) for s, r in zip(scenes, above)]
-    assert LINEAR_MARGIN <= 1e-3
+    assert LINEAR_MARGIN <= 1e-9
 
 
 def test_the_rigid_floor_under_a_vertical_motion_takes_its_lowest_gravity():
