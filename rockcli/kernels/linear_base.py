@@ -111,20 +111,20 @@ def coefficients(w, xi, tau):
     return p11, p12, p21, p22, q1u, q1v, q2u, q1u
 
 
-@njit(cache=True, inline='always')
+@njit(cache=True)
 def advance(c, u, v, a0, b):
     """The state ``(u, u')`` after the step ``c`` (:func:`coefficients`) from ``(u, v)`` under ``ag = a0 + b t``."""
     return (c[0] * u + c[1] * v - a0 * c[4] - b * c[6],
             c[2] * u + c[3] * v - a0 * c[5] - b * c[7])
 
 
-@njit(cache=True, inline='always')
+@njit(cache=True)
 def base_acceleration(w, xi, u, v):
     """The absolute base acceleration ``a = -w^2 u - 2 xi w u'`` (the bearings' force per unit total mass)."""
     return -w * w * u - 2.0 * xi * w * v
 
 
-@njit(cache=True, inline='always')
+@njit(cache=True)
 def free_part(w, xi, u, v, a0, b):
     """``(a(0), a_h(0), a_h'(0), K)`` at the start of a step from ``(u, v)`` under ``ag = a0 + b t``:
     the acceleration, its free part and the bound ``K`` of ``|a''|`` over the step (module notes)."""
@@ -135,14 +135,14 @@ def free_part(w, xi, u, v, a0, b):
     return a, ah, ahd, k
 
 
-@njit(cache=True, inline='always')
+@njit(cache=True)
 def acceleration_at(w, xi, ah, ahd, a0, b, tau):
     """``a(tau) = a0 + b tau + P11(tau) a_h(0) + P12(tau) a_h'(0)`` inside a step."""
     p11, p12, _, _ = transition(w, xi, tau)
     return a0 + b * tau + p11 * ah + p12 * ahd
 
 
-@njit(cache=True, inline='always')
+@njit(cache=True)
 def step_clear(a_start, a_end, k, h, thr):
     """True when no ``|a| > thr`` can occur inside a step of length ``h`` with these end values (module notes)."""
     return max(abs(a_start), abs(a_end)) + 0.125 * k * h * h <= thr
