@@ -115,14 +115,16 @@ def compare(old: dict, new: dict, jobs) -> None:
     rel_u = np.abs(old["umax"][same] - new["umax"][same]) / np.maximum(np.abs(old["umax"][same]), 1e-12)
     up = same & np.isfinite(old["t_uplift"]) & np.isfinite(new["t_uplift"])
     dtu = np.abs(old["t_uplift"][up] - new["t_uplift"][up])
-    for name, d in (("|d theta_max/alpha| (rocked in both)", dth), ("|d u_max|/u_max", rel_u), ("|d t_uplift| [s]", dtu)):
+    for name, d in (("|d theta_max/alpha| (rocked in both)", dth), ("|d u_max|/u_max", rel_u),
+                    ("|d t_uplift| [s]", dtu)):
         if d.size:
             print(f"  {name}: median {np.median(d):.2e}, 99 % {np.quantile(d, 0.99):.2e}, max {d.max():.2e} "
                   f"({d.size} scenes)")
     print(f"  settled differs in {int(np.count_nonzero(old['settled'] != new['settled']))} scenes")
     for tag, r in (("old", old), ("new", new)):
         print(f"  {tag}: {r['steps'].mean():.0f} steps/run, {r['nfev'].mean():.0f} rhs/run, "
-              f"{1e3 * float(r['cpu']) / n:.3f} ms CPU/run ({float(r['cpu']):.1f} s CPU, {float(r['wall']):.1f} s wall, "
+              f"{1e3 * float(r['cpu']) / n:.3f} ms CPU/run ({float(r['cpu']):.1f} s CPU, "
+              f"{float(r['wall']):.1f} s wall, "
               f"load {float(r['load']):.1f})")
     by = {k: np.flatnonzero(vo == VERDICTS.index(k)) for k in VERDICTS[:3]}
     print("  verdicts (old): " + ", ".join(f"{k} {v.size}" for k, v in by.items()))

@@ -117,19 +117,19 @@ def _same(a, b):
     return eq(h1, h2) and eq(l1, l2) and n1 == n2
 
 
-@pytest.mark.parametrize("seed,known", [(331, False), (332, True)])
-def test_search_equals_the_full_scan_on_random_scenes(seed, known):
-    """200 random scenes (rigid, linear, sliding and lead-rubber bases; records and pulses; undamped bases,
+@pytest.mark.parametrize("seed,known,n", [(331, False, 100), (332, True, 60)])
+def test_search_equals_the_full_scan_on_random_scenes(seed, known, n):
+    """160 random scenes (rigid, linear, sliding and lead-rubber bases; records and pulses; undamped bases,
     a short horizon so that some runs end unproven): the search returns exactly the full scan's results,
     notes included, with and without the responses at 1x given."""
-    scenes = _scenes(seed, 100)
+    scenes = _scenes(seed, n)
     solver = {"horizon": 3.0}
     responses = simulate_many([_scaled_job(*s, 1.0) for s in scenes], **solver) if known else None
     got = find_overturn_scales(scenes, grid=GRID, known=responses, **solver)
     want = _full_scan(scenes, GRID, 0.01, known=responses, **solver)
     bad = [(i, g, w) for i, (g, w) in enumerate(zip(got, want)) if not _same(g, w)]
     assert not bad, bad[:5]
-    assert sum(np.isfinite(h) for h, _, _ in got) >= 30  # the test sees margins, not only 'no overturning'
+    assert sum(np.isfinite(h) for h, _, _ in got) >= n // 4  # the test sees margins, not only 'no overturning'
     assert any("not proven" in note for _, _, note in got)  # and the note's count
 
 
