@@ -10,6 +10,9 @@ Files (data flows down this list):
 ``polynomials``           the dense-output quartics: evaluation, first crossings and excursions
 ``bearings``              the bearings' force per foundation family; the Bouc-Wen element solved
                           exactly along the path of u (the stiff treatment); the DCSS slider
+``linear_base``           the linear base carrying the standing block in closed form (the exact
+                          step per sample interval, the lift-off inside it, the peak of a record;
+                          the norm and the record table of the early stop P9)
 ``rhs``                   right-hand sides (rigid, isolated: stuck and rocking)
 ``dopri``                 the Dormand-Prince 5(4) step, its error norm and dense output
 ``events``                impact map, rest rule, uplift on a hysteretic base, reversals, history rows

@@ -6,7 +6,8 @@ hysteretic bearings add their Bouc-Wen variables, which follow u exactly and liv
 of the run record ``rs``):
 
 * *stuck*: the block moves with its base (theta = theta_dot = 0); only the base is integrated
-  (:func:`_after_stuck_step`).
+  (:func:`_after_stuck_step`), or, on linear bearings under a record, advanced exactly from sample to
+  sample (:func:`_linear_stuck_step`, :mod:`rockcli.kernels.linear_base`).
 * *rocking* about the corner ``s`` (+1 right, -1 left): all four states (:func:`_after_rocking_step`).
 
 Each pass of the loop: move to the excitation segment that contains t
@@ -28,15 +29,18 @@ from rockcli.kernels.bearings import (base_force, bearing_energy, free_disp_boun
 from rockcli.kernels.dopri import _dense, _dp5_step, _restep_rows, _shift_event, _state_at
 from rockcli.kernels.events import (REV_AT, REV_WRONG_START, _count_uplift, _hist_grid, _hist_grid_cut, _hist_peak,
                                     _hist_state, _u_extremum, hysteretic_uplift, impact_map, reversal_check)
-from rockcli.kernels.ground import _impulse_left, base_norm, base_norm_of, ground_at, linear_base_table
-from rockcli.kernels.layout import (FOUNDATION_BILINEAR, FOUNDATION_LINEAR, H_KIND, H_T, HK_IMPACT, HK_STATE, HK_UPLIFT,
+from rockcli.kernels.ground import _impulse_left, ground_at
+from rockcli.kernels.linear_base import (advance, base_acceleration, base_norm, base_norm_of, coefficients, first_exceed,
+                                         free_part, linear_base_table, step_clear, velocity_zero)
+from rockcli.kernels.layout import (EXC_RECORD, FOUNDATION_BILINEAR, FOUNDATION_LINEAR, H_KIND, H_T, HK_GRID, HK_IMPACT,
+                                    HK_STATE, HK_UPLIFT,
                                     O_T_SETTLED, P_ALPHA, P_COSA, P_G, P_HDT,
                                     P_GAMMA, P_H, P_R, P_RTOL, P_SC0, P_TH0, P_THD0, P_THR, P_W, P_XI, PHASE_ROCKING,
                                     PHASE_STUCK, RS_DIR, RS_FRESH, RS_NREV, RS_NRHS, RS_PHASE, RS_PK_ON, RS_PK_SIG,
                                     RS_PK_T, RS_REJ, RS_S, RS_SEG_END, RS_SETTLED,
                                     RS_SPLIT, RS_STATUS, RS_STEPS, RS_T, RS_THMAX, RS_U1A, RS_UA, RS_UMAX, RS_XI1,
                                     RS_XI2, STATUS_MAX_STEPS, W_EV, W_FEV, W_RE, W_TMP, W_Y, W_YNEW)
-from rockcli.kernels.layout import E_AP, EXC_RECORD, P_K1, P_K2, P_Q1, P_Q2, RS_J, RS_SEG  # the early stops P9, P9s
+from rockcli.kernels.layout import E_AP, P_K1, P_K2, P_Q1, P_Q2, RS_J, RS_SEG  # the early stops P9, P9s
 from rockcli.kernels.polynomials import _first_exceed, _poly
 from rockcli.kernels.rhs import _rhs_into
 from rockcli.kernels.steps import (EV_FAILED, EV_IMPACT, EV_OVERTURN, _advance_segment, _bounce, _close_step,
@@ -174,10 +178,10 @@ def _early_stuck(fkind, prm, ekind, epar, jtab, dt, lin, rs, W):
     """P9, P9s (block stuck, ``early`` only): ``(proven, u_bound)``: True when no later base acceleration
     can reach ``g tan(alpha)`` (to within :data:`EARLY_MARGIN`), and a bound of every later ``|u|`` [m].
 
-    Linear base: every later norm ``S`` of the base (:func:`rockcli.kernels.ground.base_norm`) is at
+    Linear base: every later norm ``S`` of the base (:func:`rockcli.kernels.linear_base.base_norm`) is at
     most ``S + J`` (``J`` the remaining ground impulse), and at a sample of a record at most ``|s|``
     times the largest later norm of the record's linear response (``lin``,
-    :func:`rockcli.kernels.ground.linear_base_table`) plus the norm of the difference from it.
+    :func:`rockcli.kernels.linear_base.linear_base_table`) plus the norm of the difference from it.
     Hysteretic base: every later ``sqrt(2 E) <= sqrt(2 E) + J`` (P9s) bounds the force.
     """
     t = rs[RS_T]
@@ -392,6 +396,80 @@ def _after_stuck_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, epar):
     rs[RS_UMAX] = max(rs[RS_UMAX], abs(W[W_Y, 2]))
 
 
+@njit(cache=True)
+def _linear_stuck_step(prm, rs, W, out, t_stop, dt, lbc):
+    """Stuck on linear bearings under a record: the base advanced exactly to ``t_stop`` (the end of the
+    sample interval; after the record at most ``dt`` on), or to the lift-off inside the step.
+
+    The piecewise-exact solution of :mod:`rockcli.kernels.linear_base` (``lbc`` its coefficients for a
+    whole sample interval ``dt``, computed once per run; a shorter step, after a rest, computes its
+    own). Lift-off where ``|a|`` first exceeds ``g tan(alpha)`` inside the step (exact up to rounding:
+    :func:`rockcli.kernels.linear_base.first_exceed`), the block pivoting on the corner ``-sign(a)``;
+    the peak base displacement at a reversal inside the step
+    (:func:`rockcli.kernels.linear_base.velocity_zero`). One step counts as one accepted step."""
+    w = prm[P_W]
+    xi = prm[P_XI]
+    thr = prm[P_THR]
+    t = rs[RS_T]
+    seg = _seg(rs)
+    b = seg[2]
+    a0 = seg[1] + b * (t - seg[3])
+    ulps = 1e-14 * (abs(t) + dt)  # (a whole interval, up to the rounding of t)
+    h = t_stop - t
+    t_end = t_stop
+    if h > dt + ulps:  # after the record: sample-long steps
+        h = dt
+        t_end = t + dt
+    c = lbc if abs(h - dt) <= ulps else coefficients(w, xi, h)
+    u0 = W[W_Y, 2]
+    v0 = W[W_Y, 3]
+    a_s, ah, ahd, k = free_part(w, xi, u0, v0, a0, b)
+    u1, v1 = advance(c, u0, v0, a0, b)
+    tau = -1.0
+    sa = 0.0
+    if not step_clear(a_s, base_acceleration(w, xi, u1, v1), k, h, thr):
+        tau, sa = first_exceed(w, xi, a_s, ah, ahd, k, a0, b, h, thr)
+    span = h
+    if tau >= 0.0:
+        span = tau
+        if tau < h:
+            u1, v1 = advance(coefficients(w, xi, tau), u0, v0, a0, b)
+    if (v0 > 0.0) != (v1 > 0.0):
+        rs[RS_UMAX] = max(rs[RS_UMAX], abs(velocity_zero(w, xi, u0, v0, a0, b, span)))
+    W[W_Y, 2] = u1
+    W[W_Y, 3] = v1
+    rs[RS_UMAX] = max(rs[RS_UMAX], abs(u1))
+    rs[RS_STEPS] += 1
+    rs[RS_FRESH] = 1.0  # W[0] is not kept up to date here
+    if tau >= 0.0:
+        rs[RS_T] = t + tau
+        rs[RS_S] = -sa
+        rs[RS_PHASE] = PHASE_ROCKING
+        _count_uplift(out, rs[RS_T])
+    else:
+        rs[RS_T] = t_end
+
+
+@njit(cache=True)
+def _hist_grid_linear(H, nh, kg, hdt, t0, u0, v0, seg, t_end, fkind, prm, hy, epar, W):
+    """The grid rows (``HK_GRID``) at ``kg hdt, ... <= t_end`` of an exact stuck step from ``t0``
+    (state ``u0, v0``; ground of the segment ``seg``): :func:`_hist_grid` for :func:`_linear_stuck_step`."""
+    w = prm[P_W]
+    xi = prm[P_XI]
+    b = seg[2]
+    a0 = seg[1] + b * (t0 - seg[3])
+    while kg * hdt <= t_end:
+        tg = kg * hdt
+        u, v = advance(coefficients(w, xi, max(tg - t0, 0.0)), u0, v0, a0, b)
+        W[W_TMP, 0] = 0.0
+        W[W_TMP, 1] = 0.0
+        W[W_TMP, 2] = u
+        W[W_TMP, 3] = v
+        H, nh = _hist_state(H, nh, tg, ground_at(tg, seg, epar), fkind, prm, hy, W, W_TMP, HK_GRID)
+        kg += 1
+    return H, nh, kg
+
+
 @njit(cache=True, inline='always')
 def _after_rocking_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, nst, epar):
     """Rocking on an isolated base, after a step: the events in theta
@@ -540,13 +618,13 @@ def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, ta
        block rides on its base the base is the oscillator ``u'' + 2 xi w u' + w^2 u = -ag`` (any gamma < 1:
        gamma does not enter it), and the block lifts only where ``|a| > g tan(alpha)``, ``a = -(w^2 u + 2 xi
        w u')`` the absolute base acceleration. Take the norm ``S^2 = v^2 + 2 c v y + y^2 = (v + c y)^2 + (1
-       - c^2) y^2`` (``v = u'``, ``y = w u``, ``0 <= c < 1`` as in P8, :func:`rockcli.kernels.ground.base_norm`):
+       - c^2) y^2`` (``v = u'``, ``y = w u``, ``0 <= c < 1`` as in P8, :func:`rockcli.kernels.linear_base.base_norm`):
        ``dS^2/dt = -w Q - 2 (v + c y) ag`` with ``Q >= 0`` (P8 (i)), so ``dS/dt <= |ag|`` (``|v + c y| <=
        S``), and S never grows with the ground still; ``|a| <= k_a w S`` and ``|u| <= k_u S/w`` (the largest
        of a linear form over the ellipse ``S = 1``). Two bounds of every later S follow: (i) ``S + J``, J
        the remaining ground impulse (:func:`rockcli.kernels.ground._impulse_left`); (ii) on a record, at a
        sample ``t_k``: write the state as ``s z_lin(t_k) + d``, ``z_lin`` the response of the base alone to
-       the record of unit scale from rest (:func:`rockcli.kernels.ground.linear_base_table`, exact steps
+       the record of unit scale from rest (:func:`rockcli.kernels.linear_base.linear_base_table`, exact steps
        between samples) and s the scale factor; while the block rides, the state is ``s z_lin(t') +
        d(t')`` with ``d(t')`` the free motion from d (superposition: both obey the same linear equation),
        so ``S <= |s| S*_k + S(d)``, ``S*_k`` the table's bound of every later ``S(z_lin)`` (inside a sample
@@ -632,6 +710,9 @@ def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, ta
     lin = np.empty((0, 3))  # the record's linear base response for P9 (early runs on linear bearings)
     if early and fkind == FOUNDATION_LINEAR and ekind == EXC_RECORD:
         lin = linear_base_table(acc, dt, prm[P_W], prm[P_XI])
+    # a record on linear bearings: the stuck phase in closed form (_linear_stuck_step)
+    exact = fkind == FOUNDATION_LINEAR and ekind == EXC_RECORD
+    lbc = coefficients(prm[P_W], prm[P_XI], dt)
     hdt = prm[P_HDT]
     grid = want_history and hdt > 0.0
     kg = np.int64(math.ceil(rs[RS_T] / hdt)) if grid else np.int64(0)  # the next grid time is kg hdt
@@ -663,6 +744,19 @@ def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, ta
                     _mark_uplift(H, nh, rs[RS_T])
                 _count_uplift(out, rs[RS_T])
                 rs[RS_FRESH] = 1.0
+                continue
+            if exact:
+                t0 = rs[RS_T]
+                u0 = W[W_Y, 2]
+                v0 = W[W_Y, 3]
+                seg0 = _seg(rs)
+                _linear_stuck_step(prm, rs, W, out, t_stop, dt, lbc)
+                if grid:
+                    H, nh, kg = _hist_grid_linear(H, nh, kg, hdt, t0, u0, v0, seg0, rs[RS_T], fkind, prm, _hy(rs),
+                                                  epar, W)
+                if want_history:
+                    H, nh = _history_row(H, nh, fkind, prm, rs, epar, W, W_Y,
+                                         HK_UPLIFT if rs[RS_PHASE] == PHASE_ROCKING else HK_STATE)
                 continue
 
         ok, hs, last, sig_lim = _take_step(fkind, prm, ekind, epar, max_steps, rs, W, t_stop, nst)
