@@ -43,6 +43,7 @@ from rockcli.errors import RockcliInputError
 
 PACKAGE_DIR = Path(__file__).resolve().parent
 _notices: set = set()
+_folders: dict = {}  # (NUMBA_CACHE_DIR, source file) -> (cache folder, writable), or None: not this package's
 
 
 def check_thread_setting() -> None:
@@ -172,12 +173,49 @@ def _wrap_cache_io(cache_cls) -> None:
         if not _ours(self):
             return load(self, sig, target_context)
         try:
+            if hasattr(self, "_load_overload"):  # numba's internals as this module knows them
+                return _load_unrefreshed(self, sig, target_context)
             return load(self, sig, target_context)
         except (OSError, EOFError, pickle.UnpicklingError):
             return None  # an unreadable or damaged entry: compiled again
 
     save_overload._rockcli_tolerant = True
     cache_cls.save_overload, cache_cls.load_overload = save_overload, load_overload
+
+
+def _load_unrefreshed(cache, sig, target_context):
+    """numba's ``Cache.load_overload`` for a function of this package, without its first step, the
+    refresh of the compiler's registries.
+
+    ``Cache.load_overload`` begins with ``target_context.refresh()``, which imports and installs every
+    typing and lowering implementation numba has (``numba.np.arraymath`` among them, which imports
+    ``scipy.linalg`` to look for a BLAS): about 0.7 s of CPU, more than half of a warm ``rockcli
+    simulate``, spent once per process before the first kernel is loaded. A load needs none of it:
+
+    * a cache entry is the function's machine code (object code, callees linked in), its bitcode for
+      inlining and pickled descriptors; loading links that object code into numba's JIT engine and
+      resolves its external symbols, and compiles nothing. The code that runs is the same bytes
+      whether the registries were refreshed or not, so a result cannot change.
+    * the external symbols it may use are numba's C helpers and the C math functions (registered
+      when numba's CPU context is created, before any load), the runtime's (NRT; registered by
+      ``rtsys.initialize``, which the refresh would call and which is called here), and the hash
+      secrets of ``numba.cpython.hashing`` (registered at its import, done here). The only other
+      symbols numba registers during a refresh are the parallel scheduler's, used by
+      ``parallel=True`` code, which this package does not have (its kernels run on a pool of
+      threads, see :mod:`rockcli.kernels.batch`; tests/test_first_run.py checks both that no kernel
+      asks for it and that every batch and single-run kernel loads and runs this way in a fresh
+      process). A symbol missing at link time would stop the process with LLVM's error, never run
+      other code.
+    * a cache miss returns None and numba compiles the function; its compiler refreshes the
+      registries itself first (``CompilerBase.__init__``), as every later compile does.
+    """
+    from numba.core.runtime import rtsys
+
+    import numba.cpython.hashing  # noqa: F401  (its symbols, see above)
+
+    rtsys.initialize(target_context)
+    with cache._guard_against_spurious_io_errors():
+        return cache._load_overload(sig, target_context)
 
 
 def _make_locator():
@@ -191,7 +229,7 @@ def _make_locator():
 
         def __init__(self, py_func, py_file, cache_path):
             self._py_file = py_file
-            self._lineno = py_func.__code__.co_firstlineno
+            self._lineno = py_func.__code__.co_firstlineno if py_func is not None else 0
             self._cache_path = cache_path
 
         def get_source_stamp(self):
@@ -201,12 +239,27 @@ def _make_locator():
 
         @classmethod
         def from_function(cls, py_func, py_file):
+            key = (config.CACHE_DIR, py_file)
+            if key not in _folders:
+                _folders[key] = cls._folder(py_file)
+            found = _folders[key]
+            if found is None:
+                return None  # not ours: numba's own locators decide
+            path, writable = found
+            return (cls if writable else _NoDiskLocator)(py_func, py_file, path)
+
+        @classmethod
+        def _folder(cls, py_file):
+            """``(cache folder, writable)`` of the functions of ``py_file``, or None when it is not a file of this
+            package. Found once per file and process (the package's ~110 functions share one or a few folders;
+            a folder that can no longer be written later makes a save fail with the notice of
+            :func:`_wrap_cache_io`)."""
             try:
                 inside = Path(py_file).resolve().parent == PACKAGE_DIR
             except OSError:
                 return None
             if not inside:
-                return None  # not ours: numba's own locators decide
+                return None
             candidates = []
             if config.CACHE_DIR:
                 candidates.append(os.path.join(config.CACHE_DIR, cls.get_suitable_cache_subpath(py_file)))
@@ -217,19 +270,18 @@ def _make_locator():
                 user = AppDirs(appname="numba", appauthor=False).user_cache_dir
                 candidates.append(os.path.join(user, "rockcli", cls.get_suitable_cache_subpath(py_file)))
             for path in candidates:
-                self = cls(py_func, py_file, path)
                 try:
-                    self.ensure_cache_path()
+                    cls(None, py_file, path).ensure_cache_path()
                 except OSError:
                     continue
-                return self
+                return path, True
             if config.CACHE_DIR:
                 bases = [config.CACHE_DIR]
             else:
                 bases = [str(PACKAGE_DIR / "__pycache__"), str(Path(user) / "rockcli")]
             notice(f"numba's disk cache cannot be written (tried {' and '.join(bases)}); kernels not cached there are "
                    f"compiled in memory on every run (about a minute; set NUMBA_CACHE_DIR to a writable folder)")
-            return _NoDiskLocator(py_func, py_file, candidates[0])
+            return candidates[0], False
 
     class _NoDiskLocator(_PackageLocator):
         """No folder can be written: nothing is saved; loads use what is there (a cache shipped read-only)."""
