@@ -17,6 +17,10 @@ The disk cache is an optimisation, never a condition of a run:
   run carries on without it (one notice line): :func:`install` wraps numba's ``save_overload`` and
   ``load_overload`` for the functions of this package only.
 
+A warm process loads its cached kernels without numba's refresh of its compiler's registries, which
+only a compile needs (:func:`_load_unrefreshed`: 0.7 s of CPU per process), and finds the cache folder
+once per kernel file, not once per function.
+
 :func:`install` registers the locator with numba; it must run before the kernel modules are
 imported (numba picks a function's locator when ``@njit(cache=True)`` is applied). It changes
 nothing for functions outside this package.
@@ -200,11 +204,11 @@ def _load_unrefreshed(cache, sig, target_context):
       when numba's CPU context is created, before any load), the runtime's (NRT; registered by
       ``rtsys.initialize``, which the refresh would call and which is called here), and the hash
       secrets of ``numba.cpython.hashing`` (registered at its import, done here). The only other
-      symbols numba registers during a refresh are the parallel scheduler's, used by
-      ``parallel=True`` code, which this package does not have (its kernels run on a pool of
-      threads, see :mod:`rockcli.kernels.batch`; tests/test_first_run.py checks both that no kernel
-      asks for it and that every batch and single-run kernel loads and runs this way in a fresh
-      process). A symbol missing at link time would stop the process with LLVM's error, never run
+      symbols numba registers are the parallel scheduler's, for ``parallel=True`` code, which this
+      package does not have (its kernels run on a pool of threads, see :mod:`rockcli.kernels.batch`;
+      tests/test_first_run.py checks both that no kernel asks for it and that every batch and
+      single-run kernel loads and runs this way in a fresh process, with the same results as after
+      a refresh). A symbol missing at link time would stop the process with LLVM's error, never run
       other code.
     * a cache miss returns None and numba compiles the function; its compiler refreshes the
       registries itself first (``CompilerBase.__init__``), as every later compile does.
