@@ -10,6 +10,7 @@ import os
 import re
 import subprocess
 import sys
+import time
 import types
 from pathlib import Path
 
@@ -296,3 +297,36 @@ def test_a_warm_process_loads_every_kernel_without_numbas_registries_and_gets_th
     for path in Path(K.__file__).parent.glob("*.py"):
         text = path.read_text()
         assert not re.search(r"jit\([^)]*parallel\s*=\s*True", text) and "prange" not in text, path.name
+
+
+# --------------------------------------------------------------------------------------------------
+# two processes that both lack a kernel compile it once (kernels/cache._claim_compile)
+# --------------------------------------------------------------------------------------------------
+_FIRST_EXCEED = ("import json, sys, numpy as np; from rockcli.kernels import polynomials as p; "
+                 "print('ready', flush=True); sys.stdin.readline(); "
+                 "x = p._first_exceed(np.array([0.0, 1.0, 0.0, 0.0, 0.0]), 0.5)[0]; k = p._first_exceed; "
+                 "print(json.dumps({'x': float(x).hex(), 'misses': sum(k._cache_misses.values()), "
+                 "'hits': sum(k._cache_hits.values())}))")
+
+
+def test_two_processes_that_lack_a_kernel_compile_it_once(tmp_path):
+    """Two processes that need a kernel the disk cache lacks, at the same moment (both imported, then told
+    to go together): one compiles it, the other waits for that compile and loads what the first saved,
+    instead of compiling it again (without the lock both compiled it); both get the same result (the
+    polynomial c(x) = x first exceeds 0.5 at x = 0.5)."""
+    env = {k: v for k, v in os.environ.items() if k != "NUMBA_DISABLE_JIT"}
+    env["NUMBA_CACHE_DIR"] = str(tmp_path)
+    procs = [subprocess.Popen([sys.executable, "-c", _FIRST_EXCEED], env=env, stdin=subprocess.PIPE,
+                              stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True) for _ in range(2)]
+    for proc in procs:
+        assert proc.stdout.readline().strip() == "ready", proc.stderr.read()
+    for proc in procs:
+        proc.stdin.write("go\n")
+        proc.stdin.flush()
+    outs = []
+    for proc in procs:
+        out, err = proc.communicate(timeout=900)
+        assert proc.returncode == 0, err
+        outs.append(json.loads(out.splitlines()[-1]))
+    assert sorted(o["misses"] for o in outs) == [0, 1] and sum(o["hits"] for o in outs) == 1, outs
+    assert outs[0]["x"] == outs[1]["x"] and abs(float.fromhex(outs[0]["x"]) - 0.5) < 1e-12

@@ -48,6 +48,9 @@ from rockcli.errors import RockcliInputError
 PACKAGE_DIR = Path(__file__).resolve().parent
 _notices: set = set()
 _folders: dict = {}  # (NUMBA_CACHE_DIR, source file) -> (cache folder, writable), or None: not this package's
+_held: dict = {}  # compile lock file -> its descriptor, for the functions this process is compiling
+#: Longest wait for another process's compile of the same function [s]; then it is compiled here as well.
+COMPILE_WAIT_S = 900.0
 
 
 def check_thread_setting() -> None:
@@ -138,8 +141,13 @@ def _watch_compiles() -> None:
 
         def on_end(self, ev):
             name = self._name(ev)
+            if name is None:
+                return
+            dispatcher, args = ev.data.get("dispatcher"), tuple(ev.data.get("args", ()))
+            if args not in getattr(dispatcher, "overloads", {}):
+                _release_compile(getattr(dispatcher, "_cache", None), args)  # it failed: nothing will be saved
             stack = local.__dict__.get("stack")
-            if name is None or not stack:
+            if not stack:
                 return
             t0 = stack.pop()
             if not stack:
@@ -172,19 +180,116 @@ def _wrap_cache_io(cache_cls) -> None:
             notice(f"numba's disk cache could not be written in {self.cache_path} ({reason}); the kernels "
                    f"run without it")
             return None
+        finally:
+            _release_compile(self, sig)  # saved (or not): a process waiting for this compile loads it now
 
     def load_overload(self, sig, target_context):
         if not _ours(self):
             return load(self, sig, target_context)
-        try:
+        def attempt():
             if hasattr(self, "_load_overload"):  # numba's internals as this module knows them
                 return _load_unrefreshed(self, sig, target_context)
             return load(self, sig, target_context)
+
+        try:
+            data = attempt()
+            if data is None and _claim_compile(self, sig):
+                data = attempt()  # the process this one waited for (if any) has saved it meanwhile
+                if data is not None:
+                    _release_compile(self, sig)
+            return data
         except (OSError, EOFError, pickle.UnpicklingError):
+            _release_compile(self, sig)
             return None  # an unreadable or damaged entry: compiled again
 
     save_overload._rockcli_tolerant = True
     cache_cls.save_overload, cache_cls.load_overload = save_overload, load_overload
+
+
+def _compile_lock_path(cache, sig) -> str | None:
+    """The lock file of one specialisation (argument types ``sig``) of ``cache``'s function, beside its index."""
+    locator = getattr(getattr(cache, "_impl", None), "locator", None)
+    index = getattr(getattr(cache, "_cache_file", None), "_index_path", None)
+    if locator is None or getattr(locator, "_no_disk", False) or not index:
+        return None
+    try:
+        from numba.core import sigutils
+
+        args = sigutils.normalize_signature(sig)[0]
+    except Exception:  # noqa: BLE001 - only an optimisation depends on it
+        return None
+    return f"{index}.{hashlib.sha256(str(tuple(args)).encode()).hexdigest()[:16]}.lock"
+
+
+def _claim_compile(cache, sig) -> bool:
+    """Before this process compiles a function of this package for argument types ``sig`` that the disk cache
+    lacks: wait while another process compiles the same specialisation (an exclusive ``flock`` on a lock file
+    beside the function's cache index, one per argument types), then
+    hold that lock until this process has saved it (:func:`_release_compile`). True when this process holds
+    the lock (the caller then loads again: a process it waited for, or one that finished just before the
+    lock was taken, has saved the function), False when it cannot lock (then it compiles, as without it).
+
+    Two processes that start on a machine whose cache lacks a kernel (a fresh clone's test suite on two
+    workers, two first commands at once, :func:`rockcli.kernels.batch.prepare`'s child and parent with
+    their shared callees) would otherwise each compile it: the same machine code, twice the CPU. Waiting
+    changes nothing but who compiles: the code loaded is the code the other process compiled and saved,
+    the same as compiling it here (numba's cache is keyed on the sources and the machine). No deadlock:
+    a process waits for a specialisation only while compiling its callers (or nothing), and holds only
+    the locks of the specialisations it is compiling, so every wait follows the call graph of the
+    kernels, which has no cycle (no kernel is recursive); and a process that dies releases its locks. The wait ends after
+    :data:`COMPILE_WAIT_S` in any case (then it compiles here). On a file system without ``flock``, or
+    without a writable cache, nothing is locked.
+    """
+    path = _compile_lock_path(cache, sig)
+    if path is None or path in _held:
+        return False
+    try:
+        import fcntl
+
+        fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o666)
+    except (ImportError, OSError):
+        return False
+    from rockcli import compiling
+
+    waited, signalled, t0 = False, False, time.monotonic()
+    try:
+        while True:
+            try:
+                fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+                break
+            except BlockingIOError:
+                if not waited and not compiling.compiling():  # the wait is the first run's compile
+                    compiling.started(_kernel_name(cache))
+                    signalled = True
+                waited = True
+                if time.monotonic() - t0 > COMPILE_WAIT_S:
+                    os.close(fd)
+                    return False
+                time.sleep(0.05)
+    except OSError:
+        os.close(fd)
+        return False
+    finally:
+        if signalled:
+            compiling.ended(_kernel_name(cache), time.monotonic() - t0)
+    _held[path] = fd
+    return True
+
+
+def _release_compile(cache, sig) -> None:
+    """Release the compile lock :func:`_claim_compile` took for ``cache``'s function and ``sig`` (if held here)."""
+    path = _compile_lock_path(cache, sig) if cache is not None else None
+    fd = _held.pop(path, None) if path else None
+    if fd is not None:
+        try:
+            os.close(fd)  # closing the only descriptor of the file releases the flock
+        except OSError:
+            pass
+
+
+def _kernel_name(cache) -> str:
+    func = getattr(cache, "_py_func", None)
+    return f"{getattr(func, '__module__', '').rsplit('.', 1)[-1]}.{getattr(func, '__qualname__', '?')}"
 
 
 def _load_unrefreshed(cache, sig, target_context):
