@@ -372,8 +372,25 @@ def question(assessment) -> str:
 
 
 def format_verdicts(assessment, width: int = 100) -> str:
-    """The answer as ``rockcli assess column`` prints it: per body, one sentence per configuration."""
+    """The answer as ``rockcli assess column`` prints it: per body, one sentence per configuration.
+
+    Raises
+    ------
+    RockcliInputError
+        ``assessment`` is not what :func:`rockcli.assess.run_assessment` returns, or ``width`` is not a whole
+        number >= 40.
+    """
+    import numbers
     import textwrap
+
+    from rockcli.assess.table import Assessment
+    from rockcli.errors import RockcliInputError
+    from rockcli.inputs import check_type
+
+    check_type(assessment, Assessment, "assessment", "the Assessment of run_assessment(...)")
+    check_type(width, numbers.Integral, "width", "a whole number of characters >= 40")
+    if width < 40:
+        raise RockcliInputError(f"width must be a whole number of characters >= 40, got {width}")
 
     lines = ["In plain words:"]
     xs = [x.label for x in assessment.excitations if x.motion is not None]
