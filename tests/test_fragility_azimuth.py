@@ -130,7 +130,8 @@ def test_no_azimuth_named_when_every_orientation_ranks_equal(tmp_path):
     block = Block(R=0.8, alpha=math.radians(14))
     xs, _ = resolve_excitations([weak, strong], "record", azimuth="worst")
     res = run_fragility_azimuths([block], xs, parse_configurations(["none"]), azimuths=sweep_azimuths(45), n_boot=0)
-    words = "any azimuth (no orientation is more adverse than another: none of the 4 orientations overturns it up to 4x)"
+    words = ("any azimuth (no orientation is more adverse than another: none of the 4 orientations overturns it up "
+             "to 4x)")
     for how in ("median", "worst"):
         tied, named = res[how].rows
         assert math.isnan(tied.azimuth_deg) and tied.censored == "right" and tied.margin_note.endswith(words)

@@ -110,7 +110,8 @@ def collapse(result, excitations: Sequence, groups: dict):
                 subs = [result.row(b.name, label, c.header) for label in groups[x.label]]
                 worst, one = worst_row(subs, result.margin)
                 over = [r.record.rpartition("@")[2] for r in subs if r.overturned]
-                strokes = [r.base_disp_max_m for r in subs if outcome(r) == SURVIVES and math.isfinite(r.base_disp_max_m)]
+                strokes = [r.base_disp_max_m for r in subs
+                           if outcome(r) == SURVIVES and math.isfinite(r.base_disp_max_m)]
                 rows.append(replace(worst, record=x.label, source=x.source,
                                     azimuth_deg=worst.azimuth_deg if one else math.nan,
                                     overturning_azimuths=" ".join(over) if over else "none",

@@ -106,13 +106,12 @@ def check_scenes(columns, excitations, configurations) -> tuple[list, list, list
     return cols, exc, conf
 
 
-def check_scale_search(scenes, grid, known=None, progress=None, batch=16) -> list:
+def check_scale_search(scenes, grid, known=None, progress=None) -> list:
     """The arguments of :func:`rockcli.assess.find_overturn_scales` checked for their types: ``scenes`` a list of
     ``(Block, foundation, Record or pulse)``, ``grid`` increasing positive finite factors, ``known`` None or one
-    Response per scene, ``progress`` None or callable, ``batch`` a whole number >= 1; else one sentence naming
-    the argument and what was given. Returns the scenes as a list."""
+    Response per scene, ``progress`` None or callable; else one sentence naming the argument and what was given.
+    Returns the scenes as a list."""
     import math
-    import numbers
 
     from rockcli.inputs import as_list, check_type, type_words
     from rockcli.pulses.shapes import Pulse
@@ -147,9 +146,6 @@ def check_scale_search(scenes, grid, known=None, progress=None, batch=16) -> lis
             check_type(r, Response, "known: each item", "a Response (simulate(...))")
     if progress is not None and not callable(progress):
         raise RockcliInputError(f"progress must be None or a function progress(n), got {type_words(progress)}")
-    check_type(batch, numbers.Integral, "batch", "a whole number >= 1")
-    if batch < 1:
-        raise RockcliInputError(f"batch must be a whole number >= 1, got {batch}")
     return scenes
 
 

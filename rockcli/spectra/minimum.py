@@ -390,7 +390,8 @@ def capped_note(curves) -> str:
     capped = {c.alpha_deg: c.ap_max for c in curves if c.capped}
     if not capped:
         return ""
-    where = ", ".join(f"about {y:.4g} at alpha = {format_number(a, derived=True)} deg" for a, y in sorted(capped.items()))
+    where = ", ".join(f"about {y:.4g} at alpha = {format_number(a, derived=True)} deg"
+                      for a, y in sorted(capped.items()))
     return (f"Searched only up to a_p = 100 g, the largest pulse rockcli runs (recorded peaks reach about 4 g): "
             f"a_p/(g tan alpha) up to {where}; nothing overturning up to there is left empty.")
 
