@@ -236,10 +236,12 @@ def locked_folder(agency, tmp_path, monkeypatch):
 @pytest.mark.parametrize("command", ["column", "fragility"])
 def test_assess_record_in_a_folder_that_cannot_be_read(locked_folder, command):
     """Polish of issue 34: ``assess column --records locked/k.AT2`` raised PermissionError from ``path.is_file()``
-    (also a pair, ``--azimuth``, a manifest row); now the reader's sentence, exit 2, before any run."""
+    (also a pair, ``--azimuth``, a manifest row); now the reader's sentence, exit 2, before any run (``--vertical``
+    said it already)."""
     locked, free = locked_folder
     k = locked / "k.AT2"
-    for records in ([k], [k, "--azimuth", "0"], [f"{k}+{locked / 'k2.AT2'}", "--azimuth", "0"], [free / "m.csv"]):
+    for records in ([k], [k, "--azimuth", "0"], [f"{k}+{locked / 'k2.AT2'}", "--azimuth", "0"], [free / "m.csv"],
+                    [free / "k.AT2", "--vertical", k]):
         refused(run("assess", command, "bassae", "--isolation", "none", "--records", *records),
                 f"{k}: cannot be read (permission denied)")
 
