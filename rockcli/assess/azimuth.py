@@ -17,6 +17,12 @@ accident of the sweep's order, so none is named: ``simulate`` says that no orien
 ``assess column`` shows ``@any`` (``azimuth_deg`` empty). A record that lifts nothing off at 1x but
 overturns the body at some larger scale *has* a most adverse orientation for ``assess column`` (the
 smallest margin) and none for ``simulate``, which runs 1x only: the two agree, and say so.
+
+**The stroke** the bearings must allow is not the most adverse orientation's: a row keeps that orientation's
+run (``base_disp_max_m`` with its verdict and peak), and :func:`collapse` adds
+``base_disp_max_surviving_azimuths_m``, the largest peak base displacement over the orientations in which
+the body survives (a toppled run's displacement is no demand to design for), which every sentence about the
+stroke uses (:func:`rockcli.assess.verdicts.stroke_m`).
 """
 
 from __future__ import annotations
@@ -92,6 +98,7 @@ def collapse(result, excitations: Sequence, groups: dict):
     orientation's, with ``azimuth_deg`` (NaN when no orientation is more adverse than another: the row is
     then the first orientation's, like every other's) and ``overturning_azimuths`` set."""
     from rockcli.assess.table import Assessment
+    from rockcli.assess.verdicts import SURVIVES, outcome
 
     rows = []
     for b in result.columns:
@@ -103,9 +110,12 @@ def collapse(result, excitations: Sequence, groups: dict):
                 subs = [result.row(b.name, label, c.header) for label in groups[x.label]]
                 worst, one = worst_row(subs, result.margin)
                 over = [r.record.rpartition("@")[2] for r in subs if r.overturned]
+                strokes = [r.base_disp_max_m for r in subs
+                           if outcome(r) == SURVIVES and math.isfinite(r.base_disp_max_m)]
                 rows.append(replace(worst, record=x.label, source=x.source,
                                     azimuth_deg=worst.azimuth_deg if one else math.nan,
                                     overturning_azimuths=" ".join(over) if over else "none",
-                                    azimuths_run=len(subs)))
+                                    azimuths_run=len(subs),
+                                    base_disp_max_surviving_azimuths_m=max(strokes, default=math.nan)))
     return Assessment(result.columns, list(excitations), result.configurations, rows, result.unavailable,
                       result.margin, result.timings, result.neighbourhood, result.solver)
