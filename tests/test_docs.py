@@ -150,7 +150,11 @@ def _make_clone(base: Path, records: Path) -> tuple[Path, dict]:
         shutil.copy2(src, dst)
     bin_dir = base / "bin"
     bin_dir.mkdir()
-    (bin_dir / "python").symlink_to(sys.executable)
+    # a script, not a link: a link to a virtual environment's python, run from another folder, finds no
+    # pyvenv.cfg beside it and starts the base interpreter without the environment's packages
+    python = bin_dir / "python"
+    python.write_text(f'#!/bin/sh\nexec "{sys.executable}" "$@"\n')
+    python.chmod(0o755)
     shim = bin_dir / "rockcli"
     shim.write_text(
         "#!/bin/sh\n"
