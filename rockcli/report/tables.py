@@ -125,6 +125,13 @@ def format_notes(assessment) -> str:
                          + (("none lifts the body off at 1x" + (" and none overturns it up to 4x" if assessment.margin
                                                                  else "")) if calm
                             else "they all rank the same by these") + ".")
+        reasons = {}
+        for x in assessment.excitations:
+            if getattr(x, "as_recorded", ""):
+                reasons.setdefault(x.as_recorded, []).append(x.label)
+        if reasons:  # a catalogue record without its second horizontal component (rockcli.assess.pairs)
+            lines.append("Run as recorded, in one orientation (no pair to turn): "
+                         + "; ".join(f"{', '.join(labels)} ({why})" for why, labels in reasons.items()) + ".")
         over = [r for r in worst if r.overturning_azimuths not in ("", "none")]
         for r in over:
             lines.append(f"Overturning orientations: {r.column} / {r.record} / {r.configuration}: "
