@@ -193,20 +193,23 @@ def open_client(scheduler, *, n_workers: int | None = None, processes: bool = Tr
 
 def describe_cluster(client, local: bool = False) -> str:
     """One line on the cluster ``client`` uses: scheduler address, workers, threads, dashboard address
-    (``local``: a LocalCluster this process started)."""
+    (``local``: a LocalCluster this process started, without a dashboard (``dashboard_address=None``): nothing is
+    said of one; its scheduler still lists an HTTP service named ``dashboard``, which serves only ``/health``)."""
     try:
         nthreads = client.nthreads()
     except Exception:  # noqa: BLE001 - a scheduler out of reach: say what is known
         nthreads = {}
     address = getattr(getattr(client, "scheduler", None), "address", None) or "?"
+    kind = "a LocalCluster on this machine, scheduler" if local else "the scheduler"
+    head = f"Dask: {kind} at {address}, {len(nthreads)} worker(s) with {sum(nthreads.values())} thread(s)"
+    if local:
+        return head
     try:
         services = client.scheduler_info().get("services", {})
     except Exception:  # noqa: BLE001
         services = {}
     dashboard = client.dashboard_link if services.get("dashboard") else None
-    kind = "a LocalCluster on this machine, scheduler" if local else "the scheduler"
-    return (f"Dask: {kind} at {address}, {len(nthreads)} worker(s) with {sum(nthreads.values())} thread(s); "
-            f"dashboard: {dashboard or 'none'}")
+    return f"{head}; dashboard: {dashboard or 'none'}"
 
 
 def _n_workers(client, timeout: float) -> int | None:

@@ -86,3 +86,57 @@ def test_assess_column_agrees(calm_pair, tmp_path):
     one = CliRunner().invoke(main, [*args[:6], f"{north}+{east}", "--azimuth", "60", "--csv", str(tmp_path / "c.csv")])
     assert one.exit_code == 0, one.output
     assert pd.read_csv(tmp_path / "c.csv").overturn_scale[0] == df.overturn_scale[0]
+
+
+def test_the_stroke_is_the_largest_over_the_orientations_it_survives(calm_pair, tmp_path):
+    """On bearings the stroke is the largest peak base displacement over the orientations in which the body
+    survives, not the most adverse orientation's (here no orientation lifts the body off: the row is the first
+    orientation's, 0 deg, which feels half the motion along 60 deg). Checked against simulate at each azimuth."""
+    from rockcli.models import Block, LinearIsolation
+    from rockcli.records.orientation import project, read_pair, sweep_azimuths
+    from rockcli.solve import simulate
+
+    north, east = calm_pair
+    res = CliRunner().invoke(main, ["assess", "column", "b:R=0.8,alpha=20", "--isolation", "linear:Tb=2.5",
+                                    "--records", f"{north}+{east}", "--azimuth", "worst", "--azimuth-step", "30",
+                                    "--no-margin", "--csv", str(tmp_path / "a.csv")])
+    assert res.exit_code == 0, res.output
+    row = pd.read_csv(tmp_path / "a.csv").iloc[0]
+    assert row.verdict == "no_uplift" and math.isnan(row.azimuth_deg)
+    pair = read_pair(north, east)
+    block, bearings = Block(0.8, math.radians(20)), LinearIsolation(2.5, 0.1, 0.01)
+    each = {float(t): simulate(block, bearings, project(*pair, t)) for t in sweep_azimuths(30)}
+    assert all(r.verdict == "no_uplift" for r in each.values())
+    stroke = max(r.base_disp_max_m for r in each.values())
+    assert row.base_disp_max_m == pytest.approx(each[0.0].base_disp_max_m, rel=1e-5)  # the row: the first's (CSV %.6g)
+    assert row.base_disp_max_surviving_azimuths_m == pytest.approx(stroke, rel=1e-5)
+    assert stroke > 1.5 * row.base_disp_max_m  # what the bug reported as the stroke was well short of it
+    assert (f"over the orientations in which it survives, the base moves up to {stroke:.2f} m (the stroke the "
+            f"bearings must allow)") in " ".join(res.output.split())
+
+
+def test_stroke_words_over_orientations():
+    """stroke_m and the sentences on fabricated rows: the most adverse orientation toppled, others survived; none
+    survived; a row of one azimuth (no sweep) keeps its own displacement, and none when it toppled."""
+    from types import SimpleNamespace
+
+    from rockcli.assess.verdicts import configuration_sentence, scene_sentence, stroke_m, survivor_stroke
+
+    def row(record, overturned, disp, over_all=NAN, run=None):
+        return SimpleNamespace(record=record, overturned=overturned, proven=True, error="", verdict="overturned"
+                               if overturned else "rocked", theta_max_over_alpha=NAN if overturned else 0.3,
+                               t_overturn_s=4.0 if overturned else NAN, overturn_scale=NAN, margin_note="",
+                               overturn_share_pm10=NAN, base_disp_max_m=disp, azimuths_run=run,
+                               base_disp_max_surviving_azimuths_m=over_all)
+
+    mixed = row("a+b", True, 0.6, over_all=0.25, run=36)  # toppled at its worst azimuth, survived elsewhere
+    fallen = row("c+d", True, 0.7, run=36)  # toppled in every orientation
+    plain = row("e", False, 0.4)
+    assert stroke_m(mixed) == 0.25 and math.isnan(stroke_m(fallen)) and stroke_m(plain) == 0.4
+    assert math.isnan(stroke_m(row("f", True, 0.9)))
+    assert survivor_stroke([mixed, fallen]) is mixed and survivor_stroke([fallen]) is None
+    assert "over the orientations in which it survives, the base moves up to 0.25 m" in scene_sentence(
+        mixed, isolated=True)
+    assert "it survives in none of the 36 orientations: no stroke to give" in scene_sentence(fallen, isolated=True)
+    assert ("over the orientations in which it survives, the base moves up to 0.25 m (a+b; the stroke the bearings "
+            "must allow)") in configuration_sentence([mixed, fallen], isolated=True)

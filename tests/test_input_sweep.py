@@ -537,3 +537,90 @@ def test_python_entry_points_refuse_wrong_types_in_one_sentence(name, wrong):
     else:  # simulate_many keeps a job that fails its checks as a row
         assert name == "jobs" and all(getattr(r, "verdict", None) == "error" and "job " in r.error for r in out), \
             (name, out)
+
+
+def _more_python_calls():
+    """(word the sentence names, call taking the wrong value) of entry points that gave a raw TypeError or
+    AttributeError (polish of issue 34): each refuses every value of ``_WRONG`` in one sentence."""
+    from rockcli import Block, Rigid, find_overturn_scales, format_verdicts, make_pulse
+    from rockcli.records import read_record
+    from rockcli.records.orientation import sweep_azimuths
+    from rockcli.units import G
+
+    scene = (Block.from_dimensions(2.0, 0.5), Rigid(), make_pulse("sine", 0.5 * G, 0.5))
+    return {
+        "read_record": ("source", read_record),
+        "sweep_azimuths": ("step", sweep_azimuths),
+        "scenes": ("scenes", find_overturn_scales),
+        "scene": ("scene 0", lambda w: find_overturn_scales([w])),
+        "grid": ("grid", lambda w: find_overturn_scales([scene], grid=w)),
+        "known": ("known", lambda w: find_overturn_scales([scene], known=w)),
+        "assessment": ("assessment", format_verdicts),
+    }
+
+
+@pytest.mark.parametrize("name", sorted(_more_python_calls()))
+def test_more_python_entry_points_refuse_wrong_types_in_one_sentence(name):
+    word, call = _more_python_calls()[name]
+    for value in _WRONG:
+        if value is None and name == "known":
+            continue  # its default
+        with pytest.raises(RockcliInputError) as info:
+            call(value)
+        assert "\n" not in str(info.value) and word in str(info.value), (name, value, str(info.value))
+
+
+def test_python_limits_are_the_clis():
+    """sweep_azimuths has the floor of --azimuth-step (1e-9 built 1.8e11 orientations); Record.scaled the 100 g
+    of --scale (1e308 gave numpy overflow warnings and an infinite record)."""
+    import warnings
+
+    from rockcli.records.orientation import AZIMUTH_STEP_RANGE_DEG, sweep_azimuths
+    from rockcli.records.record import Record
+    from rockcli.units import G
+
+    lo, hi = AZIMUTH_STEP_RANGE_DEG
+    assert len(sweep_azimuths(lo)) == 1800 and list(sweep_azimuths(hi)) == [0.0, 90.0]
+    for step in (1e-9, np.nextafter(lo, 0), np.nextafter(hi, 180), 0.0, -5.0):
+        with pytest.raises(RockcliInputError, match="sweep_azimuths: step .* must lie between 0.1 deg"):
+            sweep_azimuths(step)
+    with pytest.raises(RockcliInputError, match="sweep_azimuths: step nan is not a finite number"):
+        sweep_azimuths(math.nan)
+    rec = Record(np.array([0.0, 0.5 * G, -0.25 * G]), 0.01, "r")  # peaks at 0.5 g
+    assert rec.scaled(-200.0).pga_g == pytest.approx(100.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # no overflow warning on the way to the sentence
+        for k in (1e308, -200.0001, 0.0, math.inf, math.nan):
+            with pytest.raises(RockcliInputError, match="Record.scaled: the factor"):
+                rec.scaled(k)
+
+
+def test_no_exception_name_in_a_refusal(tmp_path, monkeypatch):
+    """A file of one word was refused "format not recognised by rockcli, ObsPy or gmprocess (StopIteration)":
+    the name of an exception raised inside a reader means nothing to a user. gmprocess is stood in for by a
+    module whose reader raises StopIteration() as gmprocess 2.8 does on such a file (no 1.8 GB import)."""
+    import sys
+    import types
+
+    from rockcli.records import extra, read_record
+    from rockcli.records.reader import reason_words
+
+    assert reason_words(StopIteration()) == "" and reason_words(KeyError()) == ""
+    assert reason_words(ValueError("No format found for file PosixPath('x').")) == ""
+    assert reason_words(ValueError("bad header\nmore"), "ObsPy") == " (ObsPy: bad header)"
+
+    def read_data(path):
+        raise StopIteration()
+
+    for name in ("gmprocess", "gmprocess.io", "gmprocess.io.read"):
+        monkeypatch.setitem(sys.modules, name, types.ModuleType(name))
+    sys.modules["gmprocess.io.read"].read_data = read_data
+    monkeypatch.setattr(extra, "available", lambda: True)
+    monkeypatch.setattr(extra, "_loaded", True)  # no "reading with gmprocess" notice
+    for text in ("hello\n", "\n\n\n"):
+        path = tmp_path / "one.txt"
+        path.write_text(text)
+        with pytest.raises(RockcliInputError) as info:
+            read_record(path)
+        msg = str(info.value)
+        assert msg == f"{path}: format not recognised by rockcli, ObsPy or gmprocess", msg

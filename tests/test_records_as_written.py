@@ -211,6 +211,76 @@ def test_record_in_a_folder_that_cannot_be_read(agency, tmp_path, monkeypatch):
         refused(run(*args), f"{locked / 'k.AT2'}: cannot be read (permission denied)")
 
 
+@pytest.fixture
+def locked_folder(agency, tmp_path, monkeypatch):
+    """``(locked, free)``: a folder whose files cannot be looked at (``os.stat`` refuses them as the operating system
+    does for a folder without permission; tests run as root, which reads any folder) and a readable folder, each
+    holding Kobe as ``k.AT2``; the readable one also holds manifests naming the locked files."""
+    locked, free = tmp_path / "locked", tmp_path / "free"
+    for folder in (locked, free):
+        folder.mkdir()
+        (folder / "k.AT2").write_bytes(agency("RSN1119_KOBE_TAZ000.AT2").read_bytes())
+    (free / "m.csv").write_text(f"file,units\n{locked / 'k.AT2'},g\n")
+    (free / "link.AT2").symlink_to(locked / "k.AT2")
+    real_stat = os.stat
+
+    def stat(path, *args, **kwargs):
+        if os.path.realpath(path).startswith(str(locked) + os.sep):  # followed as the system follows links
+            raise PermissionError(errno.EACCES, "Permission denied", os.fspath(path))
+        return real_stat(path, *args, **kwargs)
+
+    monkeypatch.setattr(os, "stat", stat)
+    return locked, free
+
+
+@pytest.mark.parametrize("command", ["column", "fragility"])
+def test_assess_record_in_a_folder_that_cannot_be_read(locked_folder, command):
+    """Polish of issue 34: ``assess column --records locked/k.AT2`` raised PermissionError from ``path.is_file()``
+    (also a pair, ``--azimuth``, a manifest row); now the reader's sentence, exit 2, before any run (``--vertical``
+    said it already)."""
+    locked, free = locked_folder
+    k = locked / "k.AT2"
+    for records in ([k], [k, "--azimuth", "0"], [f"{k}+{locked / 'k2.AT2'}", "--azimuth", "0"], [free / "m.csv"],
+                    [free / "k.AT2", "--vertical", k]):
+        refused(run("assess", command, "bassae", "--isolation", "none", "--records", *records),
+                f"{k}: cannot be read (permission denied)")
+
+
+def test_suite_folder_with_a_link_into_a_folder_that_cannot_be_read(locked_folder):
+    """A link in a suite folder to a file that cannot be looked at is that file's error row, not a refusal of
+    the whole folder (one bad file costs one row)."""
+    from rockcli.assess.excitations import resolve_excitations
+
+    locked, free = locked_folder
+    xs, skipped = resolve_excitations([str(free)], "record", units="g")
+    by_label = {x.label: x for x in xs}
+    assert by_label["link.AT2"].motion is None
+    assert "cannot be read (permission denied)" in by_label["link.AT2"].error
+    assert by_label["k.AT2"].motion is not None and not by_label["k.AT2"].error
+    assert [u.label for u in skipped] == ["m.csv"]
+
+
+@pytest.mark.parametrize("args", [
+    ["assess", "column", "bassae", "--isolation", "none", "--records", "FREE", "--csv", "LOCKED/out.csv"],
+    ["assess", "fragility", "bassae", "--records", "FREE", "--report", "LOCKED/out.html"],
+    ["assess", "column", "bassae", "--isolation", "none", "--records", "FREE", "--history-dir", "LOCKED/h/i"],
+    ["records", "export", "FREE", "LOCKED/out.txt"],
+])
+def test_output_in_a_folder_that_cannot_be_read(locked_folder, args):
+    """An output path in a folder without permission: ``path.is_dir()`` raised PermissionError in the output check;
+    now one sentence naming the option and the reason, before any run, nothing written."""
+    locked, free = locked_folder
+    args = [str(a).replace("FREE", str(free / "k.AT2")).replace("LOCKED", str(locked)) for a in args]
+    refused(run(*args), "cannot write there: permission denied")
+    assert sorted(p.name for p in free.iterdir()) == ["k.AT2", "link.AT2", "m.csv"]
+
+
+def test_records_source_with_an_unknown_user():
+    """``--records ~nosuchuser/x.AT2`` raised RuntimeError from ``Path.expanduser()``."""
+    refused(run("assess", "column", "bassae", "--records", "~nosuchuser-rockcli/x.AT2"),
+            "--records names ~nosuchuser-rockcli/x.AT2, but no user 'nosuchuser-rockcli' on this machine")
+
+
 # --------------------------------------------------------------------------------------------------
 # a folder suite reads a catalogue pair's second file with the catalogue's units (issue 35)
 # --------------------------------------------------------------------------------------------------

@@ -93,6 +93,23 @@ def test_manifest(tmp_path, find_record):
         resolve_excitations([str(folder / "bad.csv")])
 
 
+@pytest.mark.parametrize("header, cells", [("file", ""), ("file,label", ",kobe")])
+def test_manifest_of_files_that_state_everything(tmp_path, find_record, header, cells):
+    """A manifest with only a ``file`` column (or ``file,label``) is a manifest: it was read as a record and
+    refused ("format not recognised")."""
+    from rockcli.assess.manifest import is_manifest
+
+    shutil.copy(find_record("RSN1119_KOBE_TAZ000.AT2"), tmp_path)
+    manifest = tmp_path / "files.csv"
+    manifest.write_text(f"{header}\nRSN1119_KOBE_TAZ000.AT2{cells}\n")
+    assert is_manifest(manifest)
+    xs, _ = resolve_excitations([str(manifest)])
+    assert [x.label for x in xs] == ["kobe" if cells else "RSN1119_KOBE_TAZ000.AT2"] and not xs[0].error
+    np.testing.assert_array_equal(xs[0].motion.acc, read_record(tmp_path / "RSN1119_KOBE_TAZ000.AT2").acc)
+    (tmp_path / "notes.csv").write_text("file,colour\na,red\n")  # not a manifest's header: read as a record
+    assert not is_manifest(tmp_path / "notes.csv")
+
+
 @pytest.mark.parametrize("name, extra", [
     ("20161113_110259_WTMC_20.V2A", ["--component", "S62W"]),
     ("RSN1119_KOBE_TAZ000.AT2", []),

@@ -44,11 +44,18 @@ margin is NaN, ranked last, with :data:`~rockcli.assess.margin.NOTE_ABOVE_GROUP`
 therefore picks the same orientation (the smallest key; among equal keys, all of them among the
 ``f_k = J`` ones, the first), and "all keys equal" holds in both or in neither (with more than one
 orientation and one left out, in neither). (3) Without any ``J`` (nothing overturns up to 4x) nothing
-is left out: every orientation has its full search. (4) The 1x fields, the failed runs and
-``overturning_azimuths`` come from the 1x runs, made for every orientation. The kept row's
+is left out: every orientation has its full search. (4) The 1x fields, the failed runs,
+``overturning_azimuths`` and the stroke over the surviving orientations (below) come from the 1x runs,
+made for every orientation. The kept row's
 neighbourhood share is its own run of 0.90x..1.10x. ``tests/test_azimuth_search.py`` checks the theorem
 against the unshared search on random pairs of every foundation; ``benchmarks/bench_azimuth.py`` on the
 catalogue's pairs.
+
+**The stroke** the bearings must allow is not the most adverse orientation's: a row keeps that orientation's
+run (``base_disp_max_m`` with its verdict and peak), and :func:`collapse` adds
+``base_disp_max_surviving_azimuths_m``, the largest peak base displacement over the orientations in which
+the body survives (a toppled run's displacement is no demand to design for), which every sentence about the
+stroke uses (:func:`rockcli.assess.verdicts.stroke_m`).
 """
 
 from __future__ import annotations
@@ -124,6 +131,7 @@ def collapse(result, excitations: Sequence, groups: dict):
     orientation's, with ``azimuth_deg`` (NaN when no orientation is more adverse than another: the row is
     then the first orientation's, like every other's) and ``overturning_azimuths`` set."""
     from rockcli.assess.table import Assessment
+    from rockcli.assess.verdicts import SURVIVES, outcome
 
     rows = []
     for b in result.columns:
@@ -135,9 +143,12 @@ def collapse(result, excitations: Sequence, groups: dict):
                 subs = [result.row(b.name, label, c.header) for label in groups[x.label]]
                 worst, one = worst_row(subs, result.margin)
                 over = [r.record.rpartition("@")[2] for r in subs if r.overturned]
+                strokes = [r.base_disp_max_m for r in subs
+                           if outcome(r) == SURVIVES and math.isfinite(r.base_disp_max_m)]
                 rows.append(replace(worst, record=x.label, source=x.source,
                                     azimuth_deg=worst.azimuth_deg if one else math.nan,
                                     overturning_azimuths=" ".join(over) if over else "none",
-                                    azimuths_run=len(subs)))
+                                    azimuths_run=len(subs),
+                                    base_disp_max_surviving_azimuths_m=max(strokes, default=math.nan)))
     return Assessment(result.columns, list(excitations), result.configurations, rows, result.unavailable,
                       result.margin, result.timings, result.neighbourhood, result.solver)

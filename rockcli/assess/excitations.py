@@ -243,7 +243,7 @@ def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto"
         catalogue record that cannot be run, an empty folder, an unknown ``mode``, bad
         ``units``/``dt`` values.
     """
-    from rockcli.records.catalog import load_catalog
+    from rockcli.records.catalog import expand_user, load_catalog
 
     if mode not in EXCITATION_MODES:
         raise RockcliInputError(f"excitation mode {mode!r} is not one of {', '.join(EXCITATION_MODES)}")
@@ -289,15 +289,16 @@ def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto"
         raise RockcliInputError("--component picks one component; --azimuth projects two: give one of them")
     for src in sources:
         src = str(src)
-        path = Path(src).expanduser()
-        if azimuth is not None and "+" in src and not path.exists():
+        path = expand_user(src, "--records")
+        kind = _path_kind(path)
+        if azimuth is not None and "+" in src and kind not in ("file", "folder"):
             first, _, second = src.partition("+")
             files = [split_source(f)[0] for f in (first, second)]
             note_inputs(files, "a record of the pair")
             suite.add(pair_excitation(pair_label(*(Path(f).name for f in files)), first, second, file_kwargs,
                                        azimuth))
             continue
-        if path.is_file() and is_manifest(path):
+        if kind == "file" and is_manifest(path):
             for label, first, second, kwargs in read_manifest(path, file_kwargs):
                 file1 = split_source(first)[0]
                 note_inputs([file1, split_source(second)[0] if second else None], f"a record of the manifest {path}")
@@ -307,7 +308,7 @@ def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto"
                     suite.add(_manifest_excitation(Path(file1).name if second else label, first, kwargs), file1,
                               kwargs.get("component"))
             continue
-        if azimuth == "worst" and src in by_id and not path.exists():
+        if azimuth == "worst" and src in by_id and kind == "missing":
             x = catalogue_worst(by_id[src], mode)
             if isinstance(x, Unavailable):
                 raise RockcliInputError(f"record {src!r} cannot be run: {x.reason}")
@@ -315,14 +316,16 @@ def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto"
                         [x.source] if x.kind == EXCITATION_RECORD else [], "the record")
             suite.add(x, None if x.pair or x.kind != EXCITATION_RECORD else x.source)
             continue
-        if azimuth is not None and (path.is_file() or src in by_id):
-            note_inputs([path] if path.is_file() else [], "the record")
-            suite.add(pair_excitation(path.name if path.is_file() else src, src, None, file_kwargs, azimuth),
-                      path if path.is_file() else None)
+        is_file = kind in ("file", "unreadable")  # unreadable: the reader names it (an error row)
+        if azimuth is not None and (is_file or src in by_id):
+            note_inputs([path] if is_file else [], "the record")
+            suite.add(pair_excitation(path.name if is_file else src, src, None, file_kwargs, azimuth),
+                      path if is_file else None)
             continue
-        if path.is_dir():
+        if kind == "folder":
             try:
-                files = sorted(p for p in path.iterdir() if p.is_file() and not p.name.startswith("."))
+                files = sorted(p for p in path.iterdir() if _path_kind(p) in ("file", "unreadable")
+                               and not p.name.startswith("."))
             except OSError as exc:
                 raise RockcliInputError(f"--records {src}: the folder cannot be read "
                                         f"({(exc.strerror or str(exc)).lower()})") from None
@@ -335,7 +338,7 @@ def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto"
                 x = (_file_excitation(p, by_file, file_kwargs, skip=True) if azimuth is None else
                      pair_excitation(p.name, str(p), None, file_kwargs, azimuth, skip=True))
                 suite.skip(x) if isinstance(x, Skipped) else suite.add(x, p, component)
-        elif path.is_file():
+        elif is_file:
             note_inputs([path], "the record")
             suite.add(_file_excitation(path, by_file, file_kwargs), path, component)
         elif src in by_id:
@@ -350,6 +353,22 @@ def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto"
             raise RockcliInputError(f"--records {src}: no such file or folder, nor a catalogue id"
                                     f"{did_you_mean(src, entries)} (see 'rockcli records list')")
     return suite.out, suite.unavailable
+
+
+def _path_kind(path: Path) -> str:
+    """What is at ``path``: ``"file"`` (a regular file, after following links), ``"folder"``, ``"missing"``, or
+    ``"unreadable"``: there, but it cannot be looked at (a folder on the way without permission, a loop of links),
+    which is read as a file so that the reader names it and why (``cannot be read (permission denied)``) instead of
+    the :class:`PermissionError` that ``path.is_file()`` raises."""
+    import stat
+
+    try:
+        mode = path.stat().st_mode
+    except (FileNotFoundError, NotADirectoryError, ValueError):  # ValueError: a NUL byte in the name
+        return "missing"
+    except OSError:
+        return "unreadable"
+    return "folder" if stat.S_ISDIR(mode) else "file" if stat.S_ISREG(mode) else "missing"
 
 
 def _file_read_kwargs(units, dt, gain=None) -> dict:

@@ -1,8 +1,10 @@
 """Suite manifests: a CSV naming one record file per row, with what the file does not state.
 
-A manifest has a ``file`` column (relative to the manifest's folder) and at least one of ``units``,
-``dt``, ``gain``, ``component``, ``azimuth`` (that is how :func:`is_manifest` tells it from a record),
-and for a pair ``file_2``, ``azimuth_2``, with an optional ``label``. :func:`read_manifest` reads it
+A manifest has a ``file`` column (relative to the manifest's folder) and what its files lack: ``units``,
+``dt``, ``gain``, ``component``, ``azimuth``, and for a pair ``file_2``, ``azimuth_2``, with an optional
+``label``; a ``file`` column alone lists files that state everything themselves. :func:`is_manifest` tells it
+from a record by its first line: it names ``file`` and either one of the columns a file may lack or nothing
+but manifest columns (a record's first line never names a column ``file``). :func:`read_manifest` reads it
 strictly: UTF-8 text (a byte order mark is fine), known columns each given once, as many cells per row
 as the header has, at least one row, each naming a file; every refusal is one sentence naming the
 manifest and the line. The manifest is an input of the run: an output on it is refused
@@ -20,14 +22,17 @@ MANIFEST_COLUMNS = ("file", "units", "dt", "gain", "component", "azimuth", "file
 
 
 def is_manifest(path: Path) -> bool:
-    """A CSV whose header names a ``file`` column and one of units, dt, component, azimuth (never raises)."""
+    """A CSV whose header names a ``file`` column and one of units, dt, gain, component, azimuth, or only
+    manifest columns (``file`` alone, ``file,label``); never raises. A header with an unknown column besides
+    units, ... is a manifest too, refused by :func:`read_manifest` naming the column."""
     try:
         with open(path, encoding="utf-8-sig", errors="replace") as fh:
             head = fh.readline()
     except OSError:
         return False
     names = [h.strip().lower() for h in head.split(",")]
-    return "file" in names and any(k in names for k in ("units", "dt", "gain", "component", "azimuth"))
+    return "file" in names and (any(k in names for k in ("units", "dt", "gain", "component", "azimuth"))
+                                or all(n in MANIFEST_COLUMNS for n in names))
 
 
 def _text(path: Path) -> str:

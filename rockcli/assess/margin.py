@@ -137,9 +137,11 @@ def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL,
     ``known`` is not run again.
     """
     from rockcli.assess.liftoff import liftoff_floors
+    from rockcli.assess.scenes import check_scale_search
     from rockcli.errors import RockcliInputError
     from rockcli.solve import VERDICT_ERROR, VERDICT_NO_UPLIFT, _threads, simulate_many
 
+    scenes = check_scale_search(scenes, grid, known, progress)  # the types, in one sentence
     if not (isinstance(rtol, (int, float)) and rtol >= 0 and math.isfinite(rtol)):
         raise RockcliInputError(f"margin bisection tolerance must be a finite number >= 0, got {rtol!r}")
     rtol = max(float(rtol), RTOL_FLOOR)

@@ -106,6 +106,49 @@ def check_scenes(columns, excitations, configurations) -> tuple[list, list, list
     return cols, exc, conf
 
 
+def check_scale_search(scenes, grid, known=None, progress=None) -> list:
+    """The arguments of :func:`rockcli.assess.find_overturn_scales` checked for their types: ``scenes`` a list of
+    ``(Block, foundation, Record or pulse)``, ``grid`` increasing positive finite factors, ``known`` None or one
+    Response per scene, ``progress`` None or callable; else one sentence naming the argument and what was given.
+    Returns the scenes as a list."""
+    import math
+
+    from rockcli.inputs import as_list, check_type, type_words
+    from rockcli.pulses.shapes import Pulse
+    from rockcli.records.record import Record
+    from rockcli.solve import Response
+    from rockcli.solve.options import check_foundation
+
+    expected = "a list of (block, foundation, motion) scenes, e.g. [(column('bassae'), Rigid(), record)]"
+    scenes = as_list(scenes, "scenes", expected)
+    for i, scene in enumerate(scenes):
+        if not isinstance(scene, (tuple, list)) or len(scene) != 3:
+            raise RockcliInputError(f"scenes: scene {i} must be a (block, foundation, motion) tuple, got "
+                                    f"{type_words(scene)}")
+        block, foundation, motion = scene
+        check_type(block, Block, f"scenes: scene {i}: the block", "a Block (column('bassae'), Block(R, alpha))")
+        check_foundation(foundation, f"scenes: scene {i}: the foundation")
+        check_type(motion, (Record, Pulse), f"scenes: scene {i}: the motion", "a Record (read_record) or a pulse "
+                                                                            "(make_pulse)")
+    try:
+        factors = [float(g) for g in as_list(grid, "grid", "a list of increasing scale factors")]
+    except (TypeError, ValueError):
+        raise RockcliInputError(f"grid must be a list of increasing scale factors, got {type_words(grid)}") from None
+    if not factors or not all(math.isfinite(g) and g > 0 for g in factors) or \
+            any(b <= a for a, b in zip(factors, factors[1:])):
+        raise RockcliInputError(f"grid must be a non-empty list of finite positive scale factors in increasing "
+                                f"order, got {type_words(grid)}")
+    if known is not None:
+        known = as_list(known, "known", "None or one Response per scene (at scale 1)")
+        if len(known) != len(scenes):
+            raise RockcliInputError(f"known must hold one Response per scene: {len(known)} for {len(scenes)} scenes")
+        for r in known:
+            check_type(r, Response, "known: each item", "a Response (simulate(...))")
+    if progress is not None and not callable(progress):
+        raise RockcliInputError(f"progress must be None or a function progress(n), got {type_words(progress)}")
+    return scenes
+
+
 @dataclass(frozen=True)
 class Configuration:
     """A foundation and how the user wrote it."""

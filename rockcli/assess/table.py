@@ -70,6 +70,10 @@ class AssessmentRow:
     #: ``--azimuth worst``: the orientations [deg] that overturn at 1x (``none``), of ``azimuths_run`` run
     overturning_azimuths: str = ""
     azimuths_run: int | None = None
+    #: ``--azimuth worst``: the largest ``base_disp_max_m`` over the orientations run in which the body survives
+    #: (NaN: it survives in none), the stroke the bearings must allow whatever the body's orientation;
+    #: ``base_disp_max_m`` stays the most adverse orientation's, like every other field of the row
+    base_disp_max_surviving_azimuths_m: float = math.nan
 
 
 #: CSV column order (every field of :class:`AssessmentRow`).

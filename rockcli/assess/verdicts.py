@@ -130,7 +130,7 @@ def scene_sentence(row, *, isolated: bool = False, stroke: bool = True) -> str:
                          "by the luck of the timing)")
         elif note.startswith("no overturning"):
             parts.append("not even a record 4 times stronger topples it")
-    if isolated and stroke and math.isfinite(row.base_disp_max_m):
+    if isolated and stroke and (math.isfinite(row.base_disp_max_m) or _all_azimuths(row)):
         parts.append(stroke_words(row))
     share = getattr(row, "overturn_share_pm10", math.nan)
     if math.isfinite(share):
@@ -141,7 +141,15 @@ def scene_sentence(row, *, isolated: bool = False, stroke: bool = True) -> str:
 def stroke_words(row) -> str:
     """The peak base displacement of one isolated run, named for what it is: the stroke the bearings must
     allow when the body survives; only a displacement before the fall when it topples (a toppled run's
-    displacement is no demand to design the bearings for); a lower bound when the run is undecided."""
+    displacement is no demand to design the bearings for); a lower bound when the run is undecided. With
+    ``--azimuth worst`` (a row standing for every orientation run) the stroke over the orientations in which it
+    survives (:func:`stroke_m`), whatever the most adverse one did."""
+    if _all_azimuths(row):
+        s = stroke_m(row)
+        if not math.isfinite(s):
+            return f"it survives in none of the {row.azimuths_run} orientations: no stroke to give"
+        return (f"over the orientations in which it survives, the base moves up to {s:.2f} m (the stroke the "
+                f"bearings must allow)")
     d = f"{row.base_disp_max_m:.2f} m"
     what = outcome(row)
     if what == TOPPLES:
@@ -151,12 +159,26 @@ def stroke_words(row) -> str:
     return f"the base moves up to {d} (the stroke the bearings must allow)"
 
 
+def _all_azimuths(row) -> bool:
+    """The row stands for every orientation of a pair (``--azimuth worst``)."""
+    return bool(getattr(row, "azimuths_run", None))
+
+
+def stroke_m(row) -> float:
+    """The stroke [m] one row asks of the bearings: its peak base displacement when the body survives the run
+    (NaN when it topples, is undecided or failed); with ``--azimuth worst`` the largest over the orientations
+    in which it survives (``base_disp_max_surviving_azimuths_m``), whatever the most adverse one did."""
+    if _all_azimuths(row):
+        return getattr(row, "base_disp_max_surviving_azimuths_m", math.nan)
+    return getattr(row, "base_disp_max_m", math.nan) if outcome(row) == SURVIVES else math.nan
+
+
 def survivor_stroke(rows):
-    """The row with the largest base displacement among the runs the body survives (None when it survives
-    none): the stroke the bearings must allow is that of the surviving runs only, since where the body
-    topples the bearings' travel protects nothing."""
-    kept = [r for r in rows if outcome(r) == SURVIVES and math.isfinite(getattr(r, "base_disp_max_m", math.nan))]
-    return max(kept, key=lambda r: r.base_disp_max_m, default=None)
+    """The row with the largest stroke (:func:`stroke_m`) among the runs the body survives (None when it
+    survives none): the stroke the bearings must allow is that of the surviving runs only, since where the
+    body topples the bearings' travel protects nothing."""
+    kept = [r for r in rows if math.isfinite(stroke_m(r))]
+    return max(kept, key=stroke_m, default=None)
 
 
 def configuration_sentence(rows, *, isolated: bool = False) -> str:
@@ -213,8 +235,9 @@ def configuration_sentence(rows, *, isolated: bool = False) -> str:
     if isolated:
         top = survivor_stroke(ran)
         if top is not None:
-            where = "where it survives, " if len(survived) < n else ""
-            parts.append(f"{where}the base moves up to {top.base_disp_max_m:.2f} m ({top.record}; the stroke the "
+            where = ("over the orientations in which it survives, " if _all_azimuths(top) else
+                     "where it survives, " if len(survived) < n else "")
+            parts.append(f"{where}the base moves up to {stroke_m(top):.2f} m ({top.record}; the stroke the "
                          "bearings must allow)")
     return "; ".join(parts)
 
@@ -342,7 +365,7 @@ def isolation_summary(assessment, block) -> str:
             continue
         i_rows = [assessment.row(block.name, x.label, c.header) for x in ran]
         top = survivor_stroke(i_rows)
-        stroke = f", provided the bearings can move {top.base_disp_max_m:.2f} m" if top is not None else ""
+        stroke = f", provided the bearings can move {stroke_m(top):.2f} m" if top is not None else ""
         if len(ran) <= 1:
             parts.append(_one_record_clause(c, g_word, w, stroke))
             continue
@@ -372,8 +395,25 @@ def question(assessment) -> str:
 
 
 def format_verdicts(assessment, width: int = 100) -> str:
-    """The answer as ``rockcli assess column`` prints it: per body, one sentence per configuration."""
+    """The answer as ``rockcli assess column`` prints it: per body, one sentence per configuration.
+
+    Raises
+    ------
+    RockcliInputError
+        ``assessment`` is not what :func:`rockcli.assess.run_assessment` returns, or ``width`` is not a whole
+        number >= 40.
+    """
+    import numbers
     import textwrap
+
+    from rockcli.assess.table import Assessment
+    from rockcli.errors import RockcliInputError
+    from rockcli.inputs import check_type
+
+    check_type(assessment, Assessment, "assessment", "the Assessment of run_assessment(...)")
+    check_type(width, numbers.Integral, "width", "a whole number of characters >= 40")
+    if width < 40:
+        raise RockcliInputError(f"width must be a whole number of characters >= 40, got {width}")
 
     lines = ["In plain words:"]
     xs = [x.label for x in assessment.excitations if x.motion is not None]

@@ -472,10 +472,10 @@ def _write_histories(result, hist_dir, plot_dir, as_json=False):
               help="Bootstrap resamples over records for the confidence intervals (0: none).")
 @click.option("--seed", type=SEED, default=13, show_default=True, help="Seed of the bootstrap resamples.")
 @click.option("--csv", "csv_path", type=click.Path(), default=None,
-              help="Write one row per column x record x configuration (IM, scale, capacity, censoring, error) "
-                   "with the fit of its column and configuration.")
+              help="Write one row per body x record x configuration (IM, scale, capacity, censoring, error) "
+                   "with the fit of its body and configuration.")
 @click.option("--plot", "plot_path", type=click.Path(), default=None,
-              help="Write the fragility curves (one panel per column, every configuration) to this image, e.g. FILE.png.")
+              help="Write the fragility curves (one panel per body, every configuration) to this image, e.g. FILE.png.")
 @click.option("--scheduler", default=None, metavar="tcp://HOST:PORT|local",
               help="Run the margin searches on a Dask cluster (pip install -e \".[dask]\"): the address of an "
                    "existing scheduler, or 'local' for a LocalCluster on this machine. Same results. A scheduler "
@@ -489,13 +489,14 @@ def _write_histories(result, hist_dir, plot_dir, as_json=False):
 @user_errors
 def fragility(names, R, alpha, height, width, name, records, units, dt, isolation, im, n_boot, seed, csv_path,
               plot_path, scheduler, report_path, as_json, horizon, restitution):
-    """Fragility curves of overturning: P(the column overturns | IM) from a suite of records.
+    """Fragility curves of overturning: P(the body overturns | IM) from a suite of records.
 
-    Each record is scaled (0.1x..4x, then bisection) to the smallest factor that overturns the
-    column; that factor x the record's IM is its capacity. A lognormal (median, beta) is fitted to
-    the capacities by maximum likelihood, records that never overturn up to 4x counting as
-    right-censored, with intervals from a bootstrap over records. Prints median and beta per
-    column and configuration, and each isolated median over the rigid one (< 1: isolation hurts).
+    NAME is a body as in 'assess column' (a preset column, or a custom block). Each record is
+    scaled (0.1x..4x, then bisection) to the smallest factor that overturns the body; that factor
+    x the record's IM is its capacity. A lognormal (median, beta) is fitted to the capacities by
+    maximum likelihood, records that never overturn up to 4x counting as right-censored, with
+    intervals from a bootstrap over records. Prints median and beta per body and configuration,
+    and each isolated median over the rigid one (< 1: isolation hurts).
 
     \b
     Examples:

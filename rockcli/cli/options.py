@@ -193,21 +193,11 @@ def given_azimuth() -> dict:
         raise RockcliInputError("--record-2 is the second horizontal component for --azimuth: give --azimuth DEG|worst")
     if step is not None and azimuth != "worst":
         raise RockcliInputError("--azimuth-step applies to --azimuth worst")
-    if step is not None and not AZIMUTH_STEP_RANGE_DEG[0] <= step <= AZIMUTH_STEP_RANGE_DEG[1]:
-        from rockcli.inputs import format_number
+    if step is not None:
+        from rockcli.records.orientation import check_azimuth_step
 
-        lo, hi = AZIMUTH_STEP_RANGE_DEG
-        raise RockcliInputError(f"--azimuth-step {format_number(step)} must lie between {format_number(lo)} deg "
-                                f"({round(180 / lo):,} orientations of each pair, less than 0.2 % of the motion "
-                                f"apart) and {format_number(hi)} deg (two orientations)")
+        step = check_azimuth_step(step)  # one floor, shared with sweep_azimuths
     return {"record_2": record_2, "azimuth": azimuth, "step": AZIMUTH_STEP if step is None else step}
-
-
-#: Accepted ``--azimuth-step`` [deg]. The floor: the projection ``a_1 cos(theta - phi_1) + a_2 cos(theta - phi_2)``
-#: changes by at most ``|a| dtheta`` between orientations ``dtheta`` apart, 0.17 % of the horizontal motion at 0.1 deg
-#: (finer than the margin's 1 % bisection), and 0.1 deg already runs 1,800 orientations of every pair (``1e-9``
-#: would build 1.8e11); the ceiling: 90 deg still runs two orientations, 0 and 90 deg.
-AZIMUTH_STEP_RANGE_DEG = (0.1, 90.0)
 
 
 def _kept(flag: str, **kwargs):

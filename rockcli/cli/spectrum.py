@@ -345,6 +345,10 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
     click.echo(f"{len(curves)} curves x {xs.size} values of omega_p/p: {runner.cells_run} runs in {elapsed:.2f} s "
                f"({curves[0].found_by}, up to {ap_max:g} g tan alpha)"
                + (f"; {refined} minima lie in windows the first scan stepped over" if refine > 0 else ""), err=as_json)
+    from rockcli.spectra.minimum import capped_note
+
+    if capped_note(curves):
+        click.echo(capped_note(curves), err=as_json)
     _echo_unproven(runner, as_json)
     if csv_path:
         from rockcli.report.spectra import write_min_csv

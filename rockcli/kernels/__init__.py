@@ -22,7 +22,8 @@ Files (data flows down this list):
 ``rigid``                 :func:`simulate_rigid`: a block on a rigid foundation (two states; the
                           end-of-run proofs P1, P2, P4, P6, P7 in its notes)
 ``driver``                :func:`simulate_core`: a block on an isolated base as a loop over phases
-                          (proofs P3, P3s, P5, P8 in its docstring)
+                          (proofs P3, P3s, P5, P8, and the early stops P9, P9s during the
+                          excitation, in its docstring)
 ``batch``                 :func:`simulate_batch_rigid`, :func:`simulate_batch`,
                           :func:`simulate_batch_rigid_vertical`: many verdict-only scenes in
                           parallel, one entry per driver (and one for a vertical motion);

@@ -73,15 +73,15 @@ def read_with_extra(path: Path, column, recognised: str | None = None) -> dict[s
                 raise
             except BaseException as exc:  # noqa: BLE001 -- gmprocess raises many kinds (its DMG reader a bare
                 # BaseException for a damaged header); one sentence for the user
-                text = str(exc).strip().splitlines()
+                from rockcli.records.reader import reason_words
+
                 if recognised:  # rockcli knows the format: a damaged or unusual file, not a non-record
                     from rockcli.records.formats import FORMAT_NAMES
 
                     raise RockcliInputError(f"{path}: a {FORMAT_NAMES.get(recognised, recognised)} file that "
-                                            f"gmprocess cannot read either "
-                                            f"({text[0] if text else type(exc).__name__})") from None
-                raise NotARecord(f"{path}: format not recognised by rockcli, ObsPy or gmprocess "
-                                 f"({text[0] if text else type(exc).__name__})") from None
+                                            f"gmprocess cannot read either{reason_words(exc)}") from None
+                raise NotARecord(f"{path}: format not recognised by rockcli, ObsPy or gmprocess"
+                                 f"{reason_words(exc)}") from None
     finally:
         root.setLevel(level)
     traces = [tr for st in streams for tr in st]

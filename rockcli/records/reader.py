@@ -142,6 +142,7 @@ def read_record(source, *, format=None, units=None, dt=None, column=None, compon
     >>> rec = read_record("kobe-1995-takarazuka-000")                # doctest: +SKIP
     >>> rec = read_record("C02-065", units="g", dt=0.01)             # doctest: +SKIP
     """
+    _check_source(source)
     units = _check_units(units)
     dt = _check_dt(dt)
     gain = check_gain(gain, units)
@@ -170,6 +171,13 @@ def read_record(source, *, format=None, units=None, dt=None, column=None, compon
                                         f"catalogue id{did_you_mean(source)} (see 'rockcli records list')")
             source = found
     return _read_path(Path(source), fmt, units, dt, column, given_by="suite" if fill_in else "caller", gain=gain)
+
+
+def _check_source(source) -> None:
+    """A record's source is a path (text or path-like), a catalogue id or a :class:`Record`: else one sentence."""
+    from rockcli.inputs import check_type
+
+    check_type(source, (str, os.PathLike, Record), "source", "a record file's path or a catalogue id (text)")
 
 
 def path_exists(text) -> bool:
@@ -238,6 +246,7 @@ def _label(source, comps) -> str:
 def read_components(source, *, format=None, units=None, dt=None, gain=None, fill_in: bool = False) -> list[Record]:
     """Every component of a record file (or catalogue id), each a :class:`Record` with its name and
     orientation in ``meta`` (``component``, ``azimuth_deg``, ``vertical``); one for a one-component file."""
+    _check_source(source)
     kw = {"format": format, "units": units, "dt": dt, "gain": gain, "fill_in": fill_in}
     entry = _catalog_entry(source)
     if entry is not None and len(entry.components) > 1:  # a catalogue row naming several components
@@ -419,7 +428,7 @@ def _from_obspy(path: Path, fmt: str, column) -> dict[str, Any]:
             raise RockcliInputError(
                 f"{path}: unknown format {fmt!r} (rockcli reads PEER_AT2, TEXT, ESM, ITACA, COSMOS, GEONET_V2A, CWB "
                 f"and ObsPy's formats such as SAC, MSEED, KNET)") from None
-        raise NotARecord(f"{path}: format not recognised ({_first_line(exc)}); "
+        raise NotARecord(f"{path}: format not recognised{reason_words(exc)}; "
                          f"give it with --format, or convert the record to text") from None
     except Exception as exc:  # noqa: BLE001 -- ObsPy readers raise many kinds; one sentence for the user
         sizes = re.search(r"Actual/Theoretical:\s*(\d+)/(\d+)", str(exc))  # SAC: NPTS against the file's size
@@ -428,7 +437,7 @@ def _from_obspy(path: Path, fmt: str, column) -> dict[str, Any]:
 
             raise disagree(path, f"a SAC file of {sizes.group(2)} bytes (its NPTS samples after the header)",
                            f"the file holds {sizes.group(1)} bytes") from None
-        raise RockcliInputError(f"{path}: format not recognised, or a damaged file (ObsPy: {_first_line(exc)}); "
+        raise RockcliInputError(f"{path}: format not recognised, or a damaged file{reason_words(exc, 'ObsPy')}; "
                                 f"give the format with --format, or convert the record to text") from None
     from rockcli.records.components import pick_trace
 
@@ -476,9 +485,15 @@ def _from_obspy(path: Path, fmt: str, column) -> dict[str, Any]:
             "t_start": 0.0, "meta": meta, "format": fmt_name}
 
 
-def _first_line(exc: Exception) -> str:
+def reason_words(exc: BaseException, who: str = "") -> str:
+    """`` (<who>: <the first line of exc's message>)`` for a refusal, or ``""`` when the message says nothing
+    (empty, or only that no format was found): an exception's class name (``StopIteration``) means nothing
+    to a user."""
     text = str(exc).strip().splitlines()
-    return text[0].rstrip(".") if text else type(exc).__name__
+    line = text[0].strip().rstrip(".") if text else ""
+    if not line or line.lower().startswith("no format found"):
+        return ""
+    return f" ({who}: {line})" if who else f" ({line})"
 
 
 def _orientation(path: Path, fmt, component) -> dict:

@@ -104,9 +104,11 @@ def format_fragility_azimuths(results: dict, n_azimuths: int) -> tuple[str, str]
              f"of its projections' IMs, RotD50-like):", format_fragility(median), "",
              "Worst orientation of each pair (its smallest capacity, the rocking analogue of RotD100):",
              format_fragility(worst), "", "Worst azimuth of each pair [deg clockwise from north]:"]
-    lines += [f"  {r.column} / {r.record} / {r.configuration}: {r.azimuth_deg:g} deg, capacity "
-              f"{mark.get(r.censored, '')}{r.capacity:.3g} {worst.im.units}"
-              for r in worst.rows if not r.error and math.isfinite(r.azimuth_deg)]
+    lines += [f"  {r.column} / {r.record} / {r.configuration}: "
+              + (f"{r.azimuth_deg:g} deg" if math.isfinite(r.azimuth_deg) else
+                 f"any azimuth {r.margin_note.rpartition('any azimuth ')[2]}")
+              + f", capacity {mark.get(r.censored, '')}{r.capacity:.3g} {worst.im.units}"
+              for r in worst.rows if not r.error and (math.isfinite(r.azimuth_deg) or "any azimuth (" in r.margin_note)]
     notes = (f"With --azimuth worst a record is a pair of horizontal components: its IM is the median of the IMs of "
              f"its projections onto the {n_azimuths} orientations, and each orientation's capacity is its smallest "
              f"overturning factor x that IM.\n" + format_fragility_notes(worst))

@@ -360,8 +360,9 @@ def share_png(rows, configurations, title: str) -> bytes | None:
 def stroke_png(rows, records, configurations, title: str) -> bytes | None:
     """Bars: the peak base displacement [m] of every record on every isolated configuration; the runs in
     which the body toppled are hatched and labelled as such (a displacement until the fall, not a stroke
-    to design the bearings for)."""
-    from rockcli.assess.verdicts import TOPPLES, outcome
+    to design the bearings for). With ``--azimuth worst`` a pair's bar is its stroke over the orientations in
+    which the body survives (:func:`rockcli.assess.verdicts.stroke_m`), hatched only when it survives in none."""
+    from rockcli.assess.verdicts import TOPPLES, outcome, stroke_m
 
     iso = [c for c in configurations if c.isolated]
     by = {(r.record, r.configuration): r for r in rows}
@@ -378,12 +379,14 @@ def stroke_png(rows, records, configurations, title: str) -> bytes | None:
             if r is None or r.error or not math.isfinite(r.base_disp_max_m):
                 continue
             y = i + (j - (n_c - 1) / 2) * height
-            toppled = outcome(r) == TOPPLES
-            ax.barh(y, r.base_disp_max_m, height=height * 0.9, color=_CONF_COLOURS[(j + 1) % len(_CONF_COLOURS)],
+            d, toppled = r.base_disp_max_m, outcome(r) == TOPPLES
+            if r.azimuths_run and math.isfinite(stroke_m(r)):  # --azimuth worst: where it survives, every azimuth
+                d, toppled = stroke_m(r), False
+            ax.barh(y, d, height=height * 0.9, color=_CONF_COLOURS[(j + 1) % len(_CONF_COLOURS)],
                     hatch="//" if toppled else None, alpha=0.5 if toppled else 0.85)
-            ax.text(r.base_disp_max_m, y, f" {r.base_disp_max_m:.2f} m" + (f"  {c.header}" if n_c > 1 else "")
+            ax.text(d, y, f" {d:.2f} m" + (f"  {c.header}" if n_c > 1 else "")
                     + (" (it toppled)" if toppled else ""), va="center", fontsize=8.5)
-            top = max(top, r.base_disp_max_m)
+            top = max(top, d)
     ax.set_xlim(0, max(top, 1e-3) * 1.55)
     ax.set_yticks(range(len(records)))
     ax.set_yticklabels(records)

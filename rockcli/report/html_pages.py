@@ -13,7 +13,7 @@ import math
 from types import SimpleNamespace
 
 from rockcli.assess.verdicts import (SURVIVES, TOPPLES, body_noun, body_words, configuration_words,
-                                     isolation_summary, outcome, question, scene_sentence, survivor_stroke,
+                                     isolation_summary, outcome, question, scene_sentence, stroke_m, survivor_stroke,
                                      verdict_lines)
 from rockcli.report.html import (assumptions_section, body_section, card, configurations_section, esc, figure,
                                  num, page, plural, reproduce_section, table)
@@ -78,8 +78,7 @@ def _verdict_table(assessment, block) -> str:
                       else "-")
             css = "w-" + word.replace(" ", "-")
             rows.append((esc(x.label), esc(c.header), f'<b class="{css}">{esc(word)}</b>', _peak_cell(r), factor,
-                         (num(r.base_disp_max_m, ".3f", "m") + (" (until it toppled)" if word == TOPPLES else ""))
-                         if c.isolated else "-",
+                         _stroke_cell(r, word) if c.isolated else "-",
                          num(100 * r.overturn_share_pm10, ".0f", "%"),
                          esc(scene_sentence(r, isolated=False) + "."),
                          f"<code>{esc(format_cell(r, assessment.margin, assessment.neighbourhood))}</code>"))
@@ -148,6 +147,16 @@ def _certainty(assessment, check) -> str:
     return _list(items)
 
 
+def _stroke_cell(r, word: str) -> str:
+    """The verdict table's "base moves up to": the run's peak base displacement (until the fall when it toppled);
+    with --azimuth worst, the stroke over the orientations in which the body survives."""
+    if getattr(r, "azimuths_run", None):
+        s = stroke_m(r)
+        return (num(s, ".3f", "m") + " (largest over the orientations it survives)" if math.isfinite(s) else
+                "- (it survives in no orientation)")
+    return num(r.base_disp_max_m, ".3f", "m") + (" (until it toppled)" if word == TOPPLES else "")
+
+
 def _not_available(unavailable) -> list:
     from rockcli.assess.excitations import Skipped
 
@@ -166,6 +175,9 @@ def _stroke_fact(assessment, block, c, many: bool) -> tuple:
     kept = sum(outcome(r) == SURVIVES for r in rows)
     if top is None:
         return (name, "-", "it survives no record on them: no stroke to give")
+    if any(getattr(r, "azimuths_run", None) for r in rows):  # --azimuth worst: over the orientations it survives
+        return (name, f"{stroke_m(top):.2f} m", f"under {top.record}, the largest over the orientations in which "
+                f"it survives")
     if not fell:
         return (name, f"{top.base_disp_max_m:.2f} m") + ((f"under {top.record}",) if len(rows) > 1 else ())
     return (name, f"{top.base_disp_max_m:.2f} m",
@@ -211,7 +223,10 @@ def assessment_report(assessment, *, check=None, command: str = "") -> str:
         figs.append(figure(stroke_png(rows, records, confs, f"{block_text(b)}\ndisplacement demand on the bearings"),
                            "Peak displacement of the isolated base relative to the ground: where the body "
                            "survives, the stroke the bearings and the gap around the base must allow; hatched, the "
-                           "runs in which it toppled (the displacement until it fell, not a stroke to design for)."))
+                           "runs in which it toppled (the displacement until it fell, not a stroke to design for)."
+                           + (" A pair of components: the largest over the orientations in which the body survives "
+                              "(hatched: the most adverse one's, when it survives in none)."
+                              if any(r.azimuths_run for r in rows) else "")))
     sections = {
         "answer": "\n".join(first),
         "body": body_section(blocks),

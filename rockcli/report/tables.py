@@ -176,7 +176,7 @@ def assessment_frame(assessment):
 #: Columns added by ``--check-tolerance`` (:func:`rockcli.assess.table.check_tolerance`), empty on rows
 #: that were not rerun (errors, unavailable motions).
 #: Columns of an assessment with ``--azimuth`` (after :data:`CSV_COLUMNS`).
-AZIMUTH_COLUMNS = ("azimuth_deg", "overturning_azimuths", "azimuths_run")
+AZIMUTH_COLUMNS = ("azimuth_deg", "overturning_azimuths", "azimuths_run", "base_disp_max_surviving_azimuths_m")
 CHECK_COLUMNS = ("tight_rtol_verdict", "tight_rtol_peak_change", "ulp_verdicts", "ulp_peak_change", "ill_conditioned")
 
 
