@@ -92,3 +92,11 @@ def test_assessment_parts_on_dask_are_announced_and_equal_the_local_rows(small_s
     assert names == ["verdicts", "margin search", "neighbourhood"], parts
     assert all(p[0].endswith("tasks)") and p[2] == "scenes" and p[1] == p[3] for p in parts), parts
     assert parts[0][1] == parts[1][1] == n and parts[2][1] == len(local.rows)
+
+
+def test_a_scheduler_address_that_is_none_is_refused_before_any_run(small_suite):
+    """One sentence naming --scheduler, exit 2, before the records are read (as assess fragility and the
+    spectra do)."""
+    res = CliRunner().invoke(main, ["assess", "column", "bassae", "--records", small_suite[1], "--scheduler",
+                                    "http//x"])
+    assert res.exit_code == 2 and "--scheduler" in res.output and "Traceback" not in res.output, res.output
