@@ -80,6 +80,11 @@ def test_a_pair_of_catalogued_files_reads_as_the_catalogue_says(find_record, tmp
     for key in ("verdict", "theta_max_over_alpha", "azimuth_deg", "overturning_azimuths", "pga_g", "azimuths_run"):
         assert out["files"][key] == out["id"][key], key
 
+    both = CliRunner().invoke(main, [*CHEAP, "--azimuth-step", "90", "--records", "coyotelake-1979-gilroy6-230",
+                                     "--records", f"{a}+{b}"])
+    assert both.exit_code == 0, both.output  # one record, counted once
+    assert "Counted once: G06-230+320 is the same record as coyotelake-1979-gilroy6-230." in both.output
+
     alone = tmp_path / "alone"
     alone.mkdir()
     shutil.copy(a, alone)

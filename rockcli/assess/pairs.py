@@ -82,8 +82,10 @@ def _side(text: str, kwargs: dict, by_id: dict, by_file: dict):
     for key in ("units_source", "dt_source"):
         if meta.get(key) == "caller":  # only the catalogue's values were passed
             meta[key] = "catalogue"
+    comp = entry.component if Path(src).name == entry.file else entry.component_2
+    if meta.get("component") is None and comp:  # as the id reads it (the suite knows it for the same record)
+        meta["component"] = comp
     if az is None and meta.get("azimuth_deg") is None and not meta.get("vertical"):
-        comp = entry.component if Path(src).name == entry.file else entry.component_2
         meta.update(orientation_meta(comp, "catalogue"))
     return oriented(replace(rec, meta=meta), az, src)
 
