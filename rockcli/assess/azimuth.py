@@ -18,6 +18,39 @@ accident of the sweep's order, so none is named: ``simulate`` says that no orien
 overturns the body at some larger scale *has* a most adverse orientation for ``assess column`` (the
 smallest margin) and none for ``simulate``, which runs 1x only: the two agree, and say so.
 
+**The search shared by the orientations** (``run_assessment(orientations=...)``, issue 33): every
+orientation runs at 1x (its verdict, peak, overturn time and stroke; ``overturning_azimuths``), but the
+margins of one column x pair x configuration are searched together
+(``find_overturn_scales(groups=...)``), from each orientation's own lift-off floor (its projection's peak
+on a rigid base, one exact linear run of the base on linear bearings), in increasing order of the factor
+across the orientations, up to the first grid factor ``J`` at which any of them overturns; only the
+orientations that first overturn at ``J`` are bisected, and the neighbourhood (``--neighbourhood``) runs
+for the row kept only. Theorem: the row :func:`collapse` keeps is identical, field for field, to the one
+it keeps after every orientation's full search. Proof. Assumptions: a run's result depends on its scene
+and factor only (not on the batch it runs in; the kernels are deterministic); below its lift-off floor a
+scene provably does not overturn (:mod:`rockcli.assess.liftoff`); a scene the solver refuses is refused at
+every factor (its checks are of the block, the foundation and the excitation, not the scale). Let
+``f_k`` be orientation ``k``'s first overturning grid factor in its full search (none: it never
+overturns up to 4x, or is refused), and ``J = min_k f_k``. (1) The shared scan runs every factor of
+every orientation from its floor up to ``J``, so ``J`` is found, and so is every ``k`` with ``f_k = J``;
+those get the full search's ``(overturn_scale, overturn_scale_survives, margin_note)`` exactly: the same
+runs up to ``J``, the same bisection runs, the same count of runs unproven at the horizon. (2) Every other
+orientation is refused (margin NaN in both searches) or survives every factor up to ``J``: then its
+full-search margin is above ``grid[J]`` (the bisection
+of a first overturning factor ``f`` ends in ``(grid[f - 1], grid[f]]``), or NaN; the bisected margins
+of the ``f_k = J`` orientations are at most ``grid[J]``. So in the full search every other orientation's
+:func:`adverse_key` is strictly larger than the kept one's, and in the shared search it is too (its
+margin is NaN, ranked last, with :data:`~rockcli.assess.margin.NOTE_ABOVE_GROUP`). :func:`most_adverse`
+therefore picks the same orientation (the smallest key; among equal keys, all of them among the
+``f_k = J`` ones, the first), and "all keys equal" holds in both or in neither (with more than one
+orientation and one left out, in neither). (3) Without any ``J`` (nothing overturns up to 4x) nothing
+is left out: every orientation has its full search. (4) The 1x fields, the failed runs,
+``overturning_azimuths`` and the stroke over the surviving orientations (below) come from the 1x runs,
+made for every orientation. The kept row's
+neighbourhood share is its own run of 0.90x..1.10x. ``tests/test_azimuth_search.py`` checks the theorem
+against the unshared search on random pairs of every foundation; ``benchmarks/bench_azimuth.py`` on the
+catalogue's pairs.
+
 **The stroke** the bearings must allow is not the most adverse orientation's: a row keeps that orientation's
 run (``base_disp_max_m`` with its verdict and peak), and :func:`collapse` adds
 ``base_disp_max_surviving_azimuths_m``, the largest peak base displacement over the orientations in which

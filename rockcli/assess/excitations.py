@@ -62,6 +62,9 @@ class Excitation:
     #: and :mod:`rockcli.assess.azimuth` runs every orientation)
     pair: tuple | None = None
     azimuth_deg: float = math.nan
+    #: ``--azimuth worst`` on a catalogue record with one known horizontal component: why it runs as recorded
+    #: (:func:`rockcli.assess.pairs.catalogue_worst`), in one orientation
+    as_recorded: str = ""
 
 
 @dataclass(frozen=True)
@@ -136,61 +139,6 @@ def _read_suite_record(path: Path, kwargs: dict):
         return read_record(path, **kwargs)
     comps = read_components(path, **{k: v for k, v in kwargs.items() if k != "column"})
     return comps[0] if len(comps) == 1 else select_component(comps, component, str(path))
-
-
-def pair_label(first: str, second: str) -> str:
-    """``RSN181_IMPVALL.H_H-E06140.AT2+E06230.AT2``, ``TCU128-000+090``: the second name without the part
-    both share up to a separator."""
-    import os
-
-    common = os.path.commonprefix([first, second])
-    cut = max((common.rfind(c) for c in "-_."), default=-1) + 1
-    return f"{first}+{second[cut:] or second}"
-
-
-def one_file_pair(first, second, names=("", "")) -> str:
-    """Why ``first`` and ``second`` (each ``FILE`` or ``FILE@DEG``) are no pair: one file named twice (after
-    following symbolic links, or by inode); ``""`` when they are two files (or ``second`` is None).
-    ``names`` are the options that gave them (``--record``, ``--record-2``), for the sentence."""
-    from rockcli.files import same_file
-    from rockcli.records.orientation import split_source
-
-    if second is None:
-        return ""
-    f1, f2 = (split_source(s)[0] for s in (first, second))
-    if not same_file(f1, f2):
-        return ""
-    a, b = (f"{n} {s}".strip() for n, s in zip(names, (first, second)))
-    return (f"{a} and {b} are one file ({f1}): a pair is two different horizontal components; give the other "
-            f"component's file (a multi-component file alone gives its own two)")
-
-
-def _pair_excitation(label: str, first, second, read_kwargs: dict, azimuth, skip: bool = False) -> Excitation:
-    """Two horizontal components (``second`` None: those of the multi-component file ``first``) projected
-    onto ``azimuth`` [deg] (``"worst"``: onto 0 deg, every orientation run later); a pair that cannot be
-    read or checked is kept with its ``error``."""
-    from rockcli.records.components import NotARecord
-    from rockcli.records.orientation import project, read_pair
-
-    kwargs = {k: v for k, v in read_kwargs.items() if k != "component"}
-    one = one_file_pair(first, second)
-    if one:
-        return Excitation(label, EXCITATION_RECORD, None, f"{first} + {second}", error=one)
-    try:
-        pair = read_pair(first, second, **kwargs)
-    except NotARecord as exc:
-        if skip:
-            return Skipped(label, str(exc))
-        return Excitation(label, EXCITATION_RECORD, None, str(first), error=str(exc))
-    except RockcliInputError as exc:
-        return Excitation(label, EXCITATION_RECORD, None, f"{first} + {second}" if second else str(first),
-                          error=str(exc))
-    theta = 0.0 if azimuth == "worst" else float(azimuth)
-    rec = project(*pair, theta)
-    source = " + ".join(f"{r.meta.get('path')} ({format_number(r.meta['azimuth_deg'])} deg)" for r in pair)
-    if azimuth != "worst":
-        label = f"{label}@{format_number(theta)}"
-    return Excitation(label, EXCITATION_RECORD, rec, source, rec.pga_g, pair=pair, azimuth_deg=theta)
 
 
 def _entry_read_kwargs(entry) -> dict:
@@ -317,12 +265,21 @@ def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto"
     from rockcli.files import note_inputs
     from rockcli.records.orientation import split_source
 
+    from rockcli.assess.pairs import catalogue_worst, pair_excitation, pair_label
+
     suite = Suite()
     if not sources:
+        if azimuth is not None and azimuth != "worst":
+            raise RockcliInputError(f"--azimuth {format_number(float(azimuth))} projects pairs of horizontal "
+                                    f"components: give them with --records A+B (or catalogue pairs by id); "
+                                    f"--azimuth worst runs the catalogue's own pairs")
         for e in table_ii_entries():
-            x = _from_entry(e, mode)
+            x = _from_entry(e, mode) if azimuth is None else catalogue_worst(e, mode)
             if isinstance(x, Unavailable):
                 suite.skip(x)
+            elif x.pair is not None:
+                note_inputs([r.meta.get("path") for r in x.pair], "a record of the pair")
+                suite.add(x)
             else:
                 note_inputs([x.source] if x.kind == EXCITATION_RECORD else [], "the record")
                 suite.add(x, x.source if x.kind == EXCITATION_RECORD else None)
@@ -338,7 +295,7 @@ def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto"
             first, _, second = src.partition("+")
             files = [split_source(f)[0] for f in (first, second)]
             note_inputs(files, "a record of the pair")
-            suite.add(_pair_excitation(pair_label(*(Path(f).name for f in files)), first, second, file_kwargs,
+            suite.add(pair_excitation(pair_label(*(Path(f).name for f in files)), first, second, file_kwargs,
                                        azimuth))
             continue
         if kind == "file" and is_manifest(path):
@@ -346,15 +303,23 @@ def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto"
                 file1 = split_source(first)[0]
                 note_inputs([file1, split_source(second)[0] if second else None], f"a record of the manifest {path}")
                 if azimuth is not None:
-                    suite.add(_pair_excitation(label, first, second, kwargs, azimuth), file1)
+                    suite.add(pair_excitation(label, first, second, kwargs, azimuth), file1)
                 else:  # without an azimuth a row is its first file
                     suite.add(_manifest_excitation(Path(file1).name if second else label, first, kwargs), file1,
                               kwargs.get("component"))
             continue
+        if azimuth == "worst" and src in by_id and kind == "missing":
+            x = catalogue_worst(by_id[src], mode)
+            if isinstance(x, Unavailable):
+                raise RockcliInputError(f"record {src!r} cannot be run: {x.reason}")
+            note_inputs([r.meta.get("path") for r in x.pair] if x.pair else
+                        [x.source] if x.kind == EXCITATION_RECORD else [], "the record")
+            suite.add(x, None if x.pair or x.kind != EXCITATION_RECORD else x.source)
+            continue
         is_file = kind in ("file", "unreadable")  # unreadable: the reader names it (an error row)
         if azimuth is not None and (is_file or src in by_id):
             note_inputs([path] if is_file else [], "the record")
-            suite.add(_pair_excitation(path.name if is_file else src, src, None, file_kwargs, azimuth),
+            suite.add(pair_excitation(path.name if is_file else src, src, None, file_kwargs, azimuth),
                       path if is_file else None)
             continue
         if kind == "folder":
@@ -371,7 +336,7 @@ def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto"
             note_inputs(files, f"a file of the suite folder {src}")
             for p in files:
                 x = (_file_excitation(p, by_file, file_kwargs, skip=True) if azimuth is None else
-                     _pair_excitation(p.name, str(p), None, file_kwargs, azimuth, skip=True))
+                     pair_excitation(p.name, str(p), None, file_kwargs, azimuth, skip=True))
                 suite.skip(x) if isinstance(x, Skipped) else suite.add(x, p, component)
         elif is_file:
             note_inputs([path], "the record")

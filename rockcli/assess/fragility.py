@@ -436,20 +436,13 @@ def run_fragility_distributed(scheduler, columns, excitations, configurations, *
     told as each chunk of ``n`` scenes comes back, the search announced with :func:`rockcli.progress.phase`
     (in scenes, no time left: the chunks' searches go as far as they find).
     """
-    from rockcli.distributed import map_chunks as dask_map, open_client
-    from rockcli.progress import phase
+    from rockcli.assess.cluster import dask_runner
+    from rockcli.distributed import open_client
 
     n_scenes = max(1, len(columns) * len(excitations) * len(configurations))
     with open_client(scheduler) as client:
         workers = max(1, len(client.scheduler_info().get("workers", {})))
         size = max(1, -(-n_scenes // (workers * chunks_per_worker)))
-
-        def runner(func, chunks):
-            if progress is None:
-                return dask_map(client, func, chunks)
-            phase(progress, f"margin search on Dask ({len(chunks)} tasks)", sum(len(c) for c in chunks),
-                  known=False, unit="scenes")
-            return dask_map(client, func, chunks, progress=lambda i: progress(len(chunks[i])))
-
+        runner = dask_runner(client, progress)  # "margin search on Dask (N tasks)", in scenes
         return (run or run_fragility)(columns, excitations, configurations, chunk_size=size, runner=runner,
                                       **kwargs)

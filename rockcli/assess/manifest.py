@@ -95,7 +95,7 @@ def read_manifest(path: Path, defaults: dict) -> list:
     """``(label, first, second, read_kwargs)`` per row of a manifest CSV (files relative to its folder;
     ``FILE@DEG`` when the row gives an azimuth). A row's units and dt fill in only what its file does not
     state, like ``--units``/``--dt`` (which fill in what a row leaves empty)."""
-    from rockcli.assess.excitations import pair_label
+    from rockcli.assess.pairs import pair_label
     from rockcli.files import note_inputs
     from rockcli.inputs import parse_number
 

@@ -35,7 +35,7 @@ from __future__ import annotations
 
 import functools
 import math
-from typing import Callable, Sequence
+from typing import Callable, NamedTuple, Sequence
 
 import numpy as np
 
@@ -51,6 +51,9 @@ RTOL_FLOOR = 8 * float(np.finfo(float).eps)
 
 NOTE_NO_OVERTURN = "no overturning up to {:g}x"
 NOTE_OVERTURNS_AT_MIN = "overturns already at {:g}x, the smallest factor scanned"
+#: A scene of a group left out of the search (``find_overturn_scales(groups=...)``): its margin is above
+#: the group's smallest, which is at most this factor.
+NOTE_ABOVE_GROUP = "searched up to {:g}x only: it does not overturn up to there, and another orientation does"
 
 
 def _scaled_job(block, foundation, motion, scale: float):
@@ -61,7 +64,7 @@ def _scaled_job(block, foundation, motion, scale: float):
 
 
 def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL, known=None,
-                         progress: Callable[[int], None] | None = None, fill: bool = True, **solver):
+                         progress: Callable[[int], None] | None = None, fill: bool = True, groups=None, **solver):
     """Smallest scale factor of the excitation that overturns each scene (see the module notes).
 
     Parameters
@@ -84,6 +87,10 @@ def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL,
         When fewer scenes are still scanning than there are threads, run the next few factors of each
         at once (``threads / scenes`` of them, rounded up), so that no core idles; the runs past a
         scene's first overturning factor are then wasted CPU, and change no result.
+    groups : sequence, optional
+        One hashable key per scene: the scenes of one key are scanned together, and only the group's
+        smallest margin is searched (Notes, 3; the orientations of one column, pair and configuration,
+        :mod:`rockcli.assess.azimuth`). None: each scene alone, every margin searched.
     **solver
         Passed to :func:`rockcli.solve.simulate_many`.
 
@@ -95,7 +102,8 @@ def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL,
         already overturns; ``(NaN, NaN, "error: ...")`` when the solver refused the scene. The note
         counts the runs at or below the margin (every run when nothing overturns; the bisection's
         runs included, the factor 1 of ``known`` not) that reached the solver's horizon unproven:
-        runs of the full scan, which the search's path does not change.
+        runs of the full scan, which the search's path does not change. With ``groups``, a scene left
+        out (Notes, 3) gets ``(NaN, NaN, note)`` with :data:`NOTE_ABOVE_GROUP`.
 
     Notes
     -----
@@ -112,6 +120,17 @@ def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL,
        run of the base at 1x; 0 otherwise): no such run lifts the block, so none overturns, and each
        is proven (settled) by the solver before its horizon.
     2. Factors above the first overturning one.
+    3. With ``groups``: factors above the group's first overturning factor ``J`` (the smallest first
+       overturning factor of its scenes). The scenes of a group run their factors in increasing order
+       across the group (each round the scenes at the group's lowest pending factor, and with ``fill``
+       the next few), so the scan stops at ``J`` having run every factor at or below it of every scene
+       (from its floor). The scenes whose first overturning factor is ``J`` get their full result (the
+       same runs, the same bisection, the same note); every other scene (not refused) survives every
+       factor up to ``J``, so its margin, from the full scan, is above ``grid[J]`` and therefore above
+       the group's smallest: its result says so (:data:`NOTE_ABOVE_GROUP`) instead. A scene refused
+       by the solver is refused at every factor (the checks are of the block, the foundation and the
+       excitation, not of the scale), so it has the full scan's ``error`` result as soon as it runs
+       once. Why this is what ``--azimuth worst`` needs: :mod:`rockcli.assess.azimuth`.
 
     So each scene runs its factors upwards from its floor, one per round (all scenes together in
     one parallel batch per round), and stops at the first that overturns; the factor 1 of
@@ -163,21 +182,22 @@ def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL,
     pos = np.searchsorted(grid, floors, side="left")  # the first factor >= the floor: nothing below runs
     first = np.full(n, -1)  # first overturning factor, once found
     settled = [n if known is not None and i1 >= 0 else 0]  # pairs counted so far (factor 1 known)
+    gid = _group_ids(groups, n)
+    cap = np.full(int(gid.max()) + 1 if n else 0, m)  # per group: the smallest first overturning factor found
 
     def scanning(i):
-        return first[i] < 0 and i not in errors and pos[i] < m
+        return first[i] < 0 and i not in errors and pos[i] < m and pos[i] <= cap[gid[i]]
 
     def advance():  # move each scene past the factors settled; progress: every pair that may no longer run
-        left = 0
         for i in range(n):
             while scanning(i) and state[i, pos[i]] != 0:
                 if state[i, pos[i]] == 2:
                     first[i] = pos[i]
+                    cap[gid[i]] = min(cap[gid[i]], pos[i])
                 else:
                     pos[i] += 1
-            if scanning(i):
-                left += int(np.count_nonzero(state[i, pos[i]:] == 0))
         if progress is not None:
+            left = sum(int(np.count_nonzero(state[i, pos[i]:cap[gid[i]] + 1] == 0)) for i in range(n) if scanning(i))
             k = n * m - left - settled[0]
             if k > 0:
                 settled[0] += k
@@ -186,25 +206,39 @@ def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL,
     advance()
     threads = _threads()
     while True:
-        active = [i for i in range(n) if scanning(i)]
+        active = {}
+        for i in range(n):
+            if scanning(i):
+                active.setdefault(int(gid[i]), []).append(i)
         if not active:
             break
         per = -(-threads // len(active)) if fill else 1
         pairs = []
-        for i in active:
-            todo = np.flatnonzero(state[i, pos[i]:] == 0)[:per] + pos[i]
-            cut = np.flatnonzero(state[i, pos[i]:todo[-1] + 1] == 2)  # a known overturn ends the scene first
-            pairs += [(i, int(j)) for j in todo if not cut.size or j < pos[i] + cut[0]]
+        for g, members in active.items():
+            lowest = min(pos[i] for i in members)  # each scanning scene's next factor to run is its pos
+            take = [(int(pos[i]), i) for i in members if pos[i] == lowest]
+            if len(take) < per:  # fill: the next factors of the group, lowest first
+                todo = []
+                for i in members:
+                    end = cap[g] + 1
+                    over = np.flatnonzero(state[i, pos[i]:end] == 2)  # a known overturn ends the scene first
+                    end = pos[i] + over[0] if over.size else end
+                    todo += [(int(j), i) for j in (np.flatnonzero(state[i, pos[i]:end] == 0) + pos[i])[:per]]
+                take = sorted(todo)[:per]
+            pairs += [(i, j) for j, i in take]
         run(pairs)
         advance()
 
     out = [None] * n
-    lo, hi, active = np.zeros(n), np.zeros(n), []
+    lo, hi, active, left_out = np.zeros(n), np.zeros(n), [], set()
     for i in range(n):
         if i in errors:
             out[i] = (math.nan, math.nan, f"error: {errors[i]}")
-        elif first[i] < 0:
+        elif first[i] < 0 and pos[i] >= m:
             out[i] = (math.nan, grid[-1], NOTE_NO_OVERTURN.format(grid[-1]))
+        elif first[i] < 0 or first[i] > cap[gid[i]]:  # left out: another scene of its group overturns lower
+            out[i] = (math.nan, math.nan, NOTE_ABOVE_GROUP.format(grid[cap[gid[i]]]))
+            left_out.add(i)
         elif first[i] == 0:
             out[i] = (grid[0], math.nan, NOTE_OVERTURNS_AT_MIN.format(grid[0]))
         else:
@@ -225,6 +259,8 @@ def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL,
     for i in range(n):
         if out[i] is None:
             out[i] = (float(hi[i]), float(lo[i]), "")
+        elif i in left_out:
+            continue
         count = int(np.count_nonzero(unproven[i, :m if first[i] < 0 else first[i] + 1])) + int(unproven_bisection[i])
         if count:
             hi_i, lo_i, note = out[i]
@@ -264,6 +300,17 @@ def overturn_shares(scenes, *, factors=NEIGHBOURHOOD, progress=None, **solver) -
     for (i, _), r in zip(pairs, res):
         count[i] += r.overturned
     return list(count / len(factors))
+
+
+def _group_ids(groups, n: int) -> np.ndarray:
+    """Consecutive integer ids of ``groups`` (one hashable key per scene; None: each scene its own group)."""
+    if groups is None:
+        return np.arange(n)
+    groups = list(groups)
+    if len(groups) != n:
+        raise ValueError(f"groups names {len(groups)} scenes' groups for {n} scenes")
+    ids = {}
+    return np.array([ids.setdefault(g, len(ids)) for g in groups], dtype=np.int64).reshape(n)
 
 
 def _cost(motion) -> float:
@@ -314,15 +361,57 @@ def map_chunks(func: Callable, items: Sequence, *, chunk_size: int | None = None
     return out
 
 
-def overturn_scales_chunked(scenes, *, chunk_size: int | None = None, runner: Callable | None = None,
-                            **kwargs) -> list:
+class SearchGroup(NamedTuple):
+    """One item of a chunked search (:func:`overturn_scales_chunked`): scenes searched together (one group
+    of ``find_overturn_scales(groups=...)``, or one scene), with their responses at 1x (or None)."""
+
+    scenes: tuple
+    known: tuple | None = None
+
+
+def chunk_scenes(chunk) -> int:
+    """The scenes of a chunk of :class:`SearchGroup` items (for a runner's progress)."""
+    return sum(len(item.scenes) for item in chunk)
+
+
+def search_groups(items: Sequence[SearchGroup], **kwargs) -> list:
+    """:func:`find_overturn_scales` of the scenes of ``items``, each item one group: one list of results
+    per item (the function a runner maps over chunks; picklable with :func:`functools.partial`)."""
+    scenes = [s for item in items for s in item.scenes]
+    known = None
+    if any(item.known is not None for item in items):
+        known = [r for item in items for r in item.known]
+    found = find_overturn_scales(scenes, known=known, groups=[k for k, item in enumerate(items) for _ in item.scenes],
+                                 **kwargs)
+    out, at = [], 0
+    for item in items:
+        out.append(found[at:at + len(item.scenes)])
+        at += len(item.scenes)
+    return out
+
+
+def overturn_scales_chunked(scenes, *, groups=None, known=None, chunk_size: int | None = None,
+                            runner: Callable | None = None, **kwargs) -> list:
     """:func:`find_overturn_scales` over chunks of ``scenes`` through :func:`map_chunks` (same results).
 
-    Each scene's search depends on that scene only, so chunking changes nothing but where and in
-    which batches the runs happen. ``known`` (responses at 1x) is not taken: pass it to
-    :func:`find_overturn_scales` directly.
+    The items mapped are :class:`SearchGroup`: one per group of ``groups`` (a group is searched as
+    one, see :func:`find_overturn_scales`), else one per scene, with its response at 1x when ``known``
+    is given. Each item's search depends on that item only, so chunking changes nothing but where and
+    in which batches the runs happen; ``chunk_size`` counts items.
     """
-    if "known" in kwargs:
-        raise TypeError("overturn_scales_chunked takes no 'known' responses")
-    return map_chunks(functools.partial(find_overturn_scales, **kwargs), scenes, chunk_size=chunk_size,
-                      runner=runner)
+    n = len(scenes)
+    if known is not None and len(known) != n:
+        raise ValueError(f"{len(known)} responses at 1x for {n} scenes")
+    gid = _group_ids(groups, n)
+    members = {}
+    for i, g in enumerate(gid.tolist()):
+        members.setdefault(g, []).append(i)
+    order = list(members.values())
+    items = [SearchGroup(tuple(scenes[i] for i in idx), None if known is None else tuple(known[i] for i in idx))
+             for idx in order]
+    found = map_chunks(functools.partial(search_groups, **kwargs), items, chunk_size=chunk_size, runner=runner)
+    out = [None] * n
+    for idx, res in zip(order, found):
+        for i, r in zip(idx, res):
+            out[i] = r
+    return out

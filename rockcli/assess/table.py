@@ -8,6 +8,7 @@
 
 from __future__ import annotations
 
+import functools
 import math
 import re
 from dataclasses import dataclass, field
@@ -18,7 +19,8 @@ import numpy as np
 from rockcli.conditioning import ULP_DRAWS, ill_conditioned, ulp_perturbed, widest
 from rockcli.errors import RockcliInputError
 from rockcli.models import Block
-from rockcli.assess.margin import MARGIN_GRID, NEIGHBOURHOOD, _scaled_job, find_overturn_scales, overturn_shares
+from rockcli.assess.margin import (MARGIN_GRID, NEIGHBOURHOOD, _scaled_job, map_chunks, overturn_scales_chunked,
+                                   overturn_shares)
 from rockcli.assess.scenes import EXCITATION_PULSE, Configuration, Excitation, Unavailable
 
 
@@ -137,7 +139,8 @@ def _base_row(block: Block, x: Excitation, conf: Configuration) -> AssessmentRow
 
 def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
                    configurations: Sequence[Configuration], *, margin: bool = True, neighbourhood: bool = False,
-                   unavailable: Sequence[Unavailable] = (), progress=None, **solver) -> Assessment:
+                   unavailable: Sequence[Unavailable] = (), progress=None, orientations: dict | None = None,
+                   runner=None, chunks: int | None = None, **solver) -> Assessment:
     """Run every scene column x excitation x configuration (verdict only, all cores).
 
     Parameters
@@ -152,7 +155,19 @@ def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
     progress : callable, optional
         ``progress(n)`` after each chunk of ``n`` steps: runs, and in the margin search (scene, factor)
         pairs settled (:func:`find_overturn_scales`); :func:`count_runs` gives the total. Each part
-        (verdicts, margin search, neighbourhood) is announced with :func:`rockcli.progress.phase`.
+        (verdicts, margin search, neighbourhood) is announced with :func:`rockcli.progress.phase`
+        (local runs only: a ``runner`` reports its own, see :func:`rockcli.assess.cluster.run_on_dask`).
+    orientations : dict, optional
+        ``--azimuth worst``: the projections of each pair (:func:`rockcli.assess.azimuth.expand`). The
+        orientations of one column, pair and configuration are searched together, only as far as the most
+        adverse one needs, and the neighbourhood runs for that one only (:mod:`rockcli.assess.azimuth`):
+        the other orientations' rows are complete at 1x only; :func:`rockcli.assess.azimuth.collapse` the
+        result.
+    runner, chunks
+        Where the runs go: :func:`rockcli.assess.margin.map_chunks` (default: here, one chunk of
+        everything), in ``chunks`` chunks per part. The verdicts and the neighbourhood map over scenes,
+        the margin search over its groups (:func:`rockcli.assess.margin.overturn_scales_chunked`); every
+        scene's result is the same wherever it runs.
     **solver
         Passed to :func:`rockcli.solve.simulate_many` (``rtol``, ``tail``, ...).
 
@@ -188,9 +203,13 @@ def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
     from rockcli.progress import phase
     from rockcli.solve import VERDICT_ERROR, JobError, simulate_many
 
-    phase(progress, "verdicts", len(scenes), unit="runs")
-
-    responses = simulate_many([_scaled_job(*s, 1.0) for s in scenes], progress=chunk_progress, **solver)
+    here = runner is None
+    if here:
+        phase(progress, "verdicts", len(scenes), unit="runs")
+        responses = simulate_many([_scaled_job(*s, 1.0) for s in scenes], progress=chunk_progress, **solver)
+    else:
+        responses = map_chunks(functools.partial(simulate_many, **solver), [_scaled_job(*s, 1.0) for s in scenes],
+                               chunk_size=_size(len(scenes), chunks), runner=runner)
     # a run stopped by the step cap is a numerical failure, not a result: an error row like a refused job
     responses = [JobError(r.message) if r.verdict != VERDICT_ERROR and r.status < 0 else r for r in responses]
     timings["runs_s"] = time.perf_counter() - t0
@@ -206,26 +225,68 @@ def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
         row.t_uplift_s = r.t_uplift_s
         row.n_impacts = r.n_impacts
         row.base_disp_max_m = r.base_disp_max_m
+    ok = [i for i, r in enumerate(responses) if r.verdict != VERDICT_ERROR]
+    groups = _orientation_groups(run_rows, orientations)
     if margin:
         t0 = time.perf_counter()
-        ok = [i for i, r in enumerate(responses) if r.verdict != VERDICT_ERROR]
-        # (scene, factor) pairs, factor 1 known: how far each search goes is what it finds out (no ETA)
-        phase(progress, "margin search", len(ok) * (MARGIN_GRID.size - 1), known=False)
-        found = find_overturn_scales([scenes[i] for i in ok], known=[responses[i] for i in ok], progress=progress,
-                                     **solver)
+        kw = dict(solver)
+        if here:  # (scene, factor) pairs, factor 1 known: how far each search goes is what it finds out (no ETA)
+            phase(progress, "margin search", len(ok) * (MARGIN_GRID.size - 1), known=False)
+            kw["progress"] = progress
+        n_items = len(ok) if groups is None else len({groups[i] for i in ok})
+        found = overturn_scales_chunked([scenes[i] for i in ok], known=[responses[i] for i in ok],
+                                        groups=None if groups is None else [groups[i] for i in ok],
+                                        chunk_size=_size(n_items, chunks), runner=runner, **kw)
         for i, (hi, lo, note) in zip(ok, found):
             run_rows[i].overturn_scale, run_rows[i].overturn_scale_survives, run_rows[i].margin_note = hi, lo, note
         timings["margin_s"] = time.perf_counter() - t0
     if neighbourhood:
         t0 = time.perf_counter()
-        ok = [i for i, r in enumerate(responses) if r.verdict != VERDICT_ERROR]
-        phase(progress, "neighbourhood", len(ok) * NEIGHBOURHOOD.size, unit="runs")
-        shares = overturn_shares([scenes[i] for i in ok], progress=_Advance(progress) if progress else None, **solver)
+        if groups is not None:  # the orientation each scene reports: the most adverse one's share only
+            ok = _most_adverse(ok, run_rows, groups, margin)
+        if here:
+            phase(progress, "neighbourhood", len(ok) * NEIGHBOURHOOD.size, unit="runs")
+            shares = overturn_shares([scenes[i] for i in ok], progress=_Advance(progress) if progress else None,
+                                     **solver)
+        else:
+            shares = map_chunks(functools.partial(overturn_shares, **solver), [scenes[i] for i in ok],
+                                chunk_size=_size(len(ok), chunks), runner=runner)
         for i, share in zip(ok, shares):
             run_rows[i].overturn_share_pm10 = share
         timings["neighbourhood_s"] = time.perf_counter() - t0
     return Assessment(list(columns), list(excitations), list(configurations), rows, list(unavailable), margin,
                       timings, neighbourhood, dict(solver))
+
+
+def _size(items: int, chunks: int | None) -> int | None:
+    """Items per chunk for about ``chunks`` chunks (None: one chunk)."""
+    return None if not chunks else max(1, -(-items // int(chunks)))
+
+
+def _orientation_groups(run_rows, orientations) -> list | None:
+    """Per scene run, its group of the margin search: ``(column, pair, configuration)`` for a projection of a
+    pair of ``orientations``, the scene itself otherwise (None without ``orientations``)."""
+    if orientations is None:
+        return None
+    pair_of = {label: pair for pair, labels in orientations.items() for label in labels}
+    return [(r.column, pair_of[r.record], r.configuration) if r.record in pair_of else k
+            for k, r in enumerate(run_rows)]
+
+
+def _most_adverse(ok, run_rows, groups, margin: bool) -> list:
+    """The scenes of ``ok`` that :func:`rockcli.assess.azimuth.collapse` reports: in each group, the row
+    :func:`rockcli.assess.azimuth.worst_row` keeps (a scene alone: itself; a group with a failed run reports
+    that run, which is not in ``ok``)."""
+    from rockcli.assess.azimuth import worst_row
+
+    members = {}
+    for i, g in enumerate(groups):
+        members.setdefault(g, []).append(i)
+    keep = set()
+    for idx in members.values():
+        row, _ = worst_row([run_rows[i] for i in idx], margin)
+        keep.add(next(i for i in idx if run_rows[i] is row))
+    return [i for i in ok if i in keep]
 
 
 class _Advance:

@@ -229,6 +229,11 @@ def _columns(names, R, alpha, height, width, name):
               help="Rerun every scene at a 100x tighter rtol (5e-11; 2e-11 on sliding bearings) and flag any "
                    "verdict that changes; and on 2 copies of its motion moved by one ulp, and flag any scene "
                    "whose verdict changes or whose peak moves by more than 1e-3 alpha (ill-conditioned).")
+@click.option("--scheduler", default=None, metavar="tcp://HOST:PORT|local",
+              help="Run the scenes and their margin searches on a Dask cluster (pip install -e \".[dask]\"): the "
+                   "address of an existing scheduler, or 'local' for a LocalCluster on this machine. Same results. "
+                   "A scheduler that does not answer, has no worker or loses all its workers stops the run after "
+                   "ROCKCLI_DASK_TIMEOUT seconds (default 60).")
 @report_option
 @json_option
 @quiet_option
@@ -237,7 +242,8 @@ def _columns(names, R, alpha, height, width, name):
 @cap_ratio_option
 @user_errors
 def column(names, R, alpha, height, width, name, records, units, dt, excitation, isolation, margin, neighbourhood,
-           csv_path, hist_dir, plot_dir, check_tolerance, report_path, as_json, horizon, restitution, cap_ratio):
+           csv_path, hist_dir, plot_dir, check_tolerance, scheduler, report_path, as_json, horizon, restitution,
+           cap_ratio):
     """Do the columns NAME... survive the records, on a rigid base and on isolators?
 
     NAME is a preset (bassae, nemea) or a custom block NAME:R=<m>,alpha=<deg> or
@@ -270,10 +276,11 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
     solver.update(_cap_ratio_kw(cap_ratio))
     check_outputs((csv_path, "--csv", False), (report_path, "--report", False),
                   folders=((hist_dir, "--history-dir"), (plot_dir, "--plot-dir")))
+    if scheduler is not None:
+        from rockcli.distributed import check_scheduler
+
+        check_scheduler(scheduler)
     azimuth = given_azimuth()
-    if azimuth["azimuth"] is not None and not records:
-        raise InputError("--azimuth needs pairs of horizontal components: give them with --records A+B "
-                         "(or multi-component files)")
     excitations, unavailable = resolve_excitations(records, excitation, units=units, dt=dt, gain=given_gain(),
                                                    component=given_component(), azimuth=azimuth["azimuth"],
                                                    **given_suite())
@@ -293,9 +300,18 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
     if hist_dir or plot_dir:
         _plan_run_files(columns, excitations, configurations, hist_dir, plot_dir)
 
-    result = _run_counted(count_runs(columns, run_excitations, configurations, margin, neighbourhood),
-                          partial(run_assessment, columns, run_excitations, configurations, margin=margin,
-                                  neighbourhood=neighbourhood, unavailable=unavailable, horizon=horizon, **solver))
+    kwargs = dict(margin=margin, neighbourhood=neighbourhood, unavailable=unavailable, orientations=groups or None,
+                  horizon=horizon, **solver)
+    if scheduler is not None:
+        from rockcli.assess.cluster import run_on_dask
+        from rockcli.cli.options import dask_client
+
+        client = dask_client(scheduler)
+        with progress_bar(len(columns) * len(run_excitations) * len(configurations), "scenes on Dask") as bar:
+            result = run_on_dask(client, columns, run_excitations, configurations, progress=bar, **kwargs)
+    else:
+        result = _run_counted(count_runs(columns, run_excitations, configurations, margin, neighbourhood),
+                              partial(run_assessment, columns, run_excitations, configurations, **kwargs))
     if groups:
         from rockcli.assess.azimuth import collapse
 

@@ -20,7 +20,7 @@ def read_excitation(source, kwargs: dict):
         rec = read_record(source, **kwargs)
         add_inputs([rec.meta.get("path")], "the record")
         return rec, None
-    from rockcli.assess.excitations import one_file_pair
+    from rockcli.assess.pairs import one_file_pair
 
     one = one_file_pair(source, given["record_2"], ("--record", "--record-2"))
     if one:

@@ -156,9 +156,9 @@ def azimuth_options(func=None, *, suite: bool = False):
     :func:`given_azimuth` (so the command's signature does not change)."""
     if func is None:
         return lambda f: azimuth_options(f, suite=suite)
-    pair_help = ("the pair A+B of --records (each FILE or FILE@DEG) or the two horizontal components of a "
-                 "multi-component file" if suite else "the two horizontal components (of --record, or --record "
-                 "and --record-2)")
+    pair_help = ("the pair A+B of --records (each FILE or FILE@DEG), a catalogue pair by its id, or the two "
+                 "horizontal components of a multi-component file" if suite else
+                 "the two horizontal components (of --record, or --record and --record-2)")
     options = [] if suite else [
         click.option("--record-2", "record_2", default=None, metavar="SOURCE", expose_value=False,
                      callback=_remember("rockcli.record_2"),

@@ -129,6 +129,13 @@ def format_notes(assessment) -> str:
         for r in over:
             lines.append(f"Overturning orientations: {r.column} / {r.record} / {r.configuration}: "
                          f"{r.overturning_azimuths.replace(' ', ', ')} deg.")
+    reasons = {}
+    for x in assessment.excitations:
+        if getattr(x, "as_recorded", ""):
+            reasons.setdefault(x.as_recorded, []).append(x.label)
+    if reasons:  # --azimuth worst: a catalogue record without its second horizontal component (rockcli.assess.pairs)
+        lines.append("Run as recorded, in one orientation (no pair to turn): "
+                     + "; ".join(f"{', '.join(labels)} ({why})" for why, labels in reasons.items()) + ".")
     if assessment.neighbourhood:
         lines.append("[P%]: share of the scale factors 0.90x, 0.91x, ..., 1.10x of the record that overturn "
                      "(0% or 100%: a robust verdict; in between: the verdict flips within +-10% of the record).")
