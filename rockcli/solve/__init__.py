@@ -20,6 +20,8 @@ the kernels are imported on the first run. Read it in this order:
 ``single``         :func:`simulate`: one scene, with or without its history
 ``batch``          :func:`simulate_many` and :func:`simulate_verdicts`: many verdict-only scenes on all
                    cores (``_run_many`` validates each distinct scene once and packs their arrays)
+``stack``          :func:`simulate_stack`: a body on a free plinth (docs/physics-plinth.md),
+                   :class:`StackResponse`
 =================  =====================================================================================
 
 Every public name (and the private helpers tests reach for) is importable from ``rockcli.solve``.
@@ -78,6 +80,7 @@ from rockcli.solve.parameters import _parameters, bearing_force_path
 from rockcli.solve.work import _check_work, _estimate_steps
 from rockcli.solve.single import simulate
 from rockcli.solve.batch import _run_many, _scene_arrays, _threads, simulate_many, simulate_verdicts
+from rockcli.solve.stack import BlockPeak, StackHistory, StackResponse, simulate_stack
 
 __all__ = ["DEFAULT_HORIZON", "DEFAULT_MAX_STEPS", "DEFAULT_REST_TOL", "DEFAULT_RTOL", "DEFAULT_RTOL_HYSTERETIC",
            "DEFAULT_TAIL", "HORIZON_MAX", "N_IMPULSE_TABLE", "PULSE_START_MAX_PERIODS", "REST_TOL_MIN", "TAIL_MAX",
@@ -85,3 +88,4 @@ __all__ = ["DEFAULT_HORIZON", "DEFAULT_MAX_STEPS", "DEFAULT_REST_TOL", "DEFAULT_
            "Response", "Verdicts", "attached_vertical", "bearing_force_path", "default_rtol", "pulse_impulse_table",
            "record_impulse_table", "simulate", "simulate_many", "simulate_verdicts", "validate_options",
            "vertical_label", "with_vertical"]
+__all__ += ["BlockPeak", "StackHistory", "StackResponse", "simulate_stack"]
