@@ -97,7 +97,8 @@ def run_yade(stack, exc, t_end, workdir):
     scene = {"blocks": [[b2, h2, rho2, KN_PER_KG * (m1 + m2), CN_PER_KG * (m1 + m2)],
                         [b1, h1, RHO, KN_PER_KG * m1, CN_PER_KG * m1]],
              "depth": DEPTH, "r": R_SPHERE, "ks_over_kn": 0.5, "friction_deg": 80.0, "dt": DT, "t_end": t_end,
-             "t_settle": 0.05, "g": G, "ag_t": t.tolist(), "ag": ag.tolist(), "sample_every": 5}
+             "t_settle": 0.05, "g": G, "ag_t": t.tolist(), "ag": ag.tolist(), "sample_every": 5,
+             "topple_rad": TOPPLE_RAD + 0.05}
     return _yade(scene, workdir)
 
 

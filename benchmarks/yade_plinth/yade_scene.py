@@ -138,9 +138,9 @@ def sample():
     T.append(O.time - T_MOTION[0])
     for i in range(len(clumps)):
         TH[i].append(angle(i))
-    # a block past 1.2 rad on its support has fallen (the model then has no contact for its side)
+    # a block past ``topple_rad`` on its support has fallen (the model has no contact for its side)
     rel = [TH[0][-1]] + [TH[i][-1] - TH[i - 1][-1] for i in range(1, len(clumps))]
-    if any(abs(x) > 1.2 for x in rel):
+    if any(abs(x) > S.get("topple_rad", 1.45) for x in rel):
         STOP[0] = True
         O.pause()
 

@@ -66,7 +66,8 @@ X_FR_B, X_FR_J, X_FRI_B, X_FRI_J = 11, 12, 13, 14  # friction demand |T|/N: base
 X_N_JUMP, X_N_INCONS = 15, 16  # steps or impacts where a pivot would pull; impacts with no consistent pattern
 X_N_SWITCH, X_STEPS_BP, X_P2S = 17, 18, 19  # pattern changes, steps of pattern BP, 1 when P2S ended the run
 X_PL_N_RESTS = 20
-N_XO = 21
+X_N_PLASTIC = 21  # impacts where a given restitution could not be carried: the plastic law instead
+N_XO = 22
 
 HALF_PI = 0.5 * math.pi
 
@@ -115,10 +116,12 @@ def _state_forces(pat, s, k, sp, prm, W, hs, sig, t, seg, epar, xo):
     cdd = -prm[P_P2] * (math.sin(A) + ag / prm[P_G] * math.cos(A))  # Eq (3) with the pattern's p, alpha
     if pat == PAT_B:
         NB, TB, PRB, PLB, NJ, TJ, PRJ, PLJ = forces(0.0, k, sp, 0.0, c0, 0.0, c1, 0.0, cdd, ag)
-        _demand(xo, NB, TB, NJ, TJ)
+        if min(PRB, PLB) > 0.0:  # past the opening of the face the pattern's forces are not the motion's
+            _demand(xo, NB, TB, NJ, TJ)
         return min(PRB, PLB), (1.0 if PRB > PLB else -1.0), NJ < 0.0
     NB, TB, PRB, PLB, NJ, TJ, PRJ, PLJ = forces(s, 0.0, sp, c0, 0.0, c1, 0.0, cdd, 0.0, ag)
-    _demand(xo, NB, TB, NJ, TJ)
+    if min(PRJ, PLJ) > 0.0:
+        _demand(xo, NB, TB, NJ, TJ)
     return min(PRJ, PLJ), (1.0 if PRJ > PLJ else -1.0), NB < 0.0
 
 
@@ -343,11 +346,14 @@ def _rest_check(j, s, k, sp, th2, psi, V, ag):
 
 
 @njit(cache=True)
-def _after_impact(j, s, k, sp, th2, psi, V, rs, W, out, xo, t, t_exc_end, ag):
-    """The pattern after an impact at ``j`` from ``(s, k)`` (generic: any pattern may follow), and the rest rule."""
-    s1, k1, V1, margin, jump, db, dj = choose_after_impact(s, k, j, sp, th2, psi, V)
+def _after_impact(j, s, k, sp, prm, prm_asm, th2, psi, V, rs, W, out, xo, t, ag):
+    """The pattern after an impact at ``j`` from ``(s, k)`` (generic: any pattern may follow), and the rest rule
+    (the single block's, with the body's or the assembly's parameters, when one body rocks after the impact)."""
+    s1, k1, V1, margin, jump, db, dj, plastic = choose_after_impact(s, k, j, sp, th2, psi, V)
     if margin < -1e-9:
         xo[X_N_INCONS] += 1.0
+    if plastic:
+        xo[X_N_PLASTIC] += 1.0
     if jump:
         xo[X_N_JUMP] += 1.0
     xo[X_FRI_B] = max(xo[X_FRI_B], db)
@@ -356,17 +362,30 @@ def _after_impact(j, s, k, sp, th2, psi, V, rs, W, out, xo, t, t_exc_end, ag):
         _plinth_lifts(xo, t)
     if k1 != 0.0 and k == 0.0 and out[O_UPLIFTED] == 0.0:
         _count_uplift(out, t)
+    psid = V1[5] - V1[2]
+    thd2 = V1[2]
     if (j == 0 and s1 != 0.0) or (j == 1 and k1 != 0.0):
-        stick, q2, q1 = _rest_check(j, s1, k1, sp, th2, psi, V1, ag)
-        if stick:
-            if j == 0:
-                _set_pattern(rs, W, xo, 0.0, k1, psi, q1, 0.0, 0.0)
-                xo[X_PL_N_RESTS] += 1.0
-            else:
-                _set_pattern(rs, W, xo, s1, 0.0, 0.0, 0.0, th2, q2)
+        if j == 1 and s1 == 0.0:  # the body alone rocks on the still plinth: its own rule
+            if comes_to_rest(prm, ag, psid, prm[P_THR], prm[P_ALPHA]):
+                _set_pattern(rs, W, xo, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
                 out[O_N_RESTS] += 1.0
-            return
-    _set_pattern(rs, W, xo, s1, k1, psi, V1[5] - V1[2], th2, V1[2])
+                return
+        elif j == 0 and k1 == 0.0:  # the assembly rocks as one block
+            if comes_to_rest(prm_asm, ag, thd2, prm_asm[P_THR], prm_asm[P_ALPHA]):
+                _set_pattern(rs, W, xo, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+                xo[X_PL_N_RESTS] += 1.0
+                return
+        else:
+            stick, q2, q1 = _rest_check(j, s1, k1, sp, th2, psi, V1, ag)
+            if stick:
+                if j == 0:
+                    _set_pattern(rs, W, xo, 0.0, k1, psi, q1, 0.0, 0.0)
+                    xo[X_PL_N_RESTS] += 1.0
+                else:
+                    _set_pattern(rs, W, xo, s1, 0.0, 0.0, 0.0, th2, q2)
+                    out[O_N_RESTS] += 1.0
+                return
+    _set_pattern(rs, W, xo, s1, k1, psi, psid, th2, thd2)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -505,6 +524,9 @@ def simulate_stack(prm, prm_asm, sp, ekind, epar, acc, jtab, dt, t_begin, t_exc_
             side = 0.0
             if ok:
                 s_ev = _impact_ahead(W, hs, 0, c)
+                if c * W[W_YNEW, 0] >= HALF_PI:  # nothing past the overturn is read
+                    so = _first_down(_dense(W, hs, np.int64(0), -c), -HALF_PI, 0.0, 1.0)
+                    s_ev = min(s_ev, so if so >= 0.0 else 1.0)
                 s_open, side = _face_opens(pat, s, k, sp, pb, W, hs, rs[RS_T], seg, epar, xo, s_ev)
                 if s_open >= 0.0:  # the step stands up to the face opening: retake it there
                     _restep_rigid(0, PHASE_ROCKING, c, pb, seg, epar, _NO_HY, rs[RS_T], s_open * hs, W, 0, 2)
@@ -551,11 +573,11 @@ def simulate_stack(prm, prm_asm, sp, ekind, epar, acc, jtab, dt, t_begin, t_exc_
                 ag = ground_at(t, _seg(rs), epar)
                 if pat == PAT_B:
                     V = max_velocities(0.0, k, sp, 0.0, 0.0, 0.0, thd1)
-                    s1, k1, V1, margin, jump, db, dj = choose_after_impact(0.0, k, 1, sp, 0.0, 0.0, V)
+                    s1, k1, V1, margin, jump, db, dj, plastic = choose_after_impact(0.0, k, 1, sp, 0.0, 0.0, V)
                 else:
                     V = max_velocities(s, 0.0, sp, 0.0, 0.0, thd1, 0.0)
-                    s1, k1, V1, margin, jump, db, dj = choose_after_impact(s, 0.0, 0, sp, 0.0, 0.0, V)
-                if (pat == PAT_B and s1 == 0.0) or (pat == PAT_P and k1 == 0.0):
+                    s1, k1, V1, margin, jump, db, dj, plastic = choose_after_impact(s, 0.0, 0, sp, 0.0, 0.0, V)
+                if ((pat == PAT_B and s1 == 0.0) or (pat == PAT_P and k1 == 0.0)) and not plastic:
                     # the plinth stays (B), the body stays on it (P): the single block's impact map and rest rule
                     xo[X_FRI_B] = max(xo[X_FRI_B], db)
                     xo[X_FRI_J] = max(xo[X_FRI_J], dj)
@@ -582,12 +604,12 @@ def simulate_stack(prm, prm_asm, sp, ekind, epar, acc, jtab, dt, t_begin, t_exc_
                         out[O_N_IMPACTS_ALL] += 1.0
                         if t <= t_exc_end:
                             out[O_N_IMPACTS] += 1.0
-                        _after_impact(1, 0.0, k, sp, 0.0, 0.0, V, rs, W, out, xo, t, t_exc_end, ag)
+                        _after_impact(1, 0.0, k, sp, prm, prm_asm, 0.0, 0.0, V, rs, W, out, xo, t, ag)
                     else:
                         xo[X_PL_N_IMP_ALL] += 1.0
                         if t <= t_exc_end:
                             xo[X_PL_N_IMP] += 1.0
-                        _after_impact(0, s, 0.0, sp, 0.0, 0.0, V, rs, W, out, xo, t, t_exc_end, ag)
+                        _after_impact(0, s, 0.0, sp, prm, prm_asm, 0.0, 0.0, V, rs, W, out, xo, t, ag)
                 if want_history:
                     H, nh = _hist(H, nh, rs, epar, W, xo, HK_REST if xo[X_PAT] == PAT_R else HK_IMPACT_AFTER)
                 continue
@@ -685,12 +707,12 @@ def simulate_stack(prm, prm_asm, sp, ekind, epar, acc, jtab, dt, t_begin, t_exc_
                 xo[X_PL_N_IMP_ALL] += 1.0
                 if t <= t_exc_end:
                     xo[X_PL_N_IMP] += 1.0
-                _after_impact(0, s, k, sp, th2, psi, V, rs, W, out, xo, t, t_exc_end, ag)
+                _after_impact(0, s, k, sp, prm, prm_asm, th2, psi, V, rs, W, out, xo, t, ag)
             else:
                 out[O_N_IMPACTS_ALL] += 1.0
                 if t <= t_exc_end:
                     out[O_N_IMPACTS] += 1.0
-                _after_impact(1, s, k, sp, th2, psi, V, rs, W, out, xo, t, t_exc_end, ag)
+                _after_impact(1, s, k, sp, prm, prm_asm, th2, psi, V, rs, W, out, xo, t, ag)
             if want_history:
                 H, nh = _hist(H, nh, rs, epar, W, xo, HK_IMPACT_AFTER)
             continue

@@ -244,10 +244,10 @@ def _impulses(s, k, sp, th2, psi, V0, V1):
         Mc = sp[S_I1] * (V1[5] - V0[5]) - _cw(cx - g1x, cy - g1y, ljx, ljy)
         PRJ, PLJ = _face(NJ, Mc, b1)
         px, py = cx, cy
-    else:
+    else:  # a pivot carries no couple, but for the restitution's at the impacting joint
+        Mc = sp[S_I1] * (V1[5] - V0[5]) - _cw(jx - g1x, jy - g1y, ljx, ljy)
         PRJ = NJ if k > 0.0 else 0.0
         PLJ = NJ if k < 0.0 else 0.0
-        Mc = 0.0
         px, py = jx, jy
     lbx, lby = ljx + m2 * (V1[0] - V0[0]), ljy + m2 * (V1[1] - V0[1])
     if s == 0.0:
@@ -260,12 +260,11 @@ def _impulses(s, k, sp, th2, psi, V0, V1):
 
 
 @njit(cache=True)
-def post_velocities(s, k, j, sp, th2, psi, V):
+def post_velocities(s, k, j, sp, th2, psi, V, E):
     """Velocities just after an impact at interface ``j`` (0 base, 1 joint) into the pattern ``(s, k)``: the
-    plastic projection, or with a restitution ``E = sp[S_E] >= 0`` the energetic rule (the motions that keep
+    plastic projection (``E < 0``), or with a restitution ``E >= 0`` the energetic rule (the motions that keep
     ``j`` stuck projected, the impacting pivot's own motion at ``E`` times the largest rate the energy allows)."""
     e2, e1 = fields(s, k, sp, th2, psi)
-    E = sp[S_E]
     pivot_j = s != 0.0 if j == 0 else k != 0.0
     if E < 0.0 or not pivot_j:
         q2, q1 = project(sp, e2, e1, V)
@@ -286,16 +285,8 @@ def post_velocities(s, k, j, sp, th2, psi, V):
 
 
 @njit(cache=True)
-def choose_after_impact(s, k, j, sp, th2, psi, V):
-    """The pattern after an impact at ``j`` from the pattern ``(s, k)`` (its angle at ``j`` just back to 0):
-    every candidate (an interface at angle 0 a face or either pivot, the other keeping its pivot; with a
-    restitution the impacting one on its new corner) gets its velocities from :func:`post_velocities`, and the one
-    whose impulses press and whose new pivots open (the largest smallest margin) is taken.
-
-    Returns ``(s', k', V+, margin, jump, dmd_base, dmd_joint)``: ``margin < 0`` when none is consistent, ``jump``
-    True when a kept pivot's impulse pulls, and the impulsive friction demands ``|T|/N`` (0 without impulse)."""
-    E = sp[S_E]
-    tol = sp[S_TOL]
+def _best_candidate(s, k, j, sp, th2, psi, V, E):
+    """The most consistent pattern after the impact under the law ``E`` (< 0: plastic): ``(s', k', V+, margin)``."""
     zero_b = th2 == 0.0
     zero_j = psi == 0.0
     vscale = max(abs(V[2]), abs(V[5] - V[2])) + 1e-300
@@ -323,7 +314,7 @@ def choose_after_impact(s, k, j, sp, th2, psi, V):
                 if ik > 0:
                     break
                 kb = k
-            V1 = post_velocities(sb, kb, j, sp, th2, psi, V)
+            V1 = post_velocities(sb, kb, j, sp, th2, psi, V, E)
             NB, TB, PRB, PLB, NJ, TJ, PRJ, PLJ = _impulses(sb, kb, sp, th2, psi, V, V1)
             pscale = max(abs(NB), abs(NJ)) + 1e-300
             margin = math.inf
@@ -346,12 +337,35 @@ def choose_after_impact(s, k, j, sp, th2, psi, V):
                 bs = sb
                 bk = kb
                 bV = V1
+    return bs, bk, bV, best
+
+
+@njit(cache=True)
+def choose_after_impact(s, k, j, sp, th2, psi, V):
+    """The pattern after an impact at ``j`` from the pattern ``(s, k)`` (its angle at ``j`` just back to 0):
+    every candidate (an interface at angle 0 a face or either pivot, the other keeping its pivot; with a
+    restitution the impacting one on its new corner) gets its velocities from :func:`post_velocities`, and the one
+    whose impulses press and whose new pivots open (the largest smallest margin) is taken. With a restitution
+    whose rebound no candidate can carry (its couple would lift a face, say), the plastic law is used instead.
+
+    Returns ``(s', k', V+, margin, jump, dmd_base, dmd_joint, plastic)``: ``margin < 0`` when none is consistent,
+    ``jump`` True when a kept pivot's impulse pulls, the impulsive friction demands ``|T|/N`` (0 without impulse),
+    ``plastic`` True when a given restitution fell back to the plastic law."""
+    E = sp[S_E]
+    tol = sp[S_TOL]
+    bs, bk, bV, best = _best_candidate(s, k, j, sp, th2, psi, V, E)
+    plastic = False
+    if E >= 0.0 and best < -tol:
+        bs, bk, bV, best = _best_candidate(s, k, j, sp, th2, psi, V, -1.0)
+        plastic = True
+    zero_b = th2 == 0.0
+    zero_j = psi == 0.0
     NB, TB, PRB, PLB, NJ, TJ, PRJ, PLJ = _impulses(bs, bk, sp, th2, psi, V, bV)
     pscale = max(abs(NB), abs(NJ)) + 1e-300
     jump = ((not zero_b) and max(PRB, PLB) < -tol * pscale) or ((not zero_j) and max(PRJ, PLJ) < -tol * pscale)
     dmd_b = abs(TB) / NB if NB > 0.0 else 0.0
     dmd_j = abs(TJ) / NJ if NJ > 0.0 else 0.0
-    return bs, bk, bV, best, jump, dmd_b, dmd_j
+    return bs, bk, bV, best, jump, dmd_b, dmd_j, plastic
 
 
 @njit(cache=True)

@@ -102,6 +102,75 @@ def reference_stack(blocks, excitation, *, rtol=1e-10, atol=None, horizon=600.0,
     return out
 
 
+def _candidates(model, st, q, j, E):
+    """The patterns that may follow an impact at ``j``: the interfaces at angle 0 a face or either pivot (with a
+    restitution the impacting one on its new corner), the others keeping their pivot."""
+    import itertools
+
+    opts = []
+    for i in range(model.n):
+        if i == j and E is not None:
+            opts.append((-st[j],))
+        elif q[i] == 0.0:
+            opts.append((0, 1, -1))
+        else:
+            opts.append((st[i],))
+    return list(itertools.product(*opts))
+
+
+def post_velocities(model, c, q, v_minus, j, E):
+    """Velocities and impulses after an impact at ``j`` into the pattern ``c``: plastic, or with a restitution the
+    energetic rule (docs/physics-plinth.md)."""
+    if E is None or c[j] == 0:
+        return model.impact(c, q, v_minus)
+    s0 = list(c)
+    s0[j] = 0
+    v0, _ = model.impact(s0, q, v_minus)  # the plastic part: every motion but the impacting pivot's
+    w, _ = model.impact(c, q, np.zeros_like(v_minus), rate=(j, 1.0))  # the impacting pivot's own mode
+    dv = v_minus - v0
+    W = math.sqrt(max(0.0, float(np.sum(model.Mdiag * dv * dv)) / float(np.sum(model.Mdiag * w * w))))
+    target = E * W * math.copysign(1.0, model.rel_rates(v_minus)[j])
+    return model.impact(c, q, v_minus, rate=(j, target))
+
+
+def choose_post(model, st, q, v_minus, j, E=None, tol=1e-9):
+    """The pattern after an impact at ``j`` (``q[j] = 0``) from ``st``: ``(pattern, v+, impulses, margin, pulls)``.
+
+    Each candidate's impulses must press (both corners of a face, the corner of a pivot) and its new pivots open;
+    the candidate with the largest smallest margin is taken (``margin < 0``: none was consistent). A restitution
+    that no candidate can carry (its couple would lift a face) gives way to the plastic law. ``pulls`` counts the
+    kept pivots whose impulse pulls (a jump the model does not follow)."""
+    c, v, imp, margin = _best(model, st, q, v_minus, j, E)
+    if E is not None and margin < -tol:  # no pattern carries the rebound: the plastic law
+        c, v, imp, margin = _best(model, st, q, v_minus, j, None)
+    zero = [i for i in range(model.n) if q[i] == 0.0]
+    pscale = max(abs(x[0]) for x in imp)
+    pulls = sum(1 for i in range(model.n) if c[i] != 0 and i not in zero and max(imp[i][2], imp[i][3]) < -tol * pscale)
+    return c, v, imp, margin, pulls
+
+
+def _best(model, st, q, v_minus, j, E):
+    zero = [i for i in range(model.n) if q[i] == 0.0]
+    vscale = float(np.max(np.abs(model.rel_rates(v_minus)))) + 1e-300
+    best = None
+    for c in _candidates(model, st, q, j, E):
+        v, imp = post_velocities(model, c, q, v_minus, j, E)
+        rel = model.rel_rates(v)
+        pscale = max(abs(x[0]) for x in imp) + 1e-300
+        margin = math.inf
+        for i in zero:
+            if c[i] == 0:
+                margin = min(margin, min(imp[i][2], imp[i][3]) / pscale)
+            else:
+                margin = min(margin, c[i] * rel[i] / vscale)
+                if not (i == j and E is not None):
+                    margin = min(margin, max(imp[i][2], imp[i][3]) / pscale)
+        if best is None or margin > best[0]:
+            best = (margin, c, v, imp)
+    margin, c, v, imp = best
+    return c, v, imp, margin
+
+
 class _Run:
     def __init__(self, model, excitation, rtol, atol, horizon, rest_tol, restitution, method, align, demand_points,
                  record_impacts, deadline_s, tol):
@@ -293,62 +362,16 @@ class _Run:
         return True
 
     # ---- impacts -------------------------------------------------------------------------------------------
-    def _candidates(self, j):
-        import itertools
-
-        zero = [i for i in range(self.M.n) if self.q[i] == 0.0]
-        opts = []
-        for i in range(self.M.n):
-            if i == j and self.E is not None:
-                opts.append((-self.st[j],))
-            elif i in zero:
-                opts.append((0, 1, -1))
-            else:
-                opts.append((self.st[i],))
-        return zero, list(itertools.product(*opts))
-
-    def _post(self, c, j, v_minus):
-        """Velocities and impulses after an impact at ``j`` into the pattern ``c``."""
-        M = self.M
-        if self.E is None or c[j] == 0:
-            return M.impact(c, self.q, v_minus)
-        s0 = list(c)
-        s0[j] = 0
-        v0, _ = M.impact(s0, self.q, v_minus)  # the plastic part: every motion but the impacting pivot's
-        w, _ = M.impact(c, self.q, np.zeros_like(v_minus), rate=(j, 1.0))  # the impacting pivot's own mode
-        dv = v_minus - v0
-        W = math.sqrt(max(0.0, float(np.sum(M.Mdiag * dv * dv)) / float(np.sum(M.Mdiag * w * w))))
-        target = self.E * W * math.copysign(1.0, M.rel_rates(v_minus)[j])
-        return M.impact(c, self.q, v_minus, rate=(j, target))
-
     def _impact(self, j):
         M, t = self.M, self.t
         v_minus = M.velocities(self.st, self.q, self.qd)
         if t <= self.t_exc_end:
             self.n_imp[j] += 1
-        zero, cands = self._candidates(j)
-        vscale = float(np.max(np.abs(M.rel_rates(v_minus)))) + 1e-300
-        best = None
-        for c in cands:
-            v, imp = self._post(c, j, v_minus)
-            rel = M.rel_rates(v)
-            pscale = max(abs(x[0]) for x in imp) + 1e-300
-            margin = math.inf
-            for i in zero:
-                if c[i] == 0:
-                    margin = min(margin, min(imp[i][2], imp[i][3]) / pscale)
-                else:
-                    margin = min(margin, c[i] * rel[i] / vscale)
-                    if not (i == j and self.E is not None):
-                        margin = min(margin, max(imp[i][2], imp[i][3]) / pscale)
-            if best is None or margin > best[0]:
-                best = (margin, c, v, imp)
-        margin, c, v, imp = best
+        c, v, imp, margin, pulls = choose_post(M, self.st, self.q, v_minus, j, self.E, self.tol)
         if margin < -self.tol:
             self.n_incons += 1
+        self.n_jumps += pulls
         for i in range(M.n):
-            if c[i] != 0 and i not in zero and max(imp[i][2], imp[i][3]) < -self.tol * max(abs(x[0]) for x in imp):
-                self.n_jumps += 1
             if imp[i][0] > 0:
                 self.fric_imp[i] = max(self.fric_imp[i], abs(imp[i][1]) / imp[i][0])
         if self.rec:
