@@ -34,7 +34,7 @@ def _sp(stack, restitution=None):
 def test_the_equations_of_both_rocking_are_the_separate_bodies():
     """The 2x2 Lagrange system (bp_acc) and the contact forces (forces) of the note against Newton-Euler with
     constraint multipliers, at random states of every pattern."""
-    from rockcli.kernels.stack_physics import bp_acc, forces
+    from rockcli.kernels.stack_physics import bp_acc, forces, forces_b, forces_p
 
     rng = np.random.default_rng(5)
     for _ in range(100):
@@ -53,6 +53,12 @@ def test_the_equations_of_both_rocking_are_the_separate_bodies():
             got = forces(pat[0], pat[1], sp, q[0], q[1], qd[0], qd[1], qdd[0], qdd[1], ag)
             want = (f[0][0], f[0][1], f[0][2], f[0][3], f[1][0], f[1][1], f[1][2], f[1][3])
             assert np.allclose(got, want, rtol=1e-10, atol=1e-10)
+            if st == [0, int(k)]:  # the closed forms the driver watches in B and in P
+                NB, TB, PRB, PLB, NJ, TJ = forces_b(k, sp, psi, psid, qdd[1], ag)
+                assert np.allclose((NB, TB, PRB, PLB, NJ, TJ), got[:6], rtol=1e-10, atol=1e-10)
+            if st == [int(s), 0]:
+                NB, TB, NJ, TJ, PRJ, PLJ = forces_p(s, sp, th2, thd2, qdd[0], ag)
+                assert np.allclose((NB, TB, NJ, TJ, PRJ, PLJ), (got[0], got[1], *got[4:]), rtol=1e-10, atol=1e-10)
 
 
 @pytest.mark.parametrize("restitution", [None, 0.7, 1.0])
@@ -184,3 +190,37 @@ def test_random_scenes_agree_with_the_reference():
                 assert mine == pytest.approx(ref, rel=1e-2)
             else:  # a normal force falling to 0 (a block leaving its contact): beyond any friction, in both
                 assert mine > 2.0 and ref > 2.0
+
+
+def _p2s_scene(rng):
+    body = Block.from_dimensions(rng.uniform(0.5, 2.5), rng.uniform(0.15, 0.6))
+    plinth = Plinth(rng.uniform(0.05, 0.6), body.width * rng.uniform(1.3, 4.0), mass_ratio=float(rng.uniform(0.5, 5)))
+    return Stack(body, plinth), _scene(rng)
+
+
+def p2s_mismatches(n, seed, tail=30.0):
+    """Runs ended by P2S (the body rocking on a plinth proven unable to lift again) against the same runs followed
+    ``tail`` seconds on (history): ``(ended by P2S, mismatches)``; a mismatch is the plinth moving after the proof,
+    a different verdict, or peaks more than 1e-7 apart (the free motion integrated on after the proof may pass the
+    exact later peak P2S adds by the integration's error, about 1e-9; tests/test_verdict_paths.py allows the same)."""
+    rng = np.random.default_rng(seed)
+    hits = bad = 0
+    for _ in range(n):
+        stack, exc = _p2s_scene(rng)
+        a = simulate_stack(stack, exc)
+        if a.proof != "P2S":
+            continue
+        hits += 1
+        b = simulate_stack(stack, exc, history=True, tail=tail)
+        h = b.history
+        moved = np.any(np.isin(h.pattern, ("plinth rocks", "both rock"))) or b.plinth.theta_max > 0
+        if moved or a.verdict != b.verdict or abs(a.body.theta_max / b.body.theta_max - 1) > 1e-7:
+            bad += 1
+    return hits, bad
+
+
+def test_the_end_of_run_proof_p2s_holds_on_random_scenes():
+    """P2S ends a run while the body still rocks on its plinth: followed 30 s on, the plinth never moves and the
+    peak is the one P2S gave (200 random scenes here; thousands in benchmarks/bench_plinth.py --p2s)."""
+    hits, bad = p2s_mismatches(200, 4)
+    assert hits >= 30 and bad == 0  # 42 of the 200 scenes of this seed end by P2S

@@ -49,7 +49,7 @@ from rockcli.kernels.polynomials import _first_down, _golden_max, _poly
 from rockcli.kernels.rigid import _NO_HY, _restep_rigid, _stuck_rigid, _substep_stop, _take_step_rigid
 from rockcli.kernels.stack_physics import (S_A1REST, S_AAREST, S_B1, S_B2, S_G, S_H1, S_H2, S_M2, S_R1,
                                            S_REST, _rhs_bp_into, bp_acc, choose_after_impact, fields, forces,
-                                           max_velocities, project)
+                                           forces_b, forces_p, max_velocities, project)
 from rockcli.kernels.steps import (EV_FAILED, EV_IMPACT, EV_OVERTURN, _advance_segment, _bounce, _close_step, _finish,
                                    _grown, _out_of_time, _rocking_events, _seg, _shrink, _start, _to_impact,
                                    _to_overturn, _to_step_end)
@@ -97,32 +97,40 @@ def _demand(xo, NB, TB, NJ, TJ):
 
 
 @njit(cache=True)
-def _state_forces(pat, s, k, sp, prm, W, hs, sig, t, seg, epar, xo):
-    """Contact forces at fraction ``sig`` of the last step of pattern ``pat`` (its dense output): the friction
-    demand is noted; returns the smallest corner force of the face the pattern watches (the base in B, the joint
-    in P; +inf in BP) and the corner that keeps pressing, and whether a pivot pulls."""
-    c0 = _poly(_dense(W, hs, np.int64(0), 1.0), sig)
-    c1 = _poly(_dense(W, hs, np.int64(1), 1.0), sig)
-    tt = t + sig * hs
+def _bp_forces(s, k, sp, W, hs, sig, t, seg, epar, xo):
+    """Contact forces of pattern BP at fraction ``sig`` of the last step (its dense output): the friction demand
+    is noted; returns True when a pivot pulls."""
+    psi = _poly(_dense(W, hs, np.int64(0), 1.0), sig)
+    psid = _poly(_dense(W, hs, np.int64(1), 1.0), sig)
+    th2 = _poly(_dense(W, hs, np.int64(2), 1.0), sig)
+    thd2 = _poly(_dense(W, hs, np.int64(3), 1.0), sig)
+    ag = ground_at(t + sig * hs, seg, epar)
+    pdd, tdd = bp_acc(s, k, sp, th2, psi, thd2, psid, ag)
+    NB, TB, PRB, PLB, NJ, TJ, PRJ, PLJ = forces(s, k, sp, th2, psi, thd2, psid, tdd, pdd, ag)
+    _demand(xo, NB, TB, NJ, TJ)
+    return NB < 0.0 or NJ < 0.0
+
+
+@njit(cache=True, inline='always')
+def _one_forces(pat, s, k, sp, prm, c0, c1, sig, tt, seg, epar, xo):
+    """B or P at fraction ``sig`` of the step (``c0``, ``c1`` its quartics of the angle and rate): the smaller corner
+    force of the watched face (the base in B, the joint in P), the corner that keeps pressing, whether the pivot
+    pulls; the friction demand is noted while the face holds (past its opening the pattern is not the motion)."""
+    a = _poly(c0, sig)
+    ad = _poly(c1, sig)
     ag = ground_at(tt, seg, epar)
-    if pat == PAT_BP:
-        th2 = _poly(_dense(W, hs, np.int64(2), 1.0), sig)
-        thd2 = _poly(_dense(W, hs, np.int64(3), 1.0), sig)
-        pdd, tdd = bp_acc(s, k, sp, th2, c0, thd2, c1, ag)
-        NB, TB, PRB, PLB, NJ, TJ, PRJ, PLJ = forces(s, k, sp, th2, c0, thd2, c1, tdd, pdd, ag)
-        _demand(xo, NB, TB, NJ, TJ)
-        return math.inf, 0.0, NB < 0.0 or NJ < 0.0
-    A = prm[P_ALPHA] * (k if pat == PAT_B else s) - c0
-    cdd = -prm[P_P2] * (math.sin(A) + ag / prm[P_G] * math.cos(A))  # Eq (3) with the pattern's p, alpha
+    A = prm[P_ALPHA] * (k if pat == PAT_B else s) - a
+    add = -prm[P_P2] * (math.sin(A) + ag / prm[P_G] * math.cos(A))  # Eq (3) with the pattern's p, alpha
     if pat == PAT_B:
-        NB, TB, PRB, PLB, NJ, TJ, PRJ, PLJ = forces(0.0, k, sp, 0.0, c0, 0.0, c1, 0.0, cdd, ag)
-        if min(PRB, PLB) > 0.0:  # past the opening of the face the pattern's forces are not the motion's
-            _demand(xo, NB, TB, NJ, TJ)
-        return min(PRB, PLB), (1.0 if PRB > PLB else -1.0), NJ < 0.0
-    NB, TB, PRB, PLB, NJ, TJ, PRJ, PLJ = forces(s, 0.0, sp, c0, 0.0, c1, 0.0, cdd, 0.0, ag)
-    if min(PRJ, PLJ) > 0.0:
+        NB, TB, PR, PL, NJ, TJ = forces_b(k, sp, a, ad, add, ag)
+        pull = NJ < 0.0
+    else:
+        NB, TB, NJ, TJ, PR, PL = forces_p(s, sp, a, ad, add, ag)
+        pull = NB < 0.0
+    f = min(PR, PL)
+    if f > 0.0:
         _demand(xo, NB, TB, NJ, TJ)
-    return min(PRJ, PLJ), (1.0 if PRJ > PLJ else -1.0), NB < 0.0
+    return f, (1.0 if PR > PL else -1.0), pull
 
 
 @njit(cache=True)
@@ -130,10 +138,12 @@ def _face_opens(pat, s, k, sp, prm, W, hs, t, seg, epar, xo, sig_lim):
     """First fraction in ``(0, sig_lim]`` of the last step of B or P at which the watched face's smaller corner
     force reaches 0 (16 samples, then bisection): ``(sigma, corner that keeps pressing)``, else ``(-1, 0)``. The
     friction demand is read at the samples."""
+    c0 = _dense(W, hs, np.int64(0), 1.0)
+    c1 = _dense(W, hs, np.int64(1), 1.0)
     jump = False
     for m in range(1, 17):
         sg = sig_lim * m / 16.0
-        f, side, pull = _state_forces(pat, s, k, sp, prm, W, hs, sg, t, seg, epar, xo)
+        f, side, pull = _one_forces(pat, s, k, sp, prm, c0, c1, sg, t + sg * hs, seg, epar, xo)
         jump = jump or pull
         if f <= 0.0:
             lo = sig_lim * (m - 1) / 16.0
@@ -142,7 +152,7 @@ def _face_opens(pat, s, k, sp, prm, W, hs, t, seg, epar, xo, sig_lim):
                 mid = 0.5 * (lo + hi)
                 if mid <= lo or mid >= hi:
                     break
-                fm, sd, _p = _state_forces(pat, s, k, sp, prm, W, hs, mid, t, seg, epar, xo)
+                fm, sd, _p = _one_forces(pat, s, k, sp, prm, c0, c1, mid, t + mid * hs, seg, epar, xo)
                 if fm <= 0.0:
                     hi = mid
                     side = sd
@@ -665,7 +675,7 @@ def simulate_stack(prm, prm_asm, sp, ekind, epar, acc, jtab, dt, t_begin, t_exc_
             ev = 4
         _bp_peaks(rs, out, xo, sp, W, hs, sig)
         for m in (0.5, 1.0):
-            _, _, pull = _state_forces(PAT_BP, s, k, sp, prm, W, hs, m * sig, rs[RS_T], seg, epar, xo)
+            pull = _bp_forces(s, k, sp, W, hs, m * sig, rs[RS_T], seg, epar, xo)
             if pull:
                 xo[X_N_JUMP] += 1.0
                 break

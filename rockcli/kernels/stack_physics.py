@@ -225,6 +225,41 @@ def forces(s, k, sp, th2, psi, thd2, psid, thdd2, psidd, ag):
     return fby, fbx, PRB, PLB, NJ, TJ, PRJ, PLJ
 
 
+@njit(cache=True, inline='always')
+def forces_b(k, sp, psi, psid, psidd, ag):
+    """:func:`forces` of pattern B (the body on its corner ``k``, the plinth still) in closed form:
+    ``(NB, TB, PRB, PLB, NJ, TJ)``. ``F_J = R1 (psi'' cos A + psi'^2 sin A) + ag, R1 (psi'' sin A - psi'^2 cos A) +
+    g`` with ``A = k alpha1 - psi``, and the base from the plinth's equilibrium (the note)."""
+    R1, b1, b2, h2, m2, g = sp[S_R1], sp[S_B1], sp[S_B2], sp[S_H2], sp[S_M2], sp[S_G]
+    A = k * sp[S_A1] - psi
+    sA = math.sin(A)
+    cA = math.cos(A)
+    fx = R1 * (psidd * cA + psid * psid * sA) + ag
+    fy = R1 * (psidd * sA - psid * psid * cA) + g
+    NB = fy + m2 * g
+    PLB = (fy * (b2 - k * b1) + m2 * g * b2 + 2.0 * h2 * fx + m2 * h2 * ag) / (2.0 * b2)
+    return NB, fx + m2 * ag, NB - PLB, PLB, fy, fx
+
+
+@njit(cache=True, inline='always')
+def forces_p(s, sp, th, thd, thdd, ag):
+    """:func:`forces` of pattern P (the assembly on the plinth's corner ``s``) in closed form:
+    ``(NB, TB, NJ, TJ, PRJ, PLJ)``; the joint's couple ``Mc = I1 theta'' + h1 T_J``."""
+    b1, h1, b2, h2, m2, g = sp[S_B1], sp[S_H1], sp[S_B2], sp[S_H2], sp[S_M2], sp[S_G]
+    c = math.cos(th)
+    sn = math.sin(th)
+    x, y = -s * b2 * c + (2.0 * h2 + h1) * sn, s * b2 * sn + (2.0 * h2 + h1) * c  # the body's centre from O
+    fx = thdd * y - thd * thd * x + ag
+    fy = -thdd * x - thd * thd * y + g
+    NJ = fx * sn + fy * c
+    TJ = fx * c - fy * sn
+    Mc = sp[S_I1] * thdd + h1 * TJ
+    x2, y2 = -s * b2 * c + h2 * sn, s * b2 * sn + h2 * c  # the plinth's centre from O
+    NB = fy + m2 * (-thdd * x2 - thd * thd * y2 + g)
+    TB = fx + m2 * (thdd * y2 - thd * thd * x2 + ag)
+    return NB, TB, NJ, TJ, 0.5 * NJ - Mc / (2.0 * b1), 0.5 * NJ + Mc / (2.0 * b1)
+
+
 # ---------------------------------------------------------------------------------------------
 # Impacts
 # ---------------------------------------------------------------------------------------------
