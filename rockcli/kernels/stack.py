@@ -48,7 +48,7 @@ from rockcli.kernels.layout import (E_T0, E_TP, EXC_RECORD, HK_IMPACT, HK_IMPACT
 from rockcli.kernels.polynomials import _first_down, _golden_max, _poly
 from rockcli.kernels.rigid import _NO_HY, _restep_rigid, _stuck_rigid, _substep_stop, _take_step_rigid
 from rockcli.kernels.stack_physics import (S_A1REST, S_AAREST, S_B1, S_B2, S_G, S_H1, S_H2, S_M2, S_R1,
-                                           S_REST, _rhs_bp_into, bp_acc, choose_after_impact, fields, forces,
+                                           S_REST, _dot, _rhs_bp_into, bp_acc, choose_after_impact, fields, forces,
                                            forces_b, forces_p, max_velocities, project)
 from rockcli.kernels.steps import (EV_FAILED, EV_IMPACT, EV_OVERTURN, _advance_segment, _bounce, _close_step, _finish,
                                    _grown, _out_of_time, _rocking_events, _seg, _shrink, _start, _to_impact,
@@ -356,6 +356,25 @@ def _rest_check(j, s, k, sp, th2, psi, V, ag):
 
 
 @njit(cache=True)
+def _stack_rests(sp, V, ag):
+    """The rest rule of the whole stack, both angles at 0 after an impact: nothing could lift it from rest under
+    ``ag`` (each interface's restoring moment ``M_j`` at rest positive: ``g b1 - |ag| h1`` for the body,
+    ``(1 + m2)(g b2 - |ag| y_c)`` for the assembly, per unit body mass) and the kinetic energy is below
+    ``rest_tol min_j alpha_j M_j``. For one block this is the single block's rule exactly (``J theta'^2/2 <
+    rest_tol alpha m (g b - |a| h)`` is ``theta'^2/(2 p^2 cos(alpha)(tan(alpha) - |a|/g)) < rest_tol alpha``); it
+    ends the cascades where each impact of the body kicks the plinth off its face by a little (the note)."""
+    g = sp[S_G]
+    b1, h1, b2, h2, m2 = sp[S_B1], sp[S_H1], sp[S_B2], sp[S_H2], sp[S_M2]
+    yc = (m2 * h2 + 2.0 * h2 + h1) / (1.0 + m2)
+    a = abs(ag)
+    M1 = g * b1 - a * h1
+    M0 = (1.0 + m2) * (g * b2 - a * yc)
+    if M1 <= 0.0 or M0 <= 0.0:
+        return False
+    return 0.5 * _dot(sp, V, V) < sp[S_REST] * min(sp[S_A1REST] * M1, sp[S_AAREST] * M0)
+
+
+@njit(cache=True)
 def _after_impact(j, s, k, sp, prm, prm_asm, th2, psi, V, rs, W, out, xo, t, ag):
     """The pattern after an impact at ``j`` from ``(s, k)`` (generic: any pattern may follow), and the rest rule
     (the single block's, with the body's or the assembly's parameters, when one body rocks after the impact)."""
@@ -374,6 +393,10 @@ def _after_impact(j, s, k, sp, prm, prm_asm, th2, psi, V, rs, W, out, xo, t, ag)
         _count_uplift(out, t)
     psid = V1[5] - V1[2]
     thd2 = V1[2]
+    if th2 == 0.0 and psi == 0.0 and (s1 != 0.0 or k1 != 0.0) and _stack_rests(sp, V1, ag):
+        _set_pattern(rs, W, xo, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+        xo[X_PL_N_RESTS] += 1.0
+        return
     if (j == 0 and s1 != 0.0) or (j == 1 and k1 != 0.0):
         if j == 1 and s1 == 0.0:  # the body alone rocks on the still plinth: its own rule
             if comes_to_rest(prm, ag, psid, prm[P_THR], prm[P_ALPHA]):

@@ -18,10 +18,12 @@ note:
   the largest the kinetic energy allows); the one whose impulses press (every corner impulse >= 0) and whose new
   pivots open is taken. A persistent pivot's impulse is not required to press: a pulling one is counted as a
   jump (``n_jumps``; the rocking-only assumption fails there).
-* Rest: after an impact that leaves the impacting interface pivoting, it is stuck again (plastic, momentum kept
-  along the other pivots) when the ground and the rest of the stack could not open it (both corners' relative
-  accelerations restore it) and the rotation it could still reach against the smaller of them is below
-  ``rest_tol`` times its slenderness (the single block's rule, which it is for one block).
+* Rest: after an impact with every angle at 0, the whole stack is at rest when nothing could lift it from rest
+  and its kinetic energy is below ``rest_tol`` times the smallest slenderness-weighted restoring moment; else, an
+  impact that leaves the impacting interface pivoting sticks it again (plastic, momentum kept along the other
+  pivots) when the ground and the rest of the stack could not open it (both corners' relative accelerations
+  restore it) and the rotation it could still reach against the smaller of them is below ``rest_tol`` times its
+  slenderness. Both are the single block's rule for one block.
 * The run ends at rest after the excitation, when a block topples, or ``horizon`` after the excitation.
 
 Friction demand ``|T|/N`` is read on each rocking phase's dense output at its steps, ``demand_points`` equally
@@ -379,8 +381,22 @@ class _Run:
                                      v_plus=v, ke_minus=M.kinetic(v_minus), ke_plus=M.kinetic(v), impulses=imp))
         self._set(c)
         self.qd = np.where(np.array(c) != 0, M.rel_rates(v), 0.0)
-        if c[j] != 0:
+        if any(c) and not np.any(self.q) and self._stack_rests(v):
+            self._set([0] * M.n)
+            self.qd = np.zeros(M.n)
+        elif c[j] != 0:
             self._rest_rule(j, v)
+
+    def _stack_rests(self, v) -> bool:
+        """The whole stack's rest rule, every angle at 0: nothing could lift it from rest (each face's restoring
+        moment at rest, twice its half width times its smaller corner force, positive) and its kinetic energy is
+        below ``rest_tol`` times the smallest ``alpha_j`` times that moment (for one block, the single block's
+        rule)."""
+        M = self.M
+        z = np.zeros(M.n)
+        f = M.dynamics([0] * M.n, z, z, self.ag(self.t))[1]
+        moment = np.array([2.0 * M.c[i] * min(f[i][2], f[i][3]) for i in range(M.n)])
+        return bool(np.all(moment > 0) and M.kinetic(v) < self.rest_tol * float(np.min(M.alpha * moment)))
 
     def _rest_rule(self, j, v):
         """Stick interface ``j`` again when nothing could open it and its reach is below ``rest_tol alpha_j``."""
