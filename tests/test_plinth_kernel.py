@@ -224,3 +224,17 @@ def test_the_end_of_run_proof_p2s_holds_on_random_scenes():
     peak is the one P2S gave (200 random scenes here; thousands in benchmarks/bench_plinth.py --p2s)."""
     hits, bad = p2s_mismatches(200, 4)
     assert hits >= 30 and bad == 0  # 42 of the 200 scenes of this seed end by P2S
+
+
+def test_the_single_block_friction_demand():
+    """The single block's demand (closed form on a history) is the joint's demand of the body on a plinth that
+    cannot lift: the same peak, to the sampling (the driver reads 16 points a step, the history its rows)."""
+    from rockcli.solve import friction_demand_single
+
+    body = Block.from_dimensions(1.79, 0.5)
+    pulse = RickerSymmetric(0.35 * G, 1.0)
+    h = simulate(body, None, pulse, history_dt=2e-4).history
+    single = float(np.max(friction_demand_single(body, h.theta, h.theta_dot, h.ag)))
+    on_plinth = simulate_stack(Stack(body, Plinth(0.2, 4.0)), pulse).friction_joint
+    assert single == pytest.approx(on_plinth, rel=1e-3)
+    assert friction_demand_single(body, [0.0], [0.0], [0.2 * G])[0] == pytest.approx(0.2)  # at rest: |ag|/g

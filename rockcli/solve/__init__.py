@@ -80,7 +80,7 @@ from rockcli.solve.parameters import _parameters, bearing_force_path
 from rockcli.solve.work import _check_work, _estimate_steps
 from rockcli.solve.single import simulate
 from rockcli.solve.batch import _run_many, _scene_arrays, _threads, simulate_many, simulate_verdicts
-from rockcli.solve.stack import BlockPeak, StackHistory, StackResponse, simulate_stack
+from rockcli.solve.stack import BlockPeak, StackHistory, StackResponse, friction_demand_single, simulate_stack
 
 __all__ = ["DEFAULT_HORIZON", "DEFAULT_MAX_STEPS", "DEFAULT_REST_TOL", "DEFAULT_RTOL", "DEFAULT_RTOL_HYSTERETIC",
            "DEFAULT_TAIL", "HORIZON_MAX", "N_IMPULSE_TABLE", "PULSE_START_MAX_PERIODS", "REST_TOL_MIN", "TAIL_MAX",
@@ -88,4 +88,4 @@ __all__ = ["DEFAULT_HORIZON", "DEFAULT_MAX_STEPS", "DEFAULT_REST_TOL", "DEFAULT_
            "Response", "Verdicts", "attached_vertical", "bearing_force_path", "default_rtol", "pulse_impulse_table",
            "record_impulse_table", "simulate", "simulate_many", "simulate_verdicts", "validate_options",
            "vertical_label", "with_vertical"]
-__all__ += ["BlockPeak", "StackHistory", "StackResponse", "simulate_stack"]
+__all__ += ["BlockPeak", "StackHistory", "StackResponse", "friction_demand_single", "simulate_stack"]

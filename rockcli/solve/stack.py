@@ -224,3 +224,20 @@ def _history(H, k) -> StackHistory:
     pattern = np.array([PATTERNS[int(x)] for x in H[:, k.H_Z]], dtype=object)
     return StackHistory(H[:, k.H_T].copy(), H[:, k.H_AG].copy(), H[:, k.H_TH].copy(), H[:, k.H_THD].copy(),
                         H[:, k.H_U].copy(), H[:, k.H_UD].copy(), pattern, event)
+
+
+def friction_demand_single(block, theta, theta_dot, ag):
+    """The friction demand ``|F_x|/F_y`` of a single block rocking on the ground at the states ``theta`` [rad],
+    ``theta_dot`` [rad/s] under ``ag`` [m/s^2] (arrays; a history's rows): docs/physics-plinth.md, "Friction
+    demand". At rest (``theta = theta_dot = 0``) it is ``|ag|/g``; where ``F_y <= 0`` (the block would jump) it is
+    inf. The peak over a history is a sampled one (its rows)."""
+    theta = np.asarray(theta, float)
+    theta_dot = np.asarray(theta_dot, float)
+    ag = np.asarray(ag, float)
+    s = np.where(theta > 0, 1.0, np.where(theta < 0, -1.0, 0.0))
+    A = s * block.alpha - theta
+    Rthdd = -0.75 * (G * np.sin(A) + ag * np.cos(A))  # R theta'' from Eq (3), R p^2 = 3 g/4
+    fx = np.where(s == 0, ag, Rthdd * np.cos(A) + block.R * theta_dot ** 2 * np.sin(A) + ag)
+    fy = np.where(s == 0, G, Rthdd * np.sin(A) - block.R * theta_dot ** 2 * np.cos(A) + G)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(fy > 0, np.abs(fx) / fy, np.inf)
