@@ -1,7 +1,7 @@
 """The slow reference of a body on its plinth (rockcli.reference.stack, docs/physics-plinth.md): its closed-form
 limits against the single block's own reference, the static uplift thresholds, the impact laws (energy never
 rises, the momentum balances the impulses leave untouched), symmetry. Each run is a short pulse and at most 1 s
-of free motion after it (``horizon=1.0`` on both sides of a comparison)."""
+of free motion after it (the same ``horizon`` on both sides of a comparison)."""
 
 from __future__ import annotations
 
@@ -23,12 +23,13 @@ STATUE = Block.from_dimensions(1.79, 0.5, "statue")
 
 
 def test_a_plinth_that_cannot_lift_leaves_the_body_on_rigid_ground():
-    """A wide low plinth (4 m x 0.2 m) never lifts: the statue rocks exactly as on the ground (both references
-    with the same error test agree to about 1e-12 of the peak; 1e-9 allowed)."""
+    """A wide low plinth (4 m x 0.2 m) never lifts: the statue rocks exactly as on the ground. The two references
+    differ only in their steps (the stack's stay below 0.02/p while the plinth's face is watched), so they are
+    compared at rtol 1e-13, where both have converged (1.4e-10 of the peak apart; 1e-9 allowed)."""
     stack = Stack(STATUE, Plinth(0.2, 4.0))
     for pulse in (RickerSymmetric(0.35 * G, 1.0), OneSine(0.3 * G, 1.2)):
-        ref = reference_simulate(STATUE, None, pulse, atol=None, horizon=1.0)
-        out = reference_plinth(stack, pulse, horizon=1.0)
+        ref = reference_simulate(STATUE, None, pulse, atol=None, horizon=0.5, rtol=1e-13)
+        out = reference_plinth(stack, pulse, horizon=0.5, rtol=1e-13)
         assert out.verdict == ref.verdict
         assert out.toppled == (1 if ref.verdict == "overturned" else -1)
         assert math.isnan(out.t_uplift[0]) and out.peak[0] == 0.0  # the plinth never moved
@@ -52,8 +53,8 @@ def test_a_body_that_cannot_lift_rocks_with_its_plinth_as_one_block():
     (p_asm, alpha_asm) with the impact ratio eta_asm (pattern P of the note)."""
     stack = Stack(Block.from_dimensions(0.3, 0.4), Plinth(1.6, 0.4, mass_ratio=2.0))
     pulse = RickerSymmetric(0.25 * G, 0.5)
-    out = reference_plinth(stack, pulse, horizon=1.0)
-    ref = reference_simulate(stack.as_block(), None, pulse, restitution=stack.eta_asm, atol=None, horizon=1.0)
+    out = reference_plinth(stack, pulse, horizon=0.5)
+    ref = reference_simulate(stack.as_block(), None, pulse, restitution=stack.eta_asm, atol=None, horizon=0.5)
     assert ref.verdict == "rocked" and ref.n_impacts > 2
     assert out.verdict == ref.verdict and out.peak[1] == 0.0
     assert out.peak[0] == pytest.approx(ref.theta_max, rel=1e-9)
@@ -65,12 +66,12 @@ def test_a_body_far_lighter_than_its_plinth_leaves_the_plinth_a_single_block():
     block, the difference falling with the mass ratio."""
     pulse = OneSine(0.35 * G, 0.6)
     plinth = Plinth(1.6, 0.4)
-    ref = reference_simulate(plinth.block, None, pulse, atol=None, horizon=1.0)
+    ref = reference_simulate(plinth.block, None, pulse, atol=None, horizon=0.5)
     assert ref.verdict == "rocked"
     diffs = []
     for mr in (100.0, 1000.0):
         stack = Stack(Block.from_dimensions(0.3, 0.4), Plinth(1.6, 0.4, mass_ratio=mr))
-        out = reference_plinth(stack, pulse, horizon=1.0)
+        out = reference_plinth(stack, pulse, horizon=0.5)
         assert out.verdict == ref.verdict
         diffs.append(abs(out.peak[0] / ref.theta_max - 1))
     assert diffs[1] < 1e-2 and diffs[1] < diffs[0] / 5 and diffs[1] > 0
@@ -104,7 +105,7 @@ COUPLED = Stack(Block.from_dimensions(1.2, 0.3), Plinth(1.0, 0.5, mass_ratio=1.5
 def _coupled(a_p_g: float, shape: str, restitution):
     """A scene where both blocks rock (impacts at both joints), with its impacts recorded."""
     pulse = (RickerSymmetric if shape == "ricker" else OneSine)(a_p_g * G, 0.9 if shape == "ricker" else 0.8)
-    return reference_plinth(COUPLED, pulse, record_impacts=True, restitution=restitution, horizon=1.0)
+    return reference_plinth(COUPLED, pulse, record_impacts=True, restitution=restitution, horizon=0.5, rtol=1e-9)
 
 
 def _angular_momentum(model, v, st, q, point, blocks=None):

@@ -11,7 +11,8 @@ note:
   other corner.
 * Rocking: the relative angles of the pivots are integrated; terminal events: a pivot's angle back to 0 (an
   impact), a pivot's angle at ``pi/2`` (the block above it topples), a corner force of a face down to 0 (the face
-  opens about its other corner).
+  opens about its other corner; while a face is watched the steps stay below ``0.02/p`` of the fastest block, so
+  that a short dip of its force below 0 is not stepped over).
 * Impact at interface ``j``: every candidate pattern after it (the interfaces at angle 0 free to be a face or
   either pivot; the others keep their pivot) gets its velocities from the plastic impact (impulses at its own
   constraints) or, with a restitution ``E``, from the energetic rule (the impacting pivot's new rate is ``E`` times
@@ -181,6 +182,7 @@ class _Run:
         self.t_max_end = self.t_exc_end + horizon
         self.rest_tol, self.E, self.npts, self.rec, self.tol = rest_tol, restitution, demand_points, record_impacts, tol
         p = np.sqrt(0.75 * G / np.hypot(model.b, model.h))  # each block's frequency parameter: a state scale
+        self.pmax = float(np.max(p))
         self.scale = np.concatenate([[model.alpha[i], p[i] * model.alpha[i]] for i in range(n)])
         self.work = Work(method, rtol, atol, lambda k: self.scale[self.cols], deadline_s)
         if align and hasattr(excitation, "acc"):
@@ -330,7 +332,11 @@ class _Run:
             ev.terminal, ev.direction = True, -1
             events.append(ev), kinds.append(("open", f))
         t_end = self.t_exc_end if t0 < self.t_exc_end else self.t_max_end
-        sol = self.work.ivp(rhs, (t0, t_end), y0, max_step=self.max_step, events=events, dense_output=True)
+        # solve_ivp sees an event only as a sign change between two step ends: a face's corner force that dips
+        # below 0 and comes back within one step would be missed (seen on random scenes with steps of 0.07 s).
+        # While a face is watched, steps are kept below 0.02/p of the fastest block (60 or more per rocking cycle)
+        max_step = min(self.max_step, 0.02 / self.pmax) if faces else self.max_step
+        sol = self.work.ivp(rhs, (t0, t_end), y0, max_step=max_step, events=events, dense_output=True)
         for yy in sol.y.T:
             self._peaks(unpack(yy)[0])
         for k, (kind, i) in enumerate(kinds):
