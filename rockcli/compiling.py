@@ -4,7 +4,8 @@ The first run on a machine compiles the kernels (numba; a cache miss) and later 
 the disk cache (:mod:`rockcli.kernels.cache`). A compile takes tens of seconds while nothing else
 seems to happen, so whoever shows progress wants to know: :mod:`rockcli.kernels.cache` calls
 :func:`started` when numba begins compiling a kernel of rockcli (the outermost function of a
-compile, not each callee it pulls in) and :func:`ended` when that compile is done; a loaded kernel
+compile, not each callee it pulls in), or when this process begins to wait for another process's
+compile of a kernel it needs, and :func:`ended` when that compile or wait is done; a loaded kernel
 calls neither. The command line subscribes with :func:`subscribe` (a one-line notice on a terminal,
 and a progress bar that shows no ETA while the kernels compile).
 

@@ -150,16 +150,30 @@ def open_client(scheduler, *, n_workers: int | None = None, processes: bool = Tr
         yield scheduler
         return
     distributed = _import_distributed()
+    from rockcli.progress import announce
+
     if scheduler == "local":
+        announce("starting a Dask LocalCluster on this machine ...")
         cluster = distributed.LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=processes,
                                            dashboard_address=None)
         client = distributed.Client(cluster)
         try:
             yield client
         finally:
-            client.close()
-            cluster.close()
+            import logging
+
+            # a worker process slow to exit (a loaded machine) is killed by its nanny after 4 s with a WARNING:
+            # a shutdown detail after the results are in, which read as a fault at the end of a good run
+            nanny = logging.getLogger("distributed.nanny")
+            level = nanny.level
+            nanny.setLevel(logging.ERROR)
+            try:
+                client.close()
+                cluster.close()
+            finally:
+                nanny.setLevel(level)
         return
+    announce(f"connecting to the Dask scheduler at {scheduler} (waiting up to {timeout:g} s) ...")
     probe_scheduler(scheduler, timeout)
     try:
         client = distributed.Client(scheduler, timeout=timeout)
@@ -179,20 +193,23 @@ def open_client(scheduler, *, n_workers: int | None = None, processes: bool = Tr
 
 def describe_cluster(client, local: bool = False) -> str:
     """One line on the cluster ``client`` uses: scheduler address, workers, threads, dashboard address
-    (``local``: a LocalCluster this process started)."""
+    (``local``: a LocalCluster this process started, without a dashboard (``dashboard_address=None``): nothing is
+    said of one; its scheduler still lists an HTTP service named ``dashboard``, which serves only ``/health``)."""
     try:
         nthreads = client.nthreads()
     except Exception:  # noqa: BLE001 - a scheduler out of reach: say what is known
         nthreads = {}
     address = getattr(getattr(client, "scheduler", None), "address", None) or "?"
+    kind = "a LocalCluster on this machine, scheduler" if local else "the scheduler"
+    head = f"Dask: {kind} at {address}, {len(nthreads)} worker(s) with {sum(nthreads.values())} thread(s)"
+    if local:
+        return head
     try:
         services = client.scheduler_info().get("services", {})
     except Exception:  # noqa: BLE001
         services = {}
     dashboard = client.dashboard_link if services.get("dashboard") else None
-    kind = "a LocalCluster on this machine, scheduler" if local else "the scheduler"
-    return (f"Dask: {kind} at {address}, {len(nthreads)} worker(s) with {sum(nthreads.values())} thread(s); "
-            f"dashboard: {dashboard or 'none'}")
+    return f"{head}; dashboard: {dashboard or 'none'}"
 
 
 def _n_workers(client, timeout: float) -> int | None:

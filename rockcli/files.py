@@ -9,7 +9,8 @@ module, so that the rules hold everywhere:
   known suffix. A long run therefore never computes for minutes and then fails on its output.
 * A :class:`Transaction` (:func:`transaction`; the CLI opens one around every command) collects
   the run's outputs. :meth:`Transaction.declare` refuses two outputs on one path and an output
-  that is also an input (:meth:`Transaction.add_inputs`: record files, the catalogue), compared
+  that is also an input (:meth:`Transaction.add_inputs`, :func:`note_inputs`: record files, manifests,
+  every file of a suite folder, vertical records, both files of a pair, the catalogue), compared
   after following symbolic links and by inode (hard links). Writes (:func:`write_bytes`,
   :func:`write_text`, :func:`atomic_path`, :func:`save_figure`) go to hidden temporary files
   next to their targets; only when the whole run succeeded are they renamed onto the targets, one
@@ -41,7 +42,8 @@ from rockcli.output_checks import (IMAGE_SUFFIXES, _check_image_suffix, _file_in
                                    check_output_folder, describe_os_error, name_max, os_error_reason)
 
 __all__ = ["IMAGE_SUFFIXES", "Transaction", "atomic_path", "check_output", "check_output_folder", "current",
-           "describe_os_error", "os_error_reason", "save_figure", "transaction", "write_bytes", "write_text"]
+           "describe_os_error", "file_key", "note_inputs", "os_error_reason", "same_file", "save_figure", "transaction",
+           "write_bytes", "write_text"]
 
 #: Signals that stop a run; while a transaction is open they remove its temporary files first.
 STOP_SIGNALS = tuple(getattr(signal, n) for n in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, n))
@@ -63,6 +65,18 @@ def _identity(path) -> tuple:
 
 def _same(a: tuple, b: tuple) -> bool:
     return a[0] == b[0] or (a[1] is not None and a[1] == b[1])
+
+
+def file_key(path):
+    """What names one file however it is reached: ``(device, inode)`` after following symbolic links (a hard
+    link, a symbolic link and the file itself give one key), else the real path (a file that does not exist)."""
+    real, devino = _identity(path)
+    return devino if devino is not None else real
+
+
+def same_file(a, b) -> bool:
+    """``a`` and ``b`` name one file (after following symbolic links, or by inode: hard links)."""
+    return _same(_identity(a), _identity(b))
 
 
 def _temp_name(target: Path) -> str:
@@ -245,6 +259,15 @@ _previous_handlers: dict = {}
 def current() -> Transaction | None:
     """The open transaction of this run, if any."""
     return _open[-1] if _open else None
+
+
+def note_inputs(paths, what: str = "an input file") -> None:
+    """Files the run reads (records, manifests, every file of a suite folder, the catalogue): while a
+    transaction is open, an output on one of them is refused, whichever is named first. Without one
+    (library use) nothing is checked."""
+    t = current()
+    if t is not None:
+        t.add_inputs([p for p in paths if p is not None and str(p) != ""], what)
 
 
 def _on_stop_signal(signum, frame):

@@ -36,11 +36,16 @@ _FORTRAN_RE = re.compile(FORTRAN)
 _COMMA_RE = re.compile(r"[-+]?[0-9]*,[0-9]+(?:[eEdD][-+]?[0-9]+)?")
 
 
-def format_number(x) -> str:
+def format_number(x, *, derived: bool = False) -> str:
     """The shortest ``%g`` text of ``x`` that reads back as the same double (never a rounded value).
 
     ``format_number(100.0001) == '100.0001'`` where ``f"{100.0001:g}"`` gives ``'100'``;
     ``format_number(1e-6) == '1e-06'`` as ``:g`` gives. Non-numbers are shown with ``repr``.
+
+    ``derived=True`` for a value that went through a unit conversion and back (degrees -> radians ->
+    degrees, a semi-diagonal from a height and a width): rounded to 12 significant digits first, which
+    gives back what was typed (``0.9999``, not ``0.9999000000000001``) and is still far finer than any
+    limit it is compared with.
     """
     try:
         v = float(x)
@@ -48,11 +53,64 @@ def format_number(x) -> str:
         return repr(x)
     if not math.isfinite(v):
         return repr(v)
+    if derived:
+        v = float(f"{v:.12g}")
     for digits in range(6, 18):
         text = f"{v:.{digits}g}"
         if float(text) == v:
             return text
     return repr(v)  # pragma: no cover -- 17 significant digits always read back
+
+
+#: The largest peak acceleration [g] of a motion rockcli runs, as read (records) or built (pulses) and after a
+#: scale factor the user gives (``--scale``, ``--vertical-scale``): recorded peaks reach about 4 g, so only a
+#: unit mistake gets past 100 g (the limit of :data:`rockcli.pulses.A_P_MAX_G` and of the record readers).
+MOTION_PEAK_MAX_G = 100.0
+
+
+def check_scale(factor, peak_g: float, what: str, motion: str = "the motion") -> float:
+    """A scale factor the user gave: finite, non-zero, and keeping the motion's peak within
+    :data:`MOTION_PEAK_MAX_G` (``|factor| peak_g <= 100 g``; compared without forming the product, which
+    may overflow).
+
+    Parameters
+    ----------
+    factor : float
+        The factor (negative: the motion reversed).
+    peak_g : float
+        The motion's peak acceleration before scaling [g].
+    what : str
+        How the factor is named in messages (``"--scale"``).
+    motion : str
+        What is scaled, for the message (``"the record"``).
+
+    Raises
+    ------
+    RockcliInputError
+        One sentence with the factor as given.
+    """
+    try:
+        k = float(factor)
+    except (TypeError, ValueError):
+        raise RockcliInputError(f"{what} must be a number, got {factor!r}") from None
+    if not math.isfinite(k) or k == 0.0:
+        raise RockcliInputError(f"{what} must be a finite non-zero number, got {format_number(factor)}")
+    if peak_g > 0.0 and abs(k) > MOTION_PEAK_MAX_G / peak_g:
+        reached = abs(k) * peak_g
+        to = f"{reached:.4g} g" if math.isfinite(reached) else "beyond double precision"
+        raise RockcliInputError(f"{what} {format_number(factor)} takes the peak of {motion} from {peak_g:.4g} g to "
+                                f"{to}, beyond the supported {MOTION_PEAK_MAX_G:g} g (recorded peaks reach about 4 g; "
+                                f"at most {_floor4(MOTION_PEAK_MAX_G / peak_g)} here)")
+    return k
+
+
+def _floor4(x: float) -> str:
+    """``x > 0`` rounded down to 4 significant digits (a limit a user may type and be accepted)."""
+    step = 10.0 ** (math.floor(math.log10(x)) - 3)
+    v = math.floor(x / step) * step
+    while v > x:  # the product may round up
+        v -= step
+    return format_number(float(f"{v:.4g}")) if float(f"{v:.4g}") <= x else format_number(v)
 
 
 def _form_problem(text: str, fortran: bool) -> str | None:
@@ -155,6 +213,39 @@ def range_words(lo, hi, lo_open=False, hi_open=False, unit="") -> str:
     if lo is not None:
         return f"must be {'>' if lo_open else '>='} {lo}{u}"
     return f"must be {'<' if hi_open else '<='} {hi}{u}"
+
+
+def type_words(value) -> str:
+    """What a wrong argument is, for a message: its type and (shortened) value, ``str 'none'``, ``list [2, 3]``."""
+    text = " ".join(repr(value).split())  # one line (a numpy array's repr has several)
+    if len(text) > 40:
+        text = text[:37] + "..."
+    return f"{type(value).__name__} {text}"
+
+
+def check_type(value, types, what: str, expected: str):
+    """``value`` when it is an instance of ``types`` (a bool is not a number), else one sentence:
+    ``<what> must be <expected>, got <type value>``."""
+    if not isinstance(value, types) or (isinstance(value, bool) and bool not in (types if isinstance(types, tuple)
+                                                                                  else (types,))):
+        raise RockcliInputError(f"{what} must be {expected}, got {type_words(value)}")
+    return value
+
+
+def as_list(value, what: str, expected: str, *, one=()) -> list:
+    """The items of a sequence argument (a list, a tuple, a numpy array, any other iterable that is not text or a
+    mapping) as a list; a single value of the types ``one`` (e.g. ``str`` for one spec) is a list of itself; anything
+    else is refused in one sentence (``<what> must be <expected>, got <type value>``)."""
+    import os
+
+    if one and isinstance(value, one):
+        return [value]
+    if isinstance(value, (str, bytes, os.PathLike, dict)) or value is None:
+        raise RockcliInputError(f"{what} must be {expected}, got {type_words(value)}")
+    try:
+        return list(value)
+    except TypeError:
+        raise RockcliInputError(f"{what} must be {expected}, got {type_words(value)}") from None
 
 
 def spec_items(rest: str, what: str) -> list[tuple[str, str, bool]]:

@@ -121,6 +121,22 @@ def _check_image_suffix(path: Path, label: str) -> None:
                                 f"{', '.join('.' + s for s in IMAGE_SUFFIXES)})")
 
 
+def _os_errors_named(check):
+    """``check(path, option, ...)`` with an :class:`OSError` of looking at the path (``path.is_dir()`` in a folder
+    without permission raises ``PermissionError``) turned into one sentence naming the path and the reason."""
+    import functools
+
+    @functools.wraps(check)
+    def checked(path, option: str | None = None, **kwargs):
+        try:
+            return check(path, option, **kwargs)
+        except OSError as exc:
+            raise describe_os_error(exc, path, option) from None
+
+    return checked
+
+
+@_os_errors_named
 def check_output(path, option: str | None = None, *, image: bool = False) -> Path:
     """Check that the output file ``path`` can be written, before any work is done.
 
@@ -170,6 +186,7 @@ def check_output(path, option: str | None = None, *, image: bool = False) -> Pat
     return path
 
 
+@_os_errors_named
 def check_output_folder(path, option: str | None = None) -> Path:
     """Check that files can be written into the folder ``path`` (created later if missing).
 

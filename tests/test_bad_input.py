@@ -24,7 +24,10 @@ from rockcli.pulses import RickerSymmetric, make_pulse, parse_pulse_spec
 from rockcli.pulses_fit import fit_pulse
 from rockcli.records import read_record
 from rockcli.records.record import Record
-from rockcli.solve import simulate
+from rockcli.assess import parse_configurations, resolve_excitations, run_assessment, run_fragility
+from rockcli.inputs import check_scale
+from rockcli.solve import default_rtol, simulate, simulate_many
+from rockcli.spectra import critical_sizes, min_overturning_curves, overturning_map
 from rockcli.units import G
 
 PROC = Path("/proc")
@@ -126,6 +129,12 @@ def work(tmp_path, monkeypatch):
     (tmp_path / "good.AT2").write_bytes(GOOD_AT2.encode("latin-1"))
     (tmp_path / "afile").write_text("a regular file, not a folder\n")
     (tmp_path / "adir").mkdir()
+    (tmp_path / "notes").mkdir()  # a suite folder holding no record
+    (tmp_path / "notes" / "README.md").write_text("# Records\n\nnone yet\n")
+    (tmp_path / "m.csv").write_text("file,units\ngood.AT2,\n")  # a manifest
+    (tmp_path / "hdr.csv").write_text("file,units\n")  # a manifest with only its header
+    (tmp_path / "latin.csv").write_bytes("file,units\nr\u00e9.AT2,g\n".encode("latin-1"))
+    (tmp_path / "link.AT2").symlink_to("good.AT2")
     monkeypatch.chdir(tmp_path)
     return tmp_path
 
@@ -272,6 +281,53 @@ CLI_CASES = {
                                  ["--csv afile/f.csv: cannot write there: afile is a file, not a folder"]),
     "fragility-plot-suffix": (["assess", "fragility", "bassae", "--records", "good.AT2", "--plot", "f.abc"],
                               ["--plot f.abc", "'abc' figure"]),
+    # ---- issue 34: pairs, manifests and suites, sizes known before the work, scale factors, values as given
+    "sim-pair-one-file": ([*SIM, "--record", "good.AT2@0", "--record-2", "good.AT2@90", "--azimuth", "30"],
+                          ["--record good.AT2@0 and --record-2 good.AT2@90 are one file (good.AT2)",
+                           "a pair is two different horizontal components"]),
+    "sim-pair-one-file-link": ([*SIM, "--record", "good.AT2@0", "--record-2", "link.AT2@90", "--azimuth", "30"],
+                               ["are one file (good.AT2)"]),
+    "sim-azimuth-step-fine": ([*SIM, "--record", "good.AT2@0", "--record-2", "link.AT2@90", "--azimuth", "worst",
+                               "--azimuth-step", "1e-9"], ["--azimuth-step 1e-09 must lie between 0.1 deg"]),
+    "sim-azimuth-step-coarse": ([*SIM, "--record", "good.AT2@0", "--record-2", "link.AT2@90", "--azimuth", "worst",
+                                 "--azimuth-step", "95"], ["--azimuth-step 95 must lie between 0.1 deg", "and 90 deg"]),
+    "sim-history-dt-rows": ([*SIM, "--record", "good.AT2", "--history-dt", "1e-6", "--history", "h.csv"],
+                            ["a history every 1e-06 s from 0 s to 15.99 s (the excitation's end plus the tail)",
+                             "rows, more than the 2,000,000 allowed"]),
+    "sim-scale-peak": ([*SIM, "--record", "good.AT2", "--scale", "1000"],
+                       ["--scale 1000 takes the peak of the record from 0.3 g to 300 g", "the supported 100 g"]),
+    "sim-scale-flip-peak": ([*SIM, "--record", "good.AT2", "--scale", "-400", "--flip"], ["--scale -400 takes"]),
+    "sim-scale-huge-pulse": ([*SIM, "--pulse", "sine:ap=0.5,Tp=0.5", "--scale", "1e308"],
+                             ["--scale 1e+308 takes the peak of the pulse from 0.5 g to 5e+307 g"]),
+    "sim-vertical-scale": ([*SIM, "--record", "good.AT2", "--vertical", "link.AT2", "--vertical-scale", "1e306"],
+                           ["--vertical-scale 1e+306 takes the peak of the vertical record"]),
+    "assess-vertical-scale": ([*ASSESS, "--records", "good.AT2", "--vertical-pulse", "sine:ap=0.1,Tp=0.5",
+                               "--vertical-scale", "2000"],
+                              ["--vertical-scale 2000 takes the peak of the vertical pulse"]),
+    "rocking-scale": (["spectrum", "rocking", "good.AT2", "--alpha", "10", "--scale", "500"],
+                      ["--scale 500 takes the peak of the record"]),
+    "sim-alpha-as-given": (["simulate", "--R", "1", "--alpha", "0.9999", *SINE], ["alpha = 0.9999 deg is below"]),
+    "sim-horizon-as-given": ([*SIM, *SINE, "--horizon", "3600.0001"], ["got 3600.0001"]),
+    "critical-Tp-tiny": (["spectrum", "critical-size", "--pulse", "sine:Tp=1e-9", "--alpha", "10", "--step", "0.5"],
+                         ["Tp 1e-9 must lie between 0.001 and 1000 s"]),
+    "min-ap-max-huge": (["spectrum", "min-overturning", "--alpha", "10", "--ap-max", "1e300", "--wp-over-p", "2:2:1"],
+                        ["ap_max must be at most 10000", "got 1e+300"]),
+    "column-no-record": ([*ASSESS, "--records", "notes"], ["no record to run: no file of the folder(s) is a record",
+                                                           "notes/README.md"]),
+    "fragility-no-record": (["assess", "fragility", "bassae", "--records", "notes", "--bootstrap", "0"],
+                            ["no record to run: no file of the folder(s) is a record"]),
+    "column-manifest-header-only": ([*ASSESS, "--records", "hdr.csv"],
+                                    ["hdr.csv: the manifest names no record: it has its header line and no row"]),
+    "fragility-manifest-header-only": (["assess", "fragility", "bassae", "--records", "hdr.csv"],
+                                       ["hdr.csv: the manifest names no record"]),
+    "column-manifest-latin1": ([*ASSESS, "--records", "latin.csv"],
+                               ["latin.csv, line 2: the manifest is not UTF-8 text (byte 0xe9)"]),
+    "column-csv-over-manifest": ([*ASSESS, "--records", "m.csv", "--csv", "m.csv"],
+                                 ["--csv m.csv is also an input (the manifest m.csv)"]),
+    "fragility-report-over-manifest": (["assess", "fragility", "bassae", "--records", "m.csv", "--report", "m.csv"],
+                                       ["--report m.csv is also an input (the manifest m.csv)"]),
+    "column-csv-over-folder-file": ([*ASSESS, "--records", "notes", "--csv", "notes/README.md"],
+                                    ["--csv notes/README.md is also an input (a file of the suite folder notes"]),
 }
 
 
@@ -341,12 +397,12 @@ API_CASES = {
     "read_record-column": (lambda: read_record("good.AT2", column=1.5), ["column 1.5"]),
     "Block-R-tiny": (lambda: Block(1e-6, 0.2), ["R = 1e-06 m"]),
     "Block-R-huge": (lambda: Block(1e4, 0.2), ["R = 10000 m"]),
-    "Block-alpha-tiny": (lambda: Block(1.0, 1e-9), ["alpha = 5.73e-08 deg", "below the supported 1 deg"]),
+    "Block-alpha-tiny": (lambda: Block(1.0, 1e-9), ["alpha = 1e-09 rad (5.73e-08 deg)", "below the supported 1 deg"]),
     "Block-alpha-zero": (lambda: Block(1.0, 0.0), ["strictly between 0 and 90"]),
     "Block-R-nan": (lambda: Block(float("nan"), 0.2), ["R must be a positive length", "nan"]),
     "Block-degrees-90": (lambda: Block.from_degrees(1.0, 90), ["strictly between 0 and 90 degrees, got 90"]),
     "Block-dims-negative": (lambda: Block.from_dimensions(-2, 1), ["block height", "got -2"]),
-    "Block-dims-needle": (lambda: Block.from_dimensions(10, 1e-5), ["alpha = 5.73e-05 deg", "height 10 m"]),
+    "Block-dims-needle": (lambda: Block.from_dimensions(10, 1e-5), ["alpha = 5.72957795131e-05 deg", "height 10 m"]),
     "isolation-Tb-tiny": (lambda: parse_isolation_spec("linear:Tb=1e-6"), ["Tb = 1e-06 s"]),
     "isolation-Tb-huge": (lambda: LinearIsolation(1e9), ["Tb = 1e+09 s"]),
     "isolation-xi-huge": (lambda: parse_isolation_spec("linear:Tb=2,xi=1e6"), ["xi = 1e+06"]),
@@ -388,6 +444,39 @@ API_CASES = {
     "fit_pulse-too-big": (lambda: fit_pulse(Record(np.random.default_rng(0).standard_normal(2_000_000), 0.001, "big"),
                                             periods=(0.004, 1e4)), ["wavelet transform", "narrow the periods"]),
     "fit_pulse-nan": (lambda: fit_pulse(Record(np.array([1.0, np.nan] * 10), 0.01, "bad")), ["non-finite"]),
+    # ---- issue 34: wrong types name the argument, sizes known before the work, values as given
+    "simulate-foundation-type": (lambda: simulate(BLOCK, "none", _pulse()),
+                                 ["foundation must be a rockcli foundation", "parse_isolation_spec", "got str 'none'"]),
+    "simulate_many-jobs-type": (lambda: simulate_many(None), ["jobs must be a list of (block, foundation, excitation"]),
+    "default_rtol-type": (lambda: default_rtol("scss"), ["foundation must be a rockcli foundation"]),
+    "overturning_map-lists": (lambda: overturning_map(14.0, "ricker-sym", "none", [2, 3], [1, 2]),
+                              ["wp_grid must be a grid", "'start:stop:count'", "got list [2, 3]"]),
+    "overturning_map-alpha": (lambda: overturning_map("14", "ricker-sym", "none", "2:3:2", "1:2:2"),
+                              ["alpha_deg must be a number of degrees, got str '14'"]),
+    "overturning_map-pulse": (lambda: overturning_map(14.0, None, "none", "2:3:2", "1:2:2"),
+                              ["pulse must be a pulse shape such as 'ricker-sym'", "got NoneType None"]),
+    "min_overturning-isolations": (lambda: min_overturning_curves([14.0], ["ricker-sym"], [0.5], [2.0]),
+                                   ["isolations: each isolation must be an isolation spec", "got float 0.5"]),
+    "min_overturning-wp": (lambda: min_overturning_curves([14.0], ["ricker-sym"], ["none"], "2"),
+                           ["wp_values must be a list of numbers, got str '2'"]),
+    "search-ap-max": (lambda: min_overturning_curves([14.0], ["ricker-sym"], ["none"], [2.0], ap_max=1e300),
+                      ["ap_max must be at most 10000", "got 1e+300"]),
+    "critical_sizes-pulses": (lambda: critical_sizes(3, [10.0], ["linear:TbTp=2"]), ["pulses must be a list"]),
+    "resolve_excitations-type": (lambda: resolve_excitations(3.0), ["sources must be a list of catalogue ids"]),
+    "resolve_excitations-item": (lambda: resolve_excitations([None]), ["sources: each source must be"]),
+    "parse_configurations-type": (lambda: parse_configurations([2.5]), ["specs: each spec must be an isolation spec"]),
+    "run_assessment-columns": (lambda: run_assessment(["bassae"], [], parse_configurations(["none"])),
+                               ["columns: each item must be a Block, got str 'bassae'"]),
+    "run_fragility-excitations": (lambda: run_fragility([BLOCK], ["good.AT2"], parse_configurations(["none"])),
+                                  ["excitations: each item must be an Excitation"]),
+    "history_dt-rows": (lambda: simulate(BLOCK, Rigid(), _pulse(), history_dt=1e-6, tail=100.0),
+                        ["would be 100,500,001 rows", "2,000,000"]),
+    "horizon-as-given": (lambda: simulate(BLOCK, Rigid(), _pulse(), horizon=3600.0001), ["got 3600.0001"]),
+    "rest_tol-as-given": (lambda: simulate(BLOCK, Rigid(), _pulse(), rest_tol=9.999999e-16), ["got 9.999999e-16"]),
+    "Block-degrees-as-given": (lambda: Block.from_degrees(1.0, 0.9999), ["alpha = 0.9999 deg is below"]),
+    "make_pulse-ap-as-given": (lambda: make_pulse("sine", 100.0001 * G, 1.0), ["a_p = 100.0001 g"]),
+    "check_scale-peak": (lambda: check_scale(3.0, 40.0, "factor", "the record"),
+                         ["factor 3 takes the peak of the record from 40 g to 120 g", "at most 2.5 here"]),
 }
 
 
@@ -599,3 +688,62 @@ def test_console_script_exit_codes_output_and_files(work):
     assert helped.returncode == 0 and "Usage: rockcli" in helped.stdout and helped.stdout.endswith("\n")
     missing = _console(["simulate", "--body", "bassae", "--record", str(work / "nope.AT2")], work)
     assert missing.returncode == 2 and "Traceback" not in missing.stderr and "nope.AT2" in missing.stderr
+
+
+# --------------------------------------------------------------------------------------------------
+# issue 34: the history grid follows --tail, its rows known before the run
+# --------------------------------------------------------------------------------------------------
+def test_history_follows_the_tail_and_its_grid_rows_are_counted_before_the_run():
+    """A block at rest when its record ends: the history (on the grid or at the steps) ends at the record's end plus
+    the tail, not 600 s later at the horizon, and the grid has exactly ``grid_rows`` rows; the verdict and the peak
+    are those of the verdict-only run."""
+    from rockcli.solve.single import grid_rows
+
+    rec = make_pulse("sine", 0.5 * G, 0.5).sampled(0.01, t_end=5.0)  # rocks, then rests before the record ends
+    alone = simulate(BLOCK, Rigid(), rec)
+    assert alone.verdict == "rocked"
+    for tail, hdt in ((0.0, 0.01), (2.0, 0.01), (1.5, 0.003)):
+        res = simulate(BLOCK, Rigid(), rec, history_dt=hdt, tail=tail)
+        assert res.settled and res.t_end_s == 5.0 + tail and res.history.t[-1] <= 5.0 + tail
+        assert len(res.history.t) == grid_rows(hdt, 0.0, 5.0 + tail)
+        steps = simulate(BLOCK, Rigid(), rec, history=True, tail=tail)
+        assert steps.t_end_s == 5.0 + tail == steps.history.t[-1]
+        assert res.verdict == steps.verdict == alone.verdict and res.theta_max == steps.theta_max == alone.theta_max
+
+
+def test_a_run_past_the_tail_adds_only_its_event_rows():
+    """On an undamped base the block overturns 2.2 s after the record ends: the run goes on to prove it, the grid
+    stops at the tail (its rows counted before the run), the overturn is still an event row."""
+    from rockcli.solve.single import grid_rows
+
+    rec = make_pulse("sine", 0.5 * G, 1.0).sampled(0.01, t_end=3.0)
+    res = simulate(BLOCK, LinearIsolation(1.0, 0.0), rec, history_dt=0.01, tail=0.0)
+    assert res.overturned and res.t_end_s > 5.0
+    assert res.history.t[-1] == 3.0 and len(res.history.t) == grid_rows(0.01, 0.0, 3.0)
+    assert res.history.events[-1].event == "overturn" and res.history.events[-1].t_s == res.t_end_s
+
+
+def test_grid_rows_counts_what_the_kernel_writes():
+    """:func:`grid_rows` against the kernel's own loop (``kg = ceil(t0/h)``, rows while ``kg h <= t_end``), over
+    random spacings and spans, including times that fall on the grid up to rounding."""
+    from rockcli.solve.single import grid_rows
+
+    rng = np.random.default_rng(34)
+    for _ in range(2000):
+        h = float(10.0 ** rng.uniform(-3, 0))
+        t0 = float(rng.choice([0.0, -rng.uniform(0, 3), rng.integers(0, 50) * h]))
+        t1 = t0 + float(rng.choice([rng.uniform(0, 3), rng.integers(0, 400) * h]))
+        kg, n = math.ceil(t0 / h), 0
+        while kg * h <= t1:
+            kg, n = kg + 1, n + 1
+        assert grid_rows(h, t0, t1) == n, (h, t0, t1)
+
+
+def test_scale_limit_is_the_motion_peak_limit():
+    """One limit for every motion: the records' and the pulses' 100 g are the scale factors' too."""
+    from rockcli.inputs import MOTION_PEAK_MAX_G
+    from rockcli.pulses import A_P_MAX_G
+    from rockcli.records.reader import PGA_MAX_G
+
+    assert MOTION_PEAK_MAX_G == A_P_MAX_G == PGA_MAX_G == 100.0
+    assert check_scale(-2.5, 40.0, "k") == -2.5 and check_scale(1e300, 0.0, "k") == 1e300  # a still record

@@ -1,13 +1,18 @@
-"""The first run: the compile notice, a progress bar whose ETA is not fooled by a compile, the margin
-search's progress (every (scene, factor) pair settled exactly once), and the batch kernels compiled
-side by side (``rockcli.kernels.batch.prepare``)."""
+"""The first run: the compile notice, the margin search's progress (every (scene, factor) pair settled
+exactly once), and the batch kernels compiled side by side (``rockcli.kernels.batch.prepare``). The
+progress lines' ETA, which a compile does not fool: tests/test_progress.py."""
 
 from __future__ import annotations
 
 import io
+import json
 import os
+import re
 import subprocess
+import sys
+import time
 import types
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -104,55 +109,6 @@ def test_kernels_report_only_real_compiles():
 
 
 # --------------------------------------------------------------------------------------------------
-# the progress bar's ETA
-# --------------------------------------------------------------------------------------------------
-
-class _Clock:
-    def __init__(self):
-        self.t = 0.0
-
-    def __call__(self):
-        return self.t
-
-
-def test_eta_waits_for_the_kernels_and_for_work_to_measure(monkeypatch):
-    clock = _Clock()
-    bar = progress_mod.Progress(1000, stream=io.StringIO(), clock=clock)
-    state = {"compiling": True}
-    monkeypatch.setattr(compiling, "compiling", lambda: state["compiling"])
-    with bar:
-        clock.t = 5.0
-        bar.update(1)  # during a compile: no rate measured
-        assert bar.eta() is None
-        state["compiling"] = False
-        clock.t = 60.0  # the compile took a minute: it must not count
-        bar.update(1)  # the rate clock starts here (this update still included the wait)
-        assert bar.eta() is None
-        clock.t = 61.0
-        bar.update(8)  # 8 of 998 remaining, 1 s: too little to tell
-        assert bar.eta() is None
-        clock.t = 62.0
-        bar.update(40)  # 49 steps in 2 s since the clock started (at pos 1), 950 left
-        assert bar.eta() == pytest.approx(2 / 49 * 950)
-        state["compiling"] = True  # a compile in the middle of the run restarts the measurement
-        clock.t = 100.0
-        bar.update(10)
-        assert bar.eta() is None
-        state["compiling"] = False
-        clock.t = 101.0
-        bar.update(10)
-        clock.t = 105.0
-        bar.update(20)  # 30 steps in 4 s since the clock restarted (at pos 60; 4 s >= MIN_SECONDS)
-        assert bar.pos == 90 and bar.eta() == pytest.approx(4 / 30 * 910)
-        assert bar._eta_text().startswith("ETA ")
-    no_eta = progress_mod.Progress(10, stream=io.StringIO(), clock=clock, eta=False)
-    no_eta.update(5)
-    clock.t += 10
-    no_eta.update(1)
-    assert no_eta.eta() is None
-
-
-# --------------------------------------------------------------------------------------------------
 # the margin search's progress
 # --------------------------------------------------------------------------------------------------
 
@@ -231,3 +187,97 @@ def test_prepare_spawns_nothing_unless_two_kernels_must_compile(monkeypatch, cac
     batch.prepare(names)
     assert spawned == []
     assert calls == [n for n in names if n not in compiled]  # each kernel not in memory: loaded or compiled here
+
+
+# --------------------------------------------------------------------------------------------------
+# a warm process loads its kernels without refreshing numba's registries (kernels/cache._load_unrefreshed)
+# --------------------------------------------------------------------------------------------------
+_LOAD_CHILD = r"""
+import json, sys
+import numpy as np
+if sys.argv[1] == "refresh":  # numba's own order: the registries first, then the load
+    from numba.core import registry
+    registry.cpu_target.target_context.refresh()
+from rockcli import compiling
+from rockcli.models import LinearIsolation, Rigid, SingleConcaveSliding
+from rockcli.pulses import make_pulse
+from rockcli.records import Record
+from rockcli.solve import bearing_force_path, simulate, simulate_many
+from rockcli.assess import parse_column_spec
+from rockcli.units import G
+block = parse_column_spec("c:R=1.2,alpha=12")
+pulse = make_pulse("ricker-anti", 0.35 * G, 0.9)
+wave = Record(0.3 * G * np.sin(np.linspace(0.0, 25.0, 800)) * np.exp(-np.linspace(0.0, 4.0, 800)), 0.01, "wave")
+vertical = Record(np.full(600, 0.1 * G), 0.01, "constant")
+bases = [Rigid(), LinearIsolation(T_b=2.5, xi=0.1), SingleConcaveSliding(T_b=3.0, mu=0.05)]
+out = []
+for base in bases:  # the single-run drivers, with their histories
+    r = simulate(block, base, wave, history=True)
+    out += [r.status, r.theta_max, r.base_disp_max_m, r.steps, float(np.sum(r.history.theta))]
+r = simulate(block, Rigid(), pulse, vertical=vertical, history=True)  # the vertical driver
+out += [r.status, r.theta_max, r.steps]
+scenes = [(block, base, ex, s) for base in bases for ex in (pulse, wave) for s in (0.5, 1.0, 1.7)]
+for r in simulate_many(scenes) + simulate_many(scenes[:6], vertical=vertical):  # the three batch kernels
+    out += [r.status, r.theta_max, r.nfev]
+out += list(bearing_force_path(bases[2], np.linspace(0.0, 0.2, 50))["force"])
+print(json.dumps({"compiles": compiling.compiles(), "registries": "numba.np.linalg" in sys.modules,
+                  "out": [float(x).hex() if isinstance(x, float) else str(x) for x in out]}))
+"""
+
+
+def _load_child(mode):
+    proc = subprocess.run([sys.executable, "-c", _LOAD_CHILD, mode], capture_output=True, text=True, timeout=900,
+                          env={k: v for k, v in os.environ.items() if k != "NUMBA_DISABLE_JIT"})
+    assert proc.returncode == 0, proc.stderr
+    return json.loads(proc.stdout.splitlines()[-1])
+
+
+def test_a_warm_process_loads_every_kernel_without_numbas_registries_and_gets_the_same_results():
+    """A process whose kernels are all in the disk cache loads them without refreshing numba's registries
+    (nothing compiled, ``numba.np.linalg`` never imported) and every driver (single runs with histories on a
+    rigid base, linear and sliding bearings, under a vertical motion; the three batch kernels; the bearings'
+    force along a path) gives, bit for bit, what a process that refreshed them first gives (numba's order)."""
+    first = _load_child("plain")  # compiles what the disk cache lacks (nothing, after any earlier run)
+    plain, refreshed = _load_child("plain"), _load_child("refresh")
+    assert plain["compiles"] == 0 and not plain["registries"], plain
+    assert refreshed["registries"]
+    assert plain["out"] == refreshed["out"] == first["out"]
+    # the parallel scheduler's symbols are the only ones a refresh registers that a load could miss
+    import rockcli.kernels as K
+
+    for path in Path(K.__file__).parent.glob("*.py"):
+        text = path.read_text()
+        assert not re.search(r"jit\([^)]*parallel\s*=\s*True", text) and "prange" not in text, path.name
+
+
+# --------------------------------------------------------------------------------------------------
+# two processes that both lack a kernel compile it once (kernels/cache._claim_compile)
+# --------------------------------------------------------------------------------------------------
+_FIRST_EXCEED = ("import json, sys, numpy as np; from rockcli.kernels import polynomials as p; "
+                 "print('ready', flush=True); sys.stdin.readline(); "
+                 "x = p._first_exceed(np.array([0.0, 1.0, 0.0, 0.0, 0.0]), 0.5)[0]; k = p._first_exceed; "
+                 "print(json.dumps({'x': float(x).hex(), 'misses': sum(k._cache_misses.values()), "
+                 "'hits': sum(k._cache_hits.values())}))")
+
+
+def test_two_processes_that_lack_a_kernel_compile_it_once(tmp_path):
+    """Two processes that need a kernel the disk cache lacks, at the same moment (both imported, then told
+    to go together): one compiles it, the other waits for that compile and loads what the first saved,
+    instead of compiling it again (without the lock both compiled it); both get the same result (the
+    polynomial c(x) = x first exceeds 0.5 at x = 0.5)."""
+    env = {k: v for k, v in os.environ.items() if k != "NUMBA_DISABLE_JIT"}
+    env["NUMBA_CACHE_DIR"] = str(tmp_path)
+    procs = [subprocess.Popen([sys.executable, "-c", _FIRST_EXCEED], env=env, stdin=subprocess.PIPE,
+                              stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True) for _ in range(2)]
+    for proc in procs:
+        assert proc.stdout.readline().strip() == "ready", proc.stderr.read()
+    for proc in procs:
+        proc.stdin.write("go\n")
+        proc.stdin.flush()
+    outs = []
+    for proc in procs:
+        out, err = proc.communicate(timeout=900)
+        assert proc.returncode == 0, err
+        outs.append(json.loads(out.splitlines()[-1]))
+    assert sorted(o["misses"] for o in outs) == [0, 1] and sum(o["hits"] for o in outs) == 1, outs
+    assert outs[0]["x"] == outs[1]["x"] and abs(float.fromhex(outs[0]["x"]) - 0.5) < 1e-12

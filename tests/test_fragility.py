@@ -249,10 +249,23 @@ def test_fragility_on_a_dask_cluster_equals_the_local_run(suite):
     block = Block.from_degrees(0.6, 12, "small")
     xs, unavailable = resolve_excitations([str(suite)], "record")
     configs = parse_configurations(["none", "linear:Tb=2"])
-    local = run_fragility([block], xs, configs, n_boot=50, unavailable=unavailable)
+    parts = []  # the progress of each run (issue 35): its parts, announced, and the steps told in each
+
+    class Progress:
+        def phase(self, name, steps, *, known, unit):
+            parts.append([name, steps, known, unit, 0])
+
+        def __call__(self, n):
+            parts[-1][4] += n
+
+    local = run_fragility([block], xs, configs, n_boot=50, unavailable=unavailable, progress=Progress())
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None) as cl, \
             distributed.Client(cl) as client:
-        remote = run_fragility_distributed(client, [block], xs, configs, n_boot=50, unavailable=unavailable)
+        remote = run_fragility_distributed(client, [block], xs, configs, n_boot=50, unavailable=unavailable,
+                                           progress=Progress())
+    n = len(local.rows) - sum(bool(r.error) for r in local.rows)
+    assert parts[0] == ["margin search", n * MARGIN_GRID.size, False, None, n * MARGIN_GRID.size]
+    assert parts[1][0].startswith("margin search on Dask (") and parts[1][1:] == [n, False, "scenes", n]
     key = [(r.record, r.configuration, r.capacity, r.censored, r.error) for r in local.rows]
     assert [(r.record, r.configuration, r.capacity, r.censored, r.error) for r in remote.rows] == key
     assert [(c.median, c.beta) for c in remote.curves] == [(c.median, c.beta) for c in local.curves]

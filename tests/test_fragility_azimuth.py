@@ -118,3 +118,26 @@ def test_zero_motion_orientation_is_right_censored(tmp_path):
     # no motion along any orientation run: nothing to scale, an error row (not a capacity of 0)
     res = run_fragility_azimuths([block], xs, parse_configurations(["none"]), azimuths=np.array([90.0]), n_boot=0)
     assert "nothing to scale" in res["worst"].rows[0].error and not math.isfinite(res["worst"].curves[0].median)
+
+
+def test_no_azimuth_named_when_every_orientation_ranks_equal(tmp_path):
+    """Every orientation right-censored (0.05 g pulses: 4x is still below g tan(14 deg) = 0.25 g, so nothing lifts
+    the body off, without a run): the worst orientation was "azimuth 0 deg (worst of 4 orientations)", the first
+    of the sweep. Now none is named, for the median either, in the words of assess column's @any
+    (rockcli.assess.azimuth.most_adverse); the capacity is the bound, the same in every orientation."""
+    weak = _pair(tmp_path, 60.0, 0.05, 0.8, "w")
+    strong = _pair(tmp_path, 60.0, 0.9, 0.8, "s")
+    block = Block(R=0.8, alpha=math.radians(14))
+    xs, _ = resolve_excitations([weak, strong], "record", azimuth="worst")
+    res = run_fragility_azimuths([block], xs, parse_configurations(["none"]), azimuths=sweep_azimuths(45), n_boot=0)
+    words = ("any azimuth (no orientation is more adverse than another: none of the 4 orientations overturns it up "
+             "to 4x)")
+    for how in ("median", "worst"):
+        tied, named = res[how].rows
+        assert math.isnan(tied.azimuth_deg) and tied.censored == "right" and tied.margin_note.endswith(words)
+        assert tied.capacity == pytest.approx(4.0 * tied.im_value, rel=1e-12)
+        assert named.azimuth_deg in (0.0, 45.0, 90.0, 135.0) and f"({how} of 4 orientations)" in named.margin_note
+    args = ["assess", "fragility", "small:R=0.8,alpha=14", "--isolation", "none", "--bootstrap", "0", "--azimuth",
+            "worst", "--azimuth-step", "45", "--records", weak, "--records", strong]
+    out = CliRunner().invoke(main, args).output
+    assert f": {words}, capacity >" in out and ": 0 deg, capacity >" not in out, out

@@ -9,7 +9,10 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
+
+from rockcli.errors import RockcliInputError
 
 ROOT = Path(__file__).resolve().parents[1]
 HEAVY = ("numba", "obspy", "pandas", "matplotlib", "scipy")
@@ -66,3 +69,49 @@ def test_the_python_page_runs(records_dirs, capsys):
     assert res.verdict == "rocked" and "impact:" in out
     assert max(abs(e.theta_rad) for e in peaks) == pytest.approx(res.theta_max, rel=1e-8)
     assert ns["m"].overturned.shape == (5, 5) and ns["m"].overturned.any() and not ns["m"].overturned.all()
+    # the assessment from Python (issue 35): the verdicts in plain words and the rows as a DataFrame
+    table = ns["table"]
+    assert list(table.configuration) == ["none", "Tb=2.5s"] and "In short:" in out
+    assert table.verdict[0] == "overturned" and table.overturn_scale[0] < 1 < table.overturn_scale[1]
+
+
+def _pulse_suite():
+    from rockcli import parse_configurations, resolve_excitations
+    from rockcli.assess import parse_column_spec
+
+    xs, unavailable = resolve_excitations(["kobe-1995-takarazuka-000", "northridge-1994-jensen-022"], "pulse")
+    return [parse_column_spec("statue:height=1.8,width=0.5")], xs, parse_configurations(["none", "linear:Tb=2.5"])
+
+
+def test_the_pair_resolve_excitations_returns_is_refused_in_one_sentence():
+    from rockcli import resolve_excitations, run_assessment, run_fragility
+
+    columns, _, confs = _pulse_suite()
+    pair = resolve_excitations(["kobe-1995-takarazuka-000"], "pulse")
+    for run in (run_assessment, run_fragility):
+        with pytest.raises(RockcliInputError, match=r"unavailable = resolve_excitations\(\[\.\.\.\]\); got a list"):
+            run(columns, pair, confs)
+    with pytest.raises(RockcliInputError, match="got str"):
+        run_assessment(columns, ["kobe-1995-takarazuka-000"], confs)
+
+
+def test_results_give_the_csv_as_a_dataframe(tmp_path):
+    """``to_dataframe()`` is the CSV report's table (the same columns and values), built in rockcli.report."""
+    import pandas as pd
+
+    from rockcli import run_assessment, run_fragility
+    from rockcli.report.fragility import write_fragility_csv
+    from rockcli.report.tables import write_assessment_csv
+
+    columns, xs, confs = _pulse_suite()
+    result = run_assessment(columns, xs, confs, margin=False)
+    df = result.to_dataframe()
+    write_assessment_csv(result, tmp_path / "a.csv")
+    csv = pd.read_csv(tmp_path / "a.csv")
+    assert list(df.columns) == list(csv.columns) and len(df) == 4
+    assert list(df.verdict) == list(csv.verdict) and np.allclose(df.theta_max_over_alpha, csv.theta_max_over_alpha)
+    fr = run_fragility(columns, xs, confs, n_boot=0)
+    df = fr.to_dataframe()
+    write_fragility_csv(fr, tmp_path / "f.csv")
+    csv = pd.read_csv(tmp_path / "f.csv")
+    assert list(df.columns) == list(csv.columns) and np.allclose(df.capacity_g, csv.capacity_g)

@@ -20,7 +20,8 @@ from rockcli.records.reader import read_components
 @pytest.mark.parametrize("text, expected", [
     ("140", (140.0, False)), ("022", (22.0, False)), ("360", (0.0, False)), ("0", (0.0, False)),
     ("N28W", (332.0, False)), ("S16W", (196.0, False)), ("S74E", (106.0, False)), ("N01E", (1.0, False)),
-    ("S89E", (91.0, False)), ("N00W", (0.0, False)), ("E", (90.0, False)), ("-E", (90.0, False)),
+    ("S89E", (91.0, False)), ("N00W", (0.0, False)), ("E", (90.0, False)), ("-E", (None, False)),
+    ("-242", (118.0, False)), ("+242", (242.0, False)), ("-S62W", (None, False)),
     ("NS", (0.0, False)), ("EW2", (90.0, False)), ("UD2", (None, True)), ("Up", (None, True)),
     ("DWN", (None, True)), ("HNE", (90.0, False)), ("HNN", (0.0, False)), ("HNZ", (None, True)),
     ("BNZ", (None, True)), ("HN1", (None, False)), ("HN2", (None, False)), ("FP", (None, False)),

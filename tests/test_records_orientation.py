@@ -89,7 +89,7 @@ def test_split_source_and_sweep(tmp_path):
     assert split_source(str(odd)) == (str(odd), None)  # an existing file is never split
     assert list(sweep_azimuths(5.0)) == [5.0 * k for k in range(36)]
     assert list(sweep_azimuths(45)) == [0.0, 45.0, 90.0, 135.0]
-    with pytest.raises(RockcliInputError, match="--azimuth-step"):
+    with pytest.raises(RockcliInputError, match="sweep_azimuths: step 0 must lie between 0.1 deg"):
         sweep_azimuths(0)
 
 

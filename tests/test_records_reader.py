@@ -131,7 +131,7 @@ def test_esm_synthetic(tmp_path):
     assert rec.meta["format"] == "ESM" and rec.dt == 0.01 and rec.meta["station"] == "XX.ABC"
     np.testing.assert_allclose(rec.acc, np.array(values) / 100, rtol=1e-15)
     path.write_text("\n".join(head + [f"{v:f}" for v in values[:3]]) + "\n")
-    with pytest.raises(RockcliInputError, match=r"truncated file: the header states NDATA=4 but only 3"):
+    with pytest.raises(RockcliInputError, match=r"the header states 4 samples \(line 5: 'NDATA: 4'\), but 3 values follow .*cut short"):
         read_record(path)
 
 

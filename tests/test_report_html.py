@@ -74,6 +74,11 @@ def test_safe_island_no_uplift_undecided_and_stroke():
     iso = _row(configuration="Tb=2.5s", theta_max_over_alpha=0.2, base_disp_max_m=0.3369)
     assert "the base moves up to 0.34 m" in scene_sentence(iso, isolated=True)
     assert "base moves" not in scene_sentence(iso, isolated=False)
+    # a toppled run's displacement is no stroke to design for: said as such
+    fell = _row(configuration="Tb=2.5s", verdict="overturned", overturned=True, t_overturn_s=6.6, base_disp_max_m=0.524)
+    words = scene_sentence(fell, isolated=True)
+    assert "the base had moved up to 0.52 m when it toppled (not a stroke to design for)" in words
+    assert "the stroke the bearings must allow" not in words
 
 
 def test_configuration_sentence_over_several_records():
@@ -83,8 +88,14 @@ def test_configuration_sentence_over_several_records():
             _row(record="d", verdict="overturned", overturned=True, overturn_scale=0.5, base_disp_max_m=0.1)]
     s = configuration_sentence(rows, isolated=True)
     # the records that topple it, smallest factor first; the closest call among the survivors; the largest stroke
+    # where it survives (b, in which it toppled, moved the base 0.45 m: no stroke to design for, left out)
     assert s.startswith("topples under 2 of 4 records (d already at 0.50 times, b already at 0.70 times)")
-    assert "the closest call is c: 1.30 times stronger" in s and "up to 0.45 m (b;" in s
+    assert "the closest call is c: 1.30 times stronger" in s
+    assert "where it survives, the base moves up to 0.31 m (c;" in s
+    assert "0.45" not in s
+    assert "up to 0.31 m (c;" in configuration_sentence([rows[0], rows[2]], isolated=True)
+    assert "where it survives" not in configuration_sentence([rows[0], rows[2]], isolated=True)
+    assert "base moves" not in configuration_sentence([rows[1], rows[3]], isolated=True)  # it survives none
     survivors = configuration_sentence([rows[0], rows[2]])
     assert survivors.startswith("survives both records") and "50 % of its overturning angle (c)" in survivors
 
@@ -187,12 +198,13 @@ def test_assess_column_report(find_record, tmp_path):
             assert f"{row.overturn_scale:.2f} times" in text
         if row.configuration != "none":
             assert f"{row.base_disp_max_m:.2f} m" in text  # the bearings' stroke
-    # the figures: both responses (the critical record on each configuration), margins, stroke
+    # the figures: the responses (the deciding record on both configurations, side by side), margins, stroke
     images = [a for t, a in page.tags if t == "img"]
-    assert len(images) >= 4
+    assert len(images) >= 3
     alts = " ".join(a["alt"] for a in images)
     assert "standing on the ground" in alts and "linear (rubber) bearings" in alts
     assert "assess column" in page.text["reproduce"]
+    assert "Margins are found on a grid" in page.text["assumptions"]
 
     # the terminal: the answer in plain words after the table, readable without the legend
     out = res.output
@@ -202,6 +214,9 @@ def test_assess_column_report(find_record, tmp_path):
         word = "topples" if row.overturned else "survives"
         where = "standing on the ground" if row.configuration == "none" else "on linear (rubber) bearings, Tb=2.5s"
         assert f"{where}: {word}" in plain
+    if df.overturned.tolist() == [True, False]:  # the README's words for one record
+        assert re.search(r"In short: the statue topples on the ground; isolation Tb=2\.5s saves it, provided the "
+                         r"bearings can move \d\.\d\d m\.", re.sub(r"\s+", " ", plain))
 
 
 def test_simulate_report_with_pulse(tmp_path):
@@ -221,6 +236,9 @@ def test_simulate_report_with_pulse(tmp_path):
     assert (TOPPLES if out["verdict"] == "overturned" else SURVIVES) in classes.split()
     assert f"{out['base_disp_max_m']:.2f} m" in text
     assert "idealised" in page.text["records"].lower() and "sine" in page.text["records"]
+    # simulate searches no margin: the page does not speak of margins or toppling factors
+    for sid, text in page.text.items():
+        assert "margin" not in text.lower() and "toppling factor" not in text.lower(), sid
 
 
 def test_fragility_report(tmp_path):
@@ -258,3 +276,80 @@ def test_the_self_contained_check_catches_external_resources(bad, tmp_path):
     p.write_text(f"<html><body><section id='answer'>{bad}</section></body></html>")
     with pytest.raises(AssertionError):
         assert_self_contained(parse(p), p.read_text())
+
+
+# --------------------------------------------------------------------------------------------------
+# provenance, unavailable records, the pulse's sign, the command to reproduce it
+# --------------------------------------------------------------------------------------------------
+
+def test_units_provenance_says_where_the_units_came_from(find_record, tmp_path):
+    """A catalogue record without a header is read with the catalogue's units: said so, not "given"."""
+    from rockcli.assess.excitations import resolve_excitations
+    from rockcli.report.html_records import records_section
+
+    find_record("C02-065")
+    (x,), _ = resolve_excitations(["parkfield-1966-c02-065"])
+    assert x.motion.meta["units_source"] == "catalogue"
+    text = records_section([x])
+    assert "from rockcli&#x27;s record catalogue" in text and "given" not in text
+    assert "time step from rockcli&#x27;s record catalogue" in text
+    # the same file outside the catalogue, with --units and --dt given: given by the user
+    copy = tmp_path / "headerless.txt"
+    copy.write_bytes(find_record("C02-065").read_bytes())
+    (y,), _ = resolve_excitations([str(copy)], units="g", dt=0.01)
+    assert "as given by the user (--units" in records_section([y])
+    # a file that states its units
+    (z,), _ = resolve_excitations([str(write_pulse_record(tmp_path / "p.txt", -0.5, 0.5, "ricker-anti"))])
+    text = records_section([z])
+    assert "as stated in the file" in text
+    # the fitted pulse's sign in words: a direction along the record's axis
+    assert ("a_p &lt; 0: its first peak accelerates the ground toward the negative side of the record&#x27;s axis"
+            in text)
+
+
+def test_unavailable_and_skipped_records_are_listed():
+    from rockcli.assess.excitations import Skipped, Unavailable
+    from rockcli.report.html_records import records_section
+
+    text = records_section([], [Unavailable("vrancea-1977-bucharest", "no public file is known"),
+                                Skipped("SOURCES.csv", "not a record")])
+    assert "Not available" in text and "vrancea-1977-bucharest: no public file is known" in text
+    assert "Skipped 1 file" in text and "SOURCES.csv" in text
+
+
+def test_reproduce_command_has_its_folder_and_environment():
+    from rockcli.report.html import reproduce_command
+
+    cmd = ("rockcli assess column statue:height=1.79,width=0.5 --records kobe-1995-takarazuka-000 --records "
+           "'my file.AT2' --isolation none --report out/s.html")
+    got = reproduce_command(cmd, {"ROCKCLI_RECORDS": "/data/records:/data/extra", "HOME": "/root"}, "/work/x y")
+    lines = got.splitlines()
+    assert lines[0] == "cd '/work/x y'"
+    assert lines[1].startswith("ROCKCLI_RECORDS=/data/records:/data/extra rockcli assess column statue:")
+    assert "HOME" not in got and "--records 'my file.AT2' \\" in got and lines[-1].strip() == "--report out/s.html"
+    import shlex
+
+    # what a shell would run is the command given, word for word
+    joined = " ".join(line.rstrip(" \\") for line in lines[1:])
+    assert shlex.split(joined) == ["ROCKCLI_RECORDS=/data/records:/data/extra", *shlex.split(cmd)]
+    assert "ROCKCLI_RECORDS" not in reproduce_command(cmd, {}, "/w")
+
+
+def test_figures_are_embedded_at_their_drawn_size():
+    """A figure w inches wide is shown 96 w CSS pixels wide, whatever its dpi, so that 8 pt is 10.7 px; a
+    figure whose smallest text is 7 pt is enlarged to keep it at 10 px."""
+    import io
+
+    from rockcli.report.figures import new_figure
+    from rockcli.report.html import figure, png_size
+
+    for dpi in (90, 144):
+        fig = new_figure(5.0, 2.0, dpi=dpi)
+        fig.add_subplot().plot([0, 1])
+        buf = io.BytesIO()
+        fig.savefig(buf, format="png", dpi=dpi)
+        png = buf.getvalue()
+        width, _, got_dpi = png_size(png)
+        assert abs(got_dpi - dpi) < 0.5 and width == 5 * dpi
+        assert 'width="480"' in figure(png, "x")
+        assert f'width="{round(480 * 10 / (7 * 96 / 72))}"' in figure(png, "x", smallest_pt=7.0)

@@ -473,3 +473,54 @@ def test_tolerance_at_its_floor_ends():
     res = search_min_overturning([fam], np.array([0]), np.array([2.0]), tol=1e-12, refine=0.0)
     lo, hi = float(res.ap_safe[0]), float(res.ap_min[0])
     assert lo < hi and (hi - lo) <= 1e-12 * hi
+
+
+# ------------------------------------------------------------------------------------------
+# The 100 g limit of the minimum search (squat blocks)
+# ------------------------------------------------------------------------------------------
+class _Threshold:
+    """A stand-in runner: uplift from ``y_up``, overturning from ``y_over`` (units of g tan alpha); records the
+    largest a_p [g] asked for. The search's logic without the solver (its runs are what is checked here)."""
+
+    def __init__(self, y_up, y_over):
+        self.y_up, self.y_over, self.peak_g, self.runs = y_up, y_over, 0.0, 0
+
+    def __call__(self, families, fam, x, y, early=False):
+        from rockcli.spectra.runner import Cells
+
+        y = np.asarray(y, float)
+        tan = np.array([math.tan(families[f].alpha) for f in fam])
+        self.peak_g = max(self.peak_g, float(np.max(y * tan, initial=0.0)))
+        self.runs += y.size
+        n = y.size
+        return Cells(y >= self.y_over, y >= self.y_up, np.zeros(n), np.ones(n, bool), np.ones(n, bool),
+                     np.zeros(n, np.int64))
+
+
+@pytest.mark.parametrize("iso", ["none", LIN2])
+def test_min_search_runs_no_pulse_past_100_g(iso):
+    """alpha = 80 deg: ap_max = 20 g tan alpha is 113 g; the search ran pulses up to there (and the uplift bracket
+    of an isolated base up to 2 ap_max, 227 g). Now it stops at 100 g, y = 17.63, and the curve says so."""
+    from rockcli.spectra.minimum import capped_note, curves_of, y_limit
+
+    cap = y_limit(math.radians(80.0))
+    assert cap * math.tan(math.radians(80.0)) <= 100.0 and cap == pytest.approx(17.6327, rel=1e-5)
+    families = [Family(math.radians(80.0), "ricker-sym", parse_isolation(iso))]
+    beyond = _Threshold(1.0 if iso == "none" else 1.7, 19.0)  # overturns only past 100 g
+    s = search_min_overturning(families, [0], [2.0], runner=beyond)
+    assert beyond.peak_g <= 100.0 and math.isnan(s.ap_min[0]) and s.ap_cap[0] == cap
+    curve, = curves_of(s, [(80.0, PulseChoice("ricker-sym"), parse_isolation(iso))], np.array([2.0]), ap_max=20.0,
+                       step=0.01, tol=1e-3, refine=1e-3, refine_band=0.1)
+    assert curve.capped and curve.ap_max == cap
+    assert "about 17.63 at alpha = 80 deg" in capped_note([curve])
+    # below the cap the search is the one of a block that is not capped (alpha = 10 deg): the same runs
+    within, free = _Threshold(1.0 if iso == "none" else 1.7, 12.0), _Threshold(1.0 if iso == "none" else 1.7, 12.0)
+    a = search_min_overturning(families, [0], [2.0], runner=within)
+    b = search_min_overturning([Family(math.radians(10.0), "ricker-sym", parse_isolation(iso))], [0], [2.0],
+                               runner=free)
+    assert (a.ap_min[0], a.ap_safe[0], a.ap_uplift[0], a.runs) == (b.ap_min[0], b.ap_safe[0], b.ap_uplift[0], b.runs)
+    assert within.peak_g <= 100.0 and 12.0 <= a.ap_min[0] < 12.0 * 1.001
+    if iso != "none":  # the uplift bracket stops at the cap: a base that lifts the block off only past 100 g
+        late = _Threshold(30.0, 40.0)
+        s = search_min_overturning(families, [0], [2.0], runner=late)
+        assert late.peak_g <= 100.0 and math.isnan(s.ap_uplift[0]) and math.isnan(s.ap_min[0])

@@ -13,10 +13,13 @@ The library behind ``rockcli assess`` (no click, no pandas). Read it in this ord
     The vertical ground motion of each record (its own vertical component, or one vertical motion for
     all), carried by the record through every run; the margins scale the horizontal motion only.
 :mod:`rockcli.assess.margin`
-    The margin search: the smallest scale factor of a record that overturns a scene (a scan of
-    373 log-spaced factors 0.1..4 in steps just under 1 %, then a bisection below the first
-    overturning factor if the grid is coarser than the tolerance), the
-    neighbourhood share, and :func:`map_chunks`, the seam for running the search elsewhere.
+    The margin search: the smallest scale factor of a record that overturns a scene (the first
+    overturning factor of 373 log-spaced factors 0.1..4 in steps just under 1 %, run upwards from
+    the scene's lift-off floor, then a bisection below it), the neighbourhood share, and
+    :func:`map_chunks`, the seam for running the search elsewhere.
+:mod:`rockcli.assess.liftoff`
+    The lift-off floor of a scene: the scale factor below which the block provably never leaves its
+    base (rigid foundation: the peak ground acceleration; linear bearings: one exact run of the base).
 :mod:`rockcli.assess.table`
     ``assess column``: every scene verdict-only, with its margin -> :class:`Assessment` rows.
 :mod:`rockcli.assess.verdicts`

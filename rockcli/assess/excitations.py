@@ -17,7 +17,9 @@ from typing import Sequence
 
 import numpy as np
 
+from rockcli.assess.manifest import MANIFEST_COLUMNS, is_manifest, read_manifest  # noqa: F401 (re-exported)
 from rockcli.errors import RockcliInputError
+from rockcli.inputs import format_number
 from rockcli.units import G
 
 EXCITATION_RECORD = "record"
@@ -75,14 +77,23 @@ class Skipped(Unavailable):
     """A file of a folder suite that is not a record by its content (no reader recognises it)."""
 
 
+@dataclass(frozen=True)
+class Duplicate(Unavailable):
+    """A source that names a record the suite holds already (a symbolic link, a second spelling of a
+    component): run once (:mod:`rockcli.assess.suite`); ``reason`` names the one kept."""
+
+
 def unavailable_notes(unavailable) -> list[str]:
-    """Sentences for the notes: the skipped files of folder suites, counted, then what is not available."""
+    """Sentences for the notes: the skipped files of folder suites, counted, the records named twice, then
+    what is not available."""
     skipped = [u for u in unavailable if isinstance(u, Skipped)]
     lines = []
     if skipped:
         lines.append(f"Skipped {len(skipped)} file(s) of the folder(s) that are not records (no reader recognises "
                      f"their content): {', '.join(u.label for u in skipped)}.")
-    lines += [f"Not available: {u.label} ({u.reason})." for u in unavailable if not isinstance(u, Skipped)]
+    lines += [f"Counted once: {u.label} is {u.reason}." for u in unavailable if isinstance(u, Duplicate)]
+    lines += [f"Not available: {u.label} ({u.reason})." for u in unavailable
+              if not isinstance(u, (Skipped, Duplicate))]
     return lines
 
 
@@ -127,7 +138,7 @@ def _read_suite_record(path: Path, kwargs: dict):
     return comps[0] if len(comps) == 1 else select_component(comps, component, str(path))
 
 
-def _pair_label(first: str, second: str) -> str:
+def pair_label(first: str, second: str) -> str:
     """``RSN181_IMPVALL.H_H-E06140.AT2+E06230.AT2``, ``TCU128-000+090``: the second name without the part
     both share up to a separator."""
     import os
@@ -135,6 +146,23 @@ def _pair_label(first: str, second: str) -> str:
     common = os.path.commonprefix([first, second])
     cut = max((common.rfind(c) for c in "-_."), default=-1) + 1
     return f"{first}+{second[cut:] or second}"
+
+
+def one_file_pair(first, second, names=("", "")) -> str:
+    """Why ``first`` and ``second`` (each ``FILE`` or ``FILE@DEG``) are no pair: one file named twice (after
+    following symbolic links, or by inode); ``""`` when they are two files (or ``second`` is None).
+    ``names`` are the options that gave them (``--record``, ``--record-2``), for the sentence."""
+    from rockcli.files import same_file
+    from rockcli.records.orientation import split_source
+
+    if second is None:
+        return ""
+    f1, f2 = (split_source(s)[0] for s in (first, second))
+    if not same_file(f1, f2):
+        return ""
+    a, b = (f"{n} {s}".strip() for n, s in zip(names, (first, second)))
+    return (f"{a} and {b} are one file ({f1}): a pair is two different horizontal components; give the other "
+            f"component's file (a multi-component file alone gives its own two)")
 
 
 def _pair_excitation(label: str, first, second, read_kwargs: dict, azimuth, skip: bool = False) -> Excitation:
@@ -145,6 +173,9 @@ def _pair_excitation(label: str, first, second, read_kwargs: dict, azimuth, skip
     from rockcli.records.orientation import project, read_pair
 
     kwargs = {k: v for k, v in read_kwargs.items() if k != "component"}
+    one = one_file_pair(first, second)
+    if one:
+        return Excitation(label, EXCITATION_RECORD, None, f"{first} + {second}", error=one)
     try:
         pair = read_pair(first, second, **kwargs)
     except NotARecord as exc:
@@ -156,14 +187,26 @@ def _pair_excitation(label: str, first, second, read_kwargs: dict, azimuth, skip
                           error=str(exc))
     theta = 0.0 if azimuth == "worst" else float(azimuth)
     rec = project(*pair, theta)
-    source = " + ".join(f"{r.meta.get('path')} ({r.meta['azimuth_deg']:g} deg)" for r in pair)
+    source = " + ".join(f"{r.meta.get('path')} ({format_number(r.meta['azimuth_deg'])} deg)" for r in pair)
     if azimuth != "worst":
-        label = f"{label}@{theta:g}"
+        label = f"{label}@{format_number(theta)}"
     return Excitation(label, EXCITATION_RECORD, rec, source, rec.pga_g, pair=pair, azimuth_deg=theta)
 
 
 def _entry_read_kwargs(entry) -> dict:
     return {"format": entry.format or None, "units": entry.units, "dt": entry.dt, "column": entry.column}
+
+
+def _entry_excitation(entry, path: Path, label: str | None = None) -> Excitation:
+    """A catalogue entry's file (or its pair's second file), read as the catalogue says and labelled ``label``
+    (default the entry's id); the units and time step the catalogue supplies (for a file without a header) are
+    credited to the catalogue, not to the command line."""
+    x = _read_excitation(label or entry.id, path, _entry_read_kwargs(entry))
+    if x.motion is not None:
+        for key in ("units_source", "dt_source"):
+            if x.motion.meta.get(key) == "caller":  # only the catalogue's values were passed
+                x.motion.meta[key] = "catalogue"
+    return x
 
 
 def _has_pulse(entry) -> bool:
@@ -176,7 +219,7 @@ def _from_entry(entry, mode: str):
 
     path = find_file(entry) if (entry.available and mode != "pulse") else None
     if path is not None:
-        return _read_excitation(entry.id, path, _entry_read_kwargs(entry))
+        return _entry_excitation(entry, path)
     if mode != "record" and _has_pulse(entry):
         return _pulse_excitation(entry)
     if not entry.available:
@@ -232,11 +275,18 @@ def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto"
     Returns
     -------
     excitations : list of Excitation
-        In the order given; a file that cannot be read is kept, with its ``error``. A file given
-        twice (e.g. by its folder and by name) is read once; two different files of the same
-        name in different folders are labelled ``folder/name``.
+        In the order given; a file that cannot be read is kept, with its ``error``. Each record once
+        (:mod:`rockcli.assess.suite`): a file given twice (by its folder and by name, or through a
+        symbolic link) is run once; two components of one file are two records labelled
+        ``FILE:COMP``; two different files of the same name in different folders are labelled
+        ``folder/name``.
     unavailable : list of Unavailable
-        Default-set records that can be run neither from a file nor as a pulse.
+        Default-set records that can be run neither from a file nor as a pulse, the files of folders
+        that are not records (:class:`Skipped`), and sources naming a record already in the suite
+        under another name (:class:`Duplicate`).
+
+    Every file read (manifests, each file of a folder, both files of a pair) is an input of the open
+    output transaction (:func:`rockcli.files.note_inputs`): an output on one of them is refused.
 
     Raises
     ------
@@ -245,62 +295,72 @@ def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto"
         catalogue record that cannot be run, an empty folder, an unknown ``mode``, bad
         ``units``/``dt`` values.
     """
-    from rockcli.records.catalog import load_catalog
+    from rockcli.records.catalog import expand_user, load_catalog
 
     if mode not in EXCITATION_MODES:
         raise RockcliInputError(f"excitation mode {mode!r} is not one of {', '.join(EXCITATION_MODES)}")
+    if sources is not None:
+        import os
+
+        from rockcli.inputs import as_list, check_type
+
+        sources = as_list(sources, "sources", "a list of catalogue ids, files or folders", one=(str, os.PathLike))
+        for src in sources:
+            check_type(src, (str, os.PathLike), "sources: each source", "a catalogue id, a file or a folder (text)")
     file_kwargs = _file_read_kwargs(units, dt, gain)
     if component is not None:
         file_kwargs["component"] = str(component)
     entries = load_catalog()
     by_id = {e.id: e for e in entries}
-    by_file = {e.file: e for e in entries if e.file}
-    out, unavailable, seen = [], [], {}
+    by_file = {f: e for e in entries for f in (e.file_2, e.file) if f}  # a pair's second file is read as its first
+    from rockcli.assess.suite import Suite
+    from rockcli.files import note_inputs
+    from rockcli.records.orientation import split_source
 
-    def add(x, path=None):
-        key = str(Path(path).resolve()) if path is not None else x.label
-        if x.label in seen:
-            if seen[x.label] == key:
-                return  # the same file or id again
-            x = _relabel(x, f"{Path(path).parent.name}/{Path(path).name}" if path is not None else x.label)
-            if x.label in seen:
-                return
-        seen[x.label] = key
-        out.append(x)
-
+    suite = Suite()
     if not sources:
         for e in table_ii_entries():
             x = _from_entry(e, mode)
-            (unavailable.append(x) if isinstance(x, Unavailable) else add(x))
-        return out, unavailable
+            if isinstance(x, Unavailable):
+                suite.skip(x)
+            else:
+                note_inputs([x.source] if x.kind == EXCITATION_RECORD else [], "the record")
+                suite.add(x, x.source if x.kind == EXCITATION_RECORD else None)
+        return suite.out, suite.unavailable
 
     if azimuth is not None and component is not None:
         raise RockcliInputError("--component picks one component; --azimuth projects two: give one of them")
     for src in sources:
         src = str(src)
-        path = Path(src).expanduser()
-        if azimuth is not None and "+" in src and not path.exists():
-            from rockcli.records.orientation import split_source
-
+        path = expand_user(src, "--records")
+        kind = _path_kind(path)
+        if azimuth is not None and "+" in src and kind not in ("file", "folder"):
             first, _, second = src.partition("+")
-            names = [Path(split_source(f)[0]).name for f in (first, second)]
-            add(_pair_excitation(_pair_label(*names), first, second, file_kwargs, azimuth))
+            files = [split_source(f)[0] for f in (first, second)]
+            note_inputs(files, "a record of the pair")
+            suite.add(_pair_excitation(pair_label(*(Path(f).name for f in files)), first, second, file_kwargs,
+                                       azimuth))
             continue
-        if path.is_file() and is_manifest(path):
+        if kind == "file" and is_manifest(path):
             for label, first, second, kwargs in read_manifest(path, file_kwargs):
+                file1 = split_source(first)[0]
+                note_inputs([file1, split_source(second)[0] if second else None], f"a record of the manifest {path}")
                 if azimuth is not None:
-                    add(_pair_excitation(label, first, second, kwargs, azimuth), Path(first.rpartition("@")[0]
-                                                                                      if "@" in first else first))
+                    suite.add(_pair_excitation(label, first, second, kwargs, azimuth), file1)
                 else:  # without an azimuth a row is its first file
-                    src = first.rpartition("@")[0] if "@" in first and not Path(first).exists() else first
-                    add(_manifest_excitation(Path(src).name if second else label, first, kwargs), Path(src))
+                    suite.add(_manifest_excitation(Path(file1).name if second else label, first, kwargs), file1,
+                              kwargs.get("component"))
             continue
-        if azimuth is not None and (path.is_file() or src in by_id):
-            add(_pair_excitation(path.name if path.is_file() else src, src, None, file_kwargs, azimuth), path)
+        is_file = kind in ("file", "unreadable")  # unreadable: the reader names it (an error row)
+        if azimuth is not None and (is_file or src in by_id):
+            note_inputs([path] if is_file else [], "the record")
+            suite.add(_pair_excitation(path.name if is_file else src, src, None, file_kwargs, azimuth),
+                      path if is_file else None)
             continue
-        if path.is_dir():
+        if kind == "folder":
             try:
-                files = sorted(p for p in path.iterdir() if p.is_file() and not p.name.startswith("."))
+                files = sorted(p for p in path.iterdir() if _path_kind(p) in ("file", "unreadable")
+                               and not p.name.startswith("."))
             except OSError as exc:
                 raise RockcliInputError(f"--records {src}: the folder cannot be read "
                                         f"({(exc.strerror or str(exc)).lower()})") from None
@@ -308,27 +368,42 @@ def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto"
             if not files:
                 raise RockcliInputError(f"--records {src}: the folder holds no files"
                                         + (" that match --glob/--exclude" if glob or exclude else ""))
+            note_inputs(files, f"a file of the suite folder {src}")
             for p in files:
                 x = (_file_excitation(p, by_file, file_kwargs, skip=True) if azimuth is None else
                      _pair_excitation(p.name, str(p), None, file_kwargs, azimuth, skip=True))
-                (unavailable.append(x) if isinstance(x, Skipped) else add(x, p))
-        elif path.is_file():
-            add(_file_excitation(path, by_file, file_kwargs), path)
+                suite.skip(x) if isinstance(x, Skipped) else suite.add(x, p, component)
+        elif is_file:
+            note_inputs([path], "the record")
+            suite.add(_file_excitation(path, by_file, file_kwargs), path, component)
         elif src in by_id:
             x = _from_entry(by_id[src], mode)
             if isinstance(x, Unavailable):
                 raise RockcliInputError(f"record {src!r} cannot be run: {x.reason}")
-            add(x, Path(x.source) if x.kind == EXCITATION_RECORD else None)
+            note_inputs([x.source] if x.kind == EXCITATION_RECORD else [], "the record")
+            suite.add(x, x.source if x.kind == EXCITATION_RECORD else None)
         else:
-            raise RockcliInputError(f"--records {src}: no such file or folder, nor a catalogue id "
-                                    f"(see 'rockcli records list')")
-    return out, unavailable
+            from rockcli.records.catalog import did_you_mean
+
+            raise RockcliInputError(f"--records {src}: no such file or folder, nor a catalogue id"
+                                    f"{did_you_mean(src, entries)} (see 'rockcli records list')")
+    return suite.out, suite.unavailable
 
 
-def _relabel(x: Excitation, label: str) -> Excitation:
-    from dataclasses import replace
+def _path_kind(path: Path) -> str:
+    """What is at ``path``: ``"file"`` (a regular file, after following links), ``"folder"``, ``"missing"``, or
+    ``"unreadable"``: there, but it cannot be looked at (a folder on the way without permission, a loop of links),
+    which is read as a file so that the reader names it and why (``cannot be read (permission denied)``) instead of
+    the :class:`PermissionError` that ``path.is_file()`` raises."""
+    import stat
 
-    return replace(x, label=label)
+    try:
+        mode = path.stat().st_mode
+    except (FileNotFoundError, NotADirectoryError, ValueError):  # ValueError: a NUL byte in the name
+        return "missing"
+    except OSError:
+        return "unreadable"
+    return "folder" if stat.S_ISDIR(mode) else "file" if stat.S_ISREG(mode) else "missing"
 
 
 def _file_read_kwargs(units, dt, gain=None) -> dict:
@@ -355,7 +430,7 @@ def _file_excitation(path: Path, by_file: dict, read_kwargs: dict | None = None,
     """A record file; one the catalogue lists is read as the catalogue says and labelled by its id."""
     entry = by_file.get(path.name)
     if entry is not None:
-        return _read_excitation(entry.id, path, _entry_read_kwargs(entry))
+        return _entry_excitation(entry, path, entry.id if path.name == entry.file else path.name)
     return _read_excitation(path.name, path, dict(read_kwargs or {}), skip=skip)
 
 
@@ -365,71 +440,6 @@ def _select(files, glob: Sequence[str], exclude: Sequence[str]) -> list:
 
     return [p for p in files if (not glob or any(fnmatch(p.name, g) for g in glob))
             and not any(fnmatch(p.name, x) for x in exclude)]
-
-
-#: Columns of a manifest CSV: ``file`` and what the files lack.
-MANIFEST_COLUMNS = ("file", "units", "dt", "gain", "component", "azimuth", "file_2", "azimuth_2", "label")
-
-
-def is_manifest(path: Path) -> bool:
-    """A CSV whose header names a ``file`` column and one of units, dt, component, azimuth (never raises)."""
-    try:
-        with open(path, encoding="utf-8-sig", errors="replace") as fh:
-            head = fh.readline()
-    except OSError:
-        return False
-    names = [h.strip().lower() for h in head.split(",")]
-    return "file" in names and any(k in names for k in ("units", "dt", "gain", "component", "azimuth"))
-
-
-def read_manifest(path: Path, defaults: dict) -> list:
-    """``(label, first, second, read_kwargs)`` per row of a manifest CSV (files relative to its folder;
-    ``FILE@DEG`` when the row gives an azimuth). A row's units and dt fill in only what its file does not
-    state, like ``--units``/``--dt`` (which fill in what a row leaves empty)."""
-    import csv
-
-    from rockcli.inputs import parse_number
-
-    with open(path, encoding="utf-8-sig", newline="") as fh:
-        reader = csv.DictReader(fh)
-        unknown = [h for h in reader.fieldnames or [] if h.strip().lower() not in MANIFEST_COLUMNS]
-        if unknown:
-            raise RockcliInputError(f"{path}: manifest column(s) {', '.join(map(repr, unknown))} unknown (known: "
-                                    f"{', '.join(MANIFEST_COLUMNS)})")
-        rows = [{k.strip().lower(): (v or "").strip() for k, v in row.items()} for row in reader]
-    out = []
-    for n, row in enumerate(rows, start=2):
-        where = f"{path}, line {n}"
-        if not row.get("file"):
-            raise RockcliInputError(f"{where}: the row names no file")
-        kwargs = dict(defaults)
-        if row.get("units"):
-            kwargs["units"] = row["units"]
-        if row.get("dt"):
-            kwargs["dt"] = parse_number(row["dt"], f"{where}: dt", lo=0, lo_open=True, unit="s")
-        if row.get("gain"):
-            kwargs["gain"] = parse_number(row["gain"], f"{where}: gain", lo=0, lo_open=True)
-            if not kwargs.get("units"):
-                raise RockcliInputError(f"{where}: the gain needs the units it yields in the row's units column "
-                                        f"(or --units)")
-        if kwargs.get("units") or kwargs.get("dt"):
-            kwargs["fill_in"] = True
-        if row.get("component"):
-            kwargs["component"] = row["component"]
-
-        def located(name, az):
-            p = Path(name) if Path(name).is_absolute() else path.parent / name
-            if az:
-                parse_number(az, f"{where}: azimuth")
-                return f"{p}@{az}"
-            return str(p)
-
-        first = located(row["file"], row.get("azimuth"))
-        second = located(row["file_2"], row.get("azimuth_2")) if row.get("file_2") else None
-        label = row.get("label") or (_pair_label(Path(row["file"]).name, Path(row["file_2"]).name) if second
-                                     else Path(row["file"]).name)
-        out.append((label, first, second, kwargs))
-    return out
 
 
 def _manifest_excitation(label: str, first: str, kwargs: dict) -> Excitation:

@@ -195,6 +195,14 @@ class Fragility:
     def rows_of(self, column: str, configuration: str) -> list:
         return [r for r in self.rows if r.column == column and r.configuration == configuration]
 
+    def to_dataframe(self):
+        """The rows as a pandas DataFrame, the columns of the CSV (``assess fragility --csv``; docs/fragility.md),
+        each with the fit of its column and configuration: :func:`rockcli.report.fragility.fragility_table`
+        (pandas is imported there, on first use)."""
+        from rockcli.report.fragility import fragility_table
+
+        return fragility_table(self)
+
     @property
     def failed(self) -> list:
         """Excitations that could not be read or measured (their rows carry the error)."""
@@ -247,8 +255,9 @@ def run_fragility(columns: Sequence[Block], excitations: Sequence[Excitation],
     n_boot, seed, level
         Bootstrap resamples over records, their seed, the two-sided level of the intervals.
     progress : callable, optional
-        ``progress(n)`` after each batch of ``n`` runs (local runner only);
-        :func:`count_fragility_runs` is an upper bound of the total.
+        ``progress(n)`` as ``n`` more (scene, factor) pairs of the margin search are settled (local
+        runner only; :func:`rockcli.assess.find_overturn_scales`), the search announced with
+        :func:`rockcli.progress.phase` (a Dask run reports its own: :func:`run_fragility_distributed`).
     runner, chunk_size
         Where the margin searches run: see :func:`rockcli.assess.margin.map_chunks` (default:
         here, all scenes in one chunk).
@@ -261,17 +270,20 @@ def run_fragility(columns: Sequence[Block], excitations: Sequence[Excitation],
         Rows in the order column, excitation, configuration; curves in the order column,
         configuration.
     """
+    from rockcli.assess.scenes import check_scenes
+
+    columns, excitations, configurations = check_scenes(columns, excitations, configurations)
     if im not in IMS:
         raise RockcliInputError(f"intensity measure {im!r} is not one of {', '.join(IMS)}")
     if not columns:
-        raise RockcliInputError("no column to assess: name a preset (bassae, nemea) or give a custom block")
+        raise RockcliInputError("no body to assess: name a preset (bassae, nemea) or give a body of your own")
     if not configurations:
         raise RockcliInputError("no isolation configuration to assess")
     if int(n_boot) < 0 or not (0 < level < 1):
         raise RockcliInputError("n_boot must be >= 0 and the confidence level between 0 and 1")
     timings = {}
     t0 = time.perf_counter()
-    excitations, im_values = _measure(list(excitations), im)
+    excitations, im_values = _measure(excitations, im)
     timings["im_s"] = time.perf_counter() - t0
 
     rows, scenes, run_rows = [], [], []
@@ -287,6 +299,9 @@ def run_fragility(columns: Sequence[Block], excitations: Sequence[Excitation],
     t0 = time.perf_counter()
     kw = dict(solver)
     if progress is not None and runner is None:
+        from rockcli.progress import phase
+
+        phase(progress, "margin search", len(scenes) * MARGIN_GRID.size, known=False)
         kw["progress"] = progress
     found = overturn_scales_chunked(scenes, runner=runner, chunk_size=chunk_size, **kw)
     timings["margin_s"] = time.perf_counter() - t0
@@ -410,19 +425,31 @@ def empirical_points(rows) -> list[tuple[float, float, str]]:
 
 
 def run_fragility_distributed(scheduler, columns, excitations, configurations, *, chunks_per_worker: int = 2,
-                              run: Callable | None = None, **kwargs) -> Fragility:
+                              run: Callable | None = None, progress: Callable[[int], None] | None = None,
+                              **kwargs) -> Fragility:
     """:func:`run_fragility` (or ``run``, which takes the same arguments and passes ``runner`` and
     ``chunk_size`` on to it) with the margin searches on a Dask cluster (:mod:`rockcli.distributed`).
 
     ``scheduler`` is ``"local"`` (a LocalCluster here), ``"tcp://HOST:PORT"`` or a ``distributed.Client``.
     The scenes are split into about ``chunks_per_worker`` chunks per worker; each chunk's search
-    depends on its scenes only, so the results are those of :func:`run_fragility`.
+    depends on its scenes only, so the results are those of :func:`run_fragility`. ``progress(n)`` is
+    told as each chunk of ``n`` scenes comes back, the search announced with :func:`rockcli.progress.phase`
+    (in scenes, no time left: the chunks' searches go as far as they find).
     """
     from rockcli.distributed import map_chunks as dask_map, open_client
+    from rockcli.progress import phase
 
     n_scenes = max(1, len(columns) * len(excitations) * len(configurations))
     with open_client(scheduler) as client:
         workers = max(1, len(client.scheduler_info().get("workers", {})))
         size = max(1, -(-n_scenes // (workers * chunks_per_worker)))
-        return (run or run_fragility)(columns, excitations, configurations, chunk_size=size,
-                                      runner=lambda func, chunks: dask_map(client, func, chunks), **kwargs)
+
+        def runner(func, chunks):
+            if progress is None:
+                return dask_map(client, func, chunks)
+            phase(progress, f"margin search on Dask ({len(chunks)} tasks)", sum(len(c) for c in chunks),
+                  known=False, unit="scenes")
+            return dask_map(client, func, chunks, progress=lambda i: progress(len(chunks[i])))
+
+        return (run or run_fragility)(columns, excitations, configurations, chunk_size=size, runner=runner,
+                                      **kwargs)

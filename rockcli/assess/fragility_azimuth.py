@@ -92,7 +92,12 @@ def _order(row, lo_f: float):
 
 def _kept_row(subs: Sequence, x, how: str, grid):
     """The pair's row: the median (lower middle) or the smallest capacity of its orientations, at the pair's
-    IM (the median of the projections' IMs)."""
+    IM (the median of the projections' IMs). The worst orientation is the most adverse of
+    :func:`rockcli.assess.azimuth.most_adverse` (the smallest overturning scale; the first of equals), the
+    definition of ``assess column`` and ``simulate``; when every orientation ranks equal (typically none
+    overturns up to 4x) no azimuth is named (``azimuth_deg`` NaN), for the median either: any orientation
+    would be an accident of the sweep's order."""
+    from rockcli.assess.azimuth import adverse_key, most_adverse
     from rockcli.assess.fragility import CENSORED_RIGHT
 
     lo_f, hi_f = grid
@@ -103,11 +108,29 @@ def _kept_row(subs: Sequence, x, how: str, grid):
     if not im_pair > 0:
         return replace(subs[0], record=x.label, source=x.source, im_value=im_pair, orientation=how, censored="",
                        error=f"{x.source}: the IM is 0 along the median orientation: nothing to scale")
+    worst = most_adverse([adverse_key(False, math.nan, math.nan, r.overturn_scale) for r in subs])
     ranked = sorted(subs, key=lambda r: _order(r, lo_f))
-    kept = ranked[0] if how == "worst" else ranked[(len(ranked) - 1) // 2]
-    theta = float(kept.record.rpartition("@")[2])
+    kept = (ranked[0] if worst is None else subs[worst]) if how == "worst" else ranked[(len(ranked) - 1) // 2]
     scale = _order(kept, lo_f)[0] if kept.censored != CENSORED_RIGHT else hi_f  # the factor, or the bound
+    if worst is None and len(subs) > 1:
+        theta, where = math.nan, f"any azimuth ({tied_words(subs, grid)})"
+    else:
+        theta = float(kept.record.rpartition("@")[2])
+        where = f"azimuth {theta:g} deg ({how} of {len(subs)} orientations)"
     return replace(kept, record=x.label, source=x.source, im_value=im_pair, capacity=scale * im_pair,
                    azimuth_deg=theta, orientation=how,
-                   margin_note=(f"{kept.margin_note}; " if kept.margin_note else "") + f"azimuth {theta:g} deg "
-                               f"({how} of {len(subs)} orientations)")
+                   margin_note=(f"{kept.margin_note}; " if kept.margin_note else "") + where)
+
+
+def tied_words(subs: Sequence, grid) -> str:
+    """Why no orientation of a pair is more adverse than another, in the words of ``assess column``'s ``@any``."""
+    from rockcli.assess.fragility import CENSORED_LEFT, CENSORED_RIGHT
+
+    n = len(subs)
+    if all(r.censored == CENSORED_RIGHT for r in subs):
+        why = f"none of the {n} orientations overturns it up to {grid[1]:g}x"
+    elif all(r.censored == CENSORED_LEFT for r in subs):
+        why = f"all {n} orientations overturn it already at {grid[0]:g}x"
+    else:
+        why = f"the {n} orientations rank the same"
+    return f"no orientation is more adverse than another: {why}"

@@ -2,15 +2,19 @@
 
 Overturning is not monotone in the amplitude of the excitation (there are safe islands above the
 smallest overturning amplitude), so a bisection alone could step over a lower overturning scale.
-:func:`find_overturn_scales` therefore
+The result of :func:`find_overturn_scales` is therefore defined by a scan:
 
-1. scans the factors of :data:`MARGIN_GRID` (373 log-spaced values from 0.1 to 4, a ratio just
-   under 1.01 between neighbours; 1 is one of them and can reuse a run already made), all scenes in
-   one batch, and takes the *first* (smallest) factor that overturns;
-2. bisects geometrically between that factor and the grid factor below it (which survives), all
-   scenes together at each iteration, until the two ends are within :data:`MARGIN_RTOL` (1 %):
-   with the 1 % grid the scan's bracket is already that narrow, so no bisection run is needed
-   unless a coarser ``grid`` is passed.
+1. of the factors of :data:`MARGIN_GRID` (373 log-spaced values from 0.1 to 4, a ratio just
+   under 1.01 between neighbours; 1 is one of them and can reuse a run already made), taking the
+   *first* (smallest) factor that overturns;
+2. then a geometric bisection between that factor and the grid factor below it (which survives),
+   all scenes together at each iteration, until the two ends are within :data:`MARGIN_RTOL` (1 %).
+   It takes at least one step, also with the 1 % grid, whose bracket is already that narrow: the
+   reported ``overturn_scale`` is then often the midpoint of two grid factors.
+
+Only the runs that cannot change that result are made: each scene's factors from its lift-off
+floor upwards (:mod:`rockcli.assess.liftoff`: below it the block provably never leaves its base),
+stopping at the first that overturns (see :func:`find_overturn_scales`, Notes).
 
 ``overturn_scale`` is the upper end (it overturns), ``overturn_scale_survives`` the lower end (it
 survives). Why a 1 % grid (issue 28): under records the overturning boundary is ragged, and with the
@@ -20,8 +24,7 @@ the reported factor in 38 of the 80 scenes of ``assess column bassae nemea`` (by
 to those windows are often far from 1 (0.01-0.3: the block overturns from a jump of the response,
 e.g. an uplift that happens or does not), so no cheaper criterion tells where to look more
 closely. Windows narrower than 1 % can still be missed (the stated resolution of the margin);
-nothing overturning up to 4x gives NaN and the note ``no overturning up to 4x``. The scan is pruned
-without changing its result (see :func:`find_overturn_scales`, Notes).
+nothing overturning up to 4x gives NaN and the note ``no overturning up to 4x``.
 
 :func:`overturn_shares` is the neighbourhood check (share of 0.90x..1.10x that overturns), and
 :func:`map_chunks` the seam for running the search on chunks of scenes elsewhere (one local
@@ -36,7 +39,6 @@ from typing import Callable, Sequence
 
 import numpy as np
 
-from rockcli.models import LinearIsolation, Rigid
 
 #: Scale factors scanned for the margin: 0.1 .. 1 (233 values) and 1 .. 4 (141 values), log-spaced with a
 #: ratio just under 1 + MARGIN_RTOL (1.00997 and 1.00995).
@@ -58,16 +60,8 @@ def _scaled_job(block, foundation, motion, scale: float):
     return (block, foundation, motion if scale == 1.0 else motion.scaled(scale))
 
 
-def _linear_before_uplift(foundation) -> bool:
-    """True when the motion before uplift is linear in the excitation (rigid, linear bearings).
-
-    Then "no uplift at scale s" implies "no uplift at any smaller scale", which prunes the scan.
-    """
-    return isinstance(foundation, (Rigid, LinearIsolation))
-
-
 def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL, known=None,
-                         progress: Callable[[int], None] | None = None, batch: int = 16, **solver):
+                         progress: Callable[[int], None] | None = None, fill: bool = True, **solver):
     """Smallest scale factor of the excitation that overturns each scene (see the module notes).
 
     Parameters
@@ -77,17 +71,19 @@ def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL,
     grid : array
         Increasing scale factors scanned; 1 should be one of them.
     rtol : float
-        Bisection stops when ``hi / lo - 1 <= rtol`` (raised to :data:`RTOL_FLOOR`, 8 ulps, when smaller).
+        The bisection stops when ``hi / lo - 1 <= rtol`` (raised to :data:`RTOL_FLOOR`, 8 ulps, when
+        smaller); it always takes at least one step (Notes).
     known : sequence of Response or None, optional
         Responses at scale 1 when already computed.
     progress : callable, optional
         ``progress(n)`` with the number of (scene, grid factor) pairs just settled: run, or shown not
-        to need a run (below a factor without uplift, above the first that overturns). Over the
+        to need a run (below the scene's lift-off floor, above its first overturning factor). Over the
         search they add up to ``len(scenes) * len(grid)``, less the factor 1 of each scene when
-        ``known`` is given; the bisection, which runs only with a grid coarser than ``rtol``, is not
-        counted.
-    batch : int
-        Grid factors per scene per parallel batch of the scan.
+        ``known`` is given; the bisection is not counted.
+    fill : bool
+        When fewer scenes are still scanning than there are threads, run the next few factors of each
+        at once (``threads / scenes`` of them, rounded up), so that no core idles; the runs past a
+        scene's first overturning factor are then wasted CPU, and change no result.
     **solver
         Passed to :func:`rockcli.solve.simulate_many`.
 
@@ -96,20 +92,37 @@ def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL,
     list of (overturn_scale, survives_scale, note)
         ``overturn_scale`` overturns, ``survives_scale`` (< it, within rtol) survives; NaN and a
         note when nothing up to ``grid[-1]`` overturns; ``(grid[0], NaN, note)`` when ``grid[0]``
-        already overturns; ``(NaN, NaN, "error: ...")`` when the solver refused the scene.
+        already overturns; ``(NaN, NaN, "error: ...")`` when the solver refused the scene. The note
+        counts the runs at or below the margin (every run when nothing overturns; the bisection's
+        runs included, the factor 1 of ``known`` not) that reached the solver's horizon unproven:
+        runs of the full scan, which the search's path does not change.
 
     Notes
     -----
-    The result is that of scanning every grid factor, then bisecting below the first overturning
-    one. The scan is pruned without changing it: factors are visited downwards from 1 until the
-    block no longer uplifts (for rigid and linear foundations the motion before uplift is linear
-    in the scale, so no smaller factor uplifts either; on a rigid base the record's PGA tells
-    this without a run), then, only for scenes that did not overturn at or below 1, upwards from
-    1 until the first overturning factor.
-    """
-    from rockcli.errors import RockcliInputError
-    from rockcli.solve import VERDICT_ERROR, VERDICT_NO_UPLIFT, simulate_many
+    The result is that of running every grid factor, taking the first (smallest) that overturns,
+    then bisecting geometrically between it and the grid factor below it (which survives) until
+    ``hi / lo - 1 <= rtol``. The bisection takes at least one step even when the grid's own bracket
+    is already that narrow (the 1 % grid's ratio is 1.00997 and ``rtol`` 0.01): ``overturn_scale``
+    is then often the geometric midpoint of two grid factors, and the outputs depend on that run.
 
+    Only runs that cannot change this result are left out:
+
+    1. Factors below the scene's lift-off floor (:func:`rockcli.assess.liftoff.liftoff_floors`: on a
+       rigid base from the peak of the ground acceleration, on linear bearings from one exact linear
+       run of the base at 1x; 0 otherwise): no such run lifts the block, so none overturns, and each
+       is proven (settled) by the solver before its horizon.
+    2. Factors above the first overturning one.
+
+    So each scene runs its factors upwards from its floor, one per round (all scenes together in
+    one parallel batch per round), and stops at the first that overturns; the factor 1 of
+    ``known`` is not run again.
+    """
+    from rockcli.assess.liftoff import liftoff_floors
+    from rockcli.assess.scenes import check_scale_search
+    from rockcli.errors import RockcliInputError
+    from rockcli.solve import VERDICT_ERROR, VERDICT_NO_UPLIFT, _threads, simulate_many
+
+    scenes = check_scale_search(scenes, grid, known, progress)  # the types, in one sentence
     if not (isinstance(rtol, (int, float)) and rtol >= 0 and math.isfinite(rtol)):
         raise RockcliInputError(f"margin bisection tolerance must be a finite number >= 0, got {rtol!r}")
     rtol = max(float(rtol), RTOL_FLOOR)
@@ -118,13 +131,13 @@ def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL,
     # state[i, j]: 0 not run, 1 survives, 2 overturns, 3 survives without uplift, 4 refused
     state = np.zeros((n, m), dtype=np.int8)
     ones = np.flatnonzero(np.isclose(grid, 1.0))
-    i1 = int(ones[0]) if ones.size else int(np.searchsorted(grid, 1.0))
+    i1 = int(ones[0]) if ones.size else -1
     errors = {}
-    unproven = {}  # scene -> scaled runs that reached the solver's horizon unproven (counted as surviving)
+    unproven = np.zeros((n, m), dtype=bool)  # grid runs that reached the solver's horizon unproven
+    unproven_bisection = np.zeros(n, dtype=np.int64)
 
-    def note_unproven(i, r):
-        if r.verdict != VERDICT_ERROR and not r.overturned and not r.settled:
-            unproven[i] = unproven.get(i, 0) + 1
+    def is_unproven(r):
+        return r.verdict != VERDICT_ERROR and not r.overturned and not r.settled
 
     def code(r):
         if r.verdict == VERDICT_ERROR:
@@ -132,92 +145,76 @@ def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL,
         return 2 if r.overturned else (3 if r.verdict == VERDICT_NO_UPLIFT else 1)
 
     def run(pairs):
-        if not pairs:
-            return
-        pairs = _balanced([(i, j) for i, j in pairs], [_cost(scenes[i][2]) for i, _ in pairs])
+        pairs = _balanced(pairs, [_cost(scenes[i][2]) for i, _ in pairs])
         jobs = [_scaled_job(*scenes[i], float(grid[j])) for i, j in pairs]
         res = simulate_many(jobs, early=True, **solver)  # verdicts only
         for (i, j), r in zip(pairs, res):
-            note_unproven(i, r)
+            unproven[i, j] = is_unproven(r)
             state[i, j] = code(r)
             if state[i, j] == 4:
                 errors.setdefault(i, r.error)
 
-    linear = [_linear_before_uplift(f) for _, f, _ in scenes]
-    for i, (b, f, mo) in enumerate(scenes):
-        if known is not None and ones.size:
+    if known is not None and i1 >= 0:
+        for i in range(n):
             state[i, i1] = code(known[i])
             if state[i, i1] == 4:
                 errors[i] = known[i].error
-        if isinstance(f, Rigid):
-            state[i, grid * _peak(mo) < b.uplift_acceleration * (1 - 1e-9)] = 3
-    # downwards from 1 (or from the top of the grid below 1)
-    down = {i: list(range(min(i1, m - 1), -1, -1)) for i in range(n)}
-    up = None
-    settled = [n if known is not None and ones.size else 0]  # pairs counted so far (factor 1 known)
+    floors = liftoff_floors(scenes, **solver)
+    pos = np.searchsorted(grid, floors, side="left")  # the first factor >= the floor: nothing below runs
+    first = np.full(n, -1)  # first overturning factor, once found
+    settled = [n if known is not None and i1 >= 0 else 0]  # pairs counted so far (factor 1 known)
 
-    def advance():  # progress: every pair that no longer may need a run is settled
-        if progress is None:
-            return
-        left = sum(int(np.count_nonzero(state[i, js] == 0)) for i, js in down.items())
-        if up is None:  # before the upward scan: any scene not overturned at or below 1 may need it
-            above = state[~(state[:, : i1 + 1] == 2).any(axis=1), i1 + 1:]
-            left += int(np.count_nonzero(above == 0))
-        else:
-            left += sum(int(np.count_nonzero(state[i, js] == 0)) for i, js in up.items())
-        k = n * m - left - settled[0]
-        if k > 0:
-            settled[0] += k
-            progress(k)
+    def scanning(i):
+        return first[i] < 0 and i not in errors and pos[i] < m
+
+    def advance():  # move each scene past the factors settled; progress: every pair that may no longer run
+        left = 0
+        for i in range(n):
+            while scanning(i) and state[i, pos[i]] != 0:
+                if state[i, pos[i]] == 2:
+                    first[i] = pos[i]
+                else:
+                    pos[i] += 1
+            if scanning(i):
+                left += int(np.count_nonzero(state[i, pos[i]:] == 0))
+        if progress is not None:
+            k = n * m - left - settled[0]
+            if k > 0:
+                settled[0] += k
+                progress(k)
 
     advance()
+    threads = _threads()
     while True:
-        pairs = []
-        for i, js in down.items():
-            taken = 0
-            while js and taken < batch:
-                j = js[0]
-                if state[i, j] == 3 and linear[i]:
-                    js.clear()
-                    break
-                js.pop(0)
-                if state[i, j] == 0:
-                    pairs.append((i, j))
-                    taken += 1
-        if not pairs:
+        active = [i for i in range(n) if scanning(i)]
+        if not active:
             break
-        run(pairs)
-        advance()
-    # upwards from 1 for the scenes that have not overturned at or below 1
-    up = {i: list(range(i1 + 1, m)) for i in range(n) if not (state[i, : i1 + 1] == 2).any()}
-    advance()
-    while up:
+        per = -(-threads // len(active)) if fill else 1
         pairs = []
-        for i, js in up.items():
-            pairs += [(i, j) for j in js[:batch] if state[i, j] == 0]
-            del js[:batch]
+        for i in active:
+            todo = np.flatnonzero(state[i, pos[i]:] == 0)[:per] + pos[i]
+            cut = np.flatnonzero(state[i, pos[i]:todo[-1] + 1] == 2)  # a known overturn ends the scene first
+            pairs += [(i, int(j)) for j in todo if not cut.size or j < pos[i] + cut[0]]
         run(pairs)
-        up = {i: js for i, js in up.items() if js and not (state[i] == 2).any()}
         advance()
 
     out = [None] * n
     lo, hi, active = np.zeros(n), np.zeros(n), []
     for i in range(n):
-        idx = np.flatnonzero(state[i] == 2)
         if i in errors:
             out[i] = (math.nan, math.nan, f"error: {errors[i]}")
-        elif idx.size == 0:
+        elif first[i] < 0:
             out[i] = (math.nan, grid[-1], NOTE_NO_OVERTURN.format(grid[-1]))
-        elif idx[0] == 0:
+        elif first[i] == 0:
             out[i] = (grid[0], math.nan, NOTE_OVERTURNS_AT_MIN.format(grid[0]))
         else:
-            lo[i], hi[i] = grid[idx[0] - 1], grid[idx[0]]
+            lo[i], hi[i] = grid[first[i] - 1], grid[first[i]]
             active.append(i)
     while active:
         mids = {i: math.sqrt(lo[i] * hi[i]) for i in active}
         res = simulate_many([_scaled_job(*scenes[i], mids[i]) for i in active], early=True, **solver)
         for i, r in zip(active, res):
-            note_unproven(i, r)
+            unproven_bisection[i] += is_unproven(r)
             if r.verdict == VERDICT_ERROR:  # cannot happen for a scene that ran at the grid factors
                 out[i], hi[i], lo[i] = (math.nan, math.nan, f"error: {r.error}"), 1.0, 1.0
             elif r.overturned:
@@ -228,9 +225,10 @@ def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL,
     for i in range(n):
         if out[i] is None:
             out[i] = (float(hi[i]), float(lo[i]), "")
-        if unproven.get(i):
+        count = int(np.count_nonzero(unproven[i, :m if first[i] < 0 else first[i] + 1])) + int(unproven_bisection[i])
+        if count:
             hi_i, lo_i, note = out[i]
-            out[i] = (hi_i, lo_i, (note + "; " if note else "") + f"{unproven[i]} scaled run(s) not proven at the "
+            out[i] = (hi_i, lo_i, (note + "; " if note else "") + f"{count} scaled run(s) not proven at the "
                       "solver's horizon, counted as surviving")
     return out
 
@@ -246,12 +244,22 @@ def overturn_shares(scenes, *, factors=NEIGHBOURHOOD, progress=None, **solver) -
     amplitude (the boundary is ragged, not a single threshold); this share says how robust the
     verdict at scale 1 is: 0 or 1 robust, around 0.5 a coin toss within the uncertainty of any record.
     """
+    from rockcli.assess.liftoff import liftoff_floors
     from rockcli.solve import simulate_many
 
-    pairs = [(i, float(s)) for i in range(len(scenes)) for s in factors]
+    floors = liftoff_floors(scenes, **solver)  # a factor below its scene's floor cannot overturn: not run
+    pairs = [(i, float(s)) for i in range(len(scenes)) for s in factors if s >= floors[i]]
     pairs = _balanced(pairs, [_cost(scenes[i][2]) for i, _ in pairs])
-    res = simulate_many([_scaled_job(*scenes[i], s) for i, s in pairs], progress=progress,
-                        chunk=max(1, len(pairs) // 50) if progress else None, early=True, **solver)
+    skipped = len(scenes) * len(factors) - len(pairs)
+
+    def advance(n_done):  # the factors left out count as done from the start
+        progress(skipped + n_done)
+
+    if progress is not None and skipped:
+        progress(skipped)
+    res = simulate_many([_scaled_job(*scenes[i], s) for i, s in pairs],
+                        progress=advance if progress is not None else None,
+                        chunk=max(1, len(pairs) // 50) if progress else None, early=True, **solver) if pairs else []
     count = np.zeros(len(scenes))
     for (i, _), r in zip(pairs, res):
         count[i] += r.overturned
@@ -267,12 +275,6 @@ def _balanced(items, costs):
     """Items reordered so that the halves of the list (numba's static split over 2+ threads) cost alike."""
     order = sorted(range(len(items)), key=lambda k: -costs[k])
     return [items[k] for k in order[0::2]] + [items[k] for k in order[1::2]]
-
-
-def _peak(motion) -> float:
-    if hasattr(motion, "acc"):
-        return float(np.max(np.abs(motion.acc)))
-    return abs(float(motion.a_p))
 
 
 def run_local(func: Callable, chunks: Sequence) -> list:

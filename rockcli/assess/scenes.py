@@ -85,6 +85,70 @@ def column_title(block: Block) -> str:
 # configurations
 # --------------------------------------------------------------------------------------------------
 
+def check_scenes(columns, excitations, configurations) -> tuple[list, list, list]:
+    """The three lists of an assessment (:func:`rockcli.assess.run_assessment`, :func:`rockcli.assess.run_fragility`)
+    with the types they must hold, else one sentence naming the argument and what was given."""
+    from rockcli.inputs import as_list, check_type
+
+    cols = as_list(columns, "columns", "a list of Block (parse_column_spec('bassae'), ...)", one=Block)
+    exc = as_list(excitations, "excitations", "a list of Excitation (resolve_excitations(...))", one=Excitation)
+    conf = as_list(configurations, "configurations", "a list of Configuration (parse_configurations(...))",
+                   one=Configuration)
+    for items, kind, what, expected in ((cols, Block, "columns", "a Block"),
+                                        (exc, Excitation, "excitations", "an Excitation (resolve_excitations)"),
+                                        (conf, Configuration, "configurations", "a Configuration "
+                                                                                "(parse_configurations)")):
+        for x in items:
+            if kind is Excitation and isinstance(x, list):  # the usual slip: the pair resolve_excitations returns
+                raise RockcliInputError("excitations must be the Excitation objects of resolve_excitations, "
+                                        "unpacked: excitations, unavailable = resolve_excitations([...]); got a list")
+            check_type(x, kind, f"{what}: each item", expected)
+    return cols, exc, conf
+
+
+def check_scale_search(scenes, grid, known=None, progress=None) -> list:
+    """The arguments of :func:`rockcli.assess.find_overturn_scales` checked for their types: ``scenes`` a list of
+    ``(Block, foundation, Record or pulse)``, ``grid`` increasing positive finite factors, ``known`` None or one
+    Response per scene, ``progress`` None or callable; else one sentence naming the argument and what was given.
+    Returns the scenes as a list."""
+    import math
+
+    from rockcli.inputs import as_list, check_type, type_words
+    from rockcli.pulses.shapes import Pulse
+    from rockcli.records.record import Record
+    from rockcli.solve import Response
+    from rockcli.solve.options import check_foundation
+
+    expected = "a list of (block, foundation, motion) scenes, e.g. [(column('bassae'), Rigid(), record)]"
+    scenes = as_list(scenes, "scenes", expected)
+    for i, scene in enumerate(scenes):
+        if not isinstance(scene, (tuple, list)) or len(scene) != 3:
+            raise RockcliInputError(f"scenes: scene {i} must be a (block, foundation, motion) tuple, got "
+                                    f"{type_words(scene)}")
+        block, foundation, motion = scene
+        check_type(block, Block, f"scenes: scene {i}: the block", "a Block (column('bassae'), Block(R, alpha))")
+        check_foundation(foundation, f"scenes: scene {i}: the foundation")
+        check_type(motion, (Record, Pulse), f"scenes: scene {i}: the motion", "a Record (read_record) or a pulse "
+                                                                            "(make_pulse)")
+    try:
+        factors = [float(g) for g in as_list(grid, "grid", "a list of increasing scale factors")]
+    except (TypeError, ValueError):
+        raise RockcliInputError(f"grid must be a list of increasing scale factors, got {type_words(grid)}") from None
+    if not factors or not all(math.isfinite(g) and g > 0 for g in factors) or \
+            any(b <= a for a, b in zip(factors, factors[1:])):
+        raise RockcliInputError(f"grid must be a non-empty list of finite positive scale factors in increasing "
+                                f"order, got {type_words(grid)}")
+    if known is not None:
+        known = as_list(known, "known", "None or one Response per scene (at scale 1)")
+        if len(known) != len(scenes):
+            raise RockcliInputError(f"known must hold one Response per scene: {len(known)} for {len(scenes)} scenes")
+        for r in known:
+            check_type(r, Response, "known: each item", "a Response (simulate(...))")
+    if progress is not None and not callable(progress):
+        raise RockcliInputError(f"progress must be None or a function progress(n), got {type_words(progress)}")
+    return scenes
+
+
 @dataclass(frozen=True)
 class Configuration:
     """A foundation and how the user wrote it."""
@@ -118,7 +182,13 @@ def parse_configurations(specs: Sequence[str] | None = None) -> list[Configurati
     Headers are short (``none``, ``Tb=2s``) when that is unambiguous, else the spec as written.
     Any spec :func:`rockcli.models.parse_isolation_spec` accepts works.
     """
-    specs = list(specs) if specs else list(DEFAULT_ISOLATION)
+    from rockcli.inputs import as_list, check_type
+
+    specs = [] if specs is None else as_list(specs, "specs", "a list of isolation specs ('none', 'linear:Tb=2.5', "
+                                                          "...)", one=str)
+    specs = specs or list(DEFAULT_ISOLATION)
+    for s in specs:
+        check_type(s, str, "specs: each spec", "an isolation spec such as 'none' or 'linear:Tb=2.5'")
     out, seen = [], set()
     for s in specs:
         f = parse_isolation_spec(s)

@@ -68,6 +68,10 @@ class AssessmentRow:
     #: ``--azimuth worst``: the orientations [deg] that overturn at 1x (``none``), of ``azimuths_run`` run
     overturning_azimuths: str = ""
     azimuths_run: int | None = None
+    #: ``--azimuth worst``: the largest ``base_disp_max_m`` over the orientations run in which the body survives
+    #: (NaN: it survives in none), the stroke the bearings must allow whatever the body's orientation;
+    #: ``base_disp_max_m`` stays the most adverse orientation's, like every other field of the row
+    base_disp_max_surviving_azimuths_m: float = math.nan
 
 
 #: CSV column order (every field of :class:`AssessmentRow`).
@@ -88,6 +92,13 @@ class Assessment:
     neighbourhood: bool = False
     #: the solver options the scenes ran with (``horizon``, ``rtol``, ...), for the reruns
     solver: dict = field(default_factory=dict)
+
+    def to_dataframe(self):
+        """The rows as a pandas DataFrame, the columns of the CSV report (``assess column --csv``; docs/assess.md):
+        :func:`rockcli.report.tables.assessment_table` (pandas is imported there, on first use)."""
+        from rockcli.report.tables import assessment_table
+
+        return assessment_table(self)
 
     @property
     def unproven(self) -> list:
@@ -139,7 +150,9 @@ def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
         Also run 0.90x..1.10x of every record and store the share that overturns
         (``overturn_share_pm10``, see :func:`overturn_shares`).
     progress : callable, optional
-        ``progress(n)`` after each chunk of ``n`` runs; :func:`count_runs` gives the total.
+        ``progress(n)`` after each chunk of ``n`` steps: runs, and in the margin search (scene, factor)
+        pairs settled (:func:`find_overturn_scales`); :func:`count_runs` gives the total. Each part
+        (verdicts, margin search, neighbourhood) is announced with :func:`rockcli.progress.phase`.
     **solver
         Passed to :func:`rockcli.solve.simulate_many` (``rtol``, ``tail``, ...).
 
@@ -151,8 +164,11 @@ def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
     """
     import time
 
+    from rockcli.assess.scenes import check_scenes
+
+    columns, excitations, configurations = check_scenes(columns, excitations, configurations)
     if not columns:
-        raise RockcliInputError("no column to assess: name a preset (bassae, nemea) or give a custom block")
+        raise RockcliInputError("no body to assess: name a preset (bassae, nemea) or give a body of your own")
     if not configurations:
         raise RockcliInputError("no isolation configuration to assess")
     timings = {}
@@ -169,7 +185,10 @@ def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
     chunk_progress = None
     if progress is not None:
         chunk_progress = _Advance(progress)
+    from rockcli.progress import phase
     from rockcli.solve import VERDICT_ERROR, JobError, simulate_many
+
+    phase(progress, "verdicts", len(scenes), unit="runs")
 
     responses = simulate_many([_scaled_job(*s, 1.0) for s in scenes], progress=chunk_progress, **solver)
     # a run stopped by the step cap is a numerical failure, not a result: an error row like a refused job
@@ -190,6 +209,8 @@ def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
     if margin:
         t0 = time.perf_counter()
         ok = [i for i, r in enumerate(responses) if r.verdict != VERDICT_ERROR]
+        # (scene, factor) pairs, factor 1 known: how far each search goes is what it finds out (no ETA)
+        phase(progress, "margin search", len(ok) * (MARGIN_GRID.size - 1), known=False)
         found = find_overturn_scales([scenes[i] for i in ok], known=[responses[i] for i in ok], progress=progress,
                                      **solver)
         for i, (hi, lo, note) in zip(ok, found):
@@ -198,6 +219,7 @@ def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
     if neighbourhood:
         t0 = time.perf_counter()
         ok = [i for i, r in enumerate(responses) if r.verdict != VERDICT_ERROR]
+        phase(progress, "neighbourhood", len(ok) * NEIGHBOURHOOD.size, unit="runs")
         shares = overturn_shares([scenes[i] for i in ok], progress=_Advance(progress) if progress else None, **solver)
         for i, share in zip(ok, shares):
             run_rows[i].overturn_share_pm10 = share

@@ -130,12 +130,55 @@ def scene_sentence(row, *, isolated: bool = False, stroke: bool = True) -> str:
                          "by the luck of the timing)")
         elif note.startswith("no overturning"):
             parts.append("not even a record 4 times stronger topples it")
-    if isolated and stroke and math.isfinite(row.base_disp_max_m):
-        parts.append(f"the base moves up to {row.base_disp_max_m:.2f} m (the stroke the bearings must allow)")
+    if isolated and stroke and (math.isfinite(row.base_disp_max_m) or _all_azimuths(row)):
+        parts.append(stroke_words(row))
     share = getattr(row, "overturn_share_pm10", math.nan)
     if math.isfinite(share):
         parts.append(_share_words(share))
     return "; ".join(parts)
+
+
+def stroke_words(row) -> str:
+    """The peak base displacement of one isolated run, named for what it is: the stroke the bearings must
+    allow when the body survives; only a displacement before the fall when it topples (a toppled run's
+    displacement is no demand to design the bearings for); a lower bound when the run is undecided. With
+    ``--azimuth worst`` (a row standing for every orientation run) the stroke over the orientations in which it
+    survives (:func:`stroke_m`), whatever the most adverse one did."""
+    if _all_azimuths(row):
+        s = stroke_m(row)
+        if not math.isfinite(s):
+            return f"it survives in none of the {row.azimuths_run} orientations: no stroke to give"
+        return (f"over the orientations in which it survives, the base moves up to {s:.2f} m (the stroke the "
+                f"bearings must allow)")
+    d = f"{row.base_disp_max_m:.2f} m"
+    what = outcome(row)
+    if what == TOPPLES:
+        return f"the base had moved up to {d} when it toppled (not a stroke to design for)"
+    if what == UNDECIDED:
+        return f"the base moved up to {d} so far (the stroke needed is at least that)"
+    return f"the base moves up to {d} (the stroke the bearings must allow)"
+
+
+def _all_azimuths(row) -> bool:
+    """The row stands for every orientation of a pair (``--azimuth worst``)."""
+    return bool(getattr(row, "azimuths_run", None))
+
+
+def stroke_m(row) -> float:
+    """The stroke [m] one row asks of the bearings: its peak base displacement when the body survives the run
+    (NaN when it topples, is undecided or failed); with ``--azimuth worst`` the largest over the orientations
+    in which it survives (``base_disp_max_surviving_azimuths_m``), whatever the most adverse one did."""
+    if _all_azimuths(row):
+        return getattr(row, "base_disp_max_surviving_azimuths_m", math.nan)
+    return getattr(row, "base_disp_max_m", math.nan) if outcome(row) == SURVIVES else math.nan
+
+
+def survivor_stroke(rows):
+    """The row with the largest stroke (:func:`stroke_m`) among the runs the body survives (None when it
+    survives none): the stroke the bearings must allow is that of the surviving runs only, since where the
+    body topples the bearings' travel protects nothing."""
+    kept = [r for r in rows if math.isfinite(stroke_m(r))]
+    return max(kept, key=stroke_m, default=None)
 
 
 def configuration_sentence(rows, *, isolated: bool = False) -> str:
@@ -143,7 +186,8 @@ def configuration_sentence(rows, *, isolated: bool = False) -> str:
 
     With one record, :func:`scene_sentence`; with several, how many it survives, the closest call
     or the records that topple it (smallest factor first), undecided runs, and on isolation the
-    largest base displacement over all records (the stroke the bearings must allow).
+    largest base displacement over the records it survives (the stroke the bearings must allow; the
+    runs in which it topples are left out, see :func:`survivor_stroke`).
     """
     rows = list(rows)
     ran = [r for r in rows if outcome(r) != FAILED]
@@ -189,11 +233,12 @@ def configuration_sentence(rows, *, isolated: bool = False) -> str:
     if failed:
         parts.append(f"{failed} could not be computed")
     if isolated:
-        disp = [r for r in ran if math.isfinite(r.base_disp_max_m)]
-        if disp:
-            top = max(disp, key=lambda r: r.base_disp_max_m)
-            parts.append(f"the base moves up to {top.base_disp_max_m:.2f} m ({top.record}; the stroke the bearings "
-                         "must allow)")
+        top = survivor_stroke(ran)
+        if top is not None:
+            where = ("over the orientations in which it survives, " if _all_azimuths(top) else
+                     "where it survives, " if len(survived) < n else "")
+            parts.append(f"{where}the base moves up to {stroke_m(top):.2f} m ({top.record}; the stroke the "
+                         "bearings must allow)")
     return "; ".join(parts)
 
 
@@ -217,36 +262,123 @@ def verdict_lines(assessment) -> list[tuple]:
     return out
 
 
+def _names(labels, limit: int = 3) -> str:
+    """``a``, ``a and b``, ``a, b and c``, ``a, b, c and 2 more``."""
+    labels = list(labels)
+    shown = labels[:limit] + ([f"{len(labels) - limit} more"] if len(labels) > limit else [])
+    return ", ".join(shown[:-1]) + " and " + shown[-1] if len(shown) > 1 else "".join(shown)
+
+
+def compare_foundations(ground_rows, isolated_rows) -> dict:
+    """How an isolated configuration compares with the ground, record by record.
+
+    ``ground_rows`` and ``isolated_rows``: the rows of the same records (same order) on the ground and
+    on the isolation. Returns the record labels that topple the body on the ground (``ground``) and on
+    the bearings (``isolated``), those isolation saves (topple on the ground, survive on the bearings:
+    ``saved``) and those it topples the body under although it survives them on the ground (``harmed``),
+    those not compared because a run is undecided or failed on either (``open``), the number of records
+    compared both ways (``n``) and the ``effect``: ``worse`` (harms under some records, saves under
+    none), ``better`` (the reverse), ``mixed`` (both), ``same`` (no verdict differs).
+    """
+    pairs = list(zip(ground_rows, isolated_rows))
+    decided = [(g, i) for g, i in pairs if {outcome(g), outcome(i)} <= {TOPPLES, SURVIVES}]
+    out = {"n": len(decided), "open": [g.record for g, i in pairs if (g, i) not in decided],
+           "ground": [g.record for g, _ in decided if outcome(g) == TOPPLES],
+           "isolated": [i.record for _, i in decided if outcome(i) == TOPPLES],
+           "saved": [g.record for g, i in decided if outcome(g) == TOPPLES and outcome(i) == SURVIVES],
+           "harmed": [g.record for g, i in decided if outcome(g) == SURVIVES and outcome(i) == TOPPLES]}
+    out["effect"] = ("mixed" if out["saved"] and out["harmed"] else "worse" if out["harmed"] else
+                     "better" if out["saved"] else "same")
+    return out
+
+
+def _smallest_factor(rows) -> float:
+    return min((r.overturn_scale for r in rows if math.isfinite(getattr(r, "overturn_scale", math.nan))),
+               default=math.nan)
+
+
+def _one_record_clause(c, g_word: str, w: str, stroke: str) -> str:
+    """The comparison under a single record (the words the README quotes)."""
+    if g_word == TOPPLES and w == SURVIVES:
+        return f"isolation {c.header} saves it{stroke}"
+    if g_word == SURVIVES and w == TOPPLES:
+        return f"isolation {c.header} makes it worse: it topples on it"
+    if g_word == w == TOPPLES:
+        return f"isolation {c.header} does not save it"
+    if g_word == w == SURVIVES:
+        return f"it survives on isolation {c.header} too{stroke}"
+    return f"on isolation {c.header} it is {w}"
+
+
+def _suite_clause(c, cmp: dict, g_rows, i_rows, stroke: str, noun: str) -> str:
+    """The comparison over a suite of records: counts both ways, the records isolation saves ``noun``
+    under and those it topples it under although it survives them on the ground."""
+    n, kg, ki = cmp["n"], len(cmp["ground"]), len(cmp["isolated"])
+    iso = f"isolation {c.header}"
+    counts = (f"in all, {ki} of {n} records topple it on the bearings against {kg} of {n} on the ground"
+              if ki != kg else f"in all, {ki} of {n} records topple it either way")
+    s = "s" if len(cmp["saved"]) == 1 else ""
+    saved = f"saves {noun} under {_names(cmp['saved'])} (which topple{s} it on the ground)"
+    harmed = f"topples it under {_names(cmp['harmed'])} (which it survives on the ground)"
+    effect = cmp["effect"]
+    if effect == "mixed":
+        return f"{iso} helps under some records and hurts under others: it {saved} but {harmed}; {counts}"
+    if effect == "worse":
+        return f"{iso} makes it worse: it topples {noun} under {_names(cmp['harmed'])} (which it survives on the " \
+               f"ground); {counts}"
+    if effect == "better":
+        if ki == 0:
+            return (f"{iso} saves {noun}: it survives all {n} records on the bearings{stroke}, against {kg} of {n} "
+                    "toppling it on the ground")
+        return f"{iso} helps: it {saved}{stroke}; {counts}"
+    if kg:
+        return f"{iso} changes no verdict: {noun} topples under the same {kg} of {n} records either way " \
+               f"({_names(cmp['ground'])})"
+    sg, si = _smallest_factor(g_rows), _smallest_factor(i_rows)
+    margins = ""
+    if math.isfinite(sg) and math.isfinite(si) and sg > 1 and si > 1 and f"{sg:.2f}" != f"{si:.2f}":
+        margins = (f"; its closest call needs a record {_x(sg)} times stronger on the ground and {_x(si)} times on "
+                   f"the bearings ({'more' if si > sg else 'less'} margin on the bearings)")
+    return f"{noun} survives all {n} records both on the ground and on {iso}{stroke}{margins}"
+
+
 def isolation_summary(assessment, block) -> str:
     """Does isolation help ``block``? One sentence comparing each isolated configuration with the
-    ground (empty without both a rigid and an isolated configuration)."""
+    ground over the whole suite (empty without both a rigid and an isolated configuration).
+
+    With one record: ``saves it``, ``makes it worse``, ``does not save it``, ``survives ... too``. With
+    several (:func:`compare_foundations`): the records that topple the body each way, counted, and
+    whether isolation makes it worse (it topples the body under records it survives on the ground, and
+    saves it under none), better (the reverse), is mixed (both: the records are named) or changes no
+    verdict. The stroke is that of the surviving runs only (:func:`survivor_stroke`).
+    """
     lines = {c.header: (c, w) for b, c, w, _ in verdict_lines(assessment) if b is block}
-    ground = [w for c, w in lines.values() if not c.isolated]
-    if not ground or len(ground) == len(lines):
+    grounds = [(c, w) for c, w in lines.values() if not c.isolated]
+    if not grounds or len(grounds) == len(lines):
         return ""
-    g = ground[0]
+    g, g_word = grounds[0]
+    ran = [x for x in assessment.excitations if x.motion is not None]
+    g_rows = [assessment.row(block.name, x.label, g.header) for x in ran]
     parts = []
     for c, w in lines.values():
         if not c.isolated:
             continue
-        rows = [assessment.row(block.name, x.label, c.header) for x in assessment.excitations]
-        disp = max((r.base_disp_max_m for r in rows if outcome(r) != FAILED and math.isfinite(r.base_disp_max_m)),
-                   default=math.nan)
-        stroke = f", provided the bearings can move {disp:.2f} m" if math.isfinite(disp) else ""
-        if g == TOPPLES and w == SURVIVES:
-            parts.append(f"isolation {c.header} saves it{stroke}")
-        elif g == SURVIVES and w == TOPPLES:
-            parts.append(f"isolation {c.header} makes it worse: it topples on it")
-        elif g == w == TOPPLES:
-            parts.append(f"isolation {c.header} does not save it")
-        elif g == w == SURVIVES:
-            parts.append(f"it survives on isolation {c.header} too{stroke}")
-        else:
-            parts.append(f"on isolation {c.header} it is {w}")
-    several = sum(x.motion is not None for x in assessment.excitations) > 1
-    where = "on the ground" + ({TOPPLES: " (under at least one record)", SURVIVES: " (under every record)"}
-                               .get(g, "") if several else "")
-    return f"In short: {body_noun(block)} {g} {where}; " + "; ".join(parts) + "."
+        i_rows = [assessment.row(block.name, x.label, c.header) for x in ran]
+        top = survivor_stroke(i_rows)
+        stroke = f", provided the bearings can move {stroke_m(top):.2f} m" if top is not None else ""
+        if len(ran) <= 1:
+            parts.append(_one_record_clause(c, g_word, w, stroke))
+            continue
+        cmp = compare_foundations(g_rows, i_rows)
+        noun = body_noun(block)
+        clause = (_suite_clause(c, cmp, g_rows, i_rows, stroke, noun) if cmp["n"] else
+                  f"on isolation {c.header} {noun} is {w}")
+        if cmp["open"]:
+            clause += (f" ({_names(cmp['open'])} not compared: undecided or not computed on one of the two)")
+        parts.append(clause)
+    if len(ran) <= 1:
+        return f"In short: {body_noun(block)} {g_word} on the ground; " + "; ".join(parts) + "."
+    return "In short: " + ". ".join(p if k == 0 else p[:1].upper() + p[1:] for k, p in enumerate(parts)) + "."
 
 
 def question(assessment) -> str:
@@ -263,8 +395,25 @@ def question(assessment) -> str:
 
 
 def format_verdicts(assessment, width: int = 100) -> str:
-    """The answer as ``rockcli assess column`` prints it: per body, one sentence per configuration."""
+    """The answer as ``rockcli assess column`` prints it: per body, one sentence per configuration.
+
+    Raises
+    ------
+    RockcliInputError
+        ``assessment`` is not what :func:`rockcli.assess.run_assessment` returns, or ``width`` is not a whole
+        number >= 40.
+    """
+    import numbers
     import textwrap
+
+    from rockcli.assess.table import Assessment
+    from rockcli.errors import RockcliInputError
+    from rockcli.inputs import check_type
+
+    check_type(assessment, Assessment, "assessment", "the Assessment of run_assessment(...)")
+    check_type(width, numbers.Integral, "width", "a whole number of characters >= 40")
+    if width < 40:
+        raise RockcliInputError(f"width must be a whole number of characters >= 40, got {width}")
 
     lines = ["In plain words:"]
     xs = [x.label for x in assessment.excitations if x.motion is not None]

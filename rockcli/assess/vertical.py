@@ -45,8 +45,12 @@ def _own_component(x: Excitation, component: str, read_kwargs: dict, scale: floa
     got = cache[path]
     if isinstance(got, RockcliInputError):
         raise got
-    vertical = got if scale == 1.0 else got.scaled(scale)
-    return vertical, f"component {component_name(got)} of {Path(path).name}" + (f" x {scale:g}" if scale != 1.0 else "")
+    from rockcli.inputs import check_scale, format_number
+
+    vertical = got if check_scale(scale, got.pga_g, "--vertical-scale", "the vertical component") == 1.0 else \
+        got.scaled(scale)
+    return vertical, (f"component {component_name(got)} of {Path(path).name}"
+                      + (f" x {format_number(scale)}" if scale != 1.0 else ""))
 
 
 def attach_verticals(excitations: Sequence[Excitation], *, component: str | None = None, motion=None,

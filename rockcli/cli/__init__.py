@@ -54,9 +54,10 @@ def main():
 
     Implements Vassiliou & Makris (2012), Earthquake Engng Struct Dyn 41:177-196.
     """
-    from rockcli.cli.progress import watch_compiles
+    from rockcli.cli.progress import watch_compiles, watch_waits
 
     watch_compiles()  # one line on a terminal when the kernels compile (the first run on a machine)
+    watch_waits()  # and when a slow step that cannot show progress begins (a first read through gmprocess)
 
 
 def run():

@@ -63,10 +63,9 @@ def _with_vertical(excitations, configurations, units, dt) -> list:
     from rockcli.assess.vertical import attach_verticals
 
     if v["component"] is not None and v["source"] is None:
-        import math
+        from rockcli.inputs import check_scale
 
-        if not math.isfinite(v["scale"]) or v["scale"] == 0:
-            raise InputError(f"--vertical-scale must be a finite non-zero number, got {v['scale']!r}")
+        check_scale(v["scale"], 0.0, "--vertical-scale")  # each record's own peak: attach_verticals
         return attach_verticals(excitations, component=v["component"], scale=v["scale"],
                                 read_kwargs=_file_read_kwargs(units, dt))
     motion, label = read_vertical(v["source"], v["column"], v["pulse"], v["scale"], {"units": units, "dt": dt},
@@ -101,12 +100,10 @@ def _headerless_options(func):
 
 
 def _run_counted(total: int, run):
-    """``run(progress=...)`` under a progress bar of ``total`` runs (none when piped): its result."""
+    """``run(progress=...)`` under progress lines (none when piped; the run announces its parts, and a part
+    whose steps were not all needed is completed when the next begins): its result."""
     with progress_bar(total) as bar:
-        result = run(progress=bar.update if bar else None)
-        if bar and bar.pos < total:  # the margin's grid and bisection bounds: what was not needed
-            bar.update(total - bar.pos)
-    return result
+        return run(progress=bar)
 
 
 def _echo_result(result, table: str, notes: str, plain: str | None = None, *, as_json=None):
@@ -141,9 +138,18 @@ def _warn_pulses(result, mode: str):
                f"--excitation record refuses this, --excitation pulse asks for it", err=True)
 
 
-def _refuse_if_none_can_run(excitations):
-    """Nothing to report when no record can be run: exit 2 with one sentence per record, nothing written."""
-    if excitations and all(x.motion is None for x in excitations):
+def _refuse_if_none_can_run(excitations, unavailable=()):
+    """Nothing to report when no record can be run (none found, or none readable): exit 2 with one sentence
+    per record or skipped file, nothing written (``assess column`` and ``assess fragility`` alike)."""
+    from rockcli.assess.excitations import Duplicate, Skipped
+
+    if not excitations:
+        skipped = [u for u in unavailable if isinstance(u, Skipped)]
+        missing = [f"{u.label}: {u.reason}" for u in unavailable if not isinstance(u, (Skipped, Duplicate))]
+        why = (([f"no file of the folder(s) is a record ({'; '.join(u.reason for u in skipped)})"] if skipped else [])
+               + missing)
+        raise InputError("no record to run: " + ("; ".join(why) if why else "the sources name none"))
+    if all(x.motion is None for x in excitations):
         failed = [x.error or f"{x.label}: cannot be run" for x in excitations]
         raise InputError(failed[0] if len(failed) == 1 else
                          f"none of the {len(failed)} records can be run:\n" + "\n".join(failed))
@@ -184,7 +190,9 @@ def _columns(names, R, alpha, height, width, name):
         if b.name in seen:
             raise InputError(f"column name {b.name!r} is given twice; give each column its own name")
         seen.add(b.name)
-    return columns
+    from rockcli.cli.options import warn_size
+
+    return [warn_size(b) for b in columns]
 
 
 @assess.command(name="column")
@@ -269,8 +277,7 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
     excitations, unavailable = resolve_excitations(records, excitation, units=units, dt=dt, gain=given_gain(),
                                                    component=given_component(), azimuth=azimuth["azimuth"],
                                                    **given_suite())
-    if not excitations:
-        raise InputError("no record to run: " + "; ".join(f"{u.label}: {u.reason}" for u in unavailable))
+    _refuse_if_none_can_run(excitations, unavailable)
     excitations = _with_vertical(excitations, configurations, units, dt)
     _refuse_if_none_can_run(excitations)
     _add_record_inputs(excitations)
@@ -449,10 +456,10 @@ def _write_histories(result, hist_dir, plot_dir, as_json=False):
               help="Bootstrap resamples over records for the confidence intervals (0: none).")
 @click.option("--seed", type=SEED, default=13, show_default=True, help="Seed of the bootstrap resamples.")
 @click.option("--csv", "csv_path", type=click.Path(), default=None,
-              help="Write one row per column x record x configuration (IM, scale, capacity, censoring, error) "
-                   "with the fit of its column and configuration.")
+              help="Write one row per body x record x configuration (IM, scale, capacity, censoring, error) "
+                   "with the fit of its body and configuration.")
 @click.option("--plot", "plot_path", type=click.Path(), default=None,
-              help="Write the fragility curves (one panel per column, every configuration) to this image, e.g. FILE.png.")
+              help="Write the fragility curves (one panel per body, every configuration) to this image, e.g. FILE.png.")
 @click.option("--scheduler", default=None, metavar="tcp://HOST:PORT|local",
               help="Run the margin searches on a Dask cluster (pip install -e \".[dask]\"): the address of an "
                    "existing scheduler, or 'local' for a LocalCluster on this machine. Same results. A scheduler "
@@ -466,13 +473,14 @@ def _write_histories(result, hist_dir, plot_dir, as_json=False):
 @user_errors
 def fragility(names, R, alpha, height, width, name, records, units, dt, isolation, im, n_boot, seed, csv_path,
               plot_path, scheduler, report_path, as_json, horizon, restitution):
-    """Fragility curves of overturning: P(the column overturns | IM) from a suite of records.
+    """Fragility curves of overturning: P(the body overturns | IM) from a suite of records.
 
-    Each record is scaled (0.1x..4x, then bisection) to the smallest factor that overturns the
-    column; that factor x the record's IM is its capacity. A lognormal (median, beta) is fitted to
-    the capacities by maximum likelihood, records that never overturn up to 4x counting as
-    right-censored, with intervals from a bootstrap over records. Prints median and beta per
-    column and configuration, and each isolated median over the rigid one (< 1: isolation hurts).
+    NAME is a body as in 'assess column' (a preset column, or a custom block). Each record is
+    scaled (0.1x..4x, then bisection) to the smallest factor that overturns the body; that factor
+    x the record's IM is its capacity. A lognormal (median, beta) is fitted to the capacities by
+    maximum likelihood, records that never overturn up to 4x counting as right-censored, with
+    intervals from a bootstrap over records. Prints median and beta per body and configuration,
+    and each isolated median over the rigid one (< 1: isolation hurts).
 
     \b
     Examples:
@@ -505,6 +513,7 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
                          "and the worst orientation) write --csv and --plot instead, or give one --azimuth DEG")
     excitations, unavailable = resolve_excitations(records, "record", units=units, dt=dt, gain=given_gain(),
                                                    azimuth=azimuth, component=given_component(), **given_suite())
+    _refuse_if_none_can_run(excitations, unavailable)
     excitations = _with_vertical(excitations, configurations, units, dt)
     _refuse_if_none_can_run(excitations)
     _add_record_inputs(excitations)
@@ -520,8 +529,11 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
         from rockcli.assess.fragility import run_fragility_distributed
         from rockcli.cli.options import dask_client
 
-        result = run_fragility_distributed(dask_client(scheduler), columns, excitations, configurations, im=im, n_boot=n_boot,
-                                           seed=seed, unavailable=unavailable, horizon=horizon, run=run, **solver)
+        client = dask_client(scheduler)
+        with progress_bar(n_runs, "margin search on Dask") as bar:  # the run announces it in scenes
+            result = run_fragility_distributed(client, columns, excitations, configurations, im=im, n_boot=n_boot,
+                                               seed=seed, unavailable=unavailable, horizon=horizon, run=run,
+                                               progress=bar, **solver)
     else:
         result = _run_counted(n_runs, partial(run, columns, excitations, configurations, im=im, n_boot=n_boot,
                                               seed=seed, unavailable=unavailable, horizon=horizon, **solver))
@@ -532,7 +544,7 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
 
     notes = format_fragility_notes(result) + _vertical_note(result)
     if solver:
-        notes += f"\nImpacts: coefficient of restitution E = {solver['restitution']:g} (README, Restitution)."
+        notes += f"\nImpacts: coefficient of restitution E = {solver['restitution']:g} (docs/simulate.md, Restitution)."
     _echo_result(result, format_fragility(result), notes, as_json=_fragility_json(result, solver) if as_json else None)
     if csv_path:
         from rockcli.report.fragility import write_fragility_csv
@@ -574,7 +586,7 @@ def _echo_fragility_azimuths(results: dict, solver: dict, csv_path, plot_path, n
 
     table, notes = format_fragility_azimuths(results, n_azimuths)
     if solver:
-        notes += f"\nImpacts: coefficient of restitution E = {solver['restitution']:g} (README, Restitution)."
+        notes += f"\nImpacts: coefficient of restitution E = {solver['restitution']:g} (docs/simulate.md, Restitution)."
     _echo_result(results["worst"], table, notes,
                  as_json={"azimuths_run": n_azimuths, **{k: _fragility_json(results[k], solver)
                                                          for k in ("median", "worst")}} if as_json else None)

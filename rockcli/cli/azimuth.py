@@ -20,6 +20,11 @@ def read_excitation(source, kwargs: dict):
         rec = read_record(source, **kwargs)
         add_inputs([rec.meta.get("path")], "the record")
         return rec, None
+    from rockcli.assess.excitations import one_file_pair
+
+    one = one_file_pair(source, given["record_2"], ("--record", "--record-2"))
+    if one:
+        raise RockcliInputError(one)
     pair = read_pair(source, given["record_2"], **kwargs)
     add_inputs([r.meta.get("path") for r in pair], "the record")
     return project(*pair, 0.0 if given["azimuth"] == "worst" else given["azimuth"]), pair
@@ -37,12 +42,12 @@ def wants_worst() -> bool:
     return given_azimuth()["azimuth"] == "worst"
 
 
-def worst_of(results) -> int:
-    """Index of the most adverse run: the earliest overturn, else the largest peak |theta|/alpha."""
-    over = [i for i, r in enumerate(results) if r.overturned]
-    if over:
-        return min(over, key=lambda i: results[i].t_overturn_s)
-    return max(range(len(results)), key=lambda i: results[i].theta_max_over_alpha)
+def worst_of(results) -> int | None:
+    """Index of the most adverse run (:func:`rockcli.assess.azimuth.most_adverse`: the earliest overturn, else
+    the largest peak |theta|/alpha), or None when they all rank equal (nothing lifts the body off)."""
+    from rockcli.assess.azimuth import adverse_key, most_adverse
+
+    return most_adverse([adverse_key(r.overturned, r.t_overturn_s, r.theta_max_over_alpha) for r in results])
 
 
 def run_worst(block, foundation, pair, factor: float, *, as_json: bool, label: str, **solver) -> None:
@@ -67,7 +72,8 @@ def run_worst(block, foundation, pair, factor: float, *, as_json: bool, label: s
             "azimuths_deg": [float(a) for a in azimuths],
             "verdicts": [r.verdict for r in results],
             "theta_max_over_alpha": [None if r.overturned else r.theta_max_over_alpha for r in results],
-            "worst_azimuth_deg": float(azimuths[worst]), "worst_verdict": results[worst].verdict,
+            "worst_azimuth_deg": None if worst is None else float(azimuths[worst]),
+            "worst_verdict": results[0 if worst is None else worst].verdict,
             "overturning_azimuths_deg": over}, allow_nan=False))
         return
     click.echo(f"block       {block.name}: R = {block.R:.3f} m, alpha = {block.alpha_deg:.2f} deg")
@@ -75,12 +81,18 @@ def run_worst(block, foundation, pair, factor: float, *, as_json: bool, label: s
     click.echo(f"excitation  {label}: components {comps}, projected onto each azimuth "
                f"(normal to the rocking axis, clockwise from north)")
     click.echo("azimuth  verdict")
-    for th, r in zip(azimuths, results):
+    for k, (th, r) in enumerate(zip(azimuths, results)):
         text = (f"OVERTURNS at {r.t_overturn_s:.3f} s" if r.overturned else
                 f"{'no uplift' if r.verdict == 'no_uplift' else 'survives'} {r.theta_max_over_alpha:.4f}")
-        click.echo(f"{th:7g}  {text}{'   <- worst' if th == azimuths[worst] else ''}")
+        click.echo(f"{th:7g}  {text}{'   <- worst' if k == worst else ''}")
+    if worst is None:
+        click.echo("worst azimuth: none (the block does not lift off its base in any orientation, so no orientation "
+                   "is worse than another); which one a stronger record would topple first is a question of "
+                   "margins: 'rockcli assess column ... --azimuth worst' ranks the orientations by the smallest "
+                   "scale factor that overturns")
+        return
     r = results[worst]
     what = (f"overturns at {r.t_overturn_s:.3f} s" if r.overturned else
             f"survives, peak |theta|/alpha {r.theta_max_over_alpha:.4f}")
     click.echo(f"worst azimuth: {azimuths[worst]:g} deg ({what}); overturning azimuths: "
-               + (", ".join(f"{a:g}" for a in over) if over else "none") + " deg")
+               + (", ".join(f"{a:g}" for a in over) + " deg" if over else "none"))

@@ -193,6 +193,10 @@ def given_azimuth() -> dict:
         raise RockcliInputError("--record-2 is the second horizontal component for --azimuth: give --azimuth DEG|worst")
     if step is not None and azimuth != "worst":
         raise RockcliInputError("--azimuth-step applies to --azimuth worst")
+    if step is not None:
+        from rockcli.records.orientation import check_azimuth_step
+
+        step = check_azimuth_step(step)  # one floor, shared with sweep_azimuths
     return {"record_2": record_2, "azimuth": azimuth, "step": AZIMUTH_STEP if step is None else step}
 
 
@@ -250,20 +254,30 @@ def given_vertical() -> dict:
             "scale_given": scale is not None}
 
 
+def scaled(motion, factor, option: str, what: str, peak_g: float | None = None):
+    """``motion`` (a record or a pulse) times the user's ``factor``, checked first
+    (:func:`rockcli.inputs.check_scale`: finite, non-zero, the peak within 100 g); ``peak_g`` overrides the
+    motion's own peak (the largest of every orientation of a pair)."""
+    from rockcli.inputs import check_scale
+
+    if peak_g is None:
+        peak_g = motion.pga_g if hasattr(motion, "pga_g") else abs(motion.a_p_g)
+    k = check_scale(factor, peak_g, option, what)
+    return motion if k == 1.0 else motion.scaled(k)
+
+
 def read_vertical(source, column, pulse, scale, read_kwargs: dict, component=None):
     """``(vertical motion or None, its label)`` from ``--vertical SOURCE`` (read with ``read_kwargs``; of a
     multi-component file its ``--vertical-component`` or ``--vertical-column``, else its one vertical component)
     or ``--vertical-pulse SPEC``, times ``--vertical-scale``. The horizontal record's ``--component`` does not
     apply to it."""
-    import math
-
     from rockcli.errors import RockcliInputError
+    from rockcli.inputs import check_scale, format_number
 
     if source is not None and pulse is not None:
         raise RockcliInputError("give the vertical ground motion as at most one of --vertical SOURCE or "
                                 "--vertical-pulse SPEC")
-    if not math.isfinite(scale) or scale == 0:
-        raise RockcliInputError(f"--vertical-scale must be a finite non-zero number, got {scale!r}")
+    check_scale(scale, 0.0, "--vertical-scale")
     if source is None and pulse is None:
         if column is not None or scale != 1.0 or component is not None:
             raise RockcliInputError("--vertical-column, --vertical-component and --vertical-scale apply to "
@@ -275,18 +289,15 @@ def read_vertical(source, column, pulse, scale, read_kwargs: dict, component=Non
         if column is not None or component is not None:
             raise RockcliInputError("--vertical-column and --vertical-component apply to --vertical, not to "
                                     "--vertical-pulse")
-        vertical = parse_pulse_spec(pulse)
-        if scale != 1.0:
-            vertical = vertical.scaled(scale)
-        return vertical, f"{vertical.shape} pulse" + (f" x {scale:g}" if scale != 1.0 else "")
+        vertical = scaled(parse_pulse_spec(pulse), scale, "--vertical-scale", "the vertical pulse")
+        return vertical, f"{vertical.shape} pulse" + (f" x {format_number(scale)}" if scale != 1.0 else "")
     vertical = _read_vertical_record(source, column, component,
                                      {k: v for k, v in read_kwargs.items() if k not in ("component", "column")})
     add_inputs([vertical.meta.get("path")], "the vertical record")
     comp = vertical.meta.get("component")
-    if scale != 1.0:
-        vertical = vertical.scaled(scale)
+    vertical = scaled(vertical, scale, "--vertical-scale", "the vertical record")
     return vertical, (f"record {vertical.name}" + (f" component {comp}" if comp else "")
-                      + (f" x {scale:g}" if scale != 1.0 else ""))
+                      + (f" x {format_number(scale)}" if scale != 1.0 else ""))
 
 
 def _read_vertical_record(source, column, component, kwargs):
@@ -433,10 +444,11 @@ def restitution_option(func):
     """``--restitution E``: the coefficient of restitution of every impact (``restitution`` keyword of
     :func:`rockcli.solve.simulate`); the command checks it (:func:`rockcli.impact.check_restitution`)."""
     return click.option("--restitution", type=NUMBER, default=None, metavar="E",
-                        help="Coefficient of restitution, 0 < E <= 1: theta_dot after / before an impact on a rigid "
-                             "foundation [default: Housner's 1 - 1.5 sin^2 alpha]. On an isolated base the impact "
-                             "keeps the horizontal momentum and theta_dot+ = (1 - 4 (1 - E)/(4 - 3 gamma cos^2 "
-                             "alpha)) theta_dot- (README, Restitution).")(func)
+                        help="Coefficient of restitution, 0 < E <= 1: theta_dot after / before an impact on rigid "
+                             "ground [default: Housner's 1 - 1.5 sin^2 alpha]. E is always this rigid-ground ratio: "
+                             "on an isolated base the impact also keeps the horizontal momentum, which lowers the "
+                             "ratio to (4 E - 3 gamma cos^2 alpha)/(4 - 3 gamma cos^2 alpha) (docs/simulate.md, "
+                             "Restitution).")(func)
 
 
 def cap_ratio_option(func):
@@ -455,7 +467,8 @@ BLOCK_FLAGS = {"preset": "--body NAME|SPEC", "R": "--R", "alpha": "--alpha", "he
 
 
 def block_from_options(column_name=None, R=None, alpha=None, height=None, width=None, name=None):
-    """The :class:`Block` named by exactly one of the three forms of :func:`block_options`."""
+    """The :class:`Block` named by exactly one of the three forms of :func:`block_options` (a size that looks
+    like centimetres is warned about on stderr: :func:`warn_size`)."""
     from rockcli.models import build_block
 
     if column_name is not None and ":" in column_name:  # --body NAME:R=..,alpha=.. or NAME:height=..,width=..
@@ -467,9 +480,20 @@ def block_from_options(column_name=None, R=None, alpha=None, height=None, width=
             raise RockcliInputError(f"--body {column_name} names the body already; leave out --name")
         from rockcli.assess import parse_column_spec
 
-        return parse_column_spec(column_name)
-    return build_block(preset=column_name, R=R, alpha_deg=alpha, height=height, width=width, name=name,
-                       labels=BLOCK_FLAGS)
+        return warn_size(parse_column_spec(column_name))
+    return warn_size(build_block(preset=column_name, R=R, alpha_deg=alpha, height=height, width=width, name=name,
+                                 labels=BLOCK_FLAGS))
+
+
+def warn_size(block):
+    """``block``, after a warning on stderr when its size looks like centimetres given as metres
+    (:func:`rockcli.models.block.size_warning`; the run goes on)."""
+    from rockcli.models.block import size_warning
+
+    text = size_warning(block)
+    if text:
+        click.echo(f"Warning: {text}", err=True)
+    return block
 
 
 def check_outputs(*files, folders=(), catalogue_is_input: bool = True):
@@ -503,12 +527,11 @@ def catalog_file():
 
 
 def add_inputs(paths, what: str) -> None:
-    """Files the command reads (records, the catalogue): an output on one of them is refused."""
-    from rockcli.files import current
+    """Files the command reads (records, the catalogue): an output on one of them is refused
+    (:func:`rockcli.files.note_inputs`)."""
+    from rockcli.files import note_inputs
 
-    outputs = current()
-    if outputs is not None:
-        outputs.add_inputs([p for p in paths if p], what)
+    note_inputs([p for p in paths if p], what)
 
 
 def json_option(func):
@@ -553,10 +576,11 @@ def is_quiet() -> bool:
     return bool(ctx is not None and ctx.meta.get("rockcli.quiet"))
 
 
-def progress_bar(total: int, label: str = "runs", *, eta: bool = True):
-    """A progress bar on stderr when it is a terminal, else nothing: a context manager yielding the
-    bar (call ``bar.update(n)``; :class:`rockcli.cli.progress.Progress`, whose ETA waits for the
-    kernels and for enough work to measure) or ``None`` (piped output and ``--quiet`` stay quiet)."""
+def progress_bar(total: int, label: str = "runs", *, eta: bool = True, unit: str | None = None):
+    """Progress lines on stderr when it is a terminal, else nothing: a context manager yielding the
+    :class:`rockcli.cli.progress.Progress` (call it with increments; the library may begin parts with
+    :func:`rockcli.progress.phase`; ``eta=False``: the steps do not measure the time left) or ``None``
+    (piped output and ``--quiet`` stay quiet)."""
     import contextlib
     import sys
 
@@ -564,7 +588,7 @@ def progress_bar(total: int, label: str = "runs", *, eta: bool = True):
         return contextlib.nullcontext(None)
     from rockcli.cli.progress import Progress
 
-    return Progress(total, label, eta=eta, stream=sys.stderr)
+    return Progress(total, label, eta=eta, unit=unit, stream=sys.stderr)
 
 
 def dask_client(scheduler):

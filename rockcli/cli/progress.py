@@ -1,23 +1,29 @@
-"""What a long command shows on a terminal while it works: the compile notice and the progress bar.
+"""What a long command shows on a terminal while it works: the notices and the progress lines.
 
-Both go to the standard error and only when it is a terminal: output that is piped, redirected or
+All of it goes to the standard error and only when it is a terminal: output that is piped, redirected or
 checked by tests (and CI logs) is the same on the first run and on every later one, and a script
 could not act on either.
 
 * :func:`watch_compiles`: the first run on a machine compiles the kernels (tens of seconds, nothing
   else moves); one line says so when the compile begins (:mod:`rockcli.compiling` tells when), once
   per process. A run whose kernels load from the cache says nothing.
-* :class:`Progress`: a click progress bar whose ETA is measured from the work done after the
-  kernels were ready, and shown only once enough of it is done to measure: the compile (and the
-  first, uneven batch) would otherwise be read as the pace of the whole job (an ETA of hours).
+* :func:`watch_waits`: one line when a step that can report no progress begins (a record read
+  through gmprocess, whose first read loads its readers: :func:`rockcli.progress.announce`).
+* :class:`Progress`: one line per part of the work (:func:`rockcli.progress.phase`: the verdicts at
+  1x, the margin search, the neighbourhood), with the count done and the time it has taken, redrawn
+  every second. A time left (ETA) is shown only for a part whose steps are runs of a similar cost
+  (``known``), measured on the runs done after the kernels were ready, once there are enough of them
+  to measure; never for the margin search, whose (scene, factor) pairs settle mostly without a run
+  and whose length is what it finds out (the ETA it used to show swung from 0:03 to 0:34 and showed
+  0:00 with three minutes left; docs/performance.md).
 """
 
 from __future__ import annotations
 
+import shutil
 import sys
+import threading
 import time
-
-import click
 
 #: The notice, in one line (the times: ``benchmarks/bench_first_run.py`` on 2 cores; docs/performance.md).
 COMPILE_NOTICE = ("rockcli: compiling the solver kernels for this machine (first run only; about 20-40 s per "
@@ -41,11 +47,39 @@ def watch_compiles(stream=None) -> None:
         if said:
             return
         said.append(name)
-        stream.write("\r\033[K" + COMPILE_NOTICE + "\n")  # over a progress bar's line, which is drawn again
-        stream.flush()
+        _notice(stream, COMPILE_NOTICE)
 
     compiling.subscribe(on_start=on_start)
     _watching = True
+
+
+def watch_waits(stream=None) -> None:
+    """Print each wait the library announces (:func:`rockcli.progress.announce`) as one line
+    ``rockcli: ...`` on ``stream`` (stderr) if it is a terminal (idempotent)."""
+    global _watching_waits
+    stream = stream or sys.stderr
+    if _watching_waits or not _isatty(stream):
+        return
+    from rockcli import progress
+
+    progress.subscribe(lambda text: _notice(stream, "rockcli: " + text))
+    _watching_waits = True
+
+
+_watching_waits = False
+#: One writer at a time on the terminal: the notices, the progress line and its clock thread.
+_screen = threading.RLock()
+#: The progress line on the terminal now, drawn again under a notice.
+_active = None
+
+
+def _notice(stream, text: str) -> None:
+    """``text`` as a line of its own, over a progress line, which is then drawn again below it."""
+    with _screen:
+        stream.write("\r\033[K" + text + "\n")
+        stream.flush()
+        if _active is not None:
+            _active.draw(force=True)
 
 
 def _isatty(stream) -> bool:
@@ -55,60 +89,169 @@ def _isatty(stream) -> bool:
         return False
 
 
-class Progress:
-    """A progress bar of ``total`` steps on ``stream`` with an ETA that is not fooled by a compile.
+def clock_text(seconds: float) -> str:
+    """``m:ss`` (``h:mm:ss`` from an hour on)."""
+    t = int(round(max(0.0, seconds)))
+    return f"{t // 3600:d}:{t // 60 % 60:02d}:{t % 60:02d}" if t >= 3600 else f"{t // 60:d}:{t % 60:02d}"
 
-    The rate is measured from the first update after the kernels were ready (a compile during the
-    run restarts the measurement), and the ETA is shown only once :attr:`MIN_SHARE` of the
-    remaining steps, or :attr:`MIN_SECONDS`, have passed since then; until then the bar shows the
-    share done and nothing else. Use as a context manager; :meth:`update` takes increments.
+
+class Progress:
+    """Progress lines on ``stream``, one per part of the work, with an ETA only where it can be measured.
+
+    Use as a context manager; the work calls it (or :meth:`update`) with increments of steps, and
+    :meth:`phase` when a new part begins (through :func:`rockcli.progress.phase`). A part's line shows
+    its name, a bar, the count (``12/80 runs``) or the share of its steps done, the time it has taken
+    and, for a ``known`` part only, the time left. When a part ends its line stays, complete, and the
+    next one is drawn below it. The line is redrawn every ``tick`` seconds (the clock moves while a
+    long batch runs) and never wider than the terminal.
+
+    The time left of a known part is the time per step measured from the first update after the
+    kernels were ready (a compile during the part restarts the measurement; the steps of that first
+    update are not counted, as their time included the wait), times the steps left, less the time
+    since the last update; it is shown only after :attr:`MIN_SECONDS` of measurement, at least
+    :attr:`MIN_UPDATES` further updates and :attr:`MIN_SHARE` of the steps, and not once it has run
+    out (no ``ETA 0:00`` over work still going on).
     """
 
-    #: share of the steps (after the rate clock started) before an ETA is shown
+    #: share of the part's steps (after the rate clock started) before an ETA is shown
     MIN_SHARE = 0.02
     #: seconds of measured work before an ETA is shown
     MIN_SECONDS = 3.0
+    #: updates after the one that started the rate clock before an ETA is shown
+    MIN_UPDATES = 2
+    #: characters of the bar
+    BAR = 30
+    #: seconds between redraws of the clock
+    TICK = 1.0
 
-    def __init__(self, total: int, label: str = "runs", *, eta: bool = True, stream=None, clock=time.monotonic):
-        self.total, self.eta_wanted, self.clock = int(total), eta, clock
-        self.pos = 0
-        self._start = None  # (time, pos) from which the rate is measured
-        self._bar = click.progressbar(length=self.total, label=label, file=stream or sys.stderr, show_eta=False,
-                                      item_show_func=self._eta_text)
+    def __init__(self, total: int, label: str = "runs", *, eta: bool = True, unit: str | None = None, stream=None,
+                 clock=time.monotonic, tick: float | None = TICK):
+        self.stream = stream or sys.stderr
+        self.clock = clock
+        self.tick = tick
+        self._stop = threading.Event()
+        self._thread = None
+        self._entered = False
+        self._drawn = 0.0
+        self._begin(label, total, eta, unit)
 
-    def __enter__(self):
-        self._bar.__enter__()
-        return self
+    # ---- the work's side -------------------------------------------------------------------------
 
-    def __exit__(self, *exc):
-        return self._bar.__exit__(*exc)
+    def __call__(self, n: int) -> None:
+        self.update(n)
 
     def update(self, n: int) -> None:
-        """Advance by ``n`` steps."""
+        """Advance the current part by ``n`` steps."""
         from rockcli import compiling
 
-        if compiling.compiling():
-            self._start = None
-        elif self._start is None:
-            self._start = (self.clock(), self.pos)  # the work before this update included the wait
-        self.pos += int(n)
-        self._bar.update(n)
+        with _screen:
+            self.pos += int(n)
+            if compiling.compiling():
+                self._start = None
+            elif self._start is None:
+                self._start, self._updates = (self.clock(), self.pos), 0
+            else:
+                self._updates += 1
+            self._last = self.clock()
+            self.draw()
+
+    def phase(self, name: str, steps: int, *, known: bool = True, unit: str | None = None) -> None:
+        """A new part of ``steps`` steps begins: the current part's line is completed (left as it is when
+        nothing of it was done) and the new part's drawn below it."""
+        with _screen:
+            if self._entered and self.pos > 0:
+                self._close(complete=True)
+            self._begin(name, steps, known, unit)
+            self.draw(force=True)
+
+    # ---- what is shown ---------------------------------------------------------------------------
+
+    def elapsed(self) -> float:
+        """Seconds since the current part began."""
+        return self.clock() - self._t_begin
 
     def eta(self) -> float | None:
-        """Seconds still to go, or None while it cannot be told (see the class notes)."""
-        if not self.eta_wanted or self._start is None or self.pos >= self.total:
+        """Seconds still to go in the current part, or None while it cannot be told (see the class notes)."""
+        if not self.known or self._start is None or self.pos >= self.total:
             return None
         t0, p0 = self._start
-        elapsed, done = self.clock() - t0, self.pos - p0
-        if done <= 0 or elapsed <= 0:
+        measured, done = self._last - t0, self.pos - p0
+        if done <= 0 or measured < self.MIN_SECONDS or self._updates < self.MIN_UPDATES:
             return None
-        if done < self.MIN_SHARE * (self.total - p0) and elapsed < self.MIN_SECONDS:
+        if done < self.MIN_SHARE * (self.total - p0):
             return None
-        return elapsed / done * (self.total - self.pos)
+        left = measured / done * (self.total - self.pos) - (self.clock() - self._last)
+        return left if left > 0 else None
 
-    def _eta_text(self, _item=None):
+    def line(self) -> str:
+        """The current part's line: ``name  [####    ]  12/80 runs  0:42, ETA 1:10``."""
+        share = min(1.0, self.pos / self.total) if self.total > 0 else 1.0
+        fill = int(share * self.BAR)
+        count = (f"{min(self.pos, self.total)}/{self.total} {self.unit}" if self.unit
+                 else f"{int(share * 100):3d}%")
+        when = clock_text(self.elapsed())
         eta = self.eta()
-        if eta is None:
-            return None
-        t = int(round(eta))
-        return f"ETA {t // 3600:d}:{t // 60 % 60:02d}:{t % 60:02d}" if t >= 3600 else f"ETA {t // 60:d}:{t % 60:02d}"
+        if eta is not None:
+            when += f", ETA {clock_text(eta)}"
+        return f"{self.label}  [{'#' * fill}{' ' * (self.BAR - fill)}]  {count}  {when}"
+
+    def draw(self, force: bool = False) -> None:
+        """Draw the line again (at most ten times a second unless ``force``), cut to the terminal's width."""
+        if not self._entered:
+            return
+        now = time.monotonic()
+        if not force and now - self._drawn < 0.1:
+            return
+        self._drawn = now
+        width = max(20, shutil.get_terminal_size((80, 24)).columns - 1)
+        with _screen:
+            self.stream.write("\r" + self.line()[:width] + "\033[K")
+            self.stream.flush()
+
+    # ---- the context -----------------------------------------------------------------------------
+
+    def __enter__(self):
+        global _active
+        with _screen:
+            self._entered = True
+            _active = self
+            self.draw(force=True)
+        if self.tick:
+            self._thread = threading.Thread(target=self._tick, name="rockcli-progress", daemon=True)
+            self._thread.start()
+        return self
+
+    def __exit__(self, exc_type, *exc):
+        global _active
+        self._stop.set()
+        if self._thread is not None:
+            self._thread.join()
+        with _screen:
+            if exc_type is None:
+                self._close(complete=True)
+            else:  # an error: the line goes, so that the sentence saying what went wrong stands alone
+                self.stream.write("\r\033[K")
+                self.stream.flush()
+            self._entered = False
+            if _active is self:
+                _active = None
+        return False
+
+    def _begin(self, label, steps, known, unit) -> None:
+        self.label, self.total, self.known, self.unit = str(label), max(0, int(steps)), bool(known), unit
+        self.pos = 0
+        self._t_begin = self._last = self.clock()
+        self._start = None  # (time, pos) from which the rate is measured
+        self._updates = 0  # updates since then
+
+    def _close(self, complete: bool) -> None:
+        """The current part's last line (its steps all counted when ``complete``), then a new line."""
+        if complete:
+            self.pos = max(self.pos, self.total)
+        self.draw(force=True)
+        self.stream.write("\n")
+        self.stream.flush()
+
+    def _tick(self) -> None:
+        while not self._stop.wait(self.tick):
+            self.draw(force=True)

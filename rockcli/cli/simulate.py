@@ -9,7 +9,7 @@ import click
 from rockcli.cli.errors import user_errors
 from rockcli.cli.options import (azimuth_options, block_from_options, block_options, cap_ratio_option,
                                  check_outputs, command_line, horizon_option, json_option, record_kwargs,
-                                 record_options, report_option, restitution_option,
+                                 record_options, report_option, restitution_option, scaled,
                                  simulate_vertical_component_option)
 from rockcli.cli.options import GAMMA_HELP, Command
 from rockcli.cli.types import NUMBER, WHOLE
@@ -67,7 +67,8 @@ from rockcli.cli.types import NUMBER, WHOLE
                    "lead-rubber bearings also z and the bearing force over the weight) as CSV.")
 @click.option("--history-dt", "history_dt", type=NUMBER, default=None, metavar="SECONDS",
               help="Write the history (--history, --plot, --report) on a uniform grid of this spacing, from the "
-                   "solver's dense output, instead of at its steps; the event rows (uplift, impact, peak, rest, "
+                   "solver's dense output, instead of at its steps, up to the end of the excitation plus --tail "
+                   "(at most 2,000,000 rows, counted before the run); the event rows (uplift, impact, peak, rest, "
                    "overturn) stay exact either way.")
 @click.option("--plot", "plot_path", type=click.Path(), default=None,
               help="Draw ground acceleration, theta/alpha, theta_dot/p (and base displacement u(t); on sliding "
@@ -93,7 +94,6 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
           --vertical-pulse sine:ap=0.2,Tp=0.3
     """
     import json
-    import math
 
     from rockcli.errors import RockcliInputError
     from rockcli.impact import check_restitution
@@ -127,8 +127,9 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
                                 "the block rocking freely with --theta0 RAD and/or --theta-dot0 RAD/S")
     if check and record_source is None and pulse is None:
         raise RockcliInputError("--check-tolerance perturbs the ground motion: it needs --record or --pulse")
-    if not math.isfinite(scale) or scale == 0:
-        raise RockcliInputError(f"--scale must be a finite non-zero number, got {scale!r}")
+    from rockcli.inputs import check_scale, format_number
+
+    check_scale(scale, 0.0, "--scale")  # and the motion's peak times it, once read
     factor = -scale if flip else scale
     if record_source is None:
         from rockcli.cli.azimuth import refuse_without_record
@@ -143,23 +144,24 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
 
         if any(v is not None for v in (units, dt, fmt, column)):
             raise RockcliInputError("--units, --dt, --format and --record-column apply to --record, not to --pulse")
-        excitation = parse_pulse_spec(pulse)
-        if factor != 1.0:
-            excitation = excitation.scaled(factor)
+        excitation = _flipped(scaled(parse_pulse_spec(pulse), scale, "--scale", "the pulse"), flip)
         label = f"{excitation.shape} pulse"
     else:
         from rockcli.cli.azimuth import read_excitation, run_worst, wants_worst
 
         excitation, pair = read_excitation(record_source, record_kwargs(units, dt, fmt, column))
-        label = f"record {excitation.name}" + (f" x {factor:g}" if factor != 1.0 else "")
+        label = f"record {excitation.name}" + (f" x {format_number(factor)}" if factor != 1.0 else "")
+        # every orientation of a pair peaks at most at max_t |(a_1, a_2)| (perpendicular components): checked
+        # for --azimuth worst, which runs them all
+        record = _flipped(scaled(excitation, scale, "--scale", "the record",
+                                 peak_g=_pair_peak_g(pair) if pair is not None and wants_worst() else None), flip)
         if pair is not None and wants_worst():
             if history_path or plot_path or report_path or check or moving:
                 raise RockcliInputError("--azimuth worst runs every orientation verdict-only: --history, --plot, "
                                         "--report, --check-tolerance and --theta0 need one --azimuth DEG")
             return run_worst(block, foundation, pair, factor, as_json=as_json, label=label.split("@")[0],
                              rtol=rtol, tail=tail, horizon=horizon, **solver)
-        if factor != 1.0:
-            excitation = excitation.scaled(factor)
+        excitation = record
 
     vertical, vlabel = _vertical(vertical_source, vertical_column, vertical_pulse, vertical_scale, units, dt, fmt)
     if vertical is not None:
@@ -241,6 +243,22 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     if not res.settled:
         click.echo(f"NOTE: the verdict is NOT PROVEN: at {res.t_end_s:.1f} s (the horizon) the base could still lift "
                    "the block; lengthen --horizon to follow it")
+
+
+def _flipped(motion, flip: bool):
+    """``--flip``: the motion times -1 (exact: ``scaled(scale)`` then ``scaled(-1)`` is ``scaled(-scale)``)."""
+    return motion.scaled(-1.0) if flip else motion
+
+
+def _pair_peak_g(pair) -> float:
+    """The largest peak [g] of the projections of a perpendicular pair onto any azimuth: ``max_t |(a_1, a_2)|``."""
+    import numpy as np
+
+    from rockcli.units import G
+
+    n = max(r.npts for r in pair)
+    a = [np.pad(r.acc, (0, n - r.npts)) for r in pair]
+    return float(np.max(np.hypot(*a))) / G if n else 0.0
 
 
 def _vertical(source, column, pulse, scale, units, dt, fmt):

@@ -147,7 +147,8 @@ def _vertical_choice(isolations, fix):
 
 def _echo_impacts(runner, err=False):
     if runner.restitution is not None:
-        click.echo(f"impacts: coefficient of restitution E = {runner.restitution:g} (README, Restitution)", err=err)
+        click.echo(f"impacts: coefficient of restitution E = {runner.restitution:g} (docs/simulate.md, "
+                   f"Restitution)", err=err)
     if runner.cap_ratio > 0.0:
         click.echo(f"capped colonnades: beam/columns mass gamma_c = {runner.cap_ratio:g} (docs/physics-colonnade.md)",
                    err=err)
@@ -327,7 +328,7 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
     pcs = _pulses(pulses, records, units, dt, fmt, column)
     n = len(alphas) * len(pcs) * len(isos) * xs.size
     t0 = time.perf_counter()
-    with runner, progress_bar(n, "columns") as bar:
+    with runner, progress_bar(n, "search", eta=False, unit="columns") as bar:
         update = bar.update if bar else None
         curves = min_overturning_curves(alphas, pcs, isos, xs, ap_max=ap_max, step=step, tol=tol, refine=refine,
                                         refine_band=refine_band, runner=runner, progress=update)
@@ -344,6 +345,10 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
     click.echo(f"{len(curves)} curves x {xs.size} values of omega_p/p: {runner.cells_run} runs in {elapsed:.2f} s "
                f"({curves[0].found_by}, up to {ap_max:g} g tan alpha)"
                + (f"; {refined} minima lie in windows the first scan stepped over" if refine > 0 else ""), err=as_json)
+    from rockcli.spectra.minimum import capped_note
+
+    if capped_note(curves):
+        click.echo(capped_note(curves), err=as_json)
     _echo_unproven(runner, as_json)
     if csv_path:
         from rockcli.report.spectra import write_min_csv
@@ -448,7 +453,7 @@ def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, 
     shapes = list(dict.fromkeys(pc.shape for pc in pcs))
     n = len(shapes) * len(alphas) * (1 + len(isos)) * grid.count
     t0 = time.perf_counter()
-    with runner, progress_bar(n, "columns") as bar:
+    with runner, progress_bar(n, "search", eta=False, unit="columns") as bar:
         update = bar.update if bar else None
         result = critical_sizes(pcs, alphas, isos, wp_grid=grid, xtol=xtol, ap_max=ap_max, step=step, tol=tol,
                                 refine=refine, refine_band=refine_band, runner=runner, progress=update)

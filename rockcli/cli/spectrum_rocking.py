@@ -7,7 +7,7 @@ import click
 from rockcli.cli.errors import InputError, user_errors
 from rockcli.cli.options import (Command, add_inputs, cap_ratio_option, check_outputs, echo_json, horizon_option,
                                  json_option, progress_bar, quiet_option, record_kwargs, record_options,
-                                 restitution_option)
+                                 restitution_option, scaled)
 from rockcli.cli.types import NUMBER
 
 
@@ -53,7 +53,6 @@ def rocking(source, alpha, R, isolations, units, dt, fmt, column, scale, csv_pat
           --isolation linear:Tb=2.5 --plot kobe.png
       rockcli spectrum rocking northridge-1994-jensen-022 --alpha 8,12 --csv jensen.csv --json
     """
-    import math
     import time
 
     from rockcli.models import parse_isolation_spec
@@ -63,8 +62,9 @@ def rocking(source, alpha, R, isolations, units, dt, fmt, column, scale, csv_pat
     alphas = parse_list(alpha, "--alpha", lo=0, hi=90, lo_open=True, hi_open=True)
     sizes = size_grid(R, "--R")
     foundations = list(dict.fromkeys(parse_isolation_spec(s) for s in isolations))
-    if not math.isfinite(scale) or scale == 0:
-        raise InputError(f"--scale must be a finite non-zero number, got {scale!r}")
+    from rockcli.inputs import check_scale, format_number
+
+    check_scale(scale, 0.0, "--scale")  # and the record's peak times it, once read
     check_outputs((csv_path, "--csv", False), (plot_path, "--plot", True))
     from rockcli.cli.spectrum import _runner
 
@@ -72,8 +72,7 @@ def rocking(source, alpha, R, isolations, units, dt, fmt, column, scale, csv_pat
     record = read_record(source, **record_kwargs(units, dt, fmt, column))
     add_inputs([record.meta.get("path")], "the record")
     name = record.name
-    if scale != 1.0:
-        record = record.scaled(scale)
+    record = scaled(record, scale, "--scale", "the record")
     n = len(alphas) * len(foundations) * sizes.size
     t0 = time.perf_counter()
     with runner, progress_bar(n, "blocks") as bar:
@@ -90,7 +89,7 @@ def rocking(source, alpha, R, isolations, units, dt, fmt, column, scale, csv_pat
     if plot_path:
         from rockcli.report.rocking import plot_rocking_spectrum
 
-        shown = f"{name}" + (f" x {scale:g}" if scale != 1.0 else "")
+        shown = f"{name}" + (f" x {format_number(scale)}" if scale != 1.0 else "")
         plot_rocking_spectrum(curves, plot_path, title=f"Rocking spectrum under {shown} (PGA {record.pga_g:.3g} g)")
     if as_json:
         from rockcli.report.rocking import rocking_json
@@ -113,7 +112,9 @@ def _echo_summary(curves, name, scale, pga_g, n, elapsed, runner) -> None:
     from rockcli.cli.spectrum import _echo_unproven
     from rockcli.spectra import describe_sizes, isolation_helps, size_ranges
 
-    shown = name + (f" x {scale:g}" if scale != 1.0 else "")
+    from rockcli.inputs import format_number
+
+    shown = name + (f" x {format_number(scale)}" if scale != 1.0 else "")
     click.echo(f"record {shown} (PGA {pga_g:.3f} g): {n} blocks, R {curves[0].R[0]:g}-{curves[0].R[-1]:g} m, "
                f"in {elapsed:.2f} s (every run to the end of the motion: peaks final)")
     rigid = {c.alpha_deg: c for c in curves if c.isolation == "none"}

@@ -10,6 +10,9 @@ Files (data flows down this list):
 ``polynomials``           the dense-output quartics: evaluation, first crossings and excursions
 ``bearings``              the bearings' force per foundation family; the Bouc-Wen element solved
                           exactly along the path of u (the stiff treatment); the DCSS slider
+``linear_base``           the linear base carrying the standing block in closed form (the exact
+                          step per sample interval, the lift-off inside it, the peak of a record;
+                          the norm and the record table of the early stop P9)
 ``rhs``                   right-hand sides (rigid, isolated: stuck and rocking)
 ``dopri``                 the Dormand-Prince 5(4) step, its error norm and dense output
 ``events``                impact map, rest rule, uplift on a hysteretic base, reversals, history rows
@@ -19,7 +22,8 @@ Files (data flows down this list):
 ``rigid``                 :func:`simulate_rigid`: a block on a rigid foundation (two states; the
                           end-of-run proofs P1, P2, P4, P6, P7 in its notes)
 ``driver``                :func:`simulate_core`: a block on an isolated base as a loop over phases
-                          (proofs P3, P3s, P5, P8 in its docstring)
+                          (proofs P3, P3s, P5, P8, and the early stops P9, P9s during the
+                          excitation, in its docstring)
 ``stack_physics``         a body on a free plinth: the equations of both rocking, contact forces, impacts
 ``stack``                 :func:`simulate_stack`: the body on its plinth on a rigid foundation (the
                           rigid driver's code for one rocking body, the 2x2 system for both)

@@ -17,6 +17,10 @@ The disk cache is an optimisation, never a condition of a run:
   run carries on without it (one notice line): :func:`install` wraps numba's ``save_overload`` and
   ``load_overload`` for the functions of this package only.
 
+A warm process loads its cached kernels without numba's refresh of its compiler's registries, which
+only a compile needs (:func:`_load_unrefreshed`: 0.7 s of CPU per process), and finds the cache folder
+once per kernel file, not once per function.
+
 :func:`install` registers the locator with numba; it must run before the kernel modules are
 imported (numba picks a function's locator when ``@njit(cache=True)`` is applied). It changes
 nothing for functions outside this package.
@@ -43,6 +47,10 @@ from rockcli.errors import RockcliInputError
 
 PACKAGE_DIR = Path(__file__).resolve().parent
 _notices: set = set()
+_folders: dict = {}  # (NUMBA_CACHE_DIR, source file) -> (cache folder, writable), or None: not this package's
+_held: dict = {}  # compile lock file -> its descriptor, for the functions this process is compiling
+#: Longest wait for another process's compile of the same function [s]; then it is compiled here as well.
+COMPILE_WAIT_S = 900.0
 
 
 def check_thread_setting() -> None:
@@ -133,8 +141,13 @@ def _watch_compiles() -> None:
 
         def on_end(self, ev):
             name = self._name(ev)
+            if name is None:
+                return
+            dispatcher, args = ev.data.get("dispatcher"), tuple(ev.data.get("args", ()))
+            if args not in getattr(dispatcher, "overloads", {}):
+                _release_compile(getattr(dispatcher, "_cache", None), args)  # it failed: nothing will be saved
             stack = local.__dict__.get("stack")
-            if name is None or not stack:
+            if not stack:
                 return
             t0 = stack.pop()
             if not stack:
@@ -167,17 +180,151 @@ def _wrap_cache_io(cache_cls) -> None:
             notice(f"numba's disk cache could not be written in {self.cache_path} ({reason}); the kernels "
                    f"run without it")
             return None
+        finally:
+            _release_compile(self, sig)  # saved (or not): a process waiting for this compile loads it now
 
     def load_overload(self, sig, target_context):
         if not _ours(self):
             return load(self, sig, target_context)
-        try:
+        def attempt():
+            if hasattr(self, "_load_overload"):  # numba's internals as this module knows them
+                return _load_unrefreshed(self, sig, target_context)
             return load(self, sig, target_context)
+
+        try:
+            data = attempt()
+            if data is None and _claim_compile(self, sig):
+                data = attempt()  # the process this one waited for (if any) has saved it meanwhile
+                if data is not None:
+                    _release_compile(self, sig)
+            return data
         except (OSError, EOFError, pickle.UnpicklingError):
+            _release_compile(self, sig)
             return None  # an unreadable or damaged entry: compiled again
 
     save_overload._rockcli_tolerant = True
     cache_cls.save_overload, cache_cls.load_overload = save_overload, load_overload
+
+
+def _compile_lock_path(cache, sig) -> str | None:
+    """The lock file of one specialisation (argument types ``sig``) of ``cache``'s function, beside its index."""
+    locator = getattr(getattr(cache, "_impl", None), "locator", None)
+    index = getattr(getattr(cache, "_cache_file", None), "_index_path", None)
+    if locator is None or getattr(locator, "_no_disk", False) or not index:
+        return None
+    try:
+        from numba.core import sigutils
+
+        args = sigutils.normalize_signature(sig)[0]
+    except Exception:  # noqa: BLE001 - only an optimisation depends on it
+        return None
+    return f"{index}.{hashlib.sha256(str(tuple(args)).encode()).hexdigest()[:16]}.lock"
+
+
+def _claim_compile(cache, sig) -> bool:
+    """Before this process compiles a function of this package for argument types ``sig`` that the disk cache
+    lacks: wait while another process compiles the same specialisation (an exclusive ``flock`` on a lock file
+    beside the function's cache index, one per argument types), then
+    hold that lock until this process has saved it (:func:`_release_compile`). True when this process holds
+    the lock (the caller then loads again: a process it waited for, or one that finished just before the
+    lock was taken, has saved the function), False when it cannot lock (then it compiles, as without it).
+
+    Two processes that start on a machine whose cache lacks a kernel (a fresh clone's test suite on two
+    workers, two first commands at once, :func:`rockcli.kernels.batch.prepare`'s child and parent with
+    their shared callees) would otherwise each compile it: the same machine code, twice the CPU. Waiting
+    changes nothing but who compiles: the code loaded is the code the other process compiled and saved,
+    the same as compiling it here (numba's cache is keyed on the sources and the machine). No deadlock:
+    a process waits for a specialisation only while compiling its callers (or nothing), and holds only
+    the locks of the specialisations it is compiling, so every wait follows the call graph of the
+    kernels, which has no cycle (no kernel is recursive); and a process that dies releases its locks. The wait ends after
+    :data:`COMPILE_WAIT_S` in any case (then it compiles here). On a file system without ``flock``, or
+    without a writable cache, nothing is locked.
+    """
+    path = _compile_lock_path(cache, sig)
+    if path is None or path in _held:
+        return False
+    try:
+        import fcntl
+
+        fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o666)
+    except (ImportError, OSError):
+        return False
+    from rockcli import compiling
+
+    waited, signalled, t0 = False, False, time.monotonic()
+    try:
+        while True:
+            try:
+                fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+                break
+            except BlockingIOError:
+                if not waited and not compiling.compiling():  # the wait is the first run's compile
+                    compiling.started(_kernel_name(cache))
+                    signalled = True
+                waited = True
+                if time.monotonic() - t0 > COMPILE_WAIT_S:
+                    os.close(fd)
+                    return False
+                time.sleep(0.05)
+    except OSError:
+        os.close(fd)
+        return False
+    finally:
+        if signalled:
+            compiling.ended(_kernel_name(cache), time.monotonic() - t0)
+    _held[path] = fd
+    return True
+
+
+def _release_compile(cache, sig) -> None:
+    """Release the compile lock :func:`_claim_compile` took for ``cache``'s function and ``sig`` (if held here)."""
+    path = _compile_lock_path(cache, sig) if cache is not None else None
+    fd = _held.pop(path, None) if path else None
+    if fd is not None:
+        try:
+            os.close(fd)  # closing the only descriptor of the file releases the flock
+        except OSError:
+            pass
+
+
+def _kernel_name(cache) -> str:
+    func = getattr(cache, "_py_func", None)
+    return f"{getattr(func, '__module__', '').rsplit('.', 1)[-1]}.{getattr(func, '__qualname__', '?')}"
+
+
+def _load_unrefreshed(cache, sig, target_context):
+    """numba's ``Cache.load_overload`` for a function of this package, without its first step, the
+    refresh of the compiler's registries.
+
+    ``Cache.load_overload`` begins with ``target_context.refresh()``, which imports and installs every
+    typing and lowering implementation numba has (``numba.np.arraymath`` among them, which imports
+    ``scipy.linalg`` to look for a BLAS): about 0.7 s of CPU, more than half of a warm ``rockcli
+    simulate``, spent once per process before the first kernel is loaded. A load needs none of it:
+
+    * a cache entry is the function's machine code (object code, callees linked in), its bitcode for
+      inlining and pickled descriptors; loading links that object code into numba's JIT engine and
+      resolves its external symbols, and compiles nothing. The code that runs is the same bytes
+      whether the registries were refreshed or not, so a result cannot change.
+    * the external symbols it may use are numba's C helpers and the C math functions (registered
+      when numba's CPU context is created, before any load), the runtime's (NRT; registered by
+      ``rtsys.initialize``, which the refresh would call and which is called here), and the hash
+      secrets of ``numba.cpython.hashing`` (registered at its import, done here). The only other
+      symbols numba registers are the parallel scheduler's, for ``parallel=True`` code, which this
+      package does not have (its kernels run on a pool of threads, see :mod:`rockcli.kernels.batch`;
+      tests/test_first_run.py checks both that no kernel asks for it and that every batch and
+      single-run kernel loads and runs this way in a fresh process, with the same results as after
+      a refresh). A symbol missing at link time would stop the process with LLVM's error, never run
+      other code.
+    * a cache miss returns None and numba compiles the function; its compiler refreshes the
+      registries itself first (``CompilerBase.__init__``), as every later compile does.
+    """
+    from numba.core.runtime import rtsys
+
+    import numba.cpython.hashing  # noqa: F401  (its symbols, see above)
+
+    rtsys.initialize(target_context)
+    with cache._guard_against_spurious_io_errors():
+        return cache._load_overload(sig, target_context)
 
 
 def _make_locator():
@@ -191,7 +338,7 @@ def _make_locator():
 
         def __init__(self, py_func, py_file, cache_path):
             self._py_file = py_file
-            self._lineno = py_func.__code__.co_firstlineno
+            self._lineno = py_func.__code__.co_firstlineno if py_func is not None else 0
             self._cache_path = cache_path
 
         def get_source_stamp(self):
@@ -201,12 +348,27 @@ def _make_locator():
 
         @classmethod
         def from_function(cls, py_func, py_file):
+            key = (config.CACHE_DIR, py_file)
+            if key not in _folders:
+                _folders[key] = cls._folder(py_file)
+            found = _folders[key]
+            if found is None:
+                return None  # not ours: numba's own locators decide
+            path, writable = found
+            return (cls if writable else _NoDiskLocator)(py_func, py_file, path)
+
+        @classmethod
+        def _folder(cls, py_file):
+            """``(cache folder, writable)`` of the functions of ``py_file``, or None when it is not a file of this
+            package. Found once per file and process (the package's ~110 functions share one or a few folders;
+            a folder that can no longer be written later makes a save fail with the notice of
+            :func:`_wrap_cache_io`)."""
             try:
                 inside = Path(py_file).resolve().parent == PACKAGE_DIR
             except OSError:
                 return None
             if not inside:
-                return None  # not ours: numba's own locators decide
+                return None
             candidates = []
             if config.CACHE_DIR:
                 candidates.append(os.path.join(config.CACHE_DIR, cls.get_suitable_cache_subpath(py_file)))
@@ -217,19 +379,18 @@ def _make_locator():
                 user = AppDirs(appname="numba", appauthor=False).user_cache_dir
                 candidates.append(os.path.join(user, "rockcli", cls.get_suitable_cache_subpath(py_file)))
             for path in candidates:
-                self = cls(py_func, py_file, path)
                 try:
-                    self.ensure_cache_path()
+                    cls(None, py_file, path).ensure_cache_path()
                 except OSError:
                     continue
-                return self
+                return path, True
             if config.CACHE_DIR:
                 bases = [config.CACHE_DIR]
             else:
                 bases = [str(PACKAGE_DIR / "__pycache__"), str(Path(user) / "rockcli")]
             notice(f"numba's disk cache cannot be written (tried {' and '.join(bases)}); kernels not cached there are "
                    f"compiled in memory on every run (about a minute; set NUMBA_CACHE_DIR to a writable folder)")
-            return _NoDiskLocator(py_func, py_file, candidates[0])
+            return candidates[0], False
 
     class _NoDiskLocator(_PackageLocator):
         """No folder can be written: nothing is saved; loads use what is there (a cache shipped read-only)."""

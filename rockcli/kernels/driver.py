@@ -6,7 +6,8 @@ hysteretic bearings add their Bouc-Wen variables, which follow u exactly and liv
 of the run record ``rs``):
 
 * *stuck*: the block moves with its base (theta = theta_dot = 0); only the base is integrated
-  (:func:`_after_stuck_step`).
+  (:func:`_after_stuck_step`), or, on linear bearings under a record, advanced exactly from sample to
+  sample (:func:`_linear_stuck_step`, :mod:`rockcli.kernels.linear_base`).
 * *rocking* about the corner ``s`` (+1 right, -1 left): all four states (:func:`_after_rocking_step`).
 
 Each pass of the loop: move to the excitation segment that contains t
@@ -28,14 +29,18 @@ from rockcli.kernels.bearings import (base_force, bearing_energy, free_disp_boun
 from rockcli.kernels.dopri import _dense, _dp5_step, _restep_rows, _shift_event, _state_at
 from rockcli.kernels.events import (REV_AT, REV_WRONG_START, _count_uplift, _hist_grid, _hist_grid_cut, _hist_peak,
                                     _hist_state, _u_extremum, hysteretic_uplift, impact_map, reversal_check)
-from rockcli.kernels.ground import ground_at
-from rockcli.kernels.layout import (FOUNDATION_BILINEAR, FOUNDATION_LINEAR, H_KIND, H_T, HK_IMPACT, HK_STATE, HK_UPLIFT,
+from rockcli.kernels.ground import _impulse_left, ground_at
+from rockcli.kernels.linear_base import (advance, base_acceleration, base_norm, base_norm_of, coefficients, first_exceed,
+                                         free_part, linear_base_table, step_clear, velocity_zero)
+from rockcli.kernels.layout import (EXC_RECORD, FOUNDATION_BILINEAR, FOUNDATION_LINEAR, H_KIND, H_T, HK_GRID, HK_IMPACT,
+                                    HK_STATE, HK_UPLIFT,
                                     O_T_SETTLED, P_ALPHA, P_COSA, P_G, P_HDT,
                                     P_GAMMA, P_H, P_R, P_RTOL, P_SC0, P_TH0, P_THD0, P_THR, P_W, P_XI, PHASE_ROCKING,
                                     PHASE_STUCK, RS_DIR, RS_FRESH, RS_NREV, RS_NRHS, RS_PHASE, RS_PK_ON, RS_PK_SIG,
                                     RS_PK_T, RS_REJ, RS_S, RS_SEG_END, RS_SETTLED,
                                     RS_SPLIT, RS_STATUS, RS_STEPS, RS_T, RS_THMAX, RS_U1A, RS_UA, RS_UMAX, RS_XI1,
                                     RS_XI2, STATUS_MAX_STEPS, W_EV, W_FEV, W_RE, W_TMP, W_Y, W_YNEW)
+from rockcli.kernels.layout import E_AP, P_K1, P_K2, P_Q1, P_Q2, RS_J, RS_SEG  # the early stops P9, P9s
 from rockcli.kernels.polynomials import _first_exceed, _poly
 from rockcli.kernels.rhs import _rhs_into
 from rockcli.kernels.steps import (EV_FAILED, EV_IMPACT, EV_OVERTURN, _advance_segment, _bounce, _close_step,
@@ -110,14 +115,23 @@ def _restep_iso(fkind, phase, s, prm, seg, epar, hy, t, h, W, i0, i1):
 # Phases
 # ---------------------------------------------------------------------------------------------
 @njit(cache=True, inline='always')
-def _end_of_run(fkind, prm, t_exc_end, want_history, t_show_end, t_horizon, max_steps, rs, W, out):
-    """The end-of-run rule on an isolated base (P3, P3s, P5, P8 in :func:`simulate_core`): True when
-    the run ends now."""
+def _end_of_run(fkind, prm, ekind, epar, jtab, dt, lin, t_exc_end, early, want_history, t_show_end, t_horizon,
+                max_steps, rs, W, out):
+    """The end-of-run rule on an isolated base (P3, P3s, P5, P8, and with ``early`` P9, P9s, in
+    :func:`simulate_core`): True when the run ends now."""
     t = rs[RS_T]
     phase = rs[RS_PHASE]
     alpha = prm[P_ALPHA]
     thr = prm[P_THR]
     w = prm[P_W]
+    if early and rs[RS_SETTLED] == 0.0 and phase == PHASE_STUCK:
+        proven, u_bound = _early_stuck(fkind, prm, ekind, epar, jtab, dt, lin, rs, W)
+        if proven:  # P9, P9s: the block never lifts again; theta_max and the impacts are final
+            rs[RS_SETTLED] = 1.0
+            out[O_T_SETTLED] = t
+            if not u_bound <= rs[RS_UMAX] * (1.0 + 1e-9):
+                rs[RS_UMAX] = math.nan  # the base's peak is not final: unknown, not the peak so far
+            return True
     if rs[RS_SETTLED] == 0.0 and t >= t_exc_end:
         settled = False
         if phase == PHASE_STUCK:
@@ -149,7 +163,47 @@ def _end_of_run(fkind, prm, t_exc_end, want_history, t_show_end, t_horizon, max_
                 more = math.sqrt(W[W_Y, 3] ** 2 + w * w * W[W_Y, 2] ** 2) > w * rs[RS_UMAX] * (1.0 + 1e-9)
         if not more:
             return True
+        if early:  # a verdict-only early run does not follow the base to its peak: unknown
+            rs[RS_UMAX] = math.nan
+            return True
     return _out_of_time(rs, t_horizon, max_steps)
+
+
+#: Relative margin of the early stops P9, P9s below the uplift acceleration (see P9).
+EARLY_MARGIN = 1e-6
+
+
+@njit(cache=True)
+def _early_stuck(fkind, prm, ekind, epar, jtab, dt, lin, rs, W):
+    """P9, P9s (block stuck, ``early`` only): ``(proven, u_bound)``: True when no later base acceleration
+    can reach ``g tan(alpha)`` (to within :data:`EARLY_MARGIN`), and a bound of every later ``|u|`` [m].
+
+    Linear base: every later norm ``S`` of the base (:func:`rockcli.kernels.linear_base.base_norm`) is at
+    most ``S + J`` (``J`` the remaining ground impulse), and at a sample of a record at most ``|s|``
+    times the largest later norm of the record's linear response (``lin``,
+    :func:`rockcli.kernels.linear_base.linear_base_table`) plus the norm of the difference from it.
+    Hysteretic base: every later ``sqrt(2 E) <= sqrt(2 E) + J`` (P9s) bounds the force.
+    """
+    t = rs[RS_T]
+    u = W[W_Y, 2]
+    v = W[W_Y, 3]
+    w = prm[P_W]
+    thr = prm[P_THR] * (1.0 - EARLY_MARGIN)
+    J = _impulse_left(ekind, jtab, epar, dt, t)
+    if fkind == FOUNDATION_LINEAR:
+        c, k_a, k_u = base_norm(prm[P_XI])
+        B = base_norm_of(c, w, u, v) + J
+        k = int(rs[RS_J])
+        if lin.shape[0] > 0 and t == rs[RS_SEG + 3] and k < lin.shape[0]:  # at sample k of the record
+            s = epar[E_AP]
+            B = min(B, abs(s) * lin[k, 2] + base_norm_of(c, w, u - s * lin[k, 0], v - s * lin[k, 1]))
+        return w * k_a * B < thr, k_u * B / w
+    root = w * free_disp_bound(fkind, prm, _hy(rs), u, v) + J  # bounds every later sqrt(2 E)
+    if fkind == FOUNDATION_BILINEAR:
+        F = w * root + prm[P_Q1]
+    else:
+        F = min(math.sqrt(prm[P_K1]) * root + prm[P_Q1], math.sqrt(prm[P_K2]) * root + prm[P_Q2])
+    return F < thr, root / w
 
 
 @njit(cache=True)
@@ -342,6 +396,80 @@ def _after_stuck_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, epar):
     rs[RS_UMAX] = max(rs[RS_UMAX], abs(W[W_Y, 2]))
 
 
+@njit(cache=True)
+def _linear_stuck_step(prm, rs, W, out, t_stop, dt, lbc):
+    """Stuck on linear bearings under a record: the base advanced exactly to ``t_stop`` (the end of the
+    sample interval; after the record at most ``dt`` on), or to the lift-off inside the step.
+
+    The piecewise-exact solution of :mod:`rockcli.kernels.linear_base` (``lbc`` its coefficients for a
+    whole sample interval ``dt``, computed once per run; a shorter step, after a rest, computes its
+    own). Lift-off where ``|a|`` first exceeds ``g tan(alpha)`` inside the step (exact up to rounding:
+    :func:`rockcli.kernels.linear_base.first_exceed`), the block pivoting on the corner ``-sign(a)``;
+    the peak base displacement at a reversal inside the step
+    (:func:`rockcli.kernels.linear_base.velocity_zero`). One step counts as one accepted step."""
+    w = prm[P_W]
+    xi = prm[P_XI]
+    thr = prm[P_THR]
+    t = rs[RS_T]
+    seg = _seg(rs)
+    b = seg[2]
+    a0 = seg[1] + b * (t - seg[3])
+    ulps = 1e-14 * (abs(t) + dt)  # (a whole interval, up to the rounding of t)
+    h = t_stop - t
+    t_end = t_stop
+    if h > dt + ulps:  # after the record: sample-long steps
+        h = dt
+        t_end = t + dt
+    c = lbc if abs(h - dt) <= ulps else coefficients(w, xi, h)
+    u0 = W[W_Y, 2]
+    v0 = W[W_Y, 3]
+    a_s, ah, ahd, k = free_part(w, xi, u0, v0, a0, b)
+    u1, v1 = advance(c, u0, v0, a0, b)
+    tau = -1.0
+    sa = 0.0
+    if not step_clear(a_s, base_acceleration(w, xi, u1, v1), k, h, thr):
+        tau, sa = first_exceed(w, xi, a_s, ah, ahd, k, a0, b, h, thr)
+    span = h
+    if tau >= 0.0:
+        span = tau
+        if tau < h:
+            u1, v1 = advance(coefficients(w, xi, tau), u0, v0, a0, b)
+    if (v0 > 0.0) != (v1 > 0.0):
+        rs[RS_UMAX] = max(rs[RS_UMAX], abs(velocity_zero(w, xi, u0, v0, a0, b, span)))
+    W[W_Y, 2] = u1
+    W[W_Y, 3] = v1
+    rs[RS_UMAX] = max(rs[RS_UMAX], abs(u1))
+    rs[RS_STEPS] += 1
+    rs[RS_FRESH] = 1.0  # W[0] is not kept up to date here
+    if tau >= 0.0:
+        rs[RS_T] = t + tau
+        rs[RS_S] = -sa
+        rs[RS_PHASE] = PHASE_ROCKING
+        _count_uplift(out, rs[RS_T])
+    else:
+        rs[RS_T] = t_end
+
+
+@njit(cache=True)
+def _hist_grid_linear(H, nh, kg, hdt, t0, u0, v0, seg, t_end, fkind, prm, hy, epar, W):
+    """The grid rows (``HK_GRID``) at ``kg hdt, ... <= t_end`` of an exact stuck step from ``t0``
+    (state ``u0, v0``; ground of the segment ``seg``): :func:`_hist_grid` for :func:`_linear_stuck_step`."""
+    w = prm[P_W]
+    xi = prm[P_XI]
+    b = seg[2]
+    a0 = seg[1] + b * (t0 - seg[3])
+    while kg * hdt <= t_end:
+        tg = kg * hdt
+        u, v = advance(coefficients(w, xi, max(tg - t0, 0.0)), u0, v0, a0, b)
+        W[W_TMP, 0] = 0.0
+        W[W_TMP, 1] = 0.0
+        W[W_TMP, 2] = u
+        W[W_TMP, 3] = v
+        H, nh = _hist_state(H, nh, tg, ground_at(tg, seg, epar), fkind, prm, hy, W, W_TMP, HK_GRID)
+        kg += 1
+    return H, nh, kg
+
+
 @njit(cache=True, inline='always')
 def _after_rocking_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, nst, epar):
     """Rocking on an isolated base, after a step: the events in theta
@@ -486,6 +614,47 @@ def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, ta
        ``L``, the block never reaches ``L`` (the bound keeps ``|theta| < L <= 2 alpha`` throughout): it
        survives and ``theta_max`` is final. (It ends the minutes of free rocking of very slender blocks,
        alpha 1-2 deg, which with gamma = 0 otherwise ran to the horizon NOT PROVEN.)
+    P9 (``early`` only, linear bearings, block stuck, at any time: during the excitation too). While the
+       block rides on its base the base is the oscillator ``u'' + 2 xi w u' + w^2 u = -ag`` (any gamma < 1:
+       gamma does not enter it), and the block lifts only where ``|a| > g tan(alpha)``, ``a = -(w^2 u + 2 xi
+       w u')`` the absolute base acceleration. Take the norm ``S^2 = v^2 + 2 c v y + y^2 = (v + c y)^2 + (1
+       - c^2) y^2`` (``v = u'``, ``y = w u``, ``0 <= c < 1`` as in P8, :func:`rockcli.kernels.linear_base.base_norm`):
+       ``dS^2/dt = -w Q - 2 (v + c y) ag`` with ``Q >= 0`` (P8 (i)), so ``dS/dt <= |ag|`` (``|v + c y| <=
+       S``), and S never grows with the ground still; ``|a| <= k_a w S`` and ``|u| <= k_u S/w`` (the largest
+       of a linear form over the ellipse ``S = 1``). Two bounds of every later S follow: (i) ``S + J``, J
+       the remaining ground impulse (:func:`rockcli.kernels.ground._impulse_left`); (ii) on a record, at a
+       sample ``t_k``: write the state as ``s z_lin(t_k) + d``, ``z_lin`` the response of the base alone to
+       the record of unit scale from rest (:func:`rockcli.kernels.linear_base.linear_base_table`, exact steps
+       between samples) and s the scale factor; while the block rides, the state is ``s z_lin(t') +
+       d(t')`` with ``d(t')`` the free motion from d (superposition: both obey the same linear equation),
+       so ``S <= |s| S*_k + S(d)``, ``S*_k`` the table's bound of every later ``S(z_lin)`` (inside a sample
+       interval S grows by at most ``int |ag| <= dt (|a_j| + |a_j+1|)/2``; after the record it never
+       grows). (ii) is nearly exact when the block has not lifted (``d = 0``) or has barely moved a heavy
+       base (gamma small). If ``k_a w B < g tan(alpha)`` with B the smaller bound, ``|a|`` stays below
+       ``g tan(alpha)`` for as long as the block rides, so it rides for ever: it never lifts again. The
+       verdict (``no_uplift`` if it never lifted, else ``rocked``), ``theta_max`` and its time, the impacts,
+       uplifts and rests are then final (``peak_final`` stays True) and the run ends; ``t_settled`` is the
+       time of the proof. The peak base displacement is final only if ``k_u B/w`` does not exceed it, else
+       it is NaN (unknown, never the peak so far). Checked exactly: ``early``, the block stuck, linear
+       bearings (any ``xi >= 0``), (ii) only on a record and only at a sample (``t`` at the start of the
+       record's sample interval). The bound must stay below ``g tan(alpha) (1 - 1e-6)``
+       (:data:`EARLY_MARGIN`): the theorem is about the exact motion from the current state, which the
+       run, continued, follows to the integrator's tolerance (and the table to rounding, ~1e-13); the
+       margin leaves a grazing later peak, within 1e-6 of the threshold, to the integration itself.
+    P9s (``early`` only, sliding and lead-rubber bearings, block stuck). With P3s's energy ``E = v^2/2 +
+       sum (k_i u_i^2 + q_i u_yi z_i^2)/2`` of the base and bearings, while the block rides ``dE/dt = -ag v
+       - (the dissipation, >= 0 for gamma_bw >= |beta|)``, so ``d sqrt(2 E)/dt <= |ag|`` and every later
+       ``sqrt(2 E) <= r = sqrt(2 E) + J``. One element: ``F = -(w^2 u + Q z)`` with ``|z| <= 1`` (``A = 1``,
+       ``beta + gamma_bw = 1``; both conditions are checked by :mod:`rockcli.models.limits`) and ``w |u| <=
+       sqrt(2 E)``, so ``|F| <= w r + Q``; two in series carry the same force ``-(k_i u_i + Q_i z_i)`` and
+       ``sqrt(k_i) |u_i| <= sqrt(2 E)``, so ``|F| <= min_i (sqrt(k_i) r + Q_i)``. Below ``g tan(alpha) (1 -
+       1e-6)`` the block never lifts again (as P9); ``|u| <= r/w``. P9's superposition (ii) does not carry
+       over (the bearings are not linear), so P9s proves the verdict only once the rest of the record is
+       weak: ``w r + Q`` below the uplift acceleration.
+    Not covered: a block still rocking during the excitation on an isolated base. With gamma small (the
+    default 0.01) P5's energy is nearly all the base's, and P8's bound of the block's own energy needs
+    ``int |a|`` of the base over the rest of the record, which the moving ground keeps large; the run
+    follows the rocking until the block rests (the rest rule) and P9 applies from then on.
 
     Parameters
     ----------
@@ -509,8 +678,9 @@ def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, ta
     want_history : bool
         Store the state at every step end and event.
     early : bool
-        Also stop during the excitation once the verdict is proven (rigid foundation only: P4,
-        P6); ignored here.
+        Verdict only: also stop during the excitation once the verdict is proven (P9, P9s, for a block
+        at rest on its base; on a rigid foundation P4, P6, P7), and do not follow the free base to its
+        peak displacement after a proof: ``O_U_MAX`` is then NaN unless proven final.
     out : float64[N_OUT]
         Filled with the results.
 
@@ -536,6 +706,13 @@ def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, ta
         _set_hy(rs, initial_anchor(fkind, prm))
     t_show_end = t_exc_end + tail
     t_horizon = t_exc_end + max(horizon, tail)
+    early = early and not want_history
+    lin = np.empty((0, 3))  # the record's linear base response for P9 (early runs on linear bearings)
+    if early and fkind == FOUNDATION_LINEAR and ekind == EXC_RECORD:
+        lin = linear_base_table(acc, dt, prm[P_W], prm[P_XI])
+    # a record on linear bearings: the stuck phase in closed form (_linear_stuck_step)
+    exact = fkind == FOUNDATION_LINEAR and ekind == EXC_RECORD
+    lbc = coefficients(prm[P_W], prm[P_XI], dt)
     hdt = prm[P_HDT]
     grid = want_history and hdt > 0.0
     kg = np.int64(math.ceil(rs[RS_T] / hdt)) if grid else np.int64(0)  # the next grid time is kg hdt
@@ -553,7 +730,8 @@ def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, ta
         if rs[RS_SETTLED] != 0.0 and rs[RS_T] < t_show_end:
             t_stop = min(t_stop, t_show_end)  # a history run shows the free motion up to exactly here
 
-        if _end_of_run(fkind, prm, t_exc_end, want_history, t_show_end, t_horizon, max_steps, rs, W, out):
+        if _end_of_run(fkind, prm, ekind, epar, jtab, dt, lin, t_exc_end, early, want_history, t_show_end,
+                       t_horizon, max_steps, rs, W, out):
             break
 
         if rs[RS_PHASE] == PHASE_STUCK:
@@ -567,6 +745,19 @@ def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, ta
                 _count_uplift(out, rs[RS_T])
                 rs[RS_FRESH] = 1.0
                 continue
+            if exact:
+                t0 = rs[RS_T]
+                u0 = W[W_Y, 2]
+                v0 = W[W_Y, 3]
+                seg0 = _seg(rs)
+                _linear_stuck_step(prm, rs, W, out, t_stop, dt, lbc)
+                if grid:
+                    H, nh, kg = _hist_grid_linear(H, nh, kg, hdt, t0, u0, v0, seg0, rs[RS_T], fkind, prm, _hy(rs),
+                                                  epar, W)
+                if want_history:
+                    H, nh = _history_row(H, nh, fkind, prm, rs, epar, W, W_Y,
+                                         HK_UPLIFT if rs[RS_PHASE] == PHASE_ROCKING else HK_STATE)
+                continue
 
         ok, hs, last, sig_lim = _take_step(fkind, prm, ekind, epar, max_steps, rs, W, t_stop, nst)
         if not ok:
@@ -576,8 +767,8 @@ def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, ta
         n0 = nh
         if grid:  # the step's grid rows, before its events move W[W_Y] (those past an event are dropped below)
             i0 = np.int64(2) if rs[RS_PHASE] == PHASE_STUCK else np.int64(0)  # stuck: theta = theta_dot = 0
-            H, nh, kg = _hist_grid(H, nh, kg, hdt, rs[RS_T], hs, t_new, fkind, prm, _hy(rs), _seg(rs), epar, W, i0,
-                                   nst)
+            H, nh, kg = _hist_grid(H, nh, kg, hdt, rs[RS_T], hs, min(t_new, t_show_end), fkind, prm, _hy(rs), _seg(rs),
+                                   epar, W, i0, nst)  # no grid row after t_show_end: counted before the run
 
         if rs[RS_PHASE] == PHASE_STUCK:
             _after_stuck_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, epar)

@@ -279,6 +279,3 @@ def _vertical_left(vjtab, vdt, t):
     if vjtab.shape[0] == 0:
         return 0.0
     return _record_left(vjtab, vdt, t)
-
-
-# ---------------------------------------------------------------------------------------------

@@ -7,7 +7,8 @@ the rigid foundation compiles only this (and :mod:`rockcli.kernels.steps`, ``dop
 ``ground``, ``polynomials``). The isolated bases have their own driver, :mod:`rockcli.kernels.driver`.
 
 End of the run: the proofs P1, P2, P4, P6, P7 (re-proved under a vertical motion in PV; the general
-rule, and P3, P3s, P5, P8 for isolated bases, are stated in :func:`rockcli.kernels.driver.simulate_core`):
+rule, and P3, P3s, P5, P8 for isolated bases with their early stops P9, P9s during the excitation, are stated in
+:func:`rockcli.kernels.driver.simulate_core`):
 
 P1 (ground still, block stuck). With ``ag = 0`` and theta = 0 the uplift condition
    ``|ag| > g tan(alpha)`` can never hold again.
@@ -294,18 +295,22 @@ def simulate_rigid_vertical(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_e
         if vertical:
             _vertical_piece(rs, vacc, vdt)
             t_stop = min(t_stop, rs[RS_VEND])
-        if rs[RS_SETTLED] != 0.0 and rs[RS_T] < t_show_end:
-            t_stop = min(t_stop, t_show_end)  # a history run shows the free motion up to exactly here
-
         if _end_of_run_rigid(prm, ekind, epar, jtab, dt, t_exc_end, early, want_history, t_show_end, t_horizon,
                              max_steps, rs, W, out, vjtab, vdt):
             break
+        # a history run shows the free motion up to exactly here (checked after the end-of-run rule, which may
+        # have just proven the verdict: a block at rest when the excitation ends stays there to t_show_end,
+        # not to the horizon)
+        if rs[RS_SETTLED] != 0.0 and rs[RS_T] < t_show_end:
+            t_stop = min(t_stop, t_show_end)
 
         if rs[RS_PHASE] == PHASE_STUCK:
             t0 = rs[RS_T]
             _stuck_rigid(prm, rs, epar, t_stop, out, vertical)
-            if grid:  # at rest on the ground: theta = theta_dot = 0 up to the end (or the uplift)
-                H, nh, kg = _hist_grid(H, nh, kg, hdt, t0, 0.0, rs[RS_T], 0, prm, _NO_HY, _seg(rs), epar, W, 0, 2)
+            if grid:  # at rest on the ground: theta = theta_dot = 0 up to the end (or the uplift); no grid row
+                # after t_show_end (the grid follows the tail: its rows are counted before the run)
+                H, nh, kg = _hist_grid(H, nh, kg, hdt, t0, 0.0, min(rs[RS_T], t_show_end), 0, prm, _NO_HY, _seg(rs),
+                                       epar, W, 0, 2)
             if want_history:
                 H, nh = _history_rigid(H, nh, rs, epar, W, HK_UPLIFT if rs[RS_PHASE] == PHASE_ROCKING else HK_STATE)
             continue
@@ -323,8 +328,9 @@ def simulate_rigid_vertical(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_e
             _state_at(W, hs, rs[RS_PK_SIG], np.int64(2))
             H, nh = _hist_peak(H, nh, rs[RS_PK_T], ground_at(rs[RS_PK_T], _seg(rs), epar), W, W_TMP)
         n0 = nh
-        if grid:  # the step's grid rows (those past an event inside it are dropped below)
-            H, nh, kg = _hist_grid(H, nh, kg, hdt, rs[RS_T], hs, t_new, 0, prm, _NO_HY, _seg(rs), epar, W, 0, 2)
+        if grid:  # the step's grid rows up to t_show_end (those past an event inside it are dropped below)
+            H, nh, kg = _hist_grid(H, nh, kg, hdt, rs[RS_T], hs, min(t_new, t_show_end), 0, prm, _NO_HY, _seg(rs),
+                                   epar, W, 0, 2)
         if code == EV_OVERTURN:
             _to_overturn(rs, W, out, hs, sig, 2)
         elif code == EV_FAILED:

@@ -9,6 +9,7 @@ import math
 from dataclasses import dataclass
 
 from rockcli.errors import RockcliInputError
+from rockcli.inputs import format_number
 from rockcli.models.limits import ALPHA_MIN_DEG, R_RANGE_M, _check, _finite, _num
 from rockcli.units import G
 
@@ -52,6 +53,7 @@ class Block:
         """Block from its semi-diagonal [m] and slenderness in degrees."""
         _check(_finite(alpha_deg) and 0 < float(alpha_deg) < 90,
                f"block slenderness alpha must lie strictly between 0 and 90 degrees, got {_num(alpha_deg)}")
+        _check_block(R, math.radians(float(alpha_deg)), alpha_deg=alpha_deg)  # quoting the degrees as given
         return cls(R, math.radians(float(alpha_deg)), name)
 
     @property
@@ -92,19 +94,25 @@ class Block:
         return 1.0 - 1.5 * math.sin(self.alpha) ** 2
 
 
-def _check_block(R, alpha, source: str = "") -> None:
-    """Raise one sentence when R [m] or alpha [rad] lies outside :data:`R_RANGE_M` / :data:`ALPHA_MIN_DEG`."""
+def _check_block(R, alpha, source: str = "", alpha_deg=None) -> None:
+    """Raise one sentence when R [m] or alpha [rad] lies outside :data:`R_RANGE_M` / :data:`ALPHA_MIN_DEG`.
+
+    The slenderness is quoted as it was given: ``alpha_deg`` (degrees, :meth:`Block.from_degrees`), else the
+    radians of :class:`Block` with their degrees, or (``source``: derived from a height and a width) the
+    degrees to 12 significant digits (:func:`rockcli.inputs.format_number` with ``derived=True``)."""
     _check(_finite(R) and float(R) > 0, f"block size R must be a positive length in m, got {_num(R)}")
     _check(_finite(alpha) and 0 < float(alpha) < math.pi / 2,
            f"block slenderness alpha must lie strictly between 0 and 90 degrees, got {_num(alpha)} rad")
     lo, hi = R_RANGE_M
-    shown = _num(R) if not source else f"{float(R):g}"  # a derived R: the source quotes what was given
+    shown = _num(R) if not source else format_number(R, derived=True)  # a derived R: the source quotes the input
     _check(lo <= float(R) <= hi,
            f"block size R = {shown} m{source} lies outside the supported {lo:g} m to {hi:g} m (a figurine 2 cm "
            f"tall to a 140 m monolith; smaller bodies rock too fast to integrate, p = sqrt(3 g/4 R))")
     deg = math.degrees(float(alpha))
+    shown = (f"{_num(alpha_deg)} deg" if alpha_deg is not None else
+             f"{format_number(deg, derived=True)} deg" if source else f"{_num(alpha)} rad ({deg:.3g} deg)")
     _check(deg >= ALPHA_MIN_DEG * (1 - 1e-12),
-           f"block slenderness alpha = {deg:.3g} deg{source} is below the supported {ALPHA_MIN_DEG:g} deg "
+           f"block slenderness alpha = {shown}{source} is below the supported {ALPHA_MIN_DEG:g} deg "
            f"(h/b = {1 / math.tan(float(alpha)):.3g} > 57): such a needle uplifts under ground noise, "
            f"rocks through ever longer impact cascades, and its theta/alpha means nothing")
 
@@ -202,3 +210,21 @@ def impact_coefficient(alpha: float, gamma: float) -> float:
     cot2 = (math.cos(alpha) / math.sin(alpha)) ** 2
     k = (4.0 - 3.0 * gamma) * cot2
     return max(0.0, (k - 2.0) / (k + 4.0))
+
+
+#: Height or width [m] above which a body is larger than any free-standing body ever set up (the tallest
+#: monolith erected, the Lateran obelisk in Rome, is 32 m tall): such a size is most likely centimetres
+#: written as metres (``statue:height=180,width=50``, a 180 m statue). :func:`size_warning` says so and
+#: the run goes on: sizes up to R = 100 m are accepted (:data:`R_RANGE_M`), only a warning is given.
+PLAUSIBLE_SIZE_M = 35.0
+
+
+def size_warning(block: Block) -> str:
+    """One sentence when ``block`` is taller or wider than :data:`PLAUSIBLE_SIZE_M` (sizes that look like
+    centimetres), naming the sizes in centimetres' reading; else an empty string."""
+    h, w = block.height, block.width
+    if max(h, w) <= PLAUSIBLE_SIZE_M:
+        return ""
+    return (f"{block.name} is {h:.3g} m tall and {w:.3g} m wide, larger than any free-standing body (the tallest "
+            f"monolith ever set up, the Lateran obelisk, is 32 m); sizes are in metres: if these are centimetres, "
+            f"give height={h / 100:.3g},width={w / 100:.3g}")

@@ -94,7 +94,7 @@ def _check_period(T_b, what="isolation period Tb"):
 
 def _check_gamma(gamma):
     _check(_finite(gamma) and 0 <= gamma < 1,
-           f"mass ratio gamma = m/(m+m_b) must satisfy 0 <= gamma < 1, got {gamma!r}")
+           f"mass ratio gamma = m/(m+m_b) must satisfy 0 <= gamma < 1, got {_num(gamma)}")
 
 
 

@@ -45,6 +45,7 @@ from typing import ClassVar, Optional, Tuple
 import numpy as np
 
 from rockcli.errors import RockcliInputError
+from rockcli.inputs import format_number
 from rockcli.units import G
 
 __all__ = [
@@ -111,7 +112,7 @@ def _check_param(name: str, value) -> float:
     except (TypeError, ValueError):
         raise RockcliInputError(f"pulse parameter {name} must be a number, got {value!r}") from None
     if not math.isfinite(v):
-        raise RockcliInputError(f"pulse parameter {name} must be finite, got {v:g}")
+        raise RockcliInputError(f"pulse parameter {name} must be finite, got {format_number(v)}")
     return v
 
 
@@ -138,15 +139,14 @@ class Pulse:
         a_p = _check_param("a_p", self.a_p)
         T_p = _check_param("T_p", self.T_p)
         if T_p <= 0.0:
-            raise RockcliInputError(f"pulse period T_p must be > 0 s, got {T_p:g}")
+            raise RockcliInputError(f"pulse period T_p must be > 0 s, got {format_number(T_p)}")
         lo, hi = T_P_RANGE_S
         if not lo <= T_p <= hi:
-            from rockcli.inputs import format_number
-
             raise RockcliInputError(f"pulse period T_p = {format_number(T_p)} s lies outside the supported {lo:g} s "
                                     f"to {hi:g} s (no earthquake pulse is shorter or longer)")
         if abs(a_p) > A_P_MAX_G * G:
-            raise RockcliInputError(f"pulse amplitude a_p = {a_p / G:g} g is beyond the supported {A_P_MAX_G:g} g "
+            raise RockcliInputError(f"pulse amplitude a_p = {format_number(a_p / G, derived=True)} g is beyond the "
+                                    f"supported {A_P_MAX_G:g} g "
                                     f"(recorded peaks reach about 4 g; check the units: a_p is in g on the "
                                     f"command line, in m/s^2 in Python)")
         t0 = self._default_t0 * T_p if self.t0 is None else _check_param("t0", self.t0)

@@ -107,7 +107,18 @@ _OPTIONAL_STR = {"units", "pulse_shape"}
 def catalog_path() -> Path:
     """The catalogue file: ``ROCKCLI_CATALOG`` if set, else the repository's ``records/catalog.csv``."""
     env = os.environ.get("ROCKCLI_CATALOG")
-    return Path(env).expanduser() if env else REPO_RECORDS / "catalog.csv"
+    return expand_user(env, "ROCKCLI_CATALOG") if env else REPO_RECORDS / "catalog.csv"
+
+
+def expand_user(text: str, where: str) -> Path:
+    """``text`` as a path with a leading ``~`` or ``~user`` expanded; one sentence when the user is unknown."""
+    try:
+        return Path(text).expanduser()
+    except RuntimeError:  # pathlib: "Could not determine home directory."
+        user = text[1:].split("/")[0].split(os.sep)[0]
+        who = f"no user {user!r} on this machine" if user else "the home folder is not known (HOME is not set)"
+        raise RockcliInputError(f"{where} names {text}, but {who}: '~' stands for a home folder; write the "
+                                f"folder's full path") from None
 
 
 def _parse_cell(name: str, text: str, where: str):
@@ -123,6 +134,12 @@ def _parse_cell(name: str, text: str, where: str):
 
         return parse_number(text, f"{where}: column {name!r} holds", integer=name in _INTS,
                             bad=f"{where}: column {name!r} holds {text!r}, not a number")
+    if name == "units" and text:
+        from rockcli.units import ACCEL_UNITS, KNOWN_UNITS, is_counts
+
+        if text.lower().replace(" ", "") not in ACCEL_UNITS and not is_counts(text):
+            raise RockcliInputError(f"{where}: column 'units' holds {text!r}, which is not a units word rockcli knows "
+                                    f"({KNOWN_UNITS})")
     if name in _OPTIONAL_STR:
         return text or None
     return text
@@ -159,17 +176,23 @@ def load_catalog(path: str | os.PathLike | None = None) -> list[CatalogEntry]:
     path = Path(path) if path is not None else catalog_path()
     text = _read_catalog_text(path)
     reader = csv.DictReader(io.StringIO(text))
-    missing = [c for c in COLUMNS if c not in (reader.fieldnames or []) and c not in OPTIONAL_COLUMNS]
-    if missing:
-        raise RockcliInputError(f"record catalogue {path} lacks the columns {', '.join(missing)}")
-    entries, seen = [], set()
-    for line, row in enumerate(reader, start=2):
-        where = f"{path}, line {line}"
-        entry = CatalogEntry(**{c: _parse_cell(c, row.get(c) or "", where) for c in COLUMNS})
-        if entry.id in seen:
-            raise RockcliInputError(f"{where}: id {entry.id!r} appears twice")
-        seen.add(entry.id)
-        entries.append(entry)
+    try:
+        missing = [c for c in COLUMNS if c not in (reader.fieldnames or []) and c not in OPTIONAL_COLUMNS]
+        if missing:
+            raise RockcliInputError(f"record catalogue {path} lacks the columns {', '.join(missing)}")
+        entries, seen = [], set()
+        for row in reader:
+            where = f"{path}, line {reader.line_num}"
+            entry = CatalogEntry(**{c: _parse_cell(c, row.get(c) or "", where) for c in COLUMNS})
+            if entry.id in seen:
+                raise RockcliInputError(f"{where}: id {entry.id!r} appears twice")
+            seen.add(entry.id)
+            entries.append(entry)
+    except csv.Error as exc:  # a field over csv's limit (128 KiB), a NUL byte, ...
+        limit = csv.field_size_limit()
+        line = next((k for k, t in enumerate(text.splitlines(), start=1) if len(t) > limit), reader.line_num)
+        raise RockcliInputError(f"record catalogue {path}, line {line}: {exc} (a catalogue cell holds an id, "
+                                f"a file name, a number or a note of a few lines)") from None
     return entries
 
 
@@ -233,8 +256,20 @@ def get_entry(record_id: str) -> CatalogEntry:
     for e in entries:
         if e.id == record_id:
             return e
-    raise RockcliInputError(f"{record_id!r} is neither a file nor a catalogue id "
+    raise RockcliInputError(f"{record_id!r} is neither a file nor a catalogue id{did_you_mean(record_id, entries)} "
                             f"(see 'rockcli records list')")
+
+
+def did_you_mean(name: str, entries=None) -> str:
+    """`` (did you mean 'kobe-1995-takarazuka-000'?)`` for a mistyped catalogue id (empty when nothing is close)."""
+    import difflib
+
+    try:
+        ids = [e.id for e in (entries if entries is not None else load_catalog())]
+    except RockcliInputError:
+        return ""
+    close = difflib.get_close_matches(str(name), ids, n=2, cutoff=0.75)
+    return f" (did you mean {' or '.join(repr(c) for c in close)}?)" if close else ""
 
 
 def is_catalog_id(source) -> bool:
@@ -249,7 +284,8 @@ def is_catalog_id(source) -> bool:
 
 def search_path() -> list[Path]:
     """Folders searched for record files: ``ROCKCLI_RECORDS`` entries, then the repository's ``records/``."""
-    folders = [Path(p).expanduser() for p in os.environ.get("ROCKCLI_RECORDS", "").split(os.pathsep) if p.strip()]
+    folders = [expand_user(p, "ROCKCLI_RECORDS") for p in os.environ.get("ROCKCLI_RECORDS", "").split(os.pathsep)
+               if p.strip()]
     for folder in folders:
         _check_records_folder(folder)
     folders.append(REPO_RECORDS)
@@ -288,6 +324,15 @@ def find_file(entry: CatalogEntry, file: str | None = None) -> Path | None:
         return None
     for folder in search_path():
         candidate = folder / name
-        if candidate.is_file():
+        if is_file(candidate):
             return candidate
     return None
+
+
+def is_file(path: Path) -> bool:
+    """``path.is_file()``, and False rather than a PermissionError for a path in a folder that cannot be read
+    (the reader then names the file and why: ``cannot be read (permission denied)``)."""
+    try:
+        return path.is_file()
+    except OSError:
+        return False

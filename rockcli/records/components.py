@@ -27,11 +27,13 @@ from typing import Sequence
 from rockcli.errors import RockcliInputError
 
 class MultiComponent(RockcliInputError):
-    """A file holding several components was read without choosing one (``count`` of them)."""
+    """A file holding several components was read without choosing one (``count`` of them, read with the
+    ``columns`` 1 to ``count`` unless the reader names others: a CWB table's channels are its columns 2-4)."""
 
-    def __init__(self, message: str, count: int):
+    def __init__(self, message: str, count: int, columns=None):
         super().__init__(message)
         self.count = count
+        self.columns = list(columns) if columns is not None else list(range(1, count + 1))
 
 
 class NotARecord(RockcliInputError):
@@ -66,10 +68,10 @@ def parse_orientation(text) -> tuple[float | None, bool]:
     s = str(text or "").strip().upper()
     if not s:
         return None, False
-    s = re.sub(r"^[-_ ]+", "", s)
-    if re.fullmatch(r"\d{1,3}(\.\d+)?", s):
+    s = re.sub(r"^[_ ]+", "", s)  # "_H1"; a minus is a sign: -242 is 118 deg, and -S62W is no bearing
+    if re.fullmatch(r"[-+]?\d{1,3}(\.\d+)?", s):
         value = float(s)
-        return (value % 360.0, False) if value <= 360.0 else (None, False)
+        return (value % 360.0, False) if abs(value) <= 360.0 else (None, False)
     m = re.fullmatch(r"([NS])\s*(\d{1,2}(?:\.\d+)?)\s*([EW])", s)
     if m:
         angle = float(m.group(2))
@@ -138,7 +140,16 @@ def select_component(records: Sequence, name, filename: str):
     if len(found) > 1:
         raise RockcliInputError(f"{filename}: --component {wanted} matches {len(found)} components ({listing}); "
                                 f"name one by its channel code")
-    raise RockcliInputError(f"{filename}: no component {wanted!r} (the file holds: {listing})")
+    given = _plain_angle(wanted)
+    said = f" ({wanted} deg is {az:g} deg clockwise from north)" if az is not None and given not in (None, az) else ""
+    raise RockcliInputError(f"{filename}: no component {wanted!r}{said} (the file holds: {listing})")
+
+
+def _plain_angle(text: str):
+    try:
+        return float(text)
+    except ValueError:
+        return None
 
 
 def horizontal_pair(records: Sequence, filename: str):

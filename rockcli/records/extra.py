@@ -27,6 +27,10 @@ INSTALL_HINT = "the optional extra reads it: pip install \"rockcli[formats]\" (U
 _COSMOS_CONVERTED = {"g", "g/10", "g*10", "mg", "in/s/s"}
 
 
+#: gmprocess has read a file in this process (its first read is the slow one: it loads its readers).
+_loaded = False
+
+
 def available() -> bool:
     """True when gmprocess is installed (found without importing it)."""
     import importlib.util
@@ -47,6 +51,14 @@ def read_with_extra(path: Path, column, recognised: str | None = None) -> dict[s
 
     from rockcli.records.components import NotARecord, orientation_meta, pick_trace
 
+    global _loaded
+    if not _loaded:  # the first read_data loads gmprocess's readers: seconds without a sign of life otherwise
+        from rockcli.progress import announce
+
+        how = (f"reading {Path(path).name} with gmprocess (the formats extra" if recognised else
+               f"{Path(path).name}: no built-in reader recognises it; trying gmprocess (the formats extra")
+        announce(f"{how}; its first file takes 5-20 s while it loads its readers) ...")
+        _loaded = True
     root = logging.getLogger()
     level = root.level
     root.setLevel(max(level, logging.ERROR))  # gmprocess logs every file it reads; the level is restored after
@@ -57,16 +69,19 @@ def read_with_extra(path: Path, column, recognised: str | None = None) -> dict[s
 
             try:
                 streams = read_data(str(path))
-            except Exception as exc:  # noqa: BLE001 -- gmprocess raises many kinds; one sentence for the user
-                text = str(exc).strip().splitlines()
+            except (KeyboardInterrupt, SystemExit, GeneratorExit):
+                raise
+            except BaseException as exc:  # noqa: BLE001 -- gmprocess raises many kinds (its DMG reader a bare
+                # BaseException for a damaged header); one sentence for the user
+                from rockcli.records.reader import reason_words
+
                 if recognised:  # rockcli knows the format: a damaged or unusual file, not a non-record
                     from rockcli.records.formats import FORMAT_NAMES
 
                     raise RockcliInputError(f"{path}: a {FORMAT_NAMES.get(recognised, recognised)} file that "
-                                            f"gmprocess cannot read either "
-                                            f"({text[0] if text else type(exc).__name__})") from None
-                raise NotARecord(f"{path}: format not recognised by rockcli, ObsPy or gmprocess "
-                                 f"({text[0] if text else type(exc).__name__})") from None
+                                            f"gmprocess cannot read either{reason_words(exc)}") from None
+                raise NotARecord(f"{path}: format not recognised by rockcli, ObsPy or gmprocess"
+                                 f"{reason_words(exc)}") from None
     finally:
         root.setLevel(level)
     traces = [tr for st in streams for tr in st]

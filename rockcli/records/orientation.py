@@ -32,6 +32,12 @@ from rockcli.records.record import Record
 
 #: Default step of ``--azimuth worst`` [deg].
 AZIMUTH_STEP = 5.0
+#: Accepted steps of ``--azimuth worst`` [deg] (:func:`check_azimuth_step`, for the CLI and :func:`sweep_azimuths`).
+#: The floor: the projection ``a_1 cos(theta - phi_1) + a_2 cos(theta - phi_2)`` changes by at most ``|a| dtheta``
+#: between orientations ``dtheta`` apart, 0.17 % of the horizontal motion at 0.1 deg (finer than the margin's 1 %
+#: bisection), and 0.1 deg already runs 1,800 orientations of every pair (``1e-9`` would build 1.8e11); the ceiling:
+#: 90 deg still runs two orientations, 0 and 90 deg.
+AZIMUTH_STEP_RANGE_DEG = (0.1, 90.0)
 #: Largest departure from perpendicular of a pair [deg] (the projection assumes perpendicular axes).
 PERPENDICULAR_TOL_DEG = 1e-6
 
@@ -48,7 +54,9 @@ def split_source(text: str):
     that exists as written is never split."""
     s = str(text)
     m = re.fullmatch(r"(.+)@\s*([-+]?\d+(?:\.\d+)?)\s*", s)
-    if m is None or Path(s).exists():
+    from rockcli.records.reader import path_exists
+
+    if m is None or path_exists(s):
         return s, None
     return m.group(1), float(m.group(2))
 
@@ -124,11 +132,24 @@ def project(first: Record, second: Record, azimuth_deg: float) -> Record:
     return Record(acc=acc, dt=first.dt, name=f"{base}@{theta % 360.0:g}", t_start=first.t_start, meta=meta)
 
 
+def check_azimuth_step(step, what: str = "--azimuth-step") -> float:
+    """``step`` [deg] of ``--azimuth worst`` when it lies in :data:`AZIMUTH_STEP_RANGE_DEG`, else one sentence
+    naming ``what``, the limits and why."""
+    from rockcli.inputs import parse_number
+
+    lo, hi = AZIMUTH_STEP_RANGE_DEG
+    if isinstance(step, (int, float)) and not isinstance(step, bool) and math.isfinite(step) and lo <= step <= hi:
+        return float(step)
+    step = parse_number(step, what)  # not a number: its own sentence
+    raise RockcliInputError(f"{what} {format_number(step)} must lie between {format_number(lo)} deg "
+                            f"({round(180 / lo):,} orientations of each pair, less than 0.2 % of the motion "
+                            f"apart) and {format_number(hi)} deg (two orientations)")
+
+
 def sweep_azimuths(step: float = AZIMUTH_STEP) -> np.ndarray:
-    """Azimuths 0 <= theta < 180 deg every ``step`` degrees (``--azimuth worst``)."""
-    step = float(step)
-    if not (math.isfinite(step) and 0.0 < step <= 90.0):
-        raise RockcliInputError(f"--azimuth-step {step:g} must lie in 0 < step <= 90 degrees")
+    """Azimuths 0 <= theta < 180 deg every ``step`` degrees (``--azimuth worst``); ``step`` within
+    :data:`AZIMUTH_STEP_RANGE_DEG` (:func:`check_azimuth_step`)."""
+    step = check_azimuth_step(step, "sweep_azimuths: step")
     n = int(math.ceil(180.0 / step - 1e-9))
     return np.array([k * step for k in range(n) if k * step < 180.0])
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 import os
 import re
+import warnings
 from pathlib import Path
 from typing import Any
 
@@ -91,10 +92,12 @@ def read_record(source, *, format=None, units=None, dt=None, column=None, compon
     source : str or path-like
         A file path, or a catalogue id (see :func:`rockcli.records.catalog.load_catalog`).
         Files: PEER NGA ``.AT2`` (all header layouts), plain text, ESM ASCII, ITACA ``.cor.acc``,
-        COSMOS V2, GeoNet V2A, and any format ObsPy reads (SAC, MiniSEED, K-NET/KiK-net, ...).
+        COSMOS V2, GeoNet V2A, CWB, and any format ObsPy reads (SAC, MiniSEED, K-NET/KiK-net, ...).
+        Every reader checks what the file's header says against its data (counts, durations, peaks,
+        scale factors, units words) and refuses a disagreement.
         The format is detected unless ``format`` is given.
     format : str, optional
-        ``PEER_AT2``, ``TEXT``, ``ESM``, ``ITACA``, ``COSMOS``, ``GEONET_V2A`` or an ObsPy
+        ``PEER_AT2``, ``TEXT``, ``ESM``, ``ITACA``, ``COSMOS``, ``GEONET_V2A``, ``CWB`` or an ObsPy
         format name (``SAC``, ``MSEED``, ``KNET``, ...).
     units : str, optional
         Units of the values in the file (``g``, ``m/s^2``, ``cm/s^2``, ``gal``, ``mm/s^2``,
@@ -102,11 +105,12 @@ def read_record(source, *, format=None, units=None, dt=None, column=None, compon
     dt : float, optional
         Time step [s]. Required when the file does not state it; must agree with the file when it does.
     column : int, optional
-        1-based column of a multi-column text file (a time column counts), or component of a
-        multi-component file (GeoNet V2A) or trace of a multi-trace ObsPy stream.
+        1-based column of a multi-column text file or CWB table (a time column counts), or component of
+        a multi-component file (GeoNet V2A) or trace of a multi-trace ObsPy stream; refused for a file
+        of one component (AT2, ESM, ITACA, COSMOS).
     component : str, optional
         Component of a multi-component file by name: its channel code (``HN1``, ``HNE``, ``N28W``,
-        ``EW2``), ``N``/``E``/``UP`` or an azimuth in degrees (see
+        ``EW2``), ``N``/``E``/``UP`` or an azimuth in degrees, its sign kept (-242 is 118 deg; see
         :func:`rockcli.records.components.select_component`).
     gain : float, optional
         Factor from raw counts to ``units`` (which must then be given: the units the gain yields,
@@ -138,6 +142,7 @@ def read_record(source, *, format=None, units=None, dt=None, column=None, compon
     >>> rec = read_record("kobe-1995-takarazuka-000")                # doctest: +SKIP
     >>> rec = read_record("C02-065", units="g", dt=0.01)             # doctest: +SKIP
     """
+    _check_source(source)
     units = _check_units(units)
     dt = _check_dt(dt)
     gain = check_gain(gain, units)
@@ -153,28 +158,49 @@ def read_record(source, *, format=None, units=None, dt=None, column=None, compon
 
     if isinstance(source, Record):
         return source
-    if isinstance(source, str) and not Path(source).exists():
+    if isinstance(source, str) and not path_exists(source):
         entry = _catalog_entry(source)
         if entry is not None:
             return _read_entry(entry, entry.component, entry.file, fmt, units, dt, column, gain)
         if os.sep not in source and "/" not in source:
             found = _in_records_folders(source)
             if found is None:
+                from rockcli.records.catalog import did_you_mean
+
                 raise RockcliInputError(f"{source}: no such file here or in the ROCKCLI_RECORDS folders, nor a "
-                                        f"catalogue id (see 'rockcli records list')")
+                                        f"catalogue id{did_you_mean(source)} (see 'rockcli records list')")
             source = found
     return _read_path(Path(source), fmt, units, dt, column, given_by="suite" if fill_in else "caller", gain=gain)
+
+
+def _check_source(source) -> None:
+    """A record's source is a path (text or path-like), a catalogue id or a :class:`Record`: else one sentence."""
+    from rockcli.inputs import check_type
+
+    check_type(source, (str, os.PathLike, Record), "source", "a record file's path or a catalogue id (text)")
+
+
+def path_exists(text) -> bool:
+    """``Path(text).exists()``, True for a path that is there but cannot be looked at (a folder without
+    permission: the reader then says "cannot be read (permission denied)") and False for text that is no path
+    (a NUL byte), instead of the exceptions pathlib raises."""
+    try:
+        return Path(text).exists()
+    except OSError:
+        return True
+    except ValueError:
+        return False
 
 
 def _in_records_folders(name: str) -> Path | None:
     """A bare file name that is not in the current folder: the file of that name in the first folder of
     :func:`rockcli.records.catalog.search_path` (``ROCKCLI_RECORDS``) that holds one, as for a catalogue
     record's file (None when none does)."""
-    from rockcli.records.catalog import search_path
+    from rockcli.records.catalog import is_file, search_path
 
     for folder in search_path():
         candidate = folder / name
-        if candidate.is_file():
+        if is_file(candidate):
             return candidate
     return None
 
@@ -182,7 +208,7 @@ def _in_records_folders(name: str) -> Path | None:
 def _catalog_entry(source):
     """The catalogue entry ``source`` names (None when it is not a catalogue id); a catalogue that cannot be
     read is said as such, not as "no such file, nor a catalogue id"."""
-    if not isinstance(source, str) or os.sep in source or "/" in source or Path(source).exists():
+    if not isinstance(source, str) or os.sep in source or "/" in source or path_exists(source):
         return None
     from rockcli.records.catalog import load_catalog
 
@@ -220,6 +246,7 @@ def _label(source, comps) -> str:
 def read_components(source, *, format=None, units=None, dt=None, gain=None, fill_in: bool = False) -> list[Record]:
     """Every component of a record file (or catalogue id), each a :class:`Record` with its name and
     orientation in ``meta`` (``component``, ``azimuth_deg``, ``vertical``); one for a one-component file."""
+    _check_source(source)
     kw = {"format": format, "units": units, "dt": dt, "gain": gain, "fill_in": fill_in}
     entry = _catalog_entry(source)
     if entry is not None and len(entry.components) > 1:  # a catalogue row naming several components
@@ -229,7 +256,7 @@ def read_components(source, *, format=None, units=None, dt=None, gain=None, fill
     try:
         return [read_record(source, **kw)]
     except MultiComponent as multi:
-        return [read_record(source, column=k, **kw) for k in range(1, multi.count + 1)]
+        return [read_record(source, column=k, **kw) for k in multi.columns]
 
 
 def _read_path(path: Path, fmt, units, dt, column, given_by: str = "caller", gain=None) -> Record:
@@ -258,6 +285,9 @@ def _read_path(path: Path, fmt, units, dt, column, given_by: str = "caller", gai
     if fmt is None:
         fmt = _detect(path, head_lines, is_text)
     if fmt in AT2_FORMATS:
+        if column is not None:
+            raise RockcliInputError(f"{name}: --record-column {column} applies to text tables (and picks a component "
+                                    f"of a multi-component file); a PEER AT2 file holds one component: leave it out")
         out = _from_at2(path)
     elif fmt in TEXT_FORMATS:
         out = _from_text(path, column)
@@ -266,11 +296,8 @@ def _read_path(path: Path, fmt, units, dt, column, given_by: str = "caller", gai
 
         from rockcli.records import extra
 
-        if fmt in formats.REFUSED or fmt in formats.EXTRA_FIRST:
+        if fmt in formats.REFUSED:
             if not extra.available():
-                if fmt in formats.EXTRA_FIRST:
-                    raise RockcliInputError(f"{name}: format {fmt} is read by the optional extra: pip install "
-                                            f"\"rockcli[formats]\" (without it, read it as TEXT with --record-column)")
                 raise formats.refusal(fmt, name)
             out = extra.read_with_extra(path, column, recognised=fmt)
         elif fmt in formats.READERS:
@@ -393,16 +420,24 @@ def _from_obspy(path: Path, fmt: str, column) -> dict[str, Any]:
     import obspy
 
     try:
-        st = obspy.read(str(path), format=None if fmt == "OBSPY" else fmt)
+        with warnings.catch_warnings():  # a K-NET scale factor of 0 is refused below, in one sentence
+            warnings.filterwarnings("ignore", message="Calibration factor set to 0")
+            st = obspy.read(str(path), format=None if fmt == "OBSPY" else fmt)
     except TypeError as exc:  # ObsPy: "Unknown format for file ..." / "Format ... is not supported"
         if fmt != "OBSPY" and "not supported" in str(exc):
             raise RockcliInputError(
-                f"{path}: unknown format {fmt!r} (rockcli reads PEER_AT2, TEXT, ESM, ITACA, COSMOS, GEONET_V2A "
+                f"{path}: unknown format {fmt!r} (rockcli reads PEER_AT2, TEXT, ESM, ITACA, COSMOS, GEONET_V2A, CWB "
                 f"and ObsPy's formats such as SAC, MSEED, KNET)") from None
-        raise NotARecord(f"{path}: format not recognised ({_first_line(exc)}); "
+        raise NotARecord(f"{path}: format not recognised{reason_words(exc)}; "
                          f"give it with --format, or convert the record to text") from None
     except Exception as exc:  # noqa: BLE001 -- ObsPy readers raise many kinds; one sentence for the user
-        raise RockcliInputError(f"{path}: format not recognised, or a damaged file (ObsPy: {_first_line(exc)}); "
+        sizes = re.search(r"Actual/Theoretical:\s*(\d+)/(\d+)", str(exc))  # SAC: NPTS against the file's size
+        if sizes:
+            from rockcli.records.checks import disagree
+
+            raise disagree(path, f"a SAC file of {sizes.group(2)} bytes (its NPTS samples after the header)",
+                           f"the file holds {sizes.group(1)} bytes") from None
+        raise RockcliInputError(f"{path}: format not recognised, or a damaged file{reason_words(exc, 'ObsPy')}; "
                                 f"give the format with --format, or convert the record to text") from None
     from rockcli.records.components import pick_trace
 
@@ -420,7 +455,9 @@ def _from_obspy(path: Path, fmt: str, column) -> dict[str, Any]:
     if fmt_name == "KNET":
         # ObsPy's calib converts counts to m/s^2 from the stated "Scale Factor ...(gal)/..."; the
         # NIED peak ("Max. Acc.") is measured after removing the mean, so we remove it too.
-        values = values * float(stats.calib) * 100.0  # ObsPy's calib gives m/s^2; the file states gal
+        from rockcli.records.knet import knet_gal
+
+        values = knet_gal(path, values, stats.calib)  # counts x the header's gal per count, checked
         values = values - values.mean()
         units = "gal"
         meta.update(units_note="counts x the stated scale factor (gal)",
@@ -448,9 +485,15 @@ def _from_obspy(path: Path, fmt: str, column) -> dict[str, Any]:
             "t_start": 0.0, "meta": meta, "format": fmt_name}
 
 
-def _first_line(exc: Exception) -> str:
+def reason_words(exc: BaseException, who: str = "") -> str:
+    """`` (<who>: <the first line of exc's message>)`` for a refusal, or ``""`` when the message says nothing
+    (empty, or only that no format was found): an exception's class name (``StopIteration``) means nothing
+    to a user."""
     text = str(exc).strip().splitlines()
-    return text[0].rstrip(".") if text else type(exc).__name__
+    line = text[0].strip().rstrip(".") if text else ""
+    if not line or line.lower().startswith("no format found"):
+        return ""
+    return f" ({who}: {line})" if who else f" ({line})"
 
 
 def _orientation(path: Path, fmt, component) -> dict:
@@ -502,7 +545,8 @@ def _finish(path: Path, out: dict[str, Any], units, dt, given_by: str, gain=None
         used_units, units_source = units, given_by
         factor = accel_factor(units)
     else:
-        raise RockcliInputError(f"{name}: the file does not state its units; give them with --units "
+        why = f" ({out['units_missing']})" if out.get("units_missing") else ""
+        raise RockcliInputError(f"{name}: the file does not state its units{why}; give them with --units "
                                 f"(g, m/s^2, cm/s^2, gal, mm/s^2, g/10)")
 
     stated_dt = out.get("dt")
@@ -524,6 +568,9 @@ def _finish(path: Path, out: dict[str, Any], units, dt, given_by: str, gain=None
                                 f"supported {lo:g} s to {hi:g} s (strong-motion records are sampled at 50 Hz to "
                                 f"a few kHz); check its unit")
     values = np.asarray(out["values"], dtype=np.float64)
+    if not np.all(np.isfinite(values)):
+        i = int(np.argmax(~np.isfinite(values)))
+        raise RockcliInputError(f"{name}: sample {i + 1} is {float(values[i])!r}, not a finite number")
     if values.size < 2:
         raise RockcliInputError(f"{name}: the record has {values.size} sample(s); at least 2 are needed")
     peak = float(np.max(np.abs(values)))

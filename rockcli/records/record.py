@@ -71,8 +71,18 @@ class Record:
         return self.pga / G
 
     def scaled(self, k: float) -> "Record":
-        """The record multiplied by ``k`` (a negative ``k`` also flips it)."""
-        return replace(self, acc=self.acc * float(k), meta={**self.meta, "scale": self.meta.get("scale", 1.0) * k})
+        """The record multiplied by ``k`` (a negative ``k`` also flips it).
+
+        Raises
+        ------
+        RockcliInputError
+            ``k`` is not a finite non-zero number, or takes the record's peak past the 100 g that rockcli runs
+            (:func:`rockcli.inputs.check_scale`, the check of ``--scale``).
+        """
+        from rockcli.inputs import check_scale
+
+        k = check_scale(k, self.pga_g, "Record.scaled: the factor", f"the record {self.name}")
+        return replace(self, acc=self.acc * k, meta={**self.meta, "scale": self.meta.get("scale", 1.0) * k})
 
     def flipped(self) -> "Record":
         """The record with its sign reversed (the same motion seen from the other side)."""

@@ -43,6 +43,10 @@ _REFUSED_TIME_WORDS = {"min", "mins", "minute", "minutes", "h", "hr", "hrs", "ho
                        "ns", "nsec", "nanosecond", "nanoseconds", "sps"}
 _UNITS_RE = re.compile(r"(?:\bunits?\s*(?:are|of|in)?\s*[:=]?|\bacc(?:eleration|el)?\.?\s*(?:\[|\(|in\b|:))\s*\(?\s*"
                        r"(?P<units>[A-Za-z][A-Za-z0-9/^*]*)", re.I)
+#: A number of samples stated in a comment (``npts = 4000``, ``NPTS: 4000``, ``number of points: 4000``); only
+#: these explicit forms count (``200 samples per second`` is no count).
+_NPTS_RE = re.compile(r"\b(?:npts|number\s+of\s+(?:points|samples|data\s+points|data))\s*(?:=|:|is)?\s*(\d+)\b(?![.,]\d)",
+                      re.I)
 #: Fraction of increasing steps above which the first column is taken as time.
 TIME_COLUMN_FRACTION = 0.9
 #: Relative tolerance on the uniformity of a time column (fraction of a step).
@@ -280,6 +284,14 @@ def parse_text(text: str, filename: str = "text file", column: int | None = None
     stated = parse_comments(parsed["comments"], filename)
     if stated["units"] is None:  # "units: furlongs" is a statement too: reported, not ignored
         stated["units"] = stated_unknown_units(parsed["comments"])
+    for line in parsed["comments"]:  # a stated count is checked against the rows: a cut file is refused
+        m = _NPTS_RE.search(line)
+        if m:
+            from rockcli.records.checks import check_count
+
+            check_count(filename, nrow, int(m.group(1)), f"a comment: {line.strip()[:60]!r}",
+                        f"rows of values follow (lines {row_lines[0]}-{row_lines[-1]})")
+            break
     time_col = ncol >= 2 and looks_like_time(table[:, 0])
     data_cols = list(range(2, ncol + 1)) if time_col else list(range(1, ncol + 1))
     if column is None:

@@ -2,6 +2,8 @@
 
 One module per subject: ``records`` (record plots), ``pulses`` (pulse-fit figures), ``response``
 (time-history figures and CSVs), ``tables`` (assessment tables and CSV reports); the self-contained
-HTML report (``--report``): ``html`` (the page and its shared sections), ``html_pages`` (the reports
-of ``assess column``, ``assess fragility`` and ``simulate``), ``html_figures`` (its figures).
+HTML report (``--report``): ``html`` (the page and its shared sections), ``html_records`` (the records
+and their provenance), ``html_pages`` (the reports of ``assess column``, ``assess fragility`` and
+``simulate``), ``html_deciding`` (the records that decide each verdict, drawn), ``html_figures`` (its
+figures).
 """

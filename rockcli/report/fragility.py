@@ -22,11 +22,20 @@ def _ci(ci, spec=".3g") -> str:
     return "-" if not (math.isfinite(lo) and math.isfinite(hi)) else f"{lo:{spec}}-{hi:{spec}}"
 
 
+def _noun(fr) -> str:
+    """The bodies in words: ``the cabinet`` (:func:`rockcli.assess.body_noun`) when they all take the same one
+    (``the column`` for the temple presets), else ``the body``."""
+    from rockcli.assess.verdicts import body_noun
+
+    nouns = {body_noun(b) for b in fr.columns}
+    return nouns.pop() if len(nouns) == 1 else "the body"
+
+
 def format_fragility(fr) -> str:
-    """The fits as aligned text: one row per column x configuration, then the notes."""
+    """The fits as aligned text: one row per body x configuration, then the notes."""
     im = fr.im
     pct = f"{100 * fr.level:g}%"
-    head = ("column", "configuration", "records", "exact", "censored", f"median [{im.units}]", f"{pct} CI",
+    head = ("body", "configuration", "records", "exact", "censored", f"median [{im.units}]", f"{pct} CI",
             "beta", f"{pct} CI", "median/none", f"{pct} CI")
     table = [head]
     for c in fr.curves:
@@ -48,15 +57,16 @@ def format_fragility_notes(fr) -> str:
     """How the numbers were obtained, the configurations, and what could not be used."""
     im = fr.im
     lo, hi = fr.grid
+    noun = _noun(fr)
     lines = [
         f"IM = {im.name} [{im.units}]: {im.description}. Capacity of a record = smallest scale factor that "
-        f"overturns the column ({lo:g}x..{hi:g}x scan, bisection to 1 %) x the record's {im.name}.",
+        f"overturns {noun} ({lo:g}x..{hi:g}x scan, bisection to 1 %) x the record's {im.name}.",
         f"Fragility P(overturn | {im.name}) = Phi(ln({im.name}/median)/beta), maximum likelihood; a record that "
-        f"does not overturn the column up to {hi:g}x is right-censored (capacity > {hi:g} x {im.name}), one that "
+        f"does not overturn {noun} up to {hi:g}x is right-censored (capacity > {hi:g} x {im.name}), one that "
         f"overturns already at {lo:g}x left-censored.",
         f"{100 * fr.level:g}% intervals: bootstrap over records, {fr.n_boot} resamples (seed {fr.seed}), the same "
         f"resamples for every configuration; median/none: this median over the median on a rigid foundation "
-        f"(< 1: isolation makes the column more fragile).",
+        f"(< 1: isolation makes {noun} more fragile).",
     ]
     iso = [c for c in fr.configurations if c.isolated]
     if iso:
@@ -94,9 +104,11 @@ def format_fragility_azimuths(results: dict, n_azimuths: int) -> tuple[str, str]
              f"of its projections' IMs, RotD50-like):", format_fragility(median), "",
              "Worst orientation of each pair (its smallest capacity, the rocking analogue of RotD100):",
              format_fragility(worst), "", "Worst azimuth of each pair [deg clockwise from north]:"]
-    lines += [f"  {r.column} / {r.record} / {r.configuration}: {r.azimuth_deg:g} deg, capacity "
-              f"{mark.get(r.censored, '')}{r.capacity:.3g} {worst.im.units}"
-              for r in worst.rows if not r.error and math.isfinite(r.azimuth_deg)]
+    lines += [f"  {r.column} / {r.record} / {r.configuration}: "
+              + (f"{r.azimuth_deg:g} deg" if math.isfinite(r.azimuth_deg) else
+                 f"any azimuth {r.margin_note.rpartition('any azimuth ')[2]}")
+              + f", capacity {mark.get(r.censored, '')}{r.capacity:.3g} {worst.im.units}"
+              for r in worst.rows if not r.error and (math.isfinite(r.azimuth_deg) or "any azimuth (" in r.margin_note)]
     notes = (f"With --azimuth worst a record is a pair of horizontal components: its IM is the median of the IMs of "
              f"its projections onto the {n_azimuths} orientations, and each orientation's capacity is its smallest "
              f"overturning factor x that IM.\n" + format_fragility_notes(worst))
@@ -148,24 +160,28 @@ def write_fragility_csv(fr, path: str | os.PathLike, extra: dict | None = None) 
     one after the other, with the columns ``orientation`` and ``azimuth_deg`` after ``configuration``."""
     from rockcli.report.spectra import constant_columns
 
-    from rockcli.report.tables import _vertical_column
-
     if isinstance(fr, (list, tuple)):
         import pandas as pd
 
-        frames = []
-        for one in fr:
-            df = fragility_frame(one)
-            _vertical_column(df, one)
-            at = df.columns.get_loc("configuration") + 1
-            df.insert(at, "orientation", [r.orientation for r in one.rows])
-            df.insert(at + 1, "azimuth_deg", [r.azimuth_deg for r in one.rows])
-            frames.append(df)
-        df = pd.concat(frames, ignore_index=True)
+        df = pd.concat([fragility_table(one) for one in fr], ignore_index=True)
     else:
-        df = fragility_frame(fr)
-        _vertical_column(df, fr)
+        df = fragility_table(fr)
     return write_text(path, constant_columns(df.to_csv(index=False, float_format="%.6g", lineterminator="\n"), extra))
+
+
+def fragility_table(fr):
+    """The CSV's rows of one result as a pandas DataFrame (:func:`fragility_frame`, the ``vertical`` column when
+    a record ran under one, and ``orientation``, ``azimuth_deg`` after ``configuration`` for a result of
+    ``--azimuth worst``; :meth:`rockcli.assess.Fragility.to_dataframe`)."""
+    from rockcli.report.tables import _vertical_column
+
+    df = fragility_frame(fr)
+    _vertical_column(df, fr)
+    if any(r.orientation for r in fr.rows):
+        at = df.columns.get_loc("configuration") + 1
+        df.insert(at, "orientation", [r.orientation for r in fr.rows])
+        df.insert(at + 1, "azimuth_deg", [r.azimuth_deg for r in fr.rows])
+    return df
 
 
 def plot_fragility(fr, path: str | os.PathLike, *, dpi: int = 90) -> Path:

@@ -10,15 +10,15 @@ the configurations, the records with their provenance (file, format, SHA-256, un
 PGA, PGV, fitted pulse), the verdicts with their margins, the figures, how sure the numbers are,
 the assumptions and limits, and how to reproduce it (the command line and the versions).
 
-This module holds the page and the sections every report shares; :mod:`rockcli.report.html_pages`
-fills them for ``assess column``, ``assess fragility`` and ``simulate``, and
-:mod:`rockcli.report.html_figures` draws the figures.
+This module holds the page and the sections every report shares; :mod:`rockcli.report.html_records`
+the records' provenance (their section); :mod:`rockcli.report.html_pages` fills them for ``assess
+column``, ``assess fragility`` and ``simulate``; :mod:`rockcli.report.html_deciding` picks and draws the
+records that decide each verdict, and :mod:`rockcli.report.html_figures` draws the figures.
 """
 
 from __future__ import annotations
 
 import base64
-import hashlib
 import html
 import math
 import os
@@ -52,14 +52,14 @@ h3{font-size:1.05em;margin:1.2em 0 .3em}
 .undecided{border-color:#e69500;background:#fdf5e6}.undecided .word{color:#b37400}
 .w-topples{color:#c0392b}.w-survives{color:#2e7d32}.w-undecided{color:#b37400}
 .keyfacts{display:flex;flex-wrap:wrap;gap:10px;margin:.8em 0}
-.fact{border:1px solid #ddd;border-radius:6px;padding:.4em .8em;background:#fff}
+.fact{border:1px solid #ddd;border-radius:6px;padding:.4em .8em;background:#fff;max-width:24em}
 .fact b{font-size:1.2em}
 nav{font-size:.92em;color:#555;margin:1em 0}nav a{color:#1f5fa8;margin-right:.8em}
 table{border-collapse:collapse;margin:.5em 0;font-size:.9em}
 th,td{border:1px solid #ddd;padding:.25em .55em;text-align:left;vertical-align:top}
 th{background:#f0f0f0}td.num{text-align:right;white-space:nowrap;font-variant-numeric:tabular-nums}
 .figrow{display:flex;flex-wrap:wrap;gap:12px}.figrow figure{flex:1 1 480px;margin:0}
-figure{margin:.8em 0}figure img{max-width:100%;border:1px solid #eee}
+figure{margin:.8em 0}figure img{max-width:100%;border:1px solid #eee;display:block}
 figcaption{font-size:.88em;color:#444}
 code.hash{font-size:.78em;word-break:break-all;display:inline-block;max-width:15em}
 code,pre{font-family:"DejaVu Sans Mono",Consolas,monospace;font-size:.88em}
@@ -96,12 +96,55 @@ def table(head, rows, numeric=()) -> str:
     return "\n".join(out)
 
 
-def figure(png: bytes | None, caption: str) -> str:
-    """A ``<figure>`` with the PNG embedded as a base64 ``data:`` URI (empty when ``png`` is None)."""
+#: CSS pixels per inch (the CSS standard): a figure drawn ``w`` inches wide is shown ``w * 96`` pixels wide, so
+#: that a font of ``f`` points is ``f * 96 / 72`` pixels tall on the page (8 pt: 10.7 px), whatever the
+#: resolution it was rendered at.
+CSS_PX_PER_INCH = 96.0
+
+
+def png_size(png: bytes) -> tuple[int, int, float]:
+    """``(width, height, dots per inch)`` of a PNG: the pixels from its header, the resolution from its
+    ``pHYs`` chunk (matplotlib writes the figure's dpi there); dpi NaN when the PNG does not say."""
+    import struct
+
+    if png[:8] != b"\x89PNG\r\n\x1a\n":
+        raise ValueError("not a PNG")
+    width, height = struct.unpack(">II", png[16:24])
+    dpi, pos = math.nan, 8
+    while pos + 8 <= len(png):
+        length, kind = struct.unpack(">I4s", png[pos:pos + 8])
+        if kind == b"pHYs" and length == 9:
+            ppu_x, _, unit = struct.unpack(">IIB", png[pos + 8:pos + 17])
+            if unit == 1 and ppu_x > 0:  # pixels per metre
+                dpi = ppu_x * 0.0254
+            break
+        if kind == b"IDAT":
+            break
+        pos += 12 + length
+    return width, height, dpi
+
+
+#: The smallest text on the page's figures [CSS px].
+MIN_TEXT_PX = 10.0
+
+
+def figure(png: bytes | None, caption: str, smallest_pt: float = 8.0) -> str:
+    """A ``<figure>`` with the PNG embedded as a base64 ``data:`` URI (empty when ``png`` is None).
+
+    The image is shown at its drawn size (:data:`CSS_PX_PER_INCH`, from the PNG's resolution), enlarged
+    when its smallest font (``smallest_pt`` [pt]) would be under :data:`MIN_TEXT_PX` pixels, and at most
+    as wide as the page.
+    """
     if not png:
         return ""
     data = base64.b64encode(png).decode("ascii")
-    return (f'<figure><img alt="{esc(caption)}" src="data:image/png;base64,{data}">'
+    width, height, dpi = png_size(png)
+    size = ""
+    if math.isfinite(dpi) and dpi > 0:
+        zoom = max(1.0, MIN_TEXT_PX / (smallest_pt * CSS_PX_PER_INCH / 72.0))
+        w = round(width / dpi * CSS_PX_PER_INCH * zoom)
+        size = f' width="{w}" style="width:{w}px;height:auto"'
+    return (f'<figure><img alt="{esc(caption)}"{size} src="data:image/png;base64,{data}">'
             f"<figcaption>{esc(caption)}</figcaption></figure>")
 
 
@@ -116,90 +159,6 @@ def card(word: str, where: str, sentence: str) -> str:
 def plural(n: int, word: str) -> str:
     """``1 scene``, ``2 scenes``."""
     return f"{n} {word}" + ("" if n == 1 else "s")
-
-
-def sha256_of(path) -> str:
-    """SHA-256 of a file's bytes, in hex (``-`` when it cannot be read)."""
-    h = hashlib.sha256()
-    try:
-        with open(path, "rb") as fh:
-            for chunk in iter(lambda: fh.read(1 << 20), b""):
-                h.update(chunk)
-    except OSError:
-        return "-"
-    return h.hexdigest()
-
-
-def provenance(excitation) -> dict:
-    """Where a ground motion came from and what it is: for a record read from a file, its name,
-    format, SHA-256, units as stated (and by whom), time step, samples, PGA [g], PGV [m/s] (trapezoid
-    rule from rest) and fitted Ricker pulse; for an analytic or catalogued pulse, its parameters."""
-    motion = getattr(excitation, "motion", excitation)
-    label = getattr(excitation, "label", getattr(motion, "name", ""))
-    if motion is None:
-        return {"label": label, "error": getattr(excitation, "error", "") or "could not be read"}
-    if not hasattr(motion, "acc"):
-        from rockcli.units import G
-
-        return {"label": label, "kind": "pulse", "shape": motion.shape, "a_p_g": motion.a_p / G,
-                "T_p_s": motion.T_p, "source": getattr(excitation, "source", "analytic pulse")}
-    from rockcli.records.motion import calc_peaks
-
-    meta = dict(motion.meta)
-    path = meta.get("path") or getattr(excitation, "source", "")
-    out = {"label": label, "kind": "record", "file": Path(path).name if path else "-", "path": str(path or "-"),
-           "format": meta.get("format", "-"), "sha256": sha256_of(path) if path else "-",
-           "units": meta.get("units", "-"), "units_source": meta.get("units_source", ""),
-           "dt": motion.dt, "npts": motion.npts, "duration": motion.duration, "pga_g": motion.pga_g,
-           "pgv_mps": calc_peaks(motion).pgv_mps, "scale": meta.get("scale", 1.0),
-           "event": meta.get("event", ""), "station": meta.get("station", ""),
-           "component": meta.get("component", "")}
-    try:
-        from rockcli.pulses_fit import fit_pulse
-
-        fit = fit_pulse(motion)
-        out["pulse"] = (f"{fit.shape}, a_p = {fit.a_p_g:+.3f} g, T_p = {fit.T_p_s:.2f} s at t = {fit.t0_s:.2f} s "
-                        f"({100 * fit.energy_fraction:.0f} % of the record's energy)")
-    except Exception as exc:  # a record no pulse fits still gets its report
-        out["pulse"] = f"no pulse fitted ({exc})"
-    return out
-
-
-def records_section(excitations) -> str:
-    """The records with their provenance: one row each (a pulse: its parameters)."""
-    rows, pulses, bad = [], [], []
-    for x in excitations:
-        p = provenance(x)
-        if "error" in p:
-            bad.append(f"<li>{esc(p['label'])}: could not be used: {esc(p['error'])}</li>")
-        elif p["kind"] == "pulse":
-            pulses.append((esc(p["label"]), esc(p["shape"]), num(p["a_p_g"], "+.4f", "g"), num(p["T_p_s"], ".4f", "s"),
-                           esc(p["source"])))
-        else:
-            what = ", ".join(v for v in (p["event"], p["station"], p["component"] and f"component {p['component']}")
-                             if v)
-            stated = {"file": "as stated in the file", "caller": "as given on the command line"}.get(
-                p["units_source"], p["units_source"])
-            scaled = f"<br>scaled by {p['scale']:g} (PGA and PGV of the scaled motion)" if p["scale"] != 1.0 else ""
-            rows.append((f"<b>{esc(p['label'])}</b><br>{esc(what or '-')}", f"{esc(p['file'])}<br>{esc(p['format'])}",
-                         esc(p["units"]) + (f"<br><span class='note'>{esc(stated)}</span>" if stated else ""),
-                         f"{p['npts']} at {p['dt']:g} s<br>({p['duration']:.2f} s)" + scaled,
-                         num(p["pga_g"], ".3f", "g"), num(p["pgv_mps"], ".3f", "m/s"), esc(p["pulse"]),
-                         f"<code class='hash'>{esc(p['sha256'])}</code>"))
-    parts = ["<p>Each ground motion is used as it is in its file (no filtering, no baseline correction), scaled "
-             "only where said. PGA: peak ground acceleration; PGV: peak ground velocity (integrated from rest); "
-             "the fitted pulse is the Ricker wavelet that best matches the record's strongest pulse. The "
-             "SHA-256 fingerprint identifies the exact file: the same file gives the same fingerprint anywhere."
-             "</p>"]
-    if rows:
-        parts.append(table(("record", "file, format", "units", "samples", "PGA", "PGV", "fitted pulse", "SHA-256"),
-                           rows, numeric=(4, 5)))
-    if pulses:
-        parts.append("<p>Idealised pulses (not recorded ground motions):</p>"
-                     + table(("name", "shape", "amplitude a_p", "period T_p", "source"), pulses, numeric=(2, 3)))
-    if bad:
-        parts.append("<ul>" + "".join(bad) + "</ul>")
-    return "\n".join(parts)
 
 
 def body_section(blocks) -> str:
@@ -246,11 +205,8 @@ ASSUMPTIONS = (
     "Only the horizontal ground motion in the plane of rocking is applied, as given in its file: the vertical "
     "motion and the other horizontal direction are ignored.",
     "A record is one sample of what an earthquake can do: another station, another event or the other "
-    "component can be much stronger or weaker at the same PGA. Margins are scale factors of these records "
-    "only; a design decision needs a suite of records chosen for the site.",
-    "Margins are found on a grid of scale factors 0.1 to 4 about 1 % apart (the smallest factor of the grid "
-    "that topples the body): a window of toppling factors narrower than 1 % between two surviving ones can "
-    "be missed.",
+    "component can be much stronger or weaker at the same PGA; a design decision needs a suite of records "
+    "chosen for the site.",
     "On isolation, the bearings follow their idealised laws (linear spring and dashpot; or friction with a "
     "smooth Bouc-Wen transition) and move as far as needed: the displacement shown is the demand the bearings "
     "and the space around the base must allow.",
@@ -259,12 +215,54 @@ ASSUMPTIONS = (
 )
 
 
-def assumptions_section(extra=()) -> str:
-    return "<ul>" + "".join(f"<li>{esc(t)}</li>" for t in (*ASSUMPTIONS, *extra)) + "</ul>"
+#: The assumptions of the margins (the toppling factors), for the reports that searched them.
+MARGIN_ASSUMPTIONS = (
+    "Margins are scale factors of these records only: a record of another shape can topple the body at a "
+    "lower PGA.",
+    "Margins are found on a grid of scale factors 0.1 to 4 about 1 % apart (the smallest factor of the grid "
+    "that topples the body): a window of toppling factors narrower than 1 % between two surviving ones can "
+    "be missed.",
+)
+
+
+def assumptions_section(extra=(), *, margins: bool = True) -> str:
+    """The assumptions and limits (with those of the margins when ``margins``: a report that searched none,
+    e.g. ``simulate``, does not speak of them)."""
+    items = (*ASSUMPTIONS, *(MARGIN_ASSUMPTIONS if margins else ()), *extra)
+    return "<ul>" + "".join(f"<li>{esc(t)}</li>" for t in items) + "</ul>"
+
+
+#: Environment variables that change what rockcli reads (the record folders, the catalogue).
+REPRODUCE_ENVIRONMENT = ("ROCKCLI_RECORDS", "ROCKCLI_CATALOG")
+
+
+def reproduce_command(command: str, environ=None, cwd=None) -> str:
+    """The command as a reader can paste it in a shell: the folder it ran in (record paths may be relative
+    to it), the environment variables that decide which files are read (:data:`REPRODUCE_ENVIRONMENT`;
+    catalogue ids are looked up on ``ROCKCLI_RECORDS``) and the command, one option per line."""
+    import shlex
+
+    environ = os.environ if environ is None else environ
+    cwd = os.getcwd() if cwd is None else cwd
+    env = [f"{k}={shlex.quote(environ[k])}" for k in REPRODUCE_ENVIRONMENT if environ.get(k, "").strip()]
+    if not command.startswith("rockcli ") or "(called from Python" in command:
+        lines = [command]
+    else:
+        words, lines = shlex.split(command), []
+        for w in words:
+            if w.startswith("--") or not lines:
+                lines.append(shlex.quote(w))
+            else:
+                lines[-1] += " " + shlex.quote(w)
+        lines[0] = " ".join([*env, lines[0]])
+        env = []
+    head = [f"cd {shlex.quote(str(cwd))}"] + ([f"export {' '.join(env)}"] if env else [])
+    return "\n".join(head + [" \\\n    ".join(lines)])
 
 
 def reproduce_section(command: str) -> str:
-    """The exact command line and the versions of rockcli and its main libraries."""
+    """The exact command line (with its folder and environment) and the versions of rockcli and its main
+    libraries."""
     import rockcli
 
     versions = [("rockcli", rockcli.__version__), ("Python", platform.python_version())]
@@ -275,16 +273,18 @@ def reproduce_section(command: str) -> str:
             pass
     when = datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     return (f"<p>Run this command, with the same record files (check their SHA-256 above), to get the same "
-            f"numbers:</p><pre>{esc(command)}</pre>"
+            f"numbers:</p><pre>{esc(reproduce_command(command))}</pre>"
             + table(("software", "version"), [(esc(k), esc(v)) for k, v in versions])
             + f"<p class='note'>Written {esc(when)} on {esc(platform.system())} {esc(platform.machine())}.</p>")
 
 
-def page(title: str, subtitle: str, sections: dict) -> str:
-    """The whole page: ``sections`` maps every id of :data:`SECTIONS` to its HTML body."""
-    nav = " ".join(f'<a href="#{sid}">{esc(name)}</a>' for sid, name in SECTIONS[1:])
+def page(title: str, subtitle: str, sections: dict, names: dict | None = None) -> str:
+    """The whole page: ``sections`` maps every id of :data:`SECTIONS` to its HTML body; ``names`` renames
+    sections (``simulate`` has a verdict and no margins)."""
+    named = [(sid, (names or {}).get(sid, name)) for sid, name in SECTIONS]
+    nav = " ".join(f'<a href="#{sid}">{esc(name)}</a>' for sid, name in named[1:])
     body = []
-    for sid, name in SECTIONS:
+    for sid, name in named:
         head = f"<h1>{esc(title)}</h1><p class='subtitle'>{esc(subtitle)}</p>" if sid == "answer" else \
             f"<h2>{esc(name)}</h2>"
         body.append(f'<section id="{sid}">{head}\n{sections[sid]}\n' + (f"<nav>Contents: {nav}</nav>"

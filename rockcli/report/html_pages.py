@@ -2,8 +2,9 @@
 (:func:`fragility_report`) and ``simulate`` (:func:`simulate_report`).
 
 Each returns the page as a string (see :mod:`rockcli.report.html` for its sections); the CLI writes
-it with :func:`rockcli.report.html.write_report`. Drawing the figures reruns the critical record
-of each body with its full history (a few runs); everything else comes from the results passed in.
+it with :func:`rockcli.report.html.write_report`. Drawing the figures reruns the records that decide
+each verdict with their full history (:mod:`rockcli.report.html_deciding`: a few runs); everything
+else comes from the results passed in.
 """
 
 from __future__ import annotations
@@ -12,9 +13,12 @@ import math
 from types import SimpleNamespace
 
 from rockcli.assess.verdicts import (SURVIVES, TOPPLES, body_noun, body_words, configuration_words,
-                                     isolation_summary, outcome, question, scene_sentence, verdict_lines)
+                                     isolation_summary, outcome, question, scene_sentence, stroke_m, survivor_stroke,
+                                     verdict_lines)
 from rockcli.report.html import (assumptions_section, body_section, card, configurations_section, esc, figure,
-                                 num, page, plural, records_section, reproduce_section, table)
+                                 num, page, plural, reproduce_section, table)
+from rockcli.report.html_deciding import response_figures
+from rockcli.report.html_records import records_section
 from rockcli.report.figures import block_text
 from rockcli.report.html_figures import margins_png, png_of, share_png, stroke_png
 
@@ -29,14 +33,22 @@ MARGIN_WORDS = (
     "1.10 topple it: 0 or 21 of 21 is a firm verdict, anything between says the answer is on a knife's "
     "edge.</p>")
 
+NO_MARGIN_WORDS = (
+    "<p>The margins (toppling factors) were not searched (<code>--no-margin</code>): each verdict is that of the "
+    "record as given. <b>Peak rocking</b> is the largest tilt as a share of the angle beyond which the body falls "
+    "(alpha). The <b>&plusmn;10 % share</b> (when run) says how many of the records scaled by 0.90, 0.91, ..., "
+    "1.10 topple it.</p>")
+
 
 def _title(blocks) -> str:
     return f"Will {body_noun(blocks[0])} topple?" if len(blocks) == 1 else "Will these bodies topple?"
 
 
 def _facts(facts) -> str:
-    return ('<div class="keyfacts">' + "".join(f'<div class="fact">{esc(k)}<br><b>{esc(v)}</b></div>'
-                                               for k, v in facts) + "</div>")
+    """Key figures: ``(name, value)`` or ``(name, value, note)``."""
+    return ('<div class="keyfacts">' + "".join(f'<div class="fact">{esc(f[0])}<br><b>{esc(f[1])}</b>'
+                                               + (f"<br><span class='note'>{esc(f[2])}</span>" if len(f) > 2 else "")
+                                               + "</div>" for f in facts) + "</div>")
 
 
 def _list(items) -> str:
@@ -46,50 +58,6 @@ def _list(items) -> str:
 # --------------------------------------------------------------------------------------------------
 # assess column
 # --------------------------------------------------------------------------------------------------
-
-def _critical(assessment, block):
-    """The record that comes closest to toppling ``block`` (smallest toppling factor, then largest peak)."""
-    best, key = None, None
-    for x in assessment.excitations:
-        if x.motion is None:
-            continue
-        rows = [assessment.row(block.name, x.label, c.header) for c in assessment.configurations]
-        rows = [r for r in rows if not r.error]
-        if not rows:
-            continue
-        k = min((0 if r.overturned else 1, r.overturn_scale if math.isfinite(r.overturn_scale) else math.inf,
-                 -r.theta_max_over_alpha) for r in rows)
-        if key is None or k < key:
-            best, key = x, k
-    return best
-
-
-def _response_figures(assessment, block) -> str:
-    """The critical record's full response on every configuration, side by side."""
-    from rockcli.report.figures import plot_grid_dt
-    from rockcli.report.response import plot_response
-    from rockcli.solve import simulate
-
-    x = _critical(assessment, block)
-    if x is None:
-        return ""
-    figs = []
-    for c in assessment.configurations:
-        resp = simulate(block, c.foundation, x.motion, history=True, history_dt=plot_grid_dt(x.motion),
-                        **assessment.solver)
-        if resp.status < 0:
-            continue
-        png = png_of(lambda path: plot_response(resp, block, c.foundation, path, excitation=x.motion,
-                                                motion=x.label, dpi=80))
-        figs.append(figure(png, f"{configuration_words(c)}: ground acceleration, tilt over alpha (beyond +-1 the "
-                                f"body is past its tipping point), rocking velocity"
-                           + (", displacement of the isolated base" if c.isolated else "") + "; a red line marks "
-                           "the instant it topples."))
-    many = sum(xx.motion is not None for xx in assessment.excitations) > 1
-    head = (f"<h3>{esc(block.name)}: the response to {esc(x.label)}"
-            + (" (the record that comes closest to toppling it)" if many else "") + "</h3>")
-    return head + '<div class="figrow">' + "".join(figs) + "</div>"
-
 
 def _peak_cell(r) -> str:
     if r.error or r.overturned:
@@ -110,7 +78,7 @@ def _verdict_table(assessment, block) -> str:
                       else "-")
             css = "w-" + word.replace(" ", "-")
             rows.append((esc(x.label), esc(c.header), f'<b class="{css}">{esc(word)}</b>', _peak_cell(r), factor,
-                         num(r.base_disp_max_m, ".3f", "m") if c.isolated else "-",
+                         _stroke_cell(r, word) if c.isolated else "-",
                          num(100 * r.overturn_share_pm10, ".0f", "%"),
                          esc(scene_sentence(r, isolated=False) + "."),
                          f"<code>{esc(format_cell(r, assessment.margin, assessment.neighbourhood))}</code>"))
@@ -179,6 +147,44 @@ def _certainty(assessment, check) -> str:
     return _list(items)
 
 
+def _stroke_cell(r, word: str) -> str:
+    """The verdict table's "base moves up to": the run's peak base displacement (until the fall when it toppled);
+    with --azimuth worst, the stroke over the orientations in which the body survives."""
+    if getattr(r, "azimuths_run", None):
+        s = stroke_m(r)
+        return (num(s, ".3f", "m") + " (largest over the orientations it survives)" if math.isfinite(s) else
+                "- (it survives in no orientation)")
+    return num(r.base_disp_max_m, ".3f", "m") + (" (until it toppled)" if word == TOPPLES else "")
+
+
+def _not_available(unavailable) -> list:
+    from rockcli.assess.excitations import Skipped
+
+    return [u for u in unavailable if not isinstance(u, Skipped)]
+
+
+def _stroke_fact(assessment, block, c, many: bool) -> tuple:
+    """The stroke the bearings of ``c`` must allow: the largest base displacement of the runs the body
+    survives (:func:`rockcli.assess.verdicts.survivor_stroke`); the runs in which it topples are left out
+    and said to be."""
+    rows = [assessment.row(block.name, x.label, c.header) for x in assessment.excitations if x.motion is not None]
+    rows = [r for r in rows if not r.error]
+    name = f"the bearings must allow ({c.header}" + (f", {block.name})" if many else ")")
+    top = survivor_stroke(rows)
+    fell = sum(outcome(r) == TOPPLES for r in rows)
+    kept = sum(outcome(r) == SURVIVES for r in rows)
+    if top is None:
+        return (name, "-", "it survives no record on them: no stroke to give")
+    if any(getattr(r, "azimuths_run", None) for r in rows):  # --azimuth worst: over the orientations it survives
+        return (name, f"{stroke_m(top):.2f} m", f"under {top.record}, the largest over the orientations in which "
+                f"it survives")
+    if not fell:
+        return (name, f"{top.base_disp_max_m:.2f} m") + ((f"under {top.record}",) if len(rows) > 1 else ())
+    return (name, f"{top.base_disp_max_m:.2f} m",
+            f"under {top.record}, the largest where it survives ({kept} of {len(rows)} records); the "
+            f"{plural(fell, 'run')} in which it topples {'is' if fell == 1 else 'are'} left out")
+
+
 def assessment_report(assessment, *, check=None, command: str = "") -> str:
     """The HTML report of ``rockcli assess column`` (``check``: a :class:`rockcli.assess.table.ToleranceCheck`)."""
     blocks = assessment.columns
@@ -191,40 +197,46 @@ def assessment_report(assessment, *, check=None, command: str = "") -> str:
         if short:
             first.append(f"<p class='short'>{esc(short)}</p>")
     facts = []
-    for c in assessment.configurations:
-        if c.isolated:
-            disp = [r.base_disp_max_m for r in assessment.rows if r.configuration == c.header and not r.error]
-            if disp:
-                facts.append((f"the bearings must allow ({c.header})", f"{max(disp):.2f} m"))
+    for b in blocks:
+        for c in assessment.configurations:
+            if c.isolated:
+                facts.append(_stroke_fact(assessment, b, c, many=len(blocks) > 1))
     n_ran = sum(x.motion is not None for x in assessment.excitations)
-    facts.append(("ground motions", f"{n_ran}"))
+    missing = _not_available(assessment.unavailable)
+    facts.append(("ground motions", f"{n_ran}", *([f"{len(missing)} more not available"] if missing else [])))
     facts.append(("verdicts not proven", f"{len(assessment.unproven)}"))
     first.append(_facts(facts))
     figs = []
     for b in blocks:
-        figs.append(_response_figures(assessment, b))
+        figs.append(response_figures(assessment, b))
         records = [x.label for x in assessment.excitations if x.motion is not None]
         rows = [r for r in assessment.rows if r.column == b.name]
         confs = assessment.configurations
         figs.append(figure(margins_png(rows, records, confs, f"{block_text(b)}\nhow far each record is from toppling it"),
                            "Toppling factor per record and configuration (red: topples as recorded; green: "
-                           "survives; amber: undecided). Right of the line at 1: the margin."))
-        if n_ran > 1:
+                           "survives; amber: undecided), labelled with the configuration's short name (see 'How it "
+                           "stands'). Right of the line at 1: the margin."))
+        if n_ran > 1 and assessment.margin:
             figs.append(figure(share_png(rows, confs, f"{block_text(b)}\nshare of the records that topple it"),
                                "If every record were scaled by the same factor: the share of them that topple the "
                                "body (from each record's smallest toppling factor)."))
         figs.append(figure(stroke_png(rows, records, confs, f"{block_text(b)}\ndisplacement demand on the bearings"),
-                           "Peak displacement of the isolated base relative to the ground: the stroke the bearings "
-                           "and the gap around the base must allow (hatched: until the body toppled)."))
+                           "Peak displacement of the isolated base relative to the ground: where the body "
+                           "survives, the stroke the bearings and the gap around the base must allow; hatched, the "
+                           "runs in which it toppled (the displacement until it fell, not a stroke to design for)."
+                           + (" A pair of components: the largest over the orientations in which the body survives "
+                              "(hatched: the most adverse one's, when it survives in none)."
+                              if any(r.azimuths_run for r in rows) else "")))
     sections = {
         "answer": "\n".join(first),
         "body": body_section(blocks),
         "configurations": configurations_section(assessment.configurations),
-        "records": records_section(assessment.excitations),
-        "verdicts": MARGIN_WORDS + "\n".join(_verdict_table(assessment, b) for b in blocks),
+        "records": records_section(assessment.excitations, assessment.unavailable),
+        "verdicts": (MARGIN_WORDS if assessment.margin else NO_MARGIN_WORDS)
+                    + "\n".join(_verdict_table(assessment, b) for b in blocks),
         "figures": "\n".join(f for f in figs if f) or "<p>No run to draw.</p>",
         "certainty": _certainty(assessment, check),
-        "assumptions": assumptions_section(),
+        "assumptions": assumptions_section(margins=assessment.margin),
         "reproduce": reproduce_section(command),
     }
     return page(_title(blocks), "rockcli assess column: rocking and overturning of free-standing bodies "
@@ -298,7 +310,7 @@ def fragility_report(fr, *, command: str = "") -> str:
     try:
         figs.append(figure(png_of(lambda path: plot_fragility(fr, path)),
                            f"Probability of toppling against {im.name}: fitted curves, bands of "
-                           f"{100 * fr.level:g} % (bootstrap), dots: the records."))
+                           f"{100 * fr.level:g} % (bootstrap), dots: the records.", smallest_pt=7.0))
     except Exception as exc:  # no exact capacity: no curve to draw, the tables still say why
         figs.append(f"<p>No fragility curve drawn: {esc(exc)}</p>")
     records = [x.label for x in fr.excitations if x.motion is not None]
@@ -317,7 +329,8 @@ def fragility_report(fr, *, command: str = "") -> str:
     items += [f"Not used: {esc(x.label)}: {esc(x.error)}" for x in fr.failed]
     sections = {
         "answer": "\n".join(first), "body": body_section(blocks),
-        "configurations": configurations_section(fr.configurations), "records": records_section(fr.excitations),
+        "configurations": configurations_section(fr.configurations),
+        "records": records_section(fr.excitations, fr.unavailable),
         "verdicts": verdicts, "figures": "\n".join(f for f in figs if f), "certainty": _list(items),
         "assumptions": assumptions_section(("A fragility curve describes records like these; it is only as "
                                             "representative of a site as the suite is.",)),
@@ -335,7 +348,7 @@ def simulate_report(block, foundation, excitation, response, *, label: str, chec
     """The HTML report of ``rockcli simulate`` (``response`` with its history; ``checked``: the
     ``check_*`` results of ``--check-tolerance``)."""
     from rockcli.assess.scenes import parse_configurations
-    from rockcli.report.response import plot_response
+    from rockcli.report.html_figures import responses_png
 
     conf = parse_configurations([foundation.label])[0]
     row = SimpleNamespace(error="", overturned=response.overturned,
@@ -348,7 +361,11 @@ def simulate_report(block, foundation, excitation, response, *, label: str, chec
     first = [f"<p class='question'>Does {esc(body_noun(block))} topple under {esc(label)}, {esc(where)}?</p>",
              f"<h3>{esc(body_words(block))}</h3>", card(word, where, scene_sentence(row, isolated=conf.isolated))]
     if conf.isolated:
-        first.append(_facts([("the bearings must allow", f"{response.base_disp_max_m:.2f} m")]))
+        d = f"{response.base_disp_max_m:.2f} m"
+        first.append(_facts([("the bearings must allow", d)] if word == SURVIVES else
+                            [("the base had moved", d, "until it toppled: not a stroke to design for")]
+                            if word == TOPPLES else [("the base moved", d, "so far: the stroke needed is at least "
+                                                                           "that")]))
     t = lambda v: num(v, ".3f", "s")  # noqa: E731
     result = [("verdict", esc(word)), ("lifts off at", t(response.t_uplift_s)),
               ("tilts beyond alpha at", t(response.t_exceed_alpha_s)), ("topples at", t(response.t_overturn_s)),
@@ -356,9 +373,11 @@ def simulate_report(block, foundation, excitation, response, *, label: str, chec
               ("impacts", f"{response.n_impacts} during shaking, {response.n_impacts_total} in all"),
               ("peak base displacement", num(response.base_disp_max_m, ".4f", "m")),
               ("integration", f"{response.steps} steps, ended at {response.t_end_s:.2f} s")]
-    motion = None if hasattr(excitation, "T_p") else label
-    png = png_of(lambda path: plot_response(response, block, foundation, path, excitation=excitation, motion=motion,
-                                            dpi=90))
+    png = responses_png([(conf, response)], block, excitation, label)
+    caption = (f"Response of {block.name} to {label}, {where}: ground acceleration; tilt over alpha (beyond the "
+               "dashed lines at +-1 the body leans past its tipping point)"
+               + ("; displacement of the isolated base" if conf.isolated else "") + ". "
+               + ("A red line marks the instant it topples." if response.overturned else ""))
     items = []
     if checked:
         same = checked["check_tight_rtol_verdict"] == response.verdict
@@ -373,15 +392,17 @@ def simulate_report(block, foundation, excitation, response, *, label: str, chec
     items.append("The verdict is proven." if response.settled or response.overturned else
                  f"<b>NOT PROVEN</b>: at {response.t_end_s:.1f} s (the horizon) the base could still lift the "
                  "body; lengthen --horizon to follow it.")
-    items.append("No margin is searched by <code>simulate</code>: <code>rockcli assess column</code> finds the "
-                 "smallest scale factor of the record that topples the body.")
+    items.append("This is one run of the motion as given: how much stronger (or weaker) the motion would have to "
+                 "be to change the verdict is not computed here (<code>rockcli assess column</code> finds the "
+                 "smallest scale factor of a record that topples the body).")
     sections = {
         "answer": "\n".join(first), "body": body_section([block]), "configurations": configurations_section([conf]),
         "records": records_section([excitation]), "verdicts": table(None, [(esc(k), v) for k, v in result]),
-        "figures": figure(png, f"Response of {block.name} to {label}, {where}."), "certainty": _list(items),
-        "assumptions": assumptions_section(), "reproduce": reproduce_section(command),
+        "figures": figure(png, caption.strip()), "certainty": _list(items),
+        "assumptions": assumptions_section(margins=False), "reproduce": reproduce_section(command),
     }
-    return page(_title([block]), "rockcli simulate: the rocking response of one body to one ground motion", sections)
+    return page(_title([block]), "rockcli simulate: the rocking response of one body to one ground motion", sections,
+                names={"verdicts": "The verdict"})
 
 
 __all__ = ["assessment_report", "fragility_report", "simulate_report"]

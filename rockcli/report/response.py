@@ -77,6 +77,50 @@ def write_history_csv(response, block, path: str | os.PathLike) -> Path:
     return write_text(path, header + "\n" + body)
 
 
+#: Colour of the line that marks the instant the body topples (the reports' captions name it).
+TOPPLE_COLOUR = "tab:red"
+
+
+def draw_run(axes: dict, response, block, *, excitation=None, t_end: float | None = None,
+             label_topple: bool = True) -> None:
+    """Draw one run (``response`` with its history) on ``axes``, a dict of the panels wanted:
+    ``"ground"`` (ground acceleration [g], from ``excitation`` itself up to ``t_end``), ``"tilt"``
+    (theta/alpha, dashed at +-1), ``"rate"`` (theta_dot/p), ``"base"`` (base displacement [m]).
+
+    When the body topples, a red vertical line marks the instant on every panel (labelled ``topples at
+    t s`` on the tilt panel when ``label_topple``); the body's curves end there.
+    """
+    H = response.history
+    if H is None:
+        raise ValueError("this response was computed without history (simulate(..., history=True))")
+    rows = H.rows
+    t, th, thd, u = rows[:, 0], rows[:, 2], rows[:, 3], rows[:, 4]
+    end = float(t[-1]) if t_end is None else max(float(t_end), float(t[-1]))
+    if "ground" in axes:
+        from rockcli.report.figures import excitation_samples
+
+        tg, ag = excitation_samples(excitation, float(t[0]), end)
+        axes["ground"].plot(tg, ag / G, lw=0.8, color="0.2")
+        axes["ground"].axhline(0.0, color="0.6", lw=0.5)
+    if "tilt" in axes:
+        axes["tilt"].plot(t, th / block.alpha, lw=1.0, color="tab:blue")
+        for y in (-1, 1):
+            axes["tilt"].axhline(y, color="0.6", lw=0.6, ls="--")
+    if "rate" in axes:
+        axes["rate"].plot(t, thd / block.p, lw=1.0, color="tab:orange")
+    if "base" in axes:
+        axes["base"].plot(t, u, lw=1.0, color="tab:green")
+    if response.verdict == "overturned" and math.isfinite(response.t_overturn_s):
+        for ax in axes.values():
+            ax.axvline(response.t_overturn_s, color=TOPPLE_COLOUR, lw=1.4)
+        if label_topple and "tilt" in axes:
+            late = response.t_overturn_s - float(t[0]) > 0.6 * (end - float(t[0]))  # the label left of the line
+            text = f"topples at {response.t_overturn_s:.2f} s"
+            axes["tilt"].annotate(f"{text} " if late else f" {text}", (response.t_overturn_s, 1.0),
+                                  xycoords=("data", "axes fraction"), va="top", ha="right" if late else "left",
+                                  color=TOPPLE_COLOUR, fontsize=8.5, fontweight="bold")
+
+
 def plot_response(response, block, foundation, path: str | os.PathLike, *, excitation=None, motion: str | None = None,
                   dpi: int = 120) -> Path:
     """Ground acceleration [g], theta/alpha, theta_dot/p and (isolated) base displacement [m] vs time.
@@ -94,8 +138,7 @@ def plot_response(response, block, foundation, path: str | os.PathLike, *, excit
     """
     import numpy as np
 
-    from rockcli.report.figures import (block_text, excitation_samples, foundation_text, motion_text, new_figure,
-                                        pyplot, title)
+    from rockcli.report.figures import block_text, foundation_text, motion_text, new_figure, pyplot, title
 
     H = response.history
     if H is None:
@@ -114,27 +157,22 @@ def plot_response(response, block, foundation, path: str | os.PathLike, *, excit
     for ax in axes[:-1]:
         ax.tick_params(labelbottom=False)
     rows = H.rows
-    t, th, thd, u = rows[:, 0], rows[:, 2], rows[:, 3], rows[:, 4]
-    tg, ag = excitation_samples(excitation, float(t[0]), float(t[-1]))
-    axes[0].plot(tg, ag / G, lw=0.8, color="0.2")
-    axes[0].axhline(0.0, color="0.6", lw=0.5)
+    t = rows[:, 0]
+    right = float(t[-1])
+    if response.verdict == "overturned":  # the red line at the instant it topples, inside the frame
+        right += 0.04 * (right - float(t[0]))
+    draw_run(dict(zip(("ground", "tilt", "rate", "base"), axes)), response, block, excitation=excitation,
+             t_end=right)
     axes[0].set_ylabel(r"ground acc. $\ddot u_g$ [g]")
-    axes[1].plot(t, th / block.alpha, lw=1.0, color="tab:blue")
     axes[1].set_ylabel(r"$\theta/\alpha$")
-    for y in (-1, 1):
-        axes[1].axhline(y, color="0.6", lw=0.6, ls="--")
-    axes[2].plot(t, thd / block.p, lw=1.0, color="tab:orange")
     axes[2].set_ylabel(r"$\dot\theta/p$")
     if isolated:
-        axes[3].plot(t, u, lw=1.0, color="tab:green")
         axes[3].set_ylabel("base displacement $u$ [m]")
     if response.verdict == "overturned":
-        for ax in axes:
-            ax.axvline(response.t_overturn_s, color="tab:red", lw=0.8)
         axes[1].set_ylim(-math.pi / 2 / block.alpha * 1.05, math.pi / 2 / block.alpha * 1.05)
     for ax in axes:
         ax.grid(True, lw=0.3)
-    axes[0].set_xlim(float(t[0]), float(t[-1]))
+    axes[0].set_xlim(float(t[0]), right)
     axes[-1].set_xlabel("time $t$ [s]")
     if loop:
         ax = fig.add_subplot(grid[n])

@@ -366,6 +366,9 @@ def _search_note(curves) -> str:
     note = "minimum: " + "; ".join(ways)
     if any(c.refine > 0 for c in curves):
         note += f"; x: in a window the first scan stepped over ({refined} of {points} points)"
+    capped = sorted({c.alpha_deg for c in curves if getattr(c, "capped", False)})
+    if capped:
+        note += f"; searched up to a_p = 100 g only at alpha = {', '.join(f'{a:g}' for a in capped)} deg"
     return note
 
 

@@ -44,8 +44,8 @@ def format_cell(row, margin: bool, neighbourhood: bool = False) -> str:
             text += f" x{row.overturn_scale:.2f}"
         elif row.margin_note.startswith("no overturning"):
             text += " x>4"
-    if row.azimuths_run:  # --azimuth worst: the most adverse orientation
-        text += f" @{row.azimuth_deg:g}"
+    if row.azimuths_run:  # --azimuth worst: the most adverse orientation (any: none is more adverse)
+        text += " @any" if math.isnan(row.azimuth_deg) else f" @{row.azimuth_deg:g}"
     if neighbourhood and not math.isnan(row.overturn_share_pm10):
         text += f" [{100 * row.overturn_share_pm10:.0f}%]"
     return text
@@ -100,7 +100,7 @@ def format_notes(assessment) -> str:
                      "(up to 3600 s) follows it longer.")
     if assessment.solver.get("restitution") is not None:
         lines.append(f"Impacts: coefficient of restitution E = {assessment.solver['restitution']:g} (on the ground "
-                     "theta_dot+ = E theta_dot-; on isolators the map of the README's Restitution section), not "
+                     "theta_dot+ = E theta_dot-; on isolators lowered by the base, docs/simulate.md, Restitution), not "
                      "Housner's 1 - 1.5 sin^2 alpha.")
     if assessment.solver.get("cap_ratio"):
         lines.append(f"Capped colonnades: each column stands in a colonnade carrying a beam of gamma_c = "
@@ -112,9 +112,19 @@ def format_notes(assessment) -> str:
                      "1 % steps.")
     worst = [r for r in assessment.rows if r.azimuths_run and not r.error]
     if worst:
-        lines.append(f"@A: the most adverse orientation of the two horizontal components, of {worst[0].azimuths_run} "
-                     "run (0-179 deg; A = azimuth of the normal to the rocking axis, clockwise from north): the "
-                     "smallest margin xS, then an overturn at 1x, then the largest peak |theta|/alpha.")
+        rank = ("the smallest margin xS, then the earliest overturn at 1x, then the largest peak |theta|/alpha"
+                if assessment.margin else "the earliest overturn, then the largest peak |theta|/alpha")
+        lines.append(f"@A: the most adverse orientation of the two horizontal components, of the "
+                     f"{worst[0].azimuths_run} orientations run (0-179 deg; A = azimuth of the normal to the rocking "
+                     f"axis, clockwise from north): {rank}.")
+        tied = [r for r in worst if math.isnan(r.azimuth_deg)]
+        if tied:
+            calm = all(r.verdict == "no_uplift" and (not assessment.margin or math.isnan(r.overturn_scale))
+                       for r in tied)
+            lines.append("@any: no orientation is more adverse than another: "
+                         + (("none lifts the body off at 1x" + (" and none overturns it up to 4x" if assessment.margin
+                                                                 else "")) if calm
+                            else "they all rank the same by these") + ".")
         over = [r for r in worst if r.overturning_azimuths not in ("", "none")]
         for r in over:
             lines.append(f"Overturning orientations: {r.column} / {r.record} / {r.configuration}: "
@@ -159,7 +169,7 @@ def assessment_frame(assessment):
 #: Columns added by ``--check-tolerance`` (:func:`rockcli.assess.table.check_tolerance`), empty on rows
 #: that were not rerun (errors, unavailable motions).
 #: Columns of an assessment with ``--azimuth`` (after :data:`CSV_COLUMNS`).
-AZIMUTH_COLUMNS = ("azimuth_deg", "overturning_azimuths", "azimuths_run")
+AZIMUTH_COLUMNS = ("azimuth_deg", "overturning_azimuths", "azimuths_run", "base_disp_max_surviving_azimuths_m")
 CHECK_COLUMNS = ("tight_rtol_verdict", "tight_rtol_peak_change", "ulp_verdicts", "ulp_peak_change", "ill_conditioned")
 
 
@@ -169,7 +179,7 @@ def extra_columns(assessment, check=None) -> dict:
     (a :class:`rockcli.assess.table.ToleranceCheck`), the :data:`CHECK_COLUMNS`."""
     rows = assessment.rows
     cols = {}
-    if any(not math.isnan(r.azimuth_deg) for r in rows):  # --azimuth: the columns of orientation
+    if any(not math.isnan(r.azimuth_deg) or r.azimuths_run for r in rows):  # --azimuth: the columns of orientation
         for key in AZIMUTH_COLUMNS:
             cols[key] = [getattr(r, key) for r in rows]
     for key in ("restitution", "cap_ratio"):
@@ -204,14 +214,20 @@ def assessment_rows(assessment, check=None) -> list[dict]:
             for i, r in enumerate(assessment.rows)]
 
 
-def write_assessment_csv(assessment, path: str | os.PathLike, check=None) -> Path:
-    """Write the CSV report (one row per column x record x configuration), atomically: :data:`CSV_COLUMNS`
-    and :func:`extra_columns`."""
+def assessment_table(assessment, check=None):
+    """The CSV report as a pandas DataFrame (one row per column x record x configuration): :data:`CSV_COLUMNS`
+    and :func:`extra_columns` (:meth:`rockcli.assess.Assessment.to_dataframe`)."""
     df = assessment_frame(assessment)
     for key, values in extra_columns(assessment, check).items():
         df[key] = values
     if check is not None:
         df["ill_conditioned"] = df["ill_conditioned"].astype("boolean")
+    return df
+
+
+def write_assessment_csv(assessment, path: str | os.PathLike, check=None) -> Path:
+    """Write the CSV report (:func:`assessment_table`), atomically."""
+    df = assessment_table(assessment, check)
     return write_text(path, df.to_csv(index=False, float_format="%.6g", lineterminator="\n"))
 
 

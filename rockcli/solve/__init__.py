@@ -65,12 +65,14 @@ Solver contract
   ``early=True`` (verdict-only sweeps) also stops during the excitation once survival is proven
   by the energy the rest of the ground motion can still supply, or overturning once the block,
   past alpha, can no longer be brought back; its ``theta_max`` is then only a lower bound and
-  ``t_overturn_s`` may be NaN (``peak_final = False``).
+  ``t_overturn_s`` may be NaN (``peak_final = False``). On an isolated base it stops once a block
+  at rest on its base can never be lifted again (its peak stays final) and leaves the base's peak
+  displacement NaN unless it is proven final.
 """
 
 from rockcli.solve.options import (DEFAULT_HORIZON, DEFAULT_MAX_STEPS, DEFAULT_REST_TOL, DEFAULT_RTOL,
-                                   DEFAULT_RTOL_HYSTERETIC, DEFAULT_TAIL, HORIZON_MAX, REST_TOL_MIN, TAIL_MAX,
-                                   _kernel, _rtol, default_rtol, validate_options)
+                                   DEFAULT_RTOL_HYSTERETIC, DEFAULT_TAIL, FOUNDATION_TYPES, HORIZON_MAX, REST_TOL_MIN,
+                                   TAIL_MAX, _kernel, _rtol, check_foundation, default_rtol, validate_options)
 from rockcli.solve.response import (VERDICT_ERROR, VERDICT_NO_UPLIFT, VERDICT_OVERTURNED, VERDICT_ROCKED, History,
                                     JobError, Response, Verdicts, _response)
 from rockcli.solve.excitation import (_PULSE_CODES, _PULSE_ZEROS, _UNIT_TABLES, N_IMPULSE_TABLE,
@@ -83,9 +85,11 @@ from rockcli.solve.batch import _run_many, _scene_arrays, _threads, simulate_man
 from rockcli.solve.stack import BlockPeak, StackHistory, StackResponse, friction_demand_single, simulate_stack
 
 __all__ = ["DEFAULT_HORIZON", "DEFAULT_MAX_STEPS", "DEFAULT_REST_TOL", "DEFAULT_RTOL", "DEFAULT_RTOL_HYSTERETIC",
-           "DEFAULT_TAIL", "HORIZON_MAX", "N_IMPULSE_TABLE", "PULSE_START_MAX_PERIODS", "REST_TOL_MIN", "TAIL_MAX",
+           "DEFAULT_TAIL", "FOUNDATION_TYPES", "HORIZON_MAX", "N_IMPULSE_TABLE", "PULSE_START_MAX_PERIODS",
+           "REST_TOL_MIN", "TAIL_MAX",
            "VERDICT_ERROR", "VERDICT_NO_UPLIFT", "VERDICT_OVERTURNED", "VERDICT_ROCKED", "History", "JobError",
-           "Response", "Verdicts", "attached_vertical", "bearing_force_path", "default_rtol", "pulse_impulse_table",
+           "Response", "Verdicts", "attached_vertical", "bearing_force_path", "check_foundation", "default_rtol",
+           "pulse_impulse_table",
            "record_impulse_table", "simulate", "simulate_many", "simulate_verdicts", "validate_options",
            "vertical_label", "with_vertical"]
 __all__ += ["BlockPeak", "StackHistory", "StackResponse", "friction_demand_single", "simulate_stack"]

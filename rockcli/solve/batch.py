@@ -16,7 +16,7 @@ from rockcli.impact import check_restitution
 from rockcli.models import Block, Rigid
 from rockcli.solve.excitation import _excitation_arrays, _vertical_arrays, attached_vertical
 from rockcli.solve.options import (DEFAULT_HORIZON, DEFAULT_MAX_STEPS, DEFAULT_REST_TOL, DEFAULT_TAIL, TAIL_MAX,
-                                   _kernel, validate_options)
+                                   _kernel, check_foundation, validate_options)
 from rockcli.solve.parameters import _parameters
 from rockcli.solve.response import JobError, Verdicts, _response
 from rockcli.solve.work import _check_work
@@ -186,7 +186,9 @@ def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress
     Returns ``(outs, alphas, failed)``: ``outs`` has one row per valid job in job order,
     ``alphas`` one entry per job (NaN for a failed one), ``failed`` maps job index -> JobError.
     """
-    jobs = list(jobs)
+    from rockcli.inputs import as_list
+
+    jobs = as_list(jobs, "jobs", "a list of (block, foundation, excitation[, scale]) tuples")
     tails_in = np.asarray(tail, dtype=float)
     if tails_in.ndim == 0:
         validate_options(rtol, float(tails_in), rest_tol, horizon, max_steps)
@@ -218,13 +220,17 @@ def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress
     ground = Rigid()
     for i, job in enumerate(jobs):
         try:
+            if not isinstance(job, (tuple, list)) or not 3 <= len(job) <= 4:
+                from rockcli.inputs import type_words
+
+                raise RockcliInputError(f"job {i} must be a tuple (block, foundation, excitation[, scale]), got "
+                                        f"{type_words(job)}")
             block, foundation, excitation = job[:3]
             scale = float(job[3]) if len(job) > 3 else 1.0
             if not isinstance(block, Block):
                 raise RockcliInputError(f"job {i}: block must be a rockcli.models.Block")
             foundation = foundation if foundation is not None else ground
-            if not hasattr(foundation, "gamma"):
-                raise RockcliInputError(f"job {i}: unknown foundation {foundation!r}")
+            check_foundation(foundation, f"job {i}: the foundation")
             if not math.isfinite(scale):
                 raise RockcliInputError(f"job {i}: the scale factor must be finite, got {scale!r}")
             tail_i = float(tails_in if tails_in.ndim == 0 else tails_in[i])

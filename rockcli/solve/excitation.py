@@ -101,13 +101,14 @@ def _excitation_arrays(excitation):
         # the run starts at rest at t = 0: a pulse that starts earlier would be cut (its start lost)
         if ts < 0.0:
             raise RockcliInputError(
-                f"pulse {shape} (T_p = {T_p:g} s, t0 = {t0:g} s) starts at {ts:g} s, before the run starts at "
-                f"t = 0 s: give t0 >= {t0 - ts:g} s")
+                f"pulse {shape} (T_p = {format_number(T_p)} s, t0 = {format_number(t0)} s) starts at "
+                f"{format_number(ts)} s, before the run starts at t = 0 s: give t0 >= {format_number(t0 - ts)} s")
         # float64 time resolves the pulse to eps * t / T_p: 2e-10 of a period at t = 1e6 T_p
         if ts > PULSE_START_MAX_PERIODS * T_p:
             raise RockcliInputError(
-                f"pulse {shape} (T_p = {T_p:g} s) starts at {ts:g} s, later than the supported "
-                f"{PULSE_START_MAX_PERIODS:g} T_p = {PULSE_START_MAX_PERIODS * T_p:g} s (the run's clock could no "
+                f"pulse {shape} (T_p = {format_number(T_p)} s) starts at {format_number(ts)} s, later than the "
+                f"supported {PULSE_START_MAX_PERIODS:g} T_p = {format_number(PULSE_START_MAX_PERIODS * T_p)} s (the "
+                f"run's clock could no "
                 f"longer resolve the pulse): give a smaller t0")
         epar = np.zeros(8)
         epar[k.E_AP], epar[k.E_TP], epar[k.E_T0], epar[k.E_TS], epar[k.E_TE] = a_p, T_p, t0, ts, te
@@ -201,13 +202,13 @@ def _vertical_arrays(vertical, excitation, foundation, g: float):
         if not (math.isfinite(T_p) and T_p > 0 and math.isfinite(float(vertical.a_p))):
             raise RockcliInputError(f"vertical pulse {shape}: a_p must be finite and T_p positive")
         if ts < 0.0:
-            raise RockcliInputError(f"vertical pulse {shape} starts at {ts:g} s, before the run starts at t = 0 s: "
-                                    f"give a larger t0")
+            raise RockcliInputError(f"vertical pulse {shape} starts at {format_number(ts)} s, before the run starts at "
+                                    f"t = 0 s: give a larger t0")
         vdt = T_p / VERTICAL_PULSE_SAMPLES
         n = int(math.ceil(te / vdt)) + 1
         if n > 50_000_000:
-            raise RockcliInputError(f"vertical pulse {shape} ends too late ({te:g} s) for its period: give a "
-                                    f"smaller t0")
+            raise RockcliInputError(f"vertical pulse {shape} ends too late ({format_number(te)} s) for its period: "
+                                    f"give a smaller t0")
         tt = vdt * np.arange(n)
         vacc = np.where((tt >= ts) & (tt <= te), np.asarray(vertical.acceleration(tt), dtype=float), 0.0)
         label = f"pulse {shape} a_p={float(vertical.a_p):g}m/s2 T_p={T_p:g}s t0={float(vertical.t0):g}s"

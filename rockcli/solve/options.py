@@ -12,7 +12,24 @@ import numpy as np
 
 from rockcli.errors import RockcliInputError
 from rockcli.inputs import format_number
-from rockcli.models import DoubleConcaveSliding, LeadRubber, SingleConcaveSliding
+from rockcli.models import DoubleConcaveSliding, LeadRubber, LinearIsolation, Rigid, SingleConcaveSliding
+
+#: The foundations a scene stands on.
+FOUNDATION_TYPES = (Rigid, LinearIsolation, SingleConcaveSliding, LeadRubber, DoubleConcaveSliding)
+
+
+def check_foundation(foundation, what: str = "foundation"):
+    """``foundation`` when it is one of :data:`FOUNDATION_TYPES` (None: :class:`Rigid`), else one sentence naming
+    what was given and how to make one from a spec."""
+    if foundation is None:
+        return Rigid()
+    if not isinstance(foundation, FOUNDATION_TYPES):
+        from rockcli.inputs import type_words
+
+        raise RockcliInputError(f"{what} must be a rockcli foundation (Rigid(), LinearIsolation(T_b=2.5), ...; from "
+                                f"a spec such as 'none' or 'linear:Tb=2.5': parse_isolation_spec(spec)), got "
+                                f"{type_words(foundation)}")
+    return foundation
 
 
 #: Default rtol on a rigid foundation and on linear bearings: at least the accuracy of SciPy's RK45 at
@@ -44,6 +61,7 @@ def _kernel():
 def default_rtol(foundation) -> float:
     """The default rtol of a foundation: :data:`DEFAULT_RTOL` (rigid, linear bearings) or
     :data:`DEFAULT_RTOL_HYSTERETIC` (sliding and lead-rubber bearings)."""
+    check_foundation(foundation)
     if isinstance(foundation, (SingleConcaveSliding, DoubleConcaveSliding, LeadRubber)):
         return DEFAULT_RTOL_HYSTERETIC
     return DEFAULT_RTOL
@@ -69,10 +87,10 @@ def validate_options(rtol=None, tail=DEFAULT_TAIL, rest_tol=DEFAULT_REST_TOL, ho
                                 f"shows after the excitation), got {format_number(tail)}")
     if not (math.isfinite(horizon) and 0 <= horizon <= HORIZON_MAX):
         raise RockcliInputError(f"horizon must be a time between 0 and {HORIZON_MAX:g} s (the free motion followed "
-                                f"after the excitation to prove a verdict), got {horizon:g}")
+                                f"after the excitation to prove a verdict), got {format_number(horizon)}")
     if not (math.isfinite(rest_tol) and REST_TOL_MIN <= rest_tol < 1):
         raise RockcliInputError(
             f"rest_tol must satisfy {REST_TOL_MIN:g} <= rest_tol < 1 (without a rest rule a train of impacts never "
-            f"ends), got {rest_tol:g}")
+            f"ends), got {format_number(rest_tol)}")
     if isinstance(max_steps, bool) or not isinstance(max_steps, (int, np.integer)) or max_steps < 1:
         raise RockcliInputError(f"max_steps must be a whole number >= 1, got {max_steps!r}")

@@ -109,7 +109,8 @@ class Response:
     theta_max : float
         Peak ``|theta|`` [rad] (``pi/2`` when overturned).
     base_disp_max_m : float
-        Peak ``|u|``, base displacement relative to the ground [m] (0 on a rigid foundation).
+        Peak ``|u|``, base displacement relative to the ground [m] (0 on a rigid foundation; NaN
+        when an ``early`` run ended before it was proven final).
     n_impacts : int
         Impacts while the ground moves (the same with or without history).
     n_impacts_total : int

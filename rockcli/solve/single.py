@@ -8,11 +8,12 @@ import numpy as np
 
 from rockcli.errors import RockcliInputError
 from rockcli.impact import check_restitution
+from rockcli.inputs import format_number, type_words
 from rockcli.initial import check_initial_state, still_ground_arrays
-from rockcli.models import Block, Rigid
+from rockcli.models import Block
 from rockcli.solve.excitation import _excitation_arrays, _vertical_arrays, attached_vertical
 from rockcli.solve.options import (DEFAULT_HORIZON, DEFAULT_MAX_STEPS, DEFAULT_REST_TOL, DEFAULT_TAIL, _kernel,
-                                   validate_options)
+                                   check_foundation, validate_options)
 from rockcli.solve.parameters import _parameters
 from rockcli.solve.response import Response, _response
 from rockcli.solve.work import _check_work
@@ -50,8 +51,9 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float | No
     horizon : float
         Longest free motion followed after the excitation to prove the verdict [s].
     early : bool
-        Verdict only: also stop during the excitation once survival is proven (then
-        ``peak_final`` is False). Not with ``history``.
+        Verdict only: also stop during the excitation once the verdict is proven (on a rigid
+        foundation ``peak_final`` is then False; on an isolated base ``base_disp_max_m`` is NaN
+        unless proven final). Not with ``history``.
     max_steps : int
         Safety cap on integrator steps.
     restitution : float, optional
@@ -66,10 +68,12 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float | No
         solitary column; :mod:`rockcli.colonnade`). On an isolated base the foundation's ``gamma`` is
         the mass of columns and beam over the whole moving mass.
     history_dt : float, optional
-        The history on a uniform grid: rows at the times ``k history_dt`` [s] (the steps' dense
-        output, exact to the integrator's tolerance; the ground acceleration from the excitation
-        itself) instead of at the step ends; implies ``history``. The events stay exact either way
-        (:attr:`History.events`).
+        The history on a uniform grid: rows at the times ``k history_dt`` [s] from the start to the
+        excitation's end plus ``tail`` (the steps' dense output, exact to the integrator's tolerance;
+        the ground acceleration from the excitation itself) instead of at the step ends; implies
+        ``history``. The events stay exact either way (:attr:`History.events`), also after the tail
+        when the run goes on to prove its verdict. The grid's rows are counted before the run
+        (:func:`grid_rows`): more than :data:`HISTORY_GRID_ROWS_MAX` are refused.
     vertical : Record or pulse, optional
         Vertical ground acceleration [m/s^2, upward positive], rigid foundation only: gravity becomes
         ``g + a_v`` in Eq (3) and in the uplift threshold. A record shares a horizontal record's time
@@ -81,10 +85,10 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float | No
     -------
     Response
     """
-    if foundation is None:
-        foundation = Rigid()
     if not isinstance(block, Block):
-        raise RockcliInputError(f"block must be a rockcli.models.Block, got {type(block).__name__}")
+        raise RockcliInputError(f"block must be a rockcli.models.Block (Block(R, alpha), Block.from_dimensions(height, "
+                                f"width), column('bassae')), got {type_words(block)}")
+    foundation = check_foundation(foundation)
     theta0, theta_dot0 = check_initial_state(theta0, theta_dot0)
     if excitation is None and theta0 == 0.0 and theta_dot0 == 0.0:
         raise RockcliInputError("simulate needs an excitation (a record or a pulse), or a start away from rest "
@@ -104,12 +108,12 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float | No
         epar[k.E_AP] = _scale if ekind == k.EXC_RECORD else epar[k.E_AP] * _scale
     fkind, prm = _parameters(block, foundation, rtol, float(rest_tol), restitution, cap_ratio)
     prm[k.P_TH0], prm[k.P_THD0] = theta0, theta_dot0
-    if history_dt is not None:
-        prm[k.P_HDT] = history_dt
-        _check_grid_rows(history_dt, t_begin, t_exc_end + float(tail))
     if vertical is None:
         vertical = attached_vertical(excitation)
     vacc, vjtab, vdt, t_v_end, _ = _vertical_arrays(vertical, excitation, foundation, float(prm[k.P_G]))
+    if history_dt is not None:
+        prm[k.P_HDT] = history_dt
+        _check_grid_rows(history_dt, t_begin, max(t_exc_end, t_v_end) + float(tail))
     _check_work(block, foundation, prepared, rtol, float(tail), float(rest_tol), float(horizon),
                 int(max_steps), bool(history), restitution)
     out = np.zeros(k.N_OUT)
@@ -122,8 +126,11 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float | No
     return _response(out, H if history else None, block, fkind, history_dt)
 
 
-#: The most rows a uniform history grid may have (about 0.8 GB of rows).
-HISTORY_GRID_ROWS_MAX = 10_000_000
+#: The most rows a uniform history grid may have, counted before the run (:func:`grid_rows`): 2,000,000 rows
+#: make a CSV of about 120 MB, written with a peak memory of about 1.3 GB (measured: a 41 s record every
+#: 2.6e-5 s, 13 s CPU); 5 million took 3 GB and 40 s, and the old estimate let 64 million through to a
+#: MemoryError. Two million rows are a row every 25 us of a 50 s run, finer than any figure or comparison needs.
+HISTORY_GRID_ROWS_MAX = 2_000_000
 
 
 def check_history_dt(history_dt, name: str = "history_dt") -> float:
@@ -133,13 +140,37 @@ def check_history_dt(history_dt, name: str = "history_dt") -> float:
     except (TypeError, ValueError):
         raise RockcliInputError(f"{name} must be a number of seconds, got {history_dt!r}") from None
     if not (math.isfinite(v) and v > 0.0):
-        raise RockcliInputError(f"{name} must be a positive number of seconds, got {history_dt!r}")
+        raise RockcliInputError(f"{name} must be a positive number of seconds, got {format_number(history_dt)}")
     return v
 
 
-def _check_grid_rows(history_dt: float, t_begin: float, t_end: float) -> None:
-    """Refuse a grid of more than :data:`HISTORY_GRID_ROWS_MAX` rows over the excitation and its tail."""
-    n = (t_end - t_begin) / history_dt
+def grid_rows(history_dt: float, t_begin: float, t_show_end: float) -> int:
+    """The number of rows of the uniform history grid, known before the run: the times ``k history_dt`` from
+    ``t_begin`` to ``t_show_end`` (the excitation's end plus the tail), computed with the kernel's own float
+    operations (``kg = ceil(t_begin / hdt)``, rows while ``kg * hdt <= t_show_end``). The kernels write no grid
+    row after ``t_show_end`` (a run that goes on to prove its verdict adds only its step and event rows), so a
+    run has at most this many grid rows (fewer when it overturns earlier)."""
+    span = (t_show_end - t_begin) / history_dt
+    if not span < 2.0 ** 50:  # far beyond any cap (and beyond counting one by one in floats): the estimate
+        return int(min(span, 2.0 ** 62))
+    first = math.ceil(t_begin / history_dt)
+    last = math.floor(t_show_end / history_dt)
+    for _ in range(4):  # the quotients may be one off the kernel's products k * hdt
+        if (last + 1) * history_dt <= t_show_end:
+            last += 1
+        elif last >= first and last * history_dt > t_show_end:
+            last -= 1
+        else:
+            break
+    return max(0, last - first + 1)
+
+
+def _check_grid_rows(history_dt: float, t_begin: float, t_show_end: float) -> None:
+    """Refuse a grid of more than :data:`HISTORY_GRID_ROWS_MAX` rows (:func:`grid_rows`), before any work."""
+    n = grid_rows(history_dt, t_begin, t_show_end)
     if n > HISTORY_GRID_ROWS_MAX:
-        raise RockcliInputError(f"a history every {history_dt:g} s over {t_end - t_begin:.4g} s would be {n:.3g} rows, "
-                                f"more than the {HISTORY_GRID_ROWS_MAX:,} allowed: choose a coarser grid")
+        rows = f"{n:,}" if n < 2 ** 50 else f"about {(t_show_end - t_begin) / history_dt:.3g}"
+        raise RockcliInputError(f"a history every {format_number(history_dt)} s from {format_number(t_begin)} s to "
+                                f"{format_number(t_show_end)} s (the excitation's end plus the tail) would be {rows} "
+                                f"rows, more than the {HISTORY_GRID_ROWS_MAX:,} allowed: choose a coarser grid or a "
+                                f"shorter tail")

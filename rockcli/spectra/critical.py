@@ -18,7 +18,7 @@ import numpy as np
 from rockcli.errors import RockcliInputError
 from rockcli.spectra.grids import Grid
 from rockcli.spectra.minimum import (DEFAULT_REFINE, DEFAULT_REFINE_BAND, DEFAULT_STEP, DEFAULT_TOL, TOL_MIN,
-                                     curves_of, search_min_overturning)
+                                     curves_of, search_min_overturning, y_limit)
 from rockcli.spectra.runner import Runner
 from rockcli.spectra.scenes import REFERENCE_R, Family, Isolation, PulseChoice, parse_isolation
 from rockcli.units import G
@@ -84,7 +84,11 @@ def critical_sizes(pulses: Sequence[PulseChoice], alphas_deg: Sequence[float], i
     better": isolation brings nothing there), refined by bisection in ``x`` to ``xtol`` (relative).
     Rows come in the order pulse, alpha, isolation.
     """
-    if not (math.isfinite(xtol) and TOL_MIN <= xtol <= 0.5):
+    from rockcli.spectra.arguments import as_alphas, as_grid, as_isolations, as_pulses
+
+    pulses, alphas_deg, isolations = as_pulses(pulses), as_alphas(alphas_deg), as_isolations(isolations)
+    wp_grid = as_grid(wp_grid, "wp_grid")
+    if not (isinstance(xtol, (int, float)) and math.isfinite(xtol) and TOL_MIN <= xtol <= 0.5):
         raise RockcliInputError(f"xtol must lie in [{TOL_MIN:g}, 0.5] (relative; double precision cannot bisect "
                                 f"finer), got {xtol!r}")
     for pc in pulses:
@@ -130,8 +134,10 @@ def critical_sizes(pulses: Sequence[PulseChoice], alphas_deg: Sequence[float], i
                 key = (sh, a, iso)
                 changes = int(np.count_nonzero(b[1:] != b[:-1]))
                 if both_inf.any():
+                    top = min(ap_max, y_limit(math.radians(a)))  # the search stops at a_p = 100 g
+                    upto = f"{ap_max:g}" if top >= ap_max else f"about {top:.4g} (a_p = 100 g)"
                     notes.append(f"{sh}, alpha = {a:g} deg, {iso.label}: neither overturns up to "
-                                 f"{ap_max:g} g tan(alpha) at omega_p/p >= {xs[both_inf][0]:.3g} "
+                                 f"{upto} g tan(alpha) at omega_p/p >= {xs[both_inf][0]:.3g} "
                                  f"({int(both_inf.sum())} grid values, counted as rigid better)")
                 if b.all():
                     tasks[key] = ("below", xs[0], xs[0])

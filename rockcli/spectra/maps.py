@@ -16,7 +16,7 @@ import numpy as np
 from rockcli.errors import RockcliInputError
 from rockcli.spectra.grids import MAX_CELLS, Grid
 from rockcli.spectra.runner import Runner
-from rockcli.spectra.scenes import REFERENCE_R, Family, Isolation, PulseChoice, parse_isolation, parse_pulse_choice
+from rockcli.spectra.scenes import REFERENCE_R, Family, Isolation, PulseChoice
 
 
 @dataclass(frozen=True)
@@ -51,6 +51,10 @@ def overturning_maps(alphas_deg: Sequence[float], pulses: Sequence[PulseChoice],
     ``early``: stop each run once its verdict is proven (faster; the same verdicts and uplift flags,
     ``theta_max_over_alpha`` then a lower bound where ``peak_final`` is False).
     """
+    from rockcli.spectra.arguments import as_alphas, as_grid, as_isolations, as_pulses
+
+    alphas_deg, pulses, isolations = as_alphas(alphas_deg), as_pulses(pulses), as_isolations(isolations)
+    wp_grid, ap_grid = as_grid(wp_grid, "wp_grid"), as_grid(ap_grid, "ap_grid")
     cells = len(alphas_deg) * len(pulses) * len(isolations) * wp_grid.count * ap_grid.count
     if cells > MAX_CELLS:
         raise RockcliInputError(f"the maps have {cells:,} cells (slenderness x pulse x foundation x omega_p/p x "
@@ -79,7 +83,11 @@ def overturning_maps(alphas_deg: Sequence[float], pulses: Sequence[PulseChoice],
 
 
 def overturning_map(alpha_deg: float, pulse, isolation, wp_grid: Grid, ap_grid: Grid, **kwargs) -> OverturningMap:
-    """One overturning map (see :func:`overturning_maps`); ``pulse`` and ``isolation`` may be spec strings."""
-    pc = parse_pulse_choice(pulse) if isinstance(pulse, str) else pulse
-    iso = parse_isolation(isolation) if isinstance(isolation, str) else isolation
-    return overturning_maps([alpha_deg], [pc], [iso], wp_grid, ap_grid, **kwargs)[0]
+    """One overturning map (see :func:`overturning_maps`); ``pulse`` and ``isolation`` may be spec strings, the
+    grids ``"start:stop:count"``; a wrong type is one sentence (:mod:`rockcli.spectra.arguments`)."""
+    from rockcli.inputs import check_type
+    from rockcli.spectra.arguments import as_isolation, as_pulse_choice
+
+    check_type(alpha_deg, (int, float, np.integer, np.floating), "alpha_deg", "a number of degrees")
+    return overturning_maps([alpha_deg], [as_pulse_choice(pulse)], [as_isolation(isolation)], wp_grid, ap_grid,
+                            **kwargs)[0]

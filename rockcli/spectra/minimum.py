@@ -29,6 +29,13 @@ Overturning is not monotone in ``a_p`` (safe islands lie above the minimum), so 
 Result: ``ap_min`` overturns, ``ap_safe`` (within ``tol`` below) does not, and no value scanned
 between the uplift threshold and ``ap_safe`` overturns.
 
+The 100 g limit. No run of the search has a pulse beyond the 100 g rockcli runs (:data:`rockcli.pulses.A_P_MAX_G`,
+the limit of ``--ap``, ``--scale`` and the record readers): a column's search stops at ``y_cap = min(ap_max,
+100 / tan(alpha))`` (:func:`y_limit`), which is below the default ``ap_max = 20`` for alpha above 78.7 deg (squat
+blocks, which need large pulses). Such a curve's ``ap_max`` is its cap, and it says so (``capped``); where nothing
+overturns up to the cap the curve is empty, as above ``ap_max``. Below the cap the search is unchanged (the same
+runs), so a curve that is not capped is the curve of before.
+
 Why a second scan just below ``F`` (issue 28). The overturning boundary is ragged: below the band
 where the first scan overturns lie windows a few tenths of a per cent wide or less, which a 1 % step
 steps over, on the unsafe side (Figure 11: 4.578 reported where 4.49 already overturns). Measured
@@ -54,6 +61,7 @@ from typing import Optional, Sequence
 import numpy as np
 
 from rockcli.errors import RockcliInputError
+from rockcli.inputs import format_number
 from rockcli.spectra.runner import Runner
 from rockcli.spectra.scenes import REFERENCE_R, Family, Isolation, PulseChoice
 
@@ -78,7 +86,8 @@ class MinSearch:
     ``refined``: True where the second scan found an overturning value below the first scan's last
     safe value: a window the first scan stepped over (it and its bisection alone would have
     overstated the minimum).
-    ``refine_runs``: the runs of the second scan (all columns).
+    ``refine_runs``: the runs of the second scan (all columns). ``ap_cap``: per column the largest ``y`` searched,
+    ``min(ap_max, y_limit(alpha))`` (the 100 g limit, see the module notes).
     """
 
     ap_uplift: np.ndarray
@@ -88,6 +97,20 @@ class MinSearch:
     unproven: int = 0  # runs that reached the solver's horizon unproven (counted as safe)
     refined: Optional[np.ndarray] = None
     refine_runs: int = 0
+    ap_cap: Optional[np.ndarray] = None
+
+
+def y_limit(alpha: float) -> float:
+    """The largest ``y = a_p / (g tan alpha)`` whose pulse stays within the 100 g rockcli runs
+    (:data:`rockcli.pulses.A_P_MAX_G`) for a block of slenderness ``alpha`` [rad]: ``100 / tan(alpha)``, rounded
+    down so that ``y tan(alpha)`` does not pass 100 (about 20 at alpha = 78.7 deg, 1 at 89.4 deg)."""
+    from rockcli.pulses import A_P_MAX_G
+
+    t = math.tan(alpha)
+    y = A_P_MAX_G / t
+    while y * t > A_P_MAX_G:
+        y = math.nextafter(y, 0.0)
+    return y
 
 
 def describe_search(step: float, tol: float, refine: float, refine_band: float) -> str:
@@ -125,6 +148,26 @@ def _check(step, tol, refine, refine_band, ap_max):
         raise RockcliInputError(f"ap_max must be > 1 (in units of g tan alpha), got {ap_max!r}")
 
 
+#: The most columns (curve x omega_p/p value) one search takes: about 150 runs each with the default settings
+#: (100 to 1,000), so 100,000 columns are some 15 million runs, about half an hour on 2 cores.
+MAX_COLUMNS = 100_000
+#: The largest ``ap_max`` [g tan alpha]: a column that never overturns scans ``ln(ap_max / y_uplift) / ln(1 + step)``
+#: values, at most 930 at the default step and 92,000 at the floor (1e-4); ``ap_max = 1e300`` would be 6.9 million.
+#: Beyond 5,730 not even the most slender supported block (alpha = 1 deg) keeps its pulses within 100 g.
+AP_MAX_MAX = 1e4
+
+
+def _check_size(n: int, ap_max: float) -> None:
+    """Before any run: at most :data:`MAX_COLUMNS` columns and ``ap_max`` at most :data:`AP_MAX_MAX`."""
+    if n > MAX_COLUMNS:
+        raise RockcliInputError(f"the search has {n:,} columns (curves x omega_p/p values); at most {MAX_COLUMNS:,} "
+                                f"are searched at once (about 150 runs each): use fewer values or curves")
+    if ap_max > AP_MAX_MAX:
+        raise RockcliInputError(f"ap_max must be at most {AP_MAX_MAX:g} (in units of g tan alpha: a column that never "
+                                f"overturns scans up to it, and beyond 5730 even a block of alpha = 1 deg needs pulses "
+                                f"of more than 100 g), got {format_number(ap_max)}")
+
+
 def search_min_overturning(families: Sequence[Family], fam, x, *, ap_max: float = DEFAULT_AP_MAX,
                            step: float = DEFAULT_STEP, tol: float = DEFAULT_TOL, refine: float = DEFAULT_REFINE,
                            refine_band: float = DEFAULT_REFINE_BAND, runner: Optional[Runner] = None,
@@ -142,8 +185,11 @@ def search_min_overturning(families: Sequence[Family], fam, x, *, ap_max: float 
     fam = np.asarray(fam, dtype=np.int64)
     x = np.asarray(x, dtype=float)
     n = len(x)
+    _check_size(n, ap_max)
     runs = 0
     unproven = 0
+    limits = np.array([y_limit(f.alpha) for f in families])
+    cap = np.minimum(ap_max, limits[fam]) if n else np.zeros(0)  # the 100 g limit (module notes)
 
     def run(idx, yv, early=True):
         nonlocal runs, unproven
@@ -156,10 +202,11 @@ def search_min_overturning(families: Sequence[Family], fam, x, *, ap_max: float 
         if progress and k:
             progress(int(k))
 
-    y_u = _uplift_thresholds(families, fam, n, ap_max, run, getattr(runner, "vertical", None) is not None)
-    active = np.flatnonzero(np.isfinite(y_u) & (y_u < ap_max))
+    y_u = _uplift_thresholds(families, fam, n, ap_max, run, getattr(runner, "vertical", None) is not None,
+                             limits[fam] if n else np.zeros(0))
+    active = np.flatnonzero(np.isfinite(y_u) & (y_u < cap))
     tell(n - active.size)
-    scans = _scan(y_u, active, 1.0 + step, ap_max, run)
+    scans = _scan(y_u, active, 1.0 + step, cap, run)
     # the last safe value of the first scan: an overturning value below it was stepped over by that scan
     first_safe = {i: (ys[-2] if over[-1] else ys[-1]) for i, (ys, over) in scans.items()}
     runs0 = runs
@@ -191,27 +238,36 @@ def search_min_overturning(families: Sequence[Family], fam, x, *, ap_max: float 
         tell(np.count_nonzero(~keep))
         act = act[keep]
     return MinSearch(ap_uplift=y_u, ap_min=hi, ap_safe=lo, runs=runs, unproven=unproven, refined=refined,
-                     refine_runs=refine_runs)
+                     refine_runs=refine_runs, ap_cap=cap)
 
 
-def _uplift_thresholds(families, fam, n, ap_max, run, vertical: bool = False) -> np.ndarray:
+def _uplift_thresholds(families, fam, n, ap_max, run, vertical: bool = False, limits=None) -> np.ndarray:
     """Uplift threshold per column: exactly 1 on a rigid foundation (every shape peaks at |a_p|); on
     an isolated base the stuck motion is linear in a_p, so uplift is monotone: bisection (NaN when
-    the block does not uplift up to 2 ap_max). Under a vertical pulse (rigid foundation) the block
+    the block does not uplift up to 2 ap_max, or up to its 100 g limit ``limits`` when that is lower:
+    the bracket then stops at the limit). Under a vertical pulse (rigid foundation) the block
     uplifts when ``y tan(alpha) |f(t)| > (1 + a_v(t)/g) tan(alpha)`` at some t, with ``g + a_v > 0``:
     monotone in y too, but not at y = 1: bisection on every column."""
     y_u = np.ones(n)
     iso_cols = np.array([i for i in range(n) if vertical or not families[fam[i]].isolation.rigid], dtype=np.int64)
     if iso_cols.size:
+        top = np.full(iso_cols.size, 2.0 * ap_max)
+        if limits is not None:
+            top = np.minimum(top, np.asarray(limits)[iso_cols])
+        capped = top < 2.0 * ap_max  # the 100 g limit is below 2 ap_max: no run past it
         lo = np.zeros(iso_cols.size)
-        hi = np.ones(iso_cols.size)
+        hi = np.minimum(1.0, top)
+        found = np.zeros(iso_cols.size, bool)
         pending = np.arange(iso_cols.size)
         while pending.size:  # bracket: double hi until the block uplifts
             up = run(iso_cols[pending], hi[pending], early=False).uplifted
-            lo[pending[~up]] = hi[pending[~up]]
-            hi[pending[~up]] *= 2.0
-            pending = pending[~up & (hi[pending] <= 2.0 * ap_max)]
-        ok = hi <= 2.0 * ap_max
+            found[pending[up]] = True
+            still = pending[~up]
+            lo[still] = hi[still]
+            more = np.where(capped[still], hi[still] < top[still], 2.0 * hi[still] <= top[still])
+            hi[still] = np.where(capped[still], np.minimum(2.0 * hi[still], top[still]), 2.0 * hi[still])
+            pending = still[more]
+        ok = found
         act = np.flatnonzero(ok)
         while act.size:
             mid = 0.5 * (lo[act] + hi[act])
@@ -223,8 +279,8 @@ def _uplift_thresholds(families, fam, n, ap_max, run, vertical: bool = False) ->
     return y_u
 
 
-def _scan(y_u, active, ratio, ap_max, run) -> dict:
-    """The scan upwards from the threshold on ``y_u ratio^k`` (capped at ``ap_max``), all columns in
+def _scan(y_u, active, ratio, cap, run) -> dict:
+    """The scan upwards from the threshold on ``y_u ratio^k`` (capped at each column's ``cap``), all columns in
     parallel rounds (4, 8, ... 64 values per column), each column up to its first overturning value.
 
     Returns ``{column: (y, overturned)}``, lists of the values scanned in increasing order, the
@@ -238,7 +294,7 @@ def _scan(y_u, active, ratio, ap_max, run) -> dict:
     while active:
         cols = np.concatenate([np.full(width[i], i) for i in active])
         ks = np.concatenate([np.arange(kdone[i] + 1, kdone[i] + 1 + width[i]) for i in active])
-        yv = np.minimum(y_u[cols] * ratio ** ks, ap_max)
+        yv = np.minimum(y_u[cols] * ratio ** ks, cap[cols])
         res = run(cols, yv)
         still = []
         pos = 0
@@ -251,7 +307,7 @@ def _scan(y_u, active, ratio, ap_max, run) -> dict:
             ys, over = scans[i]
             ys += yy[:stop].tolist()
             over += o[:stop].tolist()
-            if not hit.size and yy[-1] < ap_max:
+            if not hit.size and yy[-1] < cap[i]:
                 kdone[i] += w
                 width[i] = min(2 * w, 64)
                 still.append(i)
@@ -293,7 +349,8 @@ class MinCurve:
 
     ``step``, ``tol``, ``refine`` and ``refine_band`` are the search's settings (:attr:`found_by` says
     them in words); ``refined`` is True where the minimum lies in a window the first scan stepped
-    over (see :class:`MinSearch`).
+    over (see :class:`MinSearch`). ``ap_max`` is the largest value searched: the one asked for, or, when
+    ``capped``, the lower ``100 g / (g tan alpha)`` (:func:`y_limit`: no pulse past the 100 g rockcli runs).
     """
 
     alpha_deg: float
@@ -309,6 +366,7 @@ class MinCurve:
     refine: float = 0.0
     refine_band: float = DEFAULT_REFINE_BAND
     refined: Optional[np.ndarray] = None
+    capped: bool = False
 
     @property
     def found_by(self) -> str:
@@ -321,9 +379,21 @@ def curves_of(search: MinSearch, keys, xs, *, ap_max, step, tol, refine, refine_
     out = []
     for j, (a, pc, iso) in enumerate(keys):
         s = slice(j * xs.size, (j + 1) * xs.size)
+        top = min(ap_max, y_limit(math.radians(a)))  # the search's cap (MinSearch.ap_cap) for this alpha
         out.append(MinCurve(float(a), pc, iso, xs, search.ap_min[s], search.ap_safe[s], search.ap_uplift[s],
-                            ap_max, step, tol, refine, refine_band, refined[s]))
+                            top, step, tol, refine, refine_band, refined[s], capped=top < ap_max))
     return out
+
+
+def capped_note(curves) -> str:
+    """A sentence for the curves whose search stopped at the 100 g limit below ``ap_max`` (empty when none did)."""
+    capped = {c.alpha_deg: c.ap_max for c in curves if c.capped}
+    if not capped:
+        return ""
+    where = ", ".join(f"about {y:.4g} at alpha = {format_number(a, derived=True)} deg"
+                      for a, y in sorted(capped.items()))
+    return (f"Searched only up to a_p = 100 g, the largest pulse rockcli runs (recorded peaks reach about 4 g): "
+            f"a_p/(g tan alpha) up to {where}; nothing overturning up to there is left empty.")
 
 
 def min_overturning_curves(alphas_deg: Sequence[float], pulses: Sequence[PulseChoice],
@@ -331,8 +401,12 @@ def min_overturning_curves(alphas_deg: Sequence[float], pulses: Sequence[PulseCh
                            step: float = DEFAULT_STEP, tol: float = DEFAULT_TOL, refine: float = DEFAULT_REFINE,
                            refine_band: float = DEFAULT_REFINE_BAND, R: float = REFERENCE_R,
                            runner: Optional[Runner] = None, progress=None) -> list[MinCurve]:
-    """Minimum overturning curves for every ``alpha x pulse x isolation`` (nesting order), one search."""
-    xs = np.asarray(wp_values, dtype=float)
+    """Minimum overturning curves for every ``alpha x pulse x isolation`` (nesting order), one search. Pulses and
+    isolations may be spec strings; a wrong type is one sentence (:mod:`rockcli.spectra.arguments`)."""
+    from rockcli.spectra.arguments import as_alphas, as_isolations, as_pulses, as_values
+
+    alphas_deg, pulses, isolations = as_alphas(alphas_deg), as_pulses(pulses), as_isolations(isolations)
+    xs = as_values(wp_values, "wp_values", positive=True)
     keys = [(a, pc, iso) for a in alphas_deg for pc in pulses for iso in isolations]
     families = [Family(math.radians(a), pc.shape, iso, R) for a, pc, iso in keys]
     fam = np.repeat(np.arange(len(families)), xs.size)

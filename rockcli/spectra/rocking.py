@@ -126,7 +126,16 @@ def rocking_spectrum(record, alphas_deg: Sequence[float], foundations: Sequence,
     list of RockingCurve
         One per ``(alpha, foundation)``, peaks final (``early=False``, see the module notes).
     """
-    R = np.asarray(R, dtype=float).ravel()
+    from rockcli.inputs import as_list, check_type
+    from rockcli.records.record import Record
+    from rockcli.solve import check_foundation
+    from rockcli.spectra.arguments import as_alphas, as_values
+
+    check_type(record, Record, "record", "a rockcli Record (read_record(...))")
+    alphas_deg = as_alphas(alphas_deg)
+    foundations = [check_foundation(f, "foundations: each foundation")
+                   for f in as_list(foundations, "foundations", "a list of foundations (Rigid(), ...)")]
+    R = as_values(R, "R", positive=True)
     families = [RecordFamily(float(a), f, record) for a in alphas_deg for f in foundations]
     n = len(families) * R.size
     if n > MAX_CELLS:

@@ -72,7 +72,9 @@ def parse_pulse_choice(text: str) -> PulseChoice:
         if key.lower() != "tp" or not eq:
             item = f"{key}={val}" if eq else key
             raise RockcliInputError(f"pulse {raw!r}: {item!r} is not Tp=<period in s> (the amplitude is swept)")
-        T_p = parse_number(val, f"pulse {raw!r}: Tp", lo=0.0, lo_open=True, unit="s",
+        from rockcli.pulses import T_P_RANGE_S  # the supported periods, as every pulse: 1 ms to 1000 s
+
+        T_p = parse_number(val, f"pulse {raw!r}: Tp", lo=T_P_RANGE_S[0], hi=T_P_RANGE_S[1], unit="s",
                            bad=f"pulse {raw!r}: Tp must be a positive period in s, got {val!r}")
     return PulseChoice(shape, T_p)
 

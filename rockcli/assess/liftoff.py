@@ -1,0 +1,113 @@
+"""The lift-off floor of a scene: a scale factor below which the block provably never leaves its base.
+
+Before the block first lifts off, it moves with its foundation, and on a rigid foundation or on
+linear bearings that motion is linear in the scale factor ``s`` of the excitation (the run starts
+from rest; the scale multiplies the ground acceleration). The block lifts off where the absolute
+acceleration of what it stands on first exceeds ``g tan(alpha)`` in magnitude, so with ``M`` an
+upper bound of that acceleration over the whole run at ``s = 1``, no run at ``s < g tan(alpha)/M``
+lifts the block: its verdict is ``no_uplift``, it cannot overturn, and its run is proven (settled)
+before the solver's horizon. :func:`liftoff_floors` returns that factor for each scene (with a
+safety margin), and the margin search (:mod:`rockcli.assess.margin`) never runs a factor below it.
+
+* Rigid foundation: ``M`` = the peak of ``|ag|`` (a record's largest sample: the kernel reads a
+  record as linear between samples; a pulse's ``|a_p|``), exactly what the kernel's uplift scan
+  compares with ``g tan(alpha)`` (:func:`rockcli.kernels.ground._rigid_uplift`). Under a vertical
+  ground motion (never scaled) the threshold is ``(g + a_v) tan(alpha) >= (g + min a_v) tan(alpha)``,
+  so that lower bound takes the place of ``g tan(alpha)``. A block that stands on a rigid foundation
+  after the excitation is at rest: its run is proven at once. Margin :data:`RIGID_MARGIN` (1e-9
+  relative) for the rounding of ``s * acc``.
+* Linear bearings under a record: ``M`` from one exact run of the base alone at ``s = 1``
+  (:func:`rockcli.kernels.linear_base.stuck_peak`: the piecewise-exact solution, a rigorous bound
+  inside every sample interval, and after the record P3's bound, which bounds every later ``|a|``);
+  P3 proves the run (``s`` times its bound is below ``g tan(alpha)`` from ``t_proof`` on) when
+  ``t_proof`` lies before the horizon, else the floor is 0. The solver's stuck phase on linear
+  bearings under a record is the same solution (:func:`rockcli.kernels.driver._linear_stuck_step`:
+  the same coefficients, the same arithmetic, ``s`` times the samples), so the run at ``s`` differs
+  from ``s`` times the run at 1 by rounding only: a relative ``n eps`` at most after ``n`` steps of a
+  recurrence that never amplifies (the transition matrix's energy norm is at most 1), about 1e-11
+  for 120,000 steps (600 s of 5 ms samples). Margin :data:`LINEAR_MARGIN` = 1e-9.
+* Anything else (sliding and lead-rubber bearings, a pulse on linear bearings, a scene the solver
+  would refuse): floor 0, every factor may need a run.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+#: Relative safety margin of the rigid foundation's floor (rounding of ``s * acc`` in the kernel).
+RIGID_MARGIN = 1e-9
+#: Relative safety margin of the floor on linear bearings (see the module notes).
+LINEAR_MARGIN = 1e-9
+#: After the record, ``stuck_peak`` stops where P3's bound is within this of the bound so far.
+P3_SLACK = 1e-3
+#: ``stuck_peak`` refines its bound inside the sample intervals to this relative width.
+PEAK_TOL = 1e-6
+
+
+def _peak(motion) -> float:
+    """Peak ``|ag|`` [m/s^2]: a record's largest sample, a pulse's ``|a_p|``."""
+    if hasattr(motion, "acc"):
+        return float(np.max(np.abs(motion.acc)))
+    return abs(float(motion.a_p))
+
+
+def _vertical_low(motion, solver: dict, g: float) -> float:
+    """The lowest vertical ground acceleration of a rigid-foundation scene [m/s^2] (0 without one, or above 0)."""
+    from rockcli.solve import attached_vertical
+    from rockcli.solve.excitation import _vertical_arrays
+
+    vertical = solver.get("vertical")
+    if vertical is None:
+        vertical = attached_vertical(motion)
+    if vertical is None:
+        return 0.0
+    vacc = _vertical_arrays(vertical, motion, None, g)[0]
+    return min(0.0, float(np.min(vacc)))
+
+
+def liftoff_floor(block, foundation, motion, **solver) -> float:
+    """The factor below which the scene provably never lifts off (see the module notes); 0 when unknown."""
+    from rockcli.errors import RockcliInputError
+    from rockcli.models import LinearIsolation, Rigid
+    from rockcli.solve import DEFAULT_HORIZON, DEFAULT_REST_TOL, _parameters, attached_vertical
+    from rockcli.units import G
+
+    try:
+        if isinstance(foundation, Rigid) or foundation is None:
+            thr = block.uplift_acceleration * (1.0 + _vertical_low(motion, solver, G) / G)
+            peak = _peak(motion)
+            return math.inf if peak == 0.0 else thr / peak * (1.0 - RIGID_MARGIN)
+        if not (isinstance(foundation, LinearIsolation) and hasattr(motion, "acc")):
+            return 0.0
+        if solver.get("vertical") is not None or attached_vertical(motion) is not None:
+            return 0.0  # refused on bearings: the runs say why
+        from rockcli.kernels.linear_base import stuck_peak
+        from rockcli.solve.excitation import _samples
+
+        _, prm = _parameters(block, foundation, solver.get("rtol"), float(solver.get("rest_tol", DEFAULT_REST_TOL)),
+                             solver.get("restitution"), solver.get("cap_ratio", 0.0) or 0.0)
+        from rockcli.solve.options import _kernel
+
+        k = _kernel()
+        acc, dt = _samples(motion, "record")
+        t_limit = (acc.size - 1) * dt + float(solver.get("horizon", DEFAULT_HORIZON))
+        m, t_proof = stuck_peak(float(prm[k.P_W]), float(prm[k.P_XI]), acc, dt, 1.0, t_limit, P3_SLACK, PEAK_TOL)
+        if not math.isfinite(t_proof):
+            return 0.0
+        return math.inf if m == 0.0 else float(prm[k.P_THR]) / m * (1.0 - LINEAR_MARGIN)
+    except (RockcliInputError, TypeError, ValueError):
+        return 0.0
+
+
+def liftoff_floors(scenes, **solver) -> np.ndarray:
+    """:func:`liftoff_floor` of each ``(block, foundation, motion)``; one bound per distinct scene."""
+    out = np.zeros(len(scenes))
+    seen = {}
+    for i, (b, f, mo) in enumerate(scenes):
+        key = (id(b), id(f), id(mo))
+        if key not in seen:
+            seen[key] = liftoff_floor(b, f, mo, **solver)
+        out[i] = seen[key]
+    return out
