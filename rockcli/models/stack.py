@@ -165,6 +165,50 @@ class Stack:
         """Ground acceleration that lifts the assembly off the ground, ``g tan(alpha_asm)`` [m/s^2]."""
         return G * self.b2 / self.y_c
 
+    @property
+    def uplift_acceleration(self) -> float:
+        """The smaller of the two static thresholds [m/s^2]: from rest, the first ground acceleration at which
+        something lifts (the body off the plinth, or the assembly off the ground)."""
+        return min(self.body_uplift_acceleration, self.assembly_uplift_acceleration)
+
+    # ---- the body's figures, under the stack's name: what a table row of an assessment shows -------------
+    @property
+    def name(self) -> str:
+        """``statue on plinth``: the body's name on the plinth's."""
+        return f"{self.body.name} on {self.plinth.name}"
+
+    @property
+    def R(self) -> float:
+        return self.body.R
+
+    @property
+    def alpha(self) -> float:
+        return self.body.alpha
+
+    @property
+    def alpha_deg(self) -> float:
+        return self.body.alpha_deg
+
+    @property
+    def b(self) -> float:
+        return self.body.b
+
+    @property
+    def h(self) -> float:
+        return self.body.h
+
+    @property
+    def p(self) -> float:
+        return self.body.p
+
+    @property
+    def height(self) -> float:
+        return self.body.height
+
+    @property
+    def width(self) -> float:
+        return self.body.width
+
     def as_block(self) -> Block:
         """The assembly as one rigid block on a plinth corner: the single block with ``p_asm`` and
         ``alpha_asm`` (``R`` chosen so that ``3 g/(4 R) = p_asm^2``; its impact ratio is :attr:`eta_asm`, not
