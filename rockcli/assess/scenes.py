@@ -94,8 +94,7 @@ def check_scenes(columns, excitations, configurations) -> tuple[list, list, list
     exc = as_list(excitations, "excitations", "a list of Excitation (resolve_excitations(...))", one=Excitation)
     conf = as_list(configurations, "configurations", "a list of Configuration (parse_configurations(...))",
                    one=Configuration)
-    for items, kind, what, expected in ((cols, (Block, Stack), "columns", "a Block (or a body on its plinth, a "
-                                                                          "Stack)"),
+    for items, kind, what, expected in ((cols, (Block, Stack), "columns", "a Block"),
                                         (exc, Excitation, "excitations", "an Excitation (resolve_excitations)"),
                                         (conf, Configuration, "configurations", "a Configuration "
                                                                                 "(parse_configurations)")):
