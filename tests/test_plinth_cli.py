@@ -146,6 +146,16 @@ def test_a_rocking_block_s_demand_and_its_impulsive_demand():
     assert d2["friction"]["exceeded"] is True
 
 
+def test_free_rocking_has_impacts_and_their_impulsive_demand():
+    """Released from a tilt, the verdict is proven at once (no steps), but the block rocks and strikes: the demand
+    is read from the history run, impacts included."""
+    d = _json("simulate", "--body", STATUE, "--theta0", "0.1", "--friction", "0.3")
+    alpha = math.radians(d["alpha_deg"])
+    eta = 1 - 1.5 * math.sin(alpha) ** 2
+    assert d["friction"]["peak_demand_impulsive"] == pytest.approx((1 / math.tan(alpha)) * (1 - eta) / (1 + eta))
+    assert 0 < d["friction"]["peak_demand"] < math.tan(alpha)  # free rocking on still ground: below tan(alpha)
+
+
 # ---------------------------------------------------------------------------------------------------------------
 # the batch path and the lift-off floor
 # ---------------------------------------------------------------------------------------------------------------

@@ -21,6 +21,10 @@ def check_friction_scene(friction, foundation, cap_ratio, *vertical) -> float:
     if not isinstance(foundation, Rigid):
         raise RockcliInputError("--friction reads the friction demand of a body on the ground (or on its plinth on "
                                 "the ground): give --isolation none")
+    from rockcli.cli.azimuth import wants_worst
+
+    if wants_worst():
+        raise RockcliInputError("--friction reads the demand of one run: give one --azimuth DEG, not worst")
     if cap_ratio or any(v is not None for v in vertical):
         raise RockcliInputError("--friction reads the friction demand under the horizontal ground motion of a "
                                 "solitary body: not with --cap-ratio, --vertical or --vertical-pulse")
@@ -90,7 +94,7 @@ def single_friction(block, foundation, excitation, res, mu: float, restitution, 
                                                                     history_dt=grid, **solver)
     peak, t_peak = friction_peak_single(block, run)
     impulsive = impulsive_demand_single(block, impact_ratio(block.alpha, 0.0, restitution)) \
-        if res.n_impacts_total > 0 else 0.0
+        if max(run.n_impacts_total, res.n_impacts_total) > 0 else 0.0
     return {"mu": mu, "peak_demand": _finite(peak), "t_peak_s": _finite(t_peak), "peak_demand_impulsive": impulsive,
             "exceeded": not (math.isfinite(peak) and peak <= mu), "exceeded_impulsive": impulsive > mu,
             "grid_dt_s": grid, "toppled": res.overturned}
