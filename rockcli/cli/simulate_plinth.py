@@ -176,10 +176,11 @@ def run_plinth(stack, foundation, excitation, label: str, *, restitution, rtol, 
         echo_json(out)
         return
     p = stack.plinth
-    verdict = {"overturned": "OVERTURNS", "rocked": "survives (rocks)", "no_uplift": "survives (no uplift)"}[res.verdict]
+    words = {"overturned": "OVERTURNS", "rocked": "survives (rocks)", "no_uplift": "survives (no uplift)"}
+    verdict = words[res.verdict]
     if res.toppled:
-        verdict += " (the body topples off its plinth)" if res.toppled == "body" else " (the plinth topples, the " \
-                                                                                        "body with it)"
+        verdict += (" (the body topples off its plinth)" if res.toppled == "body" else
+                    " (the plinth topples, the body with it)")
     pl = res.plinth
     rows = [
         ("block", f"{body.name}: R = {body.R:.3f} m, alpha = {body.alpha_deg:.2f} deg (h/b = {body.h / body.b:.2f}), "
