@@ -84,8 +84,9 @@ def test_a_tall_plinth_reports_both_blocks_and_the_friction_demand():
 def test_the_history_of_a_stack(tmp_path):
     path = tmp_path / "h.csv"
     code, out = _run("simulate", "--body", STATUE, "--pulse", "ricker-sym:ap=0.35,Tp=1", "--on",
-                     "plinth:height=1.0,width=0.6", "--history", str(path))
+                     "plinth:height=1.0,width=0.6", "--history", str(path), "--plot", str(tmp_path / "h.png"))
     assert code == 0, out
+    assert (tmp_path / "h.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     lines = path.read_text().splitlines()
     assert lines[0].split(",") == ["t_s", "ag_mps2", "ag_g", "psi_rad", "psi_over_alpha1", "psi_dot_radps",
                                    "theta2_rad", "theta2_over_alpha_asm", "theta2_dot_radps", "pattern", "event"]
@@ -102,7 +103,7 @@ def test_the_history_of_a_stack(tmp_path):
     (("--on", "plinth:height=1,width=1,depth=2"), "is not one of height"),
     (("--on", "plinth:height=1,width=1", "--isolation", "linear:Tb=2"), "rigid foundation only"),
     (("--on", "plinth:height=1,width=1", "--cap-ratio", "0.2"), "--cap-ratio"),
-    (("--on", "plinth:height=1,width=1", "--plot", "x.png"), "--plot"),
+    (("--on", "plinth:height=1,width=1", "--report", "x.html"), "--report"),
     (("--on", "plinth:height=1,width=1", "--vertical-pulse", "sine:ap=0.1,Tp=0.3"), "--vertical"),
     (("--friction", "0"), "--friction must be a friction coefficient"),
     (("--friction", "nan"), "--friction"),

@@ -134,8 +134,8 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     if stack is not None:
         from rockcli.cli.simulate_plinth import refuse_with_plinth
 
-        refuse_with_plinth(foundation, cap_ratio=cap_ratio, moving=moving, check=check, plot=plot_path,
-                           report=report_path, history_dt=history_dt, vertical=(vertical_source, vertical_pulse))
+        refuse_with_plinth(foundation, cap_ratio=cap_ratio, moving=moving, check=check, report=report_path,
+                           history_dt=history_dt, vertical=(vertical_source, vertical_pulse))
     if moving:
         solver.update(theta0=theta0, theta_dot0=theta_dot0)
     if record_source is not None and pulse is not None:
@@ -190,7 +190,7 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
 
         return run_plinth(stack, foundation, excitation, label, restitution=restitution, rtol=rtol, tail=tail,
                           horizon=horizon, history_path=history_path, as_json=as_json, friction=friction,
-                          pga=_pga(excitation, G))
+                          pga=_pga(excitation, G), plot_path=plot_path, motion=None if pulse is not None else label)
     from rockcli.solve import simulate as run
 
     res = run(block, foundation, excitation, rtol=rtol, tail=tail, horizon=horizon,

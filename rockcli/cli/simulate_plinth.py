@@ -31,7 +31,7 @@ def check_friction_scene(friction, foundation, cap_ratio, *vertical) -> float:
     return mu
 
 
-def refuse_with_plinth(foundation, *, cap_ratio, moving, check, plot, report, history_dt, vertical) -> None:
+def refuse_with_plinth(foundation, *, cap_ratio, moving, check, report, history_dt, vertical) -> None:
     """What ``--on`` does not take (yet), each refused with one sentence."""
     from rockcli.cli.azimuth import wants_worst
     from rockcli.solve.stack_many import PLINTH_RIGID_ONLY, plinth_foundation_supported
@@ -39,7 +39,7 @@ def refuse_with_plinth(foundation, *, cap_ratio, moving, check, plot, report, hi
     if not plinth_foundation_supported(foundation):
         raise RockcliInputError(f"--on: {PLINTH_RIGID_ONLY}; give --isolation none")
     refused = [name for name, given in (("--cap-ratio", cap_ratio), ("--theta0/--theta-dot0", moving),
-                                        ("--check-tolerance", check), ("--plot", plot), ("--report", report),
+                                        ("--check-tolerance", check), ("--report", report),
                                         ("--history-dt", history_dt is not None),
                                         ("--vertical/--vertical-pulse", any(v is not None for v in vertical)),
                                         ("--azimuth worst", wants_worst())) if given]
@@ -131,14 +131,14 @@ def plain_words(stack, res) -> str:
     if res.toppled == "body":
         return f"{body.capitalize()} topples off {plinth} at {res.t_overturn_s:.2f} s."
     if res.toppled == "plinth":
-        return f"{plinth[4:].capitalize()} topples at {res.t_overturn_s:.2f} s, and {body} with it."
+        return f"The {plinth[4:]} topples at {res.t_overturn_s:.2f} s, and {body} with it."
     head = "" if res.settled else "Not proven (still moving at the horizon): "
     if not body_up and not pl_up:
         return head + f"Nothing lifts: {body} and {plinth} move with the ground."
     b = f"{100 * res.body.theta_max_over_alpha:.0f} %"
     a = f"{100 * res.plinth.theta_max / res.alpha_asm:.0f} %"
     if not pl_up:
-        return head + (f"{plinth[4:].capitalize()} does not move: {body} rocks on it as on the ground, to {b} of its "
+        return head + (f"The {plinth[4:]} does not move: {body} rocks on it as on the ground, to {b} of its "
                        f"overturning angle, and survives.")
     if not body_up:
         return head + (f"{body.capitalize()} and {plinth} rock together as one block, to {a} of the assembly's "
@@ -148,15 +148,16 @@ def plain_words(stack, res) -> str:
 
 
 def run_plinth(stack, foundation, excitation, label: str, *, restitution, rtol, tail, horizon, history_path,
-               as_json: bool, friction, pga: str):
-    """``simulate --on``: one run of the body on its plinth, printed (or ``--json``), its history written."""
+               as_json: bool, friction, pga: str, plot_path=None, motion=None):
+    """``simulate --on``: one run of the body on its plinth, printed (or ``--json``), its history written, its
+    figure drawn (with the body alone on the ground beside it)."""
     from rockcli.cli.options import echo_json
     from rockcli.solve import simulate_stack
 
     if excitation is None:
         raise RockcliInputError("--on runs a body on its plinth under a ground motion: give --record or --pulse")
-    res = simulate_stack(stack, excitation, rtol=rtol, tail=tail, horizon=horizon, history=bool(history_path),
-                         restitution=restitution)
+    res = simulate_stack(stack, excitation, rtol=rtol, tail=tail, horizon=horizon,
+                         history=bool(history_path or plot_path), restitution=restitution)
     if res.status < 0:
         raise click.ClickException(f"the integrator stopped at its safety cap of {res.steps:,} steps: no result is "
                                    f"given (please report the command line)")
@@ -164,6 +165,18 @@ def run_plinth(stack, foundation, excitation, label: str, *, restitution, rtol, 
         from rockcli.report.stack import write_stack_history_csv
 
         write_stack_history_csv(res, stack, history_path)
+    if plot_path:
+        from rockcli.report.figures import plot_grid_dt
+        from rockcli.report.stack import plot_stack_response
+        from rockcli.solve import simulate
+
+        solver = {} if restitution is None else {"restitution": restitution}
+        alone = simulate(stack.body, foundation, excitation, rtol=rtol, tail=tail, horizon=horizon, history=True,
+                         history_dt=plot_grid_dt(excitation), **solver)
+        from rockcli.solve.excitation import _excitation_arrays
+
+        t_show = _excitation_arrays(excitation)[6] + tail  # the figure shows the excitation and --tail after it
+        plot_stack_response(res, stack, plot_path, excitation=excitation, motion=motion, alone=alone, t_end=t_show)
     checked = stack_friction(res, friction) if friction is not None else None
     body = stack.body
     if as_json:
