@@ -305,3 +305,16 @@ def test_the_plinth_sentence():
     assert "changes no verdict" in same and "no difference in the margin" in same
     less = words(rows(*[(False, 1.5)] * 3), rows(*[(False, 1.2)] * 3))
     assert "by the margin its plinth makes it worse" in less
+
+
+def test_assess_fragility_on_a_plinth_fits_the_body_alone_and_on_it():
+    import re
+
+    code, out = _run("assess", "fragility", STATUE, "--on", "plinth:height=1.0,width=0.6", "--records", KOBE,
+                     "--records", "superstition-1987-parachute-225", "--bootstrap", "0")
+    assert code == 0, out
+    medians = {m.group(1).strip(): float(m.group(2)) for m in
+               re.finditer(r"^(statue(?: on plinth)?)\s+none\s+\d+\s+\d+\s+\d+\s+([0-9.]+)", out, re.M)}
+    assert set(medians) == {"statue", "statue on plinth"}
+    ratio = re.search(r"median capacity of statue on plinth over statue alone = ([0-9.]+)", out)
+    assert ratio and float(ratio.group(1)) == pytest.approx(medians["statue on plinth"] / medians["statue"], abs=0.006)

@@ -14,6 +14,8 @@ bearings, those configurations simply pass.
 
 from __future__ import annotations
 
+import math
+
 from rockcli.errors import RockcliInputError
 
 
@@ -60,16 +62,32 @@ def plinth_notes(result, note: str = "") -> str:
         return ""
     from rockcli.units import G
 
-    lines = ["", "On a plinth (docs/plinth.md): the body and its plinth rock as two rigid blocks (rocking only, no "
-             "sliding); r is the body's peak rotation on the plinth over its own alpha, p the plinth's over the "
-             "slenderness of body and plinth as one block (alpha_asm); OVERTURNS body/plinth: which one "
-             "topples (the body falls with its plinth)."]
+    head = "On a plinth (docs/plinth.md): the body and its plinth rock as two rigid blocks (rocking only, no sliding); "
+    if hasattr(result, "curves"):
+        head += "a record's capacity is the smallest factor that topples either block (the body falls with its plinth)."
+    else:
+        head += ("r is the body's peak rotation on the plinth over its own alpha, pQ the plinth's over the slenderness "
+                 "of body and plinth as one block (alpha_asm); OVERTURNS body/plinth: which one topples (the body "
+                 "falls with its plinth).")
+    lines = ["", head]
     for s in stacks:
         p = s.plinth
         lines.append(f"  {s.name}: the plinth {p.height:g} m tall x {p.width:g} m wide weighs {s.m2:.3g} times the "
                      f"body{'' if p.mass_ratio is not None else ' (same density)'}; from rest the body lifts off "
                      f"it at {s.body_uplift_acceleration / G:.3f} g, body and plinth together at "
                      f"{s.assembly_uplift_acceleration / G:.3f} g.")
+    for s in stacks if hasattr(result, "curves") else ():  # assess fragility: the medians compared
+        for c in result.configurations:
+            try:
+                on, alone = result.curve(s.name, c.header).median, result.curve(s.body.name, c.header).median
+            except KeyError:
+                continue
+            if math.isfinite(on) and math.isfinite(alone) and alone > 0:
+                r = on / alone
+                word = ("no difference" if abs(r - 1) <= 0.01 else
+                        "the plinth makes it more fragile" if r < 1 else "the plinth makes it less fragile")
+                lines.append(f"  {c.header}: median capacity of {s.name} over {s.body.name} alone = {r:.2f} "
+                             f"({word}).")
     if note:
         lines.append(note)
     return "\n".join(lines)
