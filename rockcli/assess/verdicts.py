@@ -463,13 +463,20 @@ def question(assessment) -> str:
     """The question an assessment answers, in one sentence."""
     nouns = sorted({body_noun(b) for b in assessment.columns})
     who = nouns[0] if len(assessment.columns) == 1 else f"these {len(assessment.columns)} bodies"
+    plinths = [b for b in assessment.columns if getattr(b, "plinth", None) is not None]
+    if plinths and len(assessment.columns) == 2 * len(plinths):  # each body alone and on the plinth (--on)
+        bodies = [b.body for b in plinths]
+        who = (f"{body_noun(bodies[0])}, alone or on its {plinths[0].plinth.name.replace('_', ' ')}," if
+               len(bodies) == 1 else f"these {len(bodies)} bodies, alone or on a plinth,")
+        nouns = [who]
     xs = [x for x in assessment.excitations if x.motion is not None]
     what = f"the record {xs[0].label}" if len(xs) == 1 else f"{len(xs)} records"
     iso = any(c.isolated for c in assessment.configurations)
     rigid = any(not c.isolated for c in assessment.configurations)
     where = ("standing on the ground or on isolation bearings" if iso and rigid else
              "on isolation bearings" if iso else "standing on the ground")
-    return f"{'Does' if len(assessment.columns) == 1 else 'Do'} {who} topple under {what}, {where}?"
+    one = len(assessment.columns) == 1 or (len(plinths) == 1 and len(assessment.columns) == 2)
+    return f"{'Does' if one else 'Do'} {who} topple under {what}, {where}?"
 
 
 def format_verdicts(assessment, width: int = 100) -> str:

@@ -353,9 +353,18 @@ def _assessment_json(result, columns, configurations, check) -> dict:
     from rockcli.report.tables import assessment_rows
 
     return {"columns": [{"name": b.name, "R_m": b.R, "alpha_deg": b.alpha_deg, "height_m": b.height,
-                         "width_m": b.width} for b in columns],
+                         "width_m": b.width, **_plinth_json(b)} for b in columns],
             "configurations": [{"header": c.header, "spec": c.spec, "isolation": c.label} for c in configurations],
             "rows": assessment_rows(result, check)}
+
+
+def _plinth_json(b) -> dict:
+    """A body on a plinth's plinth and assembly (``--on``), for ``--json``'s columns; nothing for a body alone."""
+    if getattr(b, "plinth", None) is None:
+        return {}
+    from rockcli.cli.simulate_plinth import plinth_dict
+
+    return {"body": b.body.name, "plinth": plinth_dict(b)}
 
 
 def _echo_tolerance_check(chk, as_json=False):
