@@ -152,12 +152,13 @@ def run_plinth(stack, foundation, excitation, label: str, *, restitution, rtol, 
     """``simulate --on``: one run of the body on its plinth, printed (or ``--json``), its history written, its
     figure drawn (with the body alone on the ground beside it)."""
     from rockcli.cli.options import echo_json
-    from rockcli.solve import simulate_stack
+    from rockcli.solve.stack_many import run_stack
 
     if excitation is None:
         raise RockcliInputError("--on runs a body on its plinth under a ground motion: give --record or --pulse")
-    res = simulate_stack(stack, excitation, rtol=rtol, tail=tail, horizon=horizon,
-                         history=bool(history_path or plot_path), restitution=restitution)
+    # through run_stack: a foundation other than the rigid one goes to simulate_stack as isolation=, once it takes it
+    res = run_stack(stack, foundation, excitation, rtol=rtol, tail=tail, horizon=horizon,
+                    history=bool(history_path or plot_path), restitution=restitution)
     if res.status < 0:
         raise click.ClickException(f"the integrator stopped at its safety cap of {res.steps:,} steps: no result is "
                                    f"given (please report the command line)")
@@ -176,7 +177,8 @@ def run_plinth(stack, foundation, excitation, label: str, *, restitution, rtol, 
         from rockcli.solve.excitation import _excitation_arrays
 
         t_show = _excitation_arrays(excitation)[6] + tail  # the figure shows the excitation and --tail after it
-        plot_stack_response(res, stack, plot_path, excitation=excitation, motion=motion, alone=alone, t_end=t_show)
+        plot_stack_response(res, stack, plot_path, excitation=excitation, motion=motion, alone=alone, t_end=t_show,
+                            foundation=foundation)
     checked = stack_friction(res, friction) if friction is not None else None
     body = stack.body
     if as_json:

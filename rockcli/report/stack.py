@@ -33,7 +33,7 @@ def write_stack_history_csv(response, stack, path: str | os.PathLike) -> Path:
 
 
 def plot_stack_response(response, stack, path: str | os.PathLike, *, excitation=None, motion: str | None = None,
-                        alone=None, t_end: float | None = None, dpi: int = 120) -> Path:
+                        alone=None, t_end: float | None = None, foundation=None, dpi: int = 120) -> Path:
     """A body on its plinth: ground acceleration [g]; the body's rotation on the plinth over its slenderness
     ``psi/alpha1`` (with ``alone``, a :class:`rockcli.solve.Response` with history of the body standing on the
     ground, its ``theta/alpha`` in grey); the plinth's ``theta2/alpha_asm``. The stack's curves are drawn through
@@ -41,7 +41,8 @@ def plot_stack_response(response, stack, path: str | os.PathLike, *, excitation=
     import math
 
     from rockcli.files import check_output, save_figure
-    from rockcli.report.figures import block_text, excitation_samples, motion_text, new_figure, pyplot, title
+    from rockcli.report.figures import (block_text, excitation_samples, foundation_text, motion_text, new_figure,
+                                        pyplot, title)
 
     H = response.history
     if H is None:
@@ -89,7 +90,8 @@ def plot_stack_response(response, stack, path: str | os.PathLike, *, excitation=
     verdict = (f"the {response.toppled} topples at $t$ = {response.t_overturn_s:.2f} s" if response.toppled else
                "both survive")
     title(fig, f"{block_text(stack.body)}, on a free plinth {p.height:g} m x {p.width:g} m "
-               f"({stack.m2:.2g} times its mass)\n{motion_text(excitation, motion)}; rigid foundation\n{verdict}",
+               f"({stack.m2:.2g} times its mass)\n{motion_text(excitation, motion)}; "
+               f"{'rigid foundation' if foundation is None else foundation_text(foundation)}\n{verdict}",
           fontsize=9)
     try:
         return save_figure(fig, path, dpi=dpi)
