@@ -26,6 +26,18 @@ safety margin), and the margin search (:mod:`rockcli.assess.margin`) never runs 
   from ``s`` times the run at 1 by rounding only: a relative ``n eps`` at most after ``n`` steps of a
   recurrence that never amplifies (the transition matrix's energy norm is at most 1), about 1e-11
   for 120,000 steps (600 s of 5 ms samples). Margin :data:`LINEAR_MARGIN` = 1e-9.
+* A body on a free plinth (:class:`rockcli.models.Stack`) on a rigid foundation: ``M`` the peak of ``|ag|`` as
+  above, and in place of ``g tan(alpha)`` the smaller of the stack's two static thresholds (the body off the still
+  plinth, ``g tan(alpha1)``; the assembly off the ground, ``g tan(alpha_asm) = g b2/y_c``), as the stack driver
+  builds them. Proof: the stack starts at rest (pattern R: both interfaces faces) and, at rest, its contact
+  forces are linear in ``ag`` (docs/physics-plinth.md, "Uplift: leaving each pattern", from rest): the joint's
+  unloading corner force reaches 0 exactly at ``|ag| = g tan(alpha1)``, the base's at ``|ag| = g tan(alpha_asm)``,
+  and the stack driver leaves R at the first time ``|ag|`` exceeds the smaller of the two
+  (:func:`rockcli.kernels.ground._rigid_uplift` with that threshold, or the body's own stuck scan, the single
+  block's, when the body's threshold is the smaller). While ``s M`` stays below that threshold the run never leaves
+  R: its verdict is ``no_uplift``, nothing overturns, and after the excitation R is proven at once (P1). No
+  vertical motion (the stack refuses it). Margin :data:`RIGID_MARGIN` for the rounding of ``s * acc``.
+  Tested against every factor of a scan on random stacks and motions (tests/test_plinth_cli.py).
 * Anything else (sliding and lead-rubber bearings, a pulse on linear bearings, a scene the solver
   would refuse): floor 0, every factor may need a run.
 """
@@ -74,6 +86,10 @@ def liftoff_floor(block, foundation, motion, **solver) -> float:
     from rockcli.solve import DEFAULT_HORIZON, DEFAULT_REST_TOL, _parameters, attached_vertical
     from rockcli.units import G
 
+    from rockcli.models import Stack
+
+    if isinstance(block, Stack):
+        return _stack_floor(block, foundation, motion, **solver)
     try:
         if isinstance(foundation, Rigid) or foundation is None:
             thr = block.uplift_acceleration * (1.0 + _vertical_low(motion, solver, G) / G)
@@ -99,6 +115,29 @@ def liftoff_floor(block, foundation, motion, **solver) -> float:
         return math.inf if m == 0.0 else float(prm[k.P_THR]) / m * (1.0 - LINEAR_MARGIN)
     except (RockcliInputError, TypeError, ValueError):
         return 0.0
+
+
+def _stack_floor(stack, foundation, motion, **solver) -> float:
+    """A body on a plinth on a rigid foundation: the smaller static threshold over the motion's peak (module notes);
+    0 on any other foundation (every factor may need a run)."""
+    from rockcli.errors import RockcliInputError
+    from rockcli.models import Rigid
+
+    if not (foundation is None or isinstance(foundation, Rigid)) or solver.get("vertical") is not None:
+        return 0.0
+    try:
+        from rockcli.solve import DEFAULT_REST_TOL
+        from rockcli.solve.options import _kernel
+        from rockcli.solve.stack import stack_parameters
+
+        k = _kernel()
+        prm, prm_asm, _ = stack_parameters(stack, solver.get("rtol"), float(solver.get("rest_tol", DEFAULT_REST_TOL)),
+                                           solver.get("restitution"))
+        thr = min(float(prm[k.P_THR]), float(prm_asm[k.P_THR]))  # the thresholds the stack driver compares |ag| with
+        peak = _peak(motion)
+    except (RockcliInputError, TypeError, ValueError):
+        return 0.0
+    return math.inf if peak == 0.0 else thr / peak * (1.0 - RIGID_MARGIN)
 
 
 def liftoff_floors(scenes, **solver) -> np.ndarray:

@@ -18,7 +18,7 @@ from rockcli.assess.excitations import (EXCITATION_MODES, EXCITATION_PULSE, EXCI
                                        MANIFEST_COLUMNS, Excitation, Skipped, Unavailable, is_manifest,
                                        read_manifest, resolve_excitations, table_ii_entries, unavailable_notes)
 from rockcli.errors import RockcliInputError
-from rockcli.models import COLUMN_PRESETS, Block, Rigid, build_block, column, parse_isolation_spec
+from rockcli.models import COLUMN_PRESETS, Block, Rigid, Stack, build_block, column, parse_isolation_spec
 
 #: The paper's Table III configurations: rigid foundation and linear bearings with
 #: T_b = 2, 2.5, 3 s and xi_b = 0.1 (gamma = rockcli.models.DEFAULT_GAMMA = 0.01).
@@ -90,11 +90,11 @@ def check_scenes(columns, excitations, configurations) -> tuple[list, list, list
     with the types they must hold, else one sentence naming the argument and what was given."""
     from rockcli.inputs import as_list, check_type
 
-    cols = as_list(columns, "columns", "a list of Block (parse_column_spec('bassae'), ...)", one=Block)
+    cols = as_list(columns, "columns", "a list of Block (parse_column_spec('bassae'), ...)", one=(Block, Stack))
     exc = as_list(excitations, "excitations", "a list of Excitation (resolve_excitations(...))", one=Excitation)
     conf = as_list(configurations, "configurations", "a list of Configuration (parse_configurations(...))",
                    one=Configuration)
-    for items, kind, what, expected in ((cols, Block, "columns", "a Block"),
+    for items, kind, what, expected in ((cols, (Block, Stack), "columns", "a Block"),
                                         (exc, Excitation, "excitations", "an Excitation (resolve_excitations)"),
                                         (conf, Configuration, "configurations", "a Configuration "
                                                                                 "(parse_configurations)")):
@@ -118,6 +118,7 @@ def check_scale_search(scenes, grid, known=None, progress=None) -> list:
     from rockcli.records.record import Record
     from rockcli.solve import Response
     from rockcli.solve.options import check_foundation
+    from rockcli.solve.stack_many import StackRun
 
     expected = "a list of (block, foundation, motion) scenes, e.g. [(column('bassae'), Rigid(), record)]"
     scenes = as_list(scenes, "scenes", expected)
@@ -126,7 +127,8 @@ def check_scale_search(scenes, grid, known=None, progress=None) -> list:
             raise RockcliInputError(f"scenes: scene {i} must be a (block, foundation, motion) tuple, got "
                                     f"{type_words(scene)}")
         block, foundation, motion = scene
-        check_type(block, Block, f"scenes: scene {i}: the block", "a Block (column('bassae'), Block(R, alpha))")
+        check_type(block, (Block, Stack), f"scenes: scene {i}: the block", "a Block (column('bassae'), "
+                                                                           "Block(R, alpha)) or a Stack")
         check_foundation(foundation, f"scenes: scene {i}: the foundation")
         check_type(motion, (Record, Pulse), f"scenes: scene {i}: the motion", "a Record (read_record) or a pulse "
                                                                             "(make_pulse)")
@@ -143,7 +145,7 @@ def check_scale_search(scenes, grid, known=None, progress=None) -> list:
         if len(known) != len(scenes):
             raise RockcliInputError(f"known must hold one Response per scene: {len(known)} for {len(scenes)} scenes")
         for r in known:
-            check_type(r, Response, "known: each item", "a Response (simulate(...))")
+            check_type(r, (Response, StackRun), "known: each item", "a Response (simulate(...))")
     if progress is not None and not callable(progress):
         raise RockcliInputError(f"progress must be None or a function progress(n), got {type_words(progress)}")
     return scenes

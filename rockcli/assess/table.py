@@ -74,6 +74,15 @@ class AssessmentRow:
     #: (NaN: it survives in none), the stroke the bearings must allow whatever the body's orientation;
     #: ``base_disp_max_m`` stays the most adverse orientation's, like every other field of the row
     base_disp_max_surviving_azimuths_m: float = math.nan
+    #: a body on a free plinth (``--on``): the plinth (``NAME:height=..,width=..,mass_ratio=..``), which block
+    #: toppled (``body``, ``plinth`` or ""), the plinth's peak rotation over the assembly's slenderness alpha_asm,
+    #: the peak friction demands |T|/N at the base and at the joint (docs/plinth.md); theta_max_over_alpha is the
+    #: body's on its plinth
+    plinth: str = ""
+    toppled: str = ""
+    plinth_theta_max_over_alpha_asm: float = math.nan
+    friction_demand_base: float = math.nan
+    friction_demand_joint: float = math.nan
 
 
 #: CSV column order (every field of :class:`AssessmentRow`).
@@ -134,7 +143,24 @@ def _base_row(block: Block, x: Excitation, conf: Configuration) -> AssessmentRow
         record=x.label, excitation=x.kind, source=x.source, pga_g=x.pga_g, a_p_g=x.a_p_g, T_p_s=x.T_p_s,
         isolation=conf.label, configuration=conf.header, Tb_s=_nan(getattr(f, "T_b", None)),
         xi=_nan(getattr(f, "xi", None)), mu=_nan(getattr(f, "mu", None)), gamma=float(getattr(f, "gamma", 0.0)),
-        error=x.error, azimuth_deg=x.azimuth_deg)
+        error=x.error, azimuth_deg=x.azimuth_deg, plinth=_plinth_label(block))
+
+
+def _plinth_label(block) -> str:
+    """The plinth of a body on a plinth (``plinth:height=1,width=0.6,mass_ratio=0.67``), "" for a single block."""
+    plinth = getattr(block, "plinth", None)
+    if plinth is None:
+        return ""
+    return (f"{plinth.name}:height={plinth.height:g},width={plinth.width:g},mass_ratio={block.m2:.4g}")
+
+
+def _plinth_fields(row: AssessmentRow, r) -> None:
+    """A body on a plinth's own results (``r`` a :class:`rockcli.solve.stack_many.StackRun`)."""
+    st = r.stack
+    row.toppled = st.toppled or ""
+    row.plinth_theta_max_over_alpha_asm = st.plinth.theta_max / st.alpha_asm
+    row.friction_demand_base = st.friction_base
+    row.friction_demand_joint = st.friction_joint
 
 
 def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
@@ -225,6 +251,8 @@ def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
         row.t_uplift_s = r.t_uplift_s
         row.n_impacts = r.n_impacts
         row.base_disp_max_m = r.base_disp_max_m
+        if hasattr(r, "stack"):
+            _plinth_fields(row, r)
     ok = [i for i, r in enumerate(responses) if r.verdict != VERDICT_ERROR]
     groups = _orientation_groups(run_rows, orientations)
     if margin:

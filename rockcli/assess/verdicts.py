@@ -33,7 +33,11 @@ TOPPLES, SURVIVES, UNDECIDED, FAILED = "topples", "survives", "undecided", "not 
 
 
 def body_noun(block) -> str:
-    """``the column`` (a temple preset), ``the statue`` (a block named statue) or ``the block`` (unnamed)."""
+    """``the column`` (a temple preset), ``the statue`` (a block named statue) or ``the block`` (unnamed); a body
+    on a plinth (:class:`rockcli.models.Stack`): ``the statue on its plinth``."""
+    plinth = getattr(block, "plinth", None)
+    if plinth is not None:
+        return f"{body_noun(block.body)} on its {plinth.name.replace('_', ' ')}"
     name = str(getattr(block, "name", "") or "")
     if name.lower() in COLUMN_PRESETS:
         return "the column"
@@ -44,6 +48,10 @@ def body_noun(block) -> str:
 
 def body_words(block) -> str:
     """``The statue, 1.79 m tall and 0.50 m wide (R = 0.93 m, alpha = 15.5 deg)``; a preset names its temple."""
+    plinth = getattr(block, "plinth", None)
+    if plinth is not None:
+        return (f"{body_words(block.body)}, on a free {plinth.name.replace('_', ' ')} {plinth.height:.2f} m tall and "
+                f"{plinth.width:.2f} m wide ({block.m2:.2g} times its mass)")
     preset = COLUMN_PRESETS.get(str(block.name).lower())
     head = body_noun(block).capitalize() + (f" of the {preset[2]}" if preset else "")
     return (f"{head}, {block.height:.2f} m tall and {block.width:.2f} m wide "
@@ -111,6 +119,8 @@ def scene_sentence(row, *, isolated: bool = False, stroke: bool = True) -> str:
             parts += [fall] if fall else []
         else:
             parts.append(f"topples: {fall or 'it overturns'}")
+        if getattr(row, "toppled", "") == "plinth":
+            parts.append("the plinth topples, and the body with it")
     else:
         r = row.theta_max_over_alpha
         if what == UNDECIDED:
@@ -381,17 +391,92 @@ def isolation_summary(assessment, block) -> str:
     return "In short: " + ". ".join(p if k == 0 else p[:1].upper() + p[1:] for k, p in enumerate(parts)) + "."
 
 
+def plinth_summary(assessment, stack) -> str:
+    """Does the plinth help the body? One sentence per configuration on which both ran, comparing the body on the
+    plinth (``stack``, a :class:`rockcli.models.Stack` column) with the same body alone (the column
+    ``stack.body``), record by record (:func:`compare_foundations`): the records whose verdict the plinth changes
+    decide it (``makes it worse``: it topples the body under records it survives alone, and saves it under none;
+    ``better``: the reverse; ``helps under some records and hurts under others``); with no verdict changed, the
+    closest calls (the smallest toppling factors) and the peaks compare the margins (``no difference`` when they
+    agree to the 1 % of the margin search). Empty when the body alone is not in the assessment."""
+    names = {b.name for b in assessment.columns}
+    if stack.body.name not in names:
+        return ""
+    body, on = body_noun(stack.body), f"its {stack.plinth.name.replace('_', ' ')}"
+    ran = [x for x in assessment.excitations if x.motion is not None]
+    parts = []
+    for c in assessment.configurations:
+        alone = [assessment.row(stack.body.name, x.label, c.header) for x in ran]
+        onp = [assessment.row(stack.name, x.label, c.header) for x in ran]
+        cmp = compare_foundations(alone, onp)
+        where = configuration_words(c)
+        n, ka, kp = cmp["n"], len(cmp["ground"]), len(cmp["isolated"])
+        if not n:
+            parts.append(f"{where}: not compared (undecided or not computed)")
+            continue
+        counts = (f"{kp} of {n} records topple it on {on} against {ka} of {n} alone" if kp != ka else
+                  f"{kp} of {n} records topple it either way")
+        effect = cmp["effect"]
+        if effect == "worse":
+            text = (f"{on} makes it worse: {body} topples on it under {_names(cmp['harmed'])}, which it survives "
+                    f"standing alone; {counts}")
+        elif effect == "better":
+            text = (f"{on} makes it better: {body} survives on it under {_names(cmp['saved'])}, which topple"
+                    f"{'s' if len(cmp['saved']) == 1 else ''} it standing alone; {counts}")
+        elif effect == "mixed":
+            text = (f"{on} helps under some records and hurts under others: {body} survives on it under "
+                    f"{_names(cmp['saved'])} (which topple it alone) but topples under {_names(cmp['harmed'])} (which "
+                    f"it survives alone); {counts}")
+        else:
+            text = f"{on} changes no verdict ({counts})"
+        text += _margin_words(alone, onp, on)
+        if cmp["open"]:
+            text += f" ({_names(cmp['open'])} not compared: undecided or not computed on one of the two)"
+        parts.append(f"{where}, {text}")
+    if not parts:
+        return ""
+    return "Does the plinth help? " + ". ".join(p[:1].upper() + p[1:] for p in parts) + "."
+
+
+def _margin_words(alone, onp, on: str) -> str:
+    """With the same verdicts: the closest calls (smallest toppling factor over the records) and the largest peaks
+    of the survivors, alone and on the plinth, and which way they point (``no difference`` within 1 %)."""
+    sa, sp = _smallest_factor(alone), _smallest_factor(onp)
+    out = []
+    if math.isfinite(sa) and math.isfinite(sp):
+        if abs(sp / sa - 1.0) <= 0.01:
+            out.append(f"no difference in the margin: the smallest toppling factor is {_x(sa)} alone and {_x(sp)} "
+                       f"on {on}")
+        else:
+            out.append(f"by the margin {on} makes it {'better' if sp > sa else 'worse'}: the smallest toppling factor "
+                       f"over the records is {_x(sa)} alone and {_x(sp)} on {on}")
+    survived = [(a, p) for a, p in zip(alone, onp) if outcome(a) == SURVIVES and outcome(p) == SURVIVES]
+    if survived:
+        pa = max(a.theta_max_over_alpha for a, _ in survived)
+        pp = max(p.theta_max_over_alpha for _, p in survived)
+        out.append(f"where it survives, it rocks to at most {_pct(pa)} of its overturning angle alone and {_pct(pp)} "
+                   f"on {on}")
+    return ("; " + "; ".join(out)) if out else ""
+
+
 def question(assessment) -> str:
     """The question an assessment answers, in one sentence."""
     nouns = sorted({body_noun(b) for b in assessment.columns})
     who = nouns[0] if len(assessment.columns) == 1 else f"these {len(assessment.columns)} bodies"
+    plinths = [b for b in assessment.columns if getattr(b, "plinth", None) is not None]
+    if plinths and len(assessment.columns) == 2 * len(plinths):  # each body alone and on the plinth (--on)
+        bodies = [b.body for b in plinths]
+        who = (f"{body_noun(bodies[0])}, alone or on its {plinths[0].plinth.name.replace('_', ' ')}," if
+               len(bodies) == 1 else f"these {len(bodies)} bodies, alone or on a plinth,")
+        nouns = [who]
     xs = [x for x in assessment.excitations if x.motion is not None]
     what = f"the record {xs[0].label}" if len(xs) == 1 else f"{len(xs)} records"
     iso = any(c.isolated for c in assessment.configurations)
     rigid = any(not c.isolated for c in assessment.configurations)
     where = ("standing on the ground or on isolation bearings" if iso and rigid else
              "on isolation bearings" if iso else "standing on the ground")
-    return f"{'Does' if len(assessment.columns) == 1 else 'Do'} {who} topple under {what}, {where}?"
+    one = len(assessment.columns) == 1 or (len(plinths) == 1 and len(assessment.columns) == 2)
+    return f"{'Does' if one else 'Do'} {who} topple under {what}, {where}?"
 
 
 def format_verdicts(assessment, width: int = 100) -> str:
@@ -425,6 +510,9 @@ def format_verdicts(assessment, width: int = 100) -> str:
             lines.append(textwrap.fill(f"{configuration_words(c)}: {sentence}.", width, initial_indent="  ",
                                        subsequent_indent="      "))
         short = isolation_summary(assessment, b)
+        if short:
+            lines.append(textwrap.fill(short, width, initial_indent="  ", subsequent_indent="      "))
+        short = plinth_summary(assessment, b) if getattr(b, "plinth", None) is not None else ""
         if short:
             lines.append(textwrap.fill(short, width, initial_indent="  ", subsequent_indent="      "))
     return "\n".join(lines)

@@ -10,7 +10,7 @@ import click
 from rockcli.cli.errors import InputError, user_errors
 from rockcli.cli.options import (QuietSpellingOption, alias_option, azimuth_options, cap_ratio_option, check_outputs, command_line, custom_block_options,
                                  echo_json, given_azimuth, given_component, given_gain, given_suite, horizon_option,
-                                 is_quiet, json_option, progress_bar, quiet_option, report_option,
+                                 is_quiet, json_option, plinth_option, progress_bar, quiet_option, report_option,
                                  restitution_option, vertical_options)
 from rockcli.cli.options import GAMMA_HELP, Group
 from rockcli.cli.types import NUMBER, SEED, Number
@@ -240,10 +240,11 @@ def _columns(names, R, alpha, height, width, name):
 @horizon_option
 @restitution_option
 @cap_ratio_option
+@plinth_option
 @user_errors
 def column(names, R, alpha, height, width, name, records, units, dt, excitation, isolation, margin, neighbourhood,
            csv_path, hist_dir, plot_dir, check_tolerance, scheduler, report_path, as_json, horizon, restitution,
-           cap_ratio):
+           cap_ratio, plinth_spec):
     """Do the columns NAME... survive the records, on a rigid base and on isolators?
 
     NAME is a preset (bassae, nemea) or a custom block NAME:R=<m>,alpha=<deg> or
@@ -273,6 +274,13 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
     solver = _restitution_kw(restitution)
     columns = _columns(names, R, alpha, height, width, name)
     configurations = parse_configurations(isolation)
+    plinth_note = ""
+    if plinth_spec is not None:  # each body alone and on the plinth (rockcli.cli.assess_plinth)
+        from rockcli.cli.assess_plinth import with_plinth
+
+        columns, configurations, plinth_note = with_plinth(
+            columns, configurations, plinth_spec, isolation_given=bool(isolation), cap_ratio=cap_ratio,
+            refused=(("--history-dir", hist_dir), ("--plot-dir", plot_dir)))
     solver.update(_cap_ratio_kw(cap_ratio))
     check_outputs((csv_path, "--csv", False), (report_path, "--report", False),
                   folders=((hist_dir, "--history-dir"), (plot_dir, "--plot-dir")))
@@ -326,7 +334,10 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
         from rockcli.assess.table import check_tolerance as run_check
 
         chk = run_check(result)
-    _echo_result(result, format_matrix(result), format_notes(result) + _vertical_note(result), format_verdicts(result),
+    from rockcli.cli.assess_plinth import plinth_notes
+
+    _echo_result(result, format_matrix(result), format_notes(result) + _vertical_note(result)
+                 + plinth_notes(result, plinth_note), format_verdicts(result),
                  as_json=_assessment_json(result, columns, configurations, chk) if as_json else None)
     _warn_pulses(result, excitation)
     failed_runs = [r for r in result.rows if r.error and not any(x.label == r.record for x in result.failed)]
@@ -357,9 +368,18 @@ def _assessment_json(result, columns, configurations, check) -> dict:
     from rockcli.report.tables import assessment_rows
 
     return {"columns": [{"name": b.name, "R_m": b.R, "alpha_deg": b.alpha_deg, "height_m": b.height,
-                         "width_m": b.width} for b in columns],
+                         "width_m": b.width, **_plinth_json(b)} for b in columns],
             "configurations": [{"header": c.header, "spec": c.spec, "isolation": c.label} for c in configurations],
             "rows": assessment_rows(result, check)}
+
+
+def _plinth_json(b) -> dict:
+    """A body on a plinth's plinth and assembly (``--on``), for ``--json``'s columns; nothing for a body alone."""
+    if getattr(b, "plinth", None) is None:
+        return {}
+    from rockcli.cli.simulate_plinth import plinth_dict
+
+    return {"body": b.body.name, "plinth": plinth_dict(b)}
 
 
 def _echo_tolerance_check(chk, as_json=False):
@@ -486,9 +506,10 @@ def _write_histories(result, hist_dir, plot_dir, as_json=False):
 @quiet_option
 @horizon_option
 @restitution_option
+@plinth_option
 @user_errors
 def fragility(names, R, alpha, height, width, name, records, units, dt, isolation, im, n_boot, seed, csv_path,
-              plot_path, scheduler, report_path, as_json, horizon, restitution):
+              plot_path, scheduler, report_path, as_json, horizon, restitution, plinth_spec):
     """Fragility curves of overturning: P(the body overturns | IM) from a suite of records.
 
     NAME is a body as in 'assess column' (a preset column, or a custom block). Each record is
@@ -517,6 +538,13 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
     if not records:
         raise InputError("give the record suite with --records DIR|ID|FILE (repeatable)")
     configurations = parse_configurations(isolation)
+    plinth_note = ""
+    if plinth_spec is not None:  # each body alone and on the plinth (rockcli.cli.assess_plinth)
+        from rockcli.cli.assess_plinth import with_plinth
+
+        columns, configurations, plinth_note = with_plinth(columns, configurations, plinth_spec,
+                                                           isolation_given=bool(isolation),
+                                                           refused=(("--scheduler", scheduler),))
     check_outputs((csv_path, "--csv", False), (plot_path, "--plot", True), (report_path, "--report", False))
     if scheduler is not None:
         from rockcli.distributed import check_scheduler
@@ -558,7 +586,9 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
 
     from rockcli.report.fragility import format_fragility, format_fragility_notes
 
-    notes = format_fragility_notes(result) + _vertical_note(result)
+    from rockcli.cli.assess_plinth import plinth_notes
+
+    notes = format_fragility_notes(result) + _vertical_note(result) + plinth_notes(result, plinth_note)
     if solver:
         notes += f"\nImpacts: coefficient of restitution E = {solver['restitution']:g} (docs/simulate.md, Restitution)."
     _echo_result(result, format_fragility(result), notes, as_json=_fragility_json(result, solver) if as_json else None)

@@ -432,6 +432,37 @@ def _stacked(func, options):
     return func
 
 
+#: What ``--on`` takes, for help texts and messages.
+PLINTH_FORM = "NAME:height=<m>,width=<m>[,mass_ratio=<plinth mass over the body's>]"
+
+
+def plinth_option(func):
+    """``--on NAME:height=H,width=W[,mass_ratio=M]``: the body stands on a free plinth (the command receives
+    ``plinth_spec``; turn it into a :class:`rockcli.models.Stack` with :func:`stack_from_option`)."""
+    return click.option("--on", "plinth_spec", default=None, metavar="PLINTH",
+                        help=f"Stand the body on a free plinth, {PLINTH_FORM} (e.g. plinth:height=1.0,width=0.6): "
+                             "a rigid block at least as wide as the body, which can rock with it (the two-block "
+                             "assembly, rocking only: docs/plinth.md). mass_ratio left out: the same density as "
+                             "the body (the ratio of the areas height x width). Rigid foundation only for "
+                             "now.")(func)
+
+
+def stack_from_option(block, plinth_spec):
+    """``block`` on the plinth of ``--on`` (a :class:`rockcli.models.Stack`), None without ``--on``; a bad spec, or
+    a plinth the model refuses (narrower than the body, a mass ratio out of range), is one sentence."""
+    if plinth_spec is None:
+        return None
+    from rockcli.errors import RockcliInputError
+    from rockcli.models import Stack, parse_plinth_spec
+
+    try:
+        return Stack(block, parse_plinth_spec(plinth_spec))
+    except RockcliInputError as exc:
+        text = str(exc)  # "plinth 'SPEC': ..." from the parser, or the Stack's own sentence
+        raise RockcliInputError("--on " + text[len("plinth "):] if text.startswith("plinth '") else
+                                f"--on {plinth_spec!r}: {text}") from None
+
+
 def horizon_option(func):
     """``--horizon S``: the solver's horizon, the longest free motion followed after the excitation to
     prove a verdict. The command checks it (:func:`rockcli.solve.validate_options`) before any work."""

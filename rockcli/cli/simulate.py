@@ -8,9 +8,9 @@ import click
 
 from rockcli.cli.errors import user_errors
 from rockcli.cli.options import (azimuth_options, block_from_options, block_options, cap_ratio_option,
-                                 check_outputs, command_line, horizon_option, json_option, record_kwargs,
-                                 record_options, report_option, restitution_option, scaled,
-                                 simulate_vertical_component_option)
+                                 check_outputs, command_line, horizon_option, json_option, plinth_option,
+                                 record_kwargs, record_options, report_option, restitution_option, scaled,
+                                 simulate_vertical_component_option, stack_from_option)
 from rockcli.cli.options import GAMMA_HELP, Command
 from rockcli.cli.types import NUMBER, WHOLE
 
@@ -74,11 +74,17 @@ from rockcli.cli.types import NUMBER, WHOLE
               help="Draw ground acceleration, theta/alpha, theta_dot/p (and base displacement u(t); on sliding "
                    "and lead-rubber bearings also their force-displacement loop) to an image.")
 @report_option
+@plinth_option
+@click.option("--friction", type=NUMBER, default=None, metavar="MU",
+              help="Check the no-sliding assumption: flag the run when its peak friction demand (tangential over "
+                   "normal contact force, at the base and, with --on, at the joint) exceeds MU; the impulsive "
+                   "demand at impacts is reported and flagged apart (docs/plinth.md, Friction). Rigid foundation "
+                   "only.")
 @user_errors
 def simulate(column_name, R, alpha, height, width, name, isolation, record_source, units, dt, fmt, column,
              pulse, vertical_source, vertical_column, vertical_pulse, vertical_scale, theta0, theta_dot0, scale,
              flip, rtol, tail, horizon, restitution, cap_ratio, check, as_json,
-             history_path, history_dt, plot_path, report_path):
+             history_path, history_dt, plot_path, report_path, plinth_spec, friction):
     """Rocking response of one block to one ground motion, on a rigid or an isolated base.
 
     \b
@@ -92,6 +98,8 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
       rockcli simulate --R 1 --alpha 14 --theta0 0.2 --history-dt 0.01 --history free.csv --json
       rockcli simulate --body bassae --record ../shared/records/RSN1119_KOBE_TAZ000.AT2 \\
           --vertical-pulse sine:ap=0.2,Tp=0.3
+      rockcli simulate --body statue:height=1.79,width=0.5 --pulse ricker-sym:ap=0.35,Tp=1 \\
+          --on plinth:height=1.0,width=0.6 --friction 0.5
     """
     import json
 
@@ -118,6 +126,16 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
 
     theta0, theta_dot0 = check_initial_state(theta0, theta_dot0, ("--theta0", "--theta-dot0"))
     moving = theta0 != 0.0 or theta_dot0 != 0.0
+    stack = stack_from_option(block, plinth_spec)
+    if friction is not None:
+        from rockcli.cli.simulate_plinth import check_friction_scene
+
+        friction = check_friction_scene(friction, foundation, cap_ratio, vertical_source, vertical_pulse)
+    if stack is not None:
+        from rockcli.cli.simulate_plinth import refuse_with_plinth
+
+        refuse_with_plinth(foundation, cap_ratio=cap_ratio, moving=moving, check=check, report=report_path,
+                           history_dt=history_dt, vertical=(vertical_source, vertical_pulse))
     if moving:
         solver.update(theta0=theta0, theta_dot0=theta_dot0)
     if record_source is not None and pulse is not None:
@@ -167,6 +185,12 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     if vertical is not None:
         solver["vertical"] = vertical
 
+    if stack is not None:
+        from rockcli.cli.simulate_plinth import run_plinth
+
+        return run_plinth(stack, foundation, excitation, label, restitution=restitution, rtol=rtol, tail=tail,
+                          horizon=horizon, history_path=history_path, as_json=as_json, friction=friction,
+                          pga=_pga(excitation, G), plot_path=plot_path, motion=None if pulse is not None else label)
     from rockcli.solve import simulate as run
 
     res = run(block, foundation, excitation, rtol=rtol, tail=tail, horizon=horizon,
@@ -176,6 +200,12 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
             f"the integrator stopped at its safety cap of {res.steps + res.rejected_steps:,} steps at "
             f"t = {res.t_end_s:.3f} s, a numerical failure: no result is given (please report the command line)")
     checked = _check(block, foundation, excitation, res, rtol, horizon, solver) if check else None
+    friction_out = None
+    if friction is not None:
+        from rockcli.cli.simulate_plinth import single_friction
+
+        friction_out = single_friction(block, foundation, excitation, res, friction, restitution,
+                                       dict(rtol=rtol, tail=tail, horizon=horizon, **solver))
     if history_path:
         from rockcli.report.response import write_history_csv
 
@@ -209,6 +239,8 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
             out["events"] = [e.as_dict() for e in res.history.events]
         if checked:
             out.update({k: (None if isinstance(v, float) and v != v else v) for k, v in checked.items()})
+        if friction_out is not None:
+            out["friction"] = friction_out
         click.echo(json.dumps(out, allow_nan=False))
         return
 
@@ -237,6 +269,10 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     ]
     if checked:
         rows += _check_rows(checked, res)
+    if friction_out is not None:
+        from rockcli.cli.simulate_plinth import single_friction_row
+
+        rows.append(single_friction_row(friction_out))
     width_ = max(len(k) for k, _ in rows)
     for k, v in rows:
         click.echo(f"{k:<{width_}}  {v}")

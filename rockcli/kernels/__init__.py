@@ -24,6 +24,9 @@ Files (data flows down this list):
 ``driver``                :func:`simulate_core`: a block on an isolated base as a loop over phases
                           (proofs P3, P3s, P5, P8, and the early stops P9, P9s during the
                           excitation, in its docstring)
+``stack_physics``         a body on a free plinth: the equations of both rocking, contact forces, impacts
+``stack``                 :func:`simulate_stack`: the body on its plinth on a rigid foundation (the
+                          rigid driver's code for one rocking body, the 2x2 system for both)
 ``batch``                 :func:`simulate_batch_rigid`, :func:`simulate_batch`,
                           :func:`simulate_batch_rigid_vertical`: many verdict-only scenes in
                           parallel, one entry per driver (and one for a vertical motion);
@@ -52,3 +55,4 @@ from rockcli.kernels.rigid import simulate_rigid, simulate_rigid_vertical  # noq
 from rockcli.kernels.driver import simulate_core  # noqa: E402,F401
 from rockcli.kernels.batch import (BATCH_KERNELS, prepare, simulate_batch, simulate_batch_rigid,  # noqa: E402,F401
                                    simulate_batch_rigid_vertical)
+from rockcli.kernels.stack import simulate_stack  # noqa: E402,F401

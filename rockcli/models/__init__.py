@@ -19,6 +19,7 @@ Read it in this order:
 ``foundations``  :class:`Rigid`, :class:`LinearIsolation`, :class:`SingleConcaveSliding`,
                  :class:`LeadRubber`, :class:`DoubleConcaveSliding`; :data:`HYSTERETIC`
 ``spec``         :func:`parse_isolation_spec`: ``"scss:Tb=3,mu=0.05"`` -> a foundation
+``stack``        a body on a free plinth: :class:`Plinth`, :class:`Stack`, :func:`parse_plinth_spec`
 ===============  ========================================================================================
 
 Every public name is importable from ``rockcli.models``.
@@ -31,9 +32,11 @@ from rockcli.models.block import BLOCK_LABELS, COLUMN_PRESETS, Block, build_bloc
 from rockcli.models.foundations import (HYSTERETIC, DoubleConcaveSliding, Foundation, LeadRubber, LinearIsolation,
                                         Rigid, SingleConcaveSliding)
 from rockcli.models.spec import parse_isolation_spec
+from rockcli.models.stack import MASS_RATIO_RANGE, Plinth, Stack, parse_plinth_spec
 
 __all__ = ["ALPHA_MIN_DEG", "BLOCK_LABELS", "COLUMN_PRESETS", "DEFAULT_BW_BETA", "DEFAULT_BW_GAMMA", "DEFAULT_BW_N",
            "DEFAULT_GAMMA", "DEFAULT_UY", "DEFAULT_XI", "HYSTERETIC", "KIND_BILINEAR", "KIND_DCSS", "KIND_LINEAR",
-           "KIND_RIGID", "R_RANGE_M", "TB_RANGE_S", "UY_RANGE_M", "XI_MAX", "Block", "DoubleConcaveSliding",
-           "Foundation", "LeadRubber", "LinearIsolation", "Rigid", "SingleConcaveSliding", "build_block", "column",
-           "impact_coefficient", "parse_isolation_spec"]
+           "KIND_RIGID", "MASS_RATIO_RANGE", "R_RANGE_M", "TB_RANGE_S", "UY_RANGE_M", "XI_MAX", "Block",
+           "DoubleConcaveSliding", "Foundation", "LeadRubber", "LinearIsolation", "Plinth", "Rigid",
+           "SingleConcaveSliding", "Stack", "build_block", "column", "impact_coefficient", "parse_isolation_spec",
+           "parse_plinth_spec"]

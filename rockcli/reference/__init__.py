@@ -30,6 +30,9 @@ What is where, in reading order (every name is importable from ``rockcli.referen
   state) and its stuck phase.
 * :mod:`~rockcli.reference.ivp`: ``solve_ivp`` with the work counted, a wall budget and a record's
   samples as break points.
+* :mod:`~rockcli.reference.stack` and :mod:`~rockcli.reference.stack_mechanics`: a stack of rocking blocks on
+  the ground (a body on its plinth), from the separate bodies' Newton-Euler equations with the contact
+  constraints (:func:`reference_stack`, :func:`reference_plinth`; docs/physics-plinth.md).
 
 The test suite's ``tests/naive.py`` and ``tests/naive_sliding.py`` re-export this package.
 """
@@ -40,7 +43,8 @@ from rockcli.reference.hysteretic import Bearing
 from rockcli.reference.phases import Phases
 from rockcli.reference.result import IMPLICIT, METHODS, RefResult, ReferenceFailure, ReferenceTimeout
 from rockcli.reference.run import reference_simulate, reference_sliding
+from rockcli.reference.stack import StackRefResult, reference_plinth, reference_stack
 
 __all__ = ["IMPLICIT", "METHODS", "Bearing", "Phases", "RefResult", "ReferenceFailure", "ReferenceTimeout",
-           "ground_function", "impact_map_linear_system", "is_hysteretic", "reference_simulate", "reference_sliding",
-           "rocking_on_base", "state_scales"]
+           "StackRefResult", "ground_function", "impact_map_linear_system", "is_hysteretic", "reference_plinth",
+           "reference_simulate", "reference_sliding", "reference_stack", "rocking_on_base", "state_scales"]

@@ -168,10 +168,17 @@ def body_section(blocks) -> str:
 
     rows = [(esc(b.name), esc(body_noun(b)), num(b.height, ".3f", "m"), num(b.width, ".3f", "m"),
              num(b.h / b.b, ".2f"), num(b.R, ".3f", "m"), num(b.alpha_deg, ".2f", "deg"), num(b.p, ".3f", "rad/s"),
-             num(b.uplift_acceleration / G, ".3f", "g"), num(b.housner_restitution, ".3f"))
+             num(b.uplift_acceleration / G, ".3f", "g"), num(getattr(b, "body", b).housner_restitution, ".3f"))
             for b in blocks]
     head = ("name", "called", "height", "width", "height / width", "R", "alpha", "p", "lifts off at", "e")
-    return (table(head, rows, numeric=range(2, 10)) +
+    stacks = [b for b in blocks if getattr(b, "plinth", None) is not None]
+    plinths = "".join(
+        f" {esc(s.name)}: the body (its figures in the table) stands on a free plinth {s.plinth.height:g} m tall and "
+        f"{s.plinth.width:g} m wide, {s.m2:.3g} times its mass; from rest the body lifts off the plinth at "
+        f"{s.body_uplift_acceleration / G:.3f} g and body and plinth lift together at "
+        f"{s.assembly_uplift_acceleration / G:.3f} g (the smaller is in the table); they rock as two rigid blocks, "
+        f"without sliding (docs/plinth.md)." for s in stacks)
+    return (table(head, rows, numeric=range(2, 10)) + (f"<p class='note'>{plinths.strip()}</p>" if stacks else "") +
             "<p class='note'>The body is taken as a rigid block. R: distance from its centre of mass to a corner "
             "of its base; alpha: its slenderness, atan(width/height) (the angle it must tilt to fall); p = "
             "sqrt(3g/4R): its frequency parameter (larger bodies rock more slowly and are harder to topple); "
@@ -201,7 +208,10 @@ ASSUMPTIONS = (
     "one vertical plane about the two edges of its base (the model of Housner 1963 and of Vassiliou & Makris "
     "2012).",
     "At each impact it keeps a share e of its rocking velocity given by Housner's rule from its slenderness; a "
-    "real base (mortar, a plinth, a soft floor) may dissipate more or less energy.",
+    "real base (mortar, a soft floor) may dissipate more or less energy. A body stands on the ground itself unless "
+    "it is assessed on a free plinth (--on): then body and plinth are two rigid blocks that rock without sliding, "
+    "each impact losing what the plastic impact of the two blocks loses (docs/physics-plinth.md); the plinth on "
+    "isolation bearings is not modelled yet.",
     "Only the horizontal ground motion in the plane of rocking is applied, as given in its file: the vertical "
     "motion and the other horizontal direction are ignored.",
     "A record is one sample of what an earthquake can do: another station, another event or the other "

@@ -13,8 +13,8 @@ import math
 from types import SimpleNamespace
 
 from rockcli.assess.verdicts import (SURVIVES, TOPPLES, body_noun, body_words, configuration_words,
-                                     isolation_summary, outcome, question, scene_sentence, stroke_m, survivor_stroke,
-                                     verdict_lines)
+                                     isolation_summary, outcome, plinth_summary, question, scene_sentence, stroke_m,
+                                     survivor_stroke, verdict_lines)
 from rockcli.report.html import (assumptions_section, body_section, card, configurations_section, esc, figure,
                                  num, page, plural, reproduce_section, table)
 from rockcli.report.html_deciding import response_figures
@@ -196,6 +196,9 @@ def assessment_report(assessment, *, check=None, command: str = "") -> str:
         short = isolation_summary(assessment, b)
         if short:
             first.append(f"<p class='short'>{esc(short)}</p>")
+        short = plinth_summary(assessment, b) if getattr(b, "plinth", None) is not None else ""
+        if short:
+            first.append(f"<p class='short'>{esc(short)}</p>")
     facts = []
     for b in blocks:
         for c in assessment.configurations:
@@ -208,7 +211,11 @@ def assessment_report(assessment, *, check=None, command: str = "") -> str:
     first.append(_facts(facts))
     figs = []
     for b in blocks:
-        figs.append(response_figures(assessment, b))
+        if getattr(b, "plinth", None) is None:  # the response figures draw a single block's rocking
+            figs.append(response_figures(assessment, b))
+        else:
+            figs.append(f"<p class='note'>{esc(body_words(b))}: no time-history figure of a body on its plinth yet "
+                        f"(<code>rockcli simulate --on ... --history FILE</code> writes its history).</p>")
         records = [x.label for x in assessment.excitations if x.motion is not None]
         rows = [r for r in assessment.rows if r.column == b.name]
         confs = assessment.configurations

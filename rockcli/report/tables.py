@@ -32,13 +32,15 @@ def format_cell(row, margin: bool, neighbourhood: bool = False) -> str:
     if row.error:
         return "ERROR"
     if row.overturned:
-        text = "OVERTURNS"
+        text = "OVERTURNS" + (f" {row.toppled}" if row.toppled else "")
     elif row.proven is False:
         text = f"NOT PROVEN {row.theta_max_over_alpha:.2f}"
     elif row.verdict == "no_uplift":
         text = "no uplift"
     else:
         text = f"survives {row.theta_max_over_alpha:.2f}"
+        if row.plinth:  # a body on a plinth: the plinth's peak over alpha_asm too
+            text += f" p{row.plinth_theta_max_over_alpha_asm:.2f}"
     if margin:
         if not math.isnan(row.overturn_scale):
             text += f" x{row.overturn_scale:.2f}"
@@ -177,6 +179,9 @@ def assessment_frame(assessment):
 #: that were not rerun (errors, unavailable motions).
 #: Columns of an assessment with ``--azimuth`` (after :data:`CSV_COLUMNS`).
 AZIMUTH_COLUMNS = ("azimuth_deg", "overturning_azimuths", "azimuths_run", "base_disp_max_surviving_azimuths_m")
+#: Columns of an assessment with ``--on`` (a body on a plinth; empty on the rows of a body alone).
+PLINTH_COLUMNS = ("plinth", "toppled", "plinth_theta_max_over_alpha_asm", "friction_demand_base",
+                  "friction_demand_joint")
 CHECK_COLUMNS = ("tight_rtol_verdict", "tight_rtol_peak_change", "ulp_verdicts", "ulp_peak_change", "ill_conditioned")
 
 
@@ -188,6 +193,9 @@ def extra_columns(assessment, check=None) -> dict:
     cols = {}
     if any(not math.isnan(r.azimuth_deg) or r.azimuths_run for r in rows):  # --azimuth: the columns of orientation
         for key in AZIMUTH_COLUMNS:
+            cols[key] = [getattr(r, key) for r in rows]
+    if any(r.plinth for r in rows):  # --on: each block's answer and the friction demands
+        for key in PLINTH_COLUMNS:
             cols[key] = [getattr(r, key) for r in rows]
     for key in ("restitution", "cap_ratio"):
         if assessment.solver.get(key):

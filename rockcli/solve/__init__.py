@@ -20,6 +20,12 @@ the kernels are imported on the first run. Read it in this order:
 ``single``         :func:`simulate`: one scene, with or without its history
 ``batch``          :func:`simulate_many` and :func:`simulate_verdicts`: many verdict-only scenes on all
                    cores (``_run_many`` validates each distinct scene once and packs their arrays)
+``stack``          :func:`simulate_stack`: a body on a free plinth (docs/physics-plinth.md),
+                   :class:`StackResponse`
+``stack_many``     the stack jobs of :func:`simulate_many` (one run after the other: the stack driver holds the
+                   GIL), read back as a ``StackRun`` that answers to a :class:`Response`'s names
+``friction``       the friction check of a run (``simulate --friction``): the single block's peak demand from
+                   its history and the judgement "exceeds MU" (docs/plinth.md)
 =================  =====================================================================================
 
 Every public name (and the private helpers tests reach for) is importable from ``rockcli.solve``.
@@ -80,6 +86,7 @@ from rockcli.solve.parameters import _parameters, bearing_force_path
 from rockcli.solve.work import _check_work, _estimate_steps
 from rockcli.solve.single import simulate
 from rockcli.solve.batch import _run_many, _scene_arrays, _threads, simulate_many, simulate_verdicts
+from rockcli.solve.stack import BlockPeak, StackHistory, StackResponse, friction_demand_single, simulate_stack
 
 __all__ = ["DEFAULT_HORIZON", "DEFAULT_MAX_STEPS", "DEFAULT_REST_TOL", "DEFAULT_RTOL", "DEFAULT_RTOL_HYSTERETIC",
            "DEFAULT_TAIL", "FOUNDATION_TYPES", "HORIZON_MAX", "N_IMPULSE_TABLE", "PULSE_START_MAX_PERIODS",
@@ -89,3 +96,4 @@ __all__ = ["DEFAULT_HORIZON", "DEFAULT_MAX_STEPS", "DEFAULT_REST_TOL", "DEFAULT_
            "pulse_impulse_table",
            "record_impulse_table", "simulate", "simulate_many", "simulate_verdicts", "validate_options",
            "vertical_label", "with_vertical"]
+__all__ += ["BlockPeak", "StackHistory", "StackResponse", "friction_demand_single", "simulate_stack"]

@@ -67,6 +67,10 @@ def simulate_many(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL,
         isolated base gets a :class:`JobError`); these scenes run in the same batch machinery, on the
         rigid driver's vertical entry.
 
+    A job whose block is a :class:`rockcli.models.Stack` (a body on a free plinth) runs on the stack driver
+    (:mod:`rockcli.solve.stack_many`: one run after the other) and returns a ``StackRun``, which reads like a
+    :class:`Response` (the body's peak on its plinth; either block toppling overturns the scene).
+
     Returns
     -------
     list of Response or JobError
@@ -75,6 +79,13 @@ def simulate_many(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL,
         :class:`JobError` with the reason and the others still run. Invalid solver options
         (``rtol``, ``tail``, ``rest_tol``, ``horizon``) concern every job and raise.
     """
+    if isinstance(jobs, (list, tuple)):  # a body on a plinth (a Stack job) runs on the stack driver
+        from rockcli.solve.stack_many import is_stack_job, mixed
+
+        if any(is_stack_job(j) for j in jobs):
+            return mixed(jobs, simulate_many, rtol=rtol, tail=tail, rest_tol=rest_tol, horizon=horizon,
+                         max_steps=max_steps, early=early, progress=progress, chunk=chunk, restitution=restitution,
+                         cap_ratio=cap_ratio, vertical=vertical)
     outs, alphas, failed = _run_many(jobs, rtol=rtol, tail=tail, rest_tol=rest_tol, horizon=horizon,
                                      max_steps=max_steps, early=early, progress=progress, chunk=chunk,
                                      restitution=restitution, cap_ratio=cap_ratio, vertical=vertical)

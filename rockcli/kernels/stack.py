@@ -1,0 +1,766 @@
+"""The stack driver: :func:`simulate_stack` runs a body on a free plinth on a rigid foundation
+(docs/physics-plinth.md), event-driven, one pattern of motion at a time.
+
+Patterns (``xo[X_PAT]``): R at rest; B the body rocking on the still plinth (states ``psi, psi'`` in columns 0-1
+of ``W``, ``rs[RS_S]`` its corner ``k``); P the plinth rocking with the body stuck (``theta2, theta2'`` in columns
+0-1, ``rs[RS_S]`` the corner ``s``); BP both rocking (``psi, psi', theta2, theta2'`` in columns 0-3, ``rs[RS_S] =
+2 s + k``). R and B are the rigid driver's own code with the body's parameters (:mod:`rockcli.kernels.rigid`:
+the uplift scan, the Dormand-Prince step, the rocking events, the impact map and the rest rule), so that while the
+plinth cannot move the run is the single block's, bit for bit; P is the same code with the assembly's parameters
+(``prm_asm``: ``p_asm``, ``alpha_asm``, ``eta_asm``); BP integrates the 2x2 Lagrange system
+(:mod:`rockcli.kernels.stack_physics`). What the stack adds is watched on every step: in B the base's corner forces
+(the plinth lifts when one reaches 0), in P the joint's (the body lifts off the plinth), each located on the step's
+dense output by sampling 16 sub-intervals and bisection; at every impact the pattern after it is chosen by
+:func:`rockcli.kernels.stack_physics.choose_after_impact`, and where the plinth (or the body on it) stays, the
+single block's map is used.
+
+End of the run: P1 (at rest once the ground is still) and P2S, the single block's P2 for the body on the still
+plinth when the plinth provably cannot lift again: the ground still, ``|psi| < alpha1``, the body's energy ``En``
+(after the coming impact if it is heading for one) below ``p1^2``; then ``psi'^2 <= V2 = 2 (En - p1^2 cos
+alpha1)`` and ``|psi''| <= p1^2 sin(alpha1)`` for ever (the energy never grows: impacts on the still plinth
+multiply ``psi'`` by ``|e| <= 1``), so the joint force per unit body mass has ``F_y >= g - R1 (p1^2 sin^2 alpha1 +
+V2)`` and ``|F_x| <= R1 sin(alpha1) (p1^2 + V2)``, and each base corner force is at least ``(F_y,min (b2 - b1) +
+m2 g b2 - 2 h2 |F_x|max)/(2 b2)``; and at every later impact the joint's impulse has ``|T|/N = (h1/b1)(1 - e)/(1 +
+e)``, which leaves the base's corner impulses pressing when ``2 h2 |T|/N <= b2 - b1``. When both bounds hold (and
+``F_y,min > 0``: the body never jumps) the plinth never moves again and P2's conclusion (the body's later peaks,
+the run settled) holds as on the ground. P and BP after the excitation are followed until rest or the horizon.
+There is no early stop during the excitation (``early`` is not taken).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from rockcli.kernels.dopri import _dense, _dp5_step, _restep_rows, _shift_event, _state_at
+from rockcli.kernels.events import _count_uplift, _hist_push, comes_to_rest, impact_map
+from rockcli.kernels.ground import _pulse_turns, _rigid_uplift, ground_at
+from rockcli.kernels.layout import (E_T0, E_TP, EXC_RECORD, HK_IMPACT, HK_IMPACT_AFTER, HK_OVERTURN, HK_REST,
+                                    HK_STATE, HK_UPLIFT,
+                                    O_N_IMPACTS, O_N_IMPACTS_ALL, O_N_RESTS, O_T_EXCEED, O_T_OVERTURN, O_UPLIFTED,
+                                    O_T_SETTLED, O_T_THETA_MAX, P_ALPHA, P_COSA, P_ETA, P_G, P_P2, P_THR, PHASE_ROCKING,
+                                    PHASE_STUCK, RS_FRESH, RS_H, RS_NRHS, RS_PHASE,
+                                    RS_REJ, RS_S, RS_SEG_END, RS_SETTLED, RS_STATUS, RS_STEPS, RS_T, RS_THMAX,
+                                    SEG_LINEAR, STATUS_MAX_STEPS, STATUS_OVERTURNED, W_EV, W_FEV, W_RE, W_TMP, W_Y,
+                                    W_YNEW)
+from rockcli.kernels.polynomials import _first_down, _golden_max, _poly
+from rockcli.kernels.rigid import _NO_HY, _restep_rigid, _stuck_rigid, _substep_stop, _take_step_rigid
+from rockcli.kernels.stack_physics import (S_A1REST, S_AAREST, S_B1, S_B2, S_G, S_H1, S_H2, S_M2, S_R1,
+                                           S_REST, _dot, _rhs_bp_into, bp_acc, choose_after_impact, fields, forces,
+                                           forces_b, forces_p, max_velocities, project)
+from rockcli.kernels.steps import (EV_FAILED, EV_IMPACT, EV_OVERTURN, _advance_segment, _bounce, _close_step, _finish,
+                                   _grown, _out_of_time, _rocking_events, _seg, _shrink, _start, _to_impact,
+                                   _to_overturn, _to_step_end)
+
+PAT_R, PAT_B, PAT_P, PAT_BP = 0.0, 1.0, 2.0, 3.0
+
+# the stack's own record and outputs ``xo``
+X_PAT, X_S, X_K = 0, 1, 2  # the pattern, the base corner, the joint corner (0: a face)
+X_PL_MAX, X_PL_T_MAX, X_PL_T_EXCEED = 3, 4, 5  # the plinth's peak |theta2|, when, first |theta2| >= alpha_asm
+X_PL_T_UPLIFT, X_PL_N_IMP, X_PL_N_IMP_ALL = 6, 7, 8  # the plinth's first uplift, impacts while the ground moves, all
+X_TILT_MAX = 9  # the body's peak absolute tilt |theta1|
+X_TOPPLED = 10  # -1 none, 0 the plinth, 1 the body
+X_FR_B, X_FR_J, X_FRI_B, X_FRI_J = 11, 12, 13, 14  # friction demand |T|/N: base, joint; at impacts: base, joint
+X_N_JUMP, X_N_INCONS = 15, 16  # steps or impacts where a pivot would pull; impacts with no consistent pattern
+X_N_SWITCH, X_STEPS_BP, X_P2S = 17, 18, 19  # pattern changes, steps of pattern BP, 1 when P2S ended the run
+X_PL_N_RESTS = 20
+X_N_PLASTIC = 21  # impacts where a given restitution could not be carried: the plastic law instead
+N_XO = 22
+
+HALF_PI = 0.5 * math.pi
+
+
+# ---------------------------------------------------------------------------------------------
+# Friction demand and contact checks along a step
+# ---------------------------------------------------------------------------------------------
+@njit(cache=True)
+def _max_abs_ag(seg, epar, t0, t1):
+    """The largest ``|ag|`` on ``[t0, t1]`` inside one segment (linear: its ends; a pulse: its ends and turns)."""
+    a = max(abs(ground_at(t0, seg, epar)), abs(ground_at(t1, seg, epar)))
+    if int(seg[0]) != SEG_LINEAR:
+        turns = _pulse_turns(int(seg[0]))
+        for i in range(4):
+            tk = epar[E_T0] + turns[i] * epar[E_TP]
+            if t0 < tk < t1:
+                a = max(a, abs(ground_at(tk, seg, epar)))
+    return a
+
+
+@njit(cache=True, inline='always')
+def _demand(xo, NB, TB, NJ, TJ):
+    if NB > 0.0:
+        xo[X_FR_B] = max(xo[X_FR_B], abs(TB) / NB)
+    if NJ > 0.0:
+        xo[X_FR_J] = max(xo[X_FR_J], abs(TJ) / NJ)
+
+
+@njit(cache=True)
+def _bp_forces(s, k, sp, W, hs, sig, t, seg, epar, xo):
+    """Contact forces of pattern BP at fraction ``sig`` of the last step (its dense output): the friction demand
+    is noted; returns True when a pivot pulls."""
+    psi = _poly(_dense(W, hs, np.int64(0), 1.0), sig)
+    psid = _poly(_dense(W, hs, np.int64(1), 1.0), sig)
+    th2 = _poly(_dense(W, hs, np.int64(2), 1.0), sig)
+    thd2 = _poly(_dense(W, hs, np.int64(3), 1.0), sig)
+    ag = ground_at(t + sig * hs, seg, epar)
+    pdd, tdd = bp_acc(s, k, sp, th2, psi, thd2, psid, ag)
+    NB, TB, PRB, PLB, NJ, TJ, PRJ, PLJ = forces(s, k, sp, th2, psi, thd2, psid, tdd, pdd, ag)
+    _demand(xo, NB, TB, NJ, TJ)
+    return NB < 0.0 or NJ < 0.0
+
+
+@njit(cache=True, inline='always')
+def _one_forces(pat, s, k, sp, prm, c0, c1, sig, tt, seg, epar, xo):
+    """B or P at fraction ``sig`` of the step (``c0``, ``c1`` its quartics of the angle and rate): the smaller corner
+    force of the watched face (the base in B, the joint in P), the corner that keeps pressing, whether the pivot
+    pulls; the friction demand is noted while the face holds (past its opening the pattern is not the motion)."""
+    a = _poly(c0, sig)
+    ad = _poly(c1, sig)
+    ag = ground_at(tt, seg, epar)
+    A = prm[P_ALPHA] * (k if pat == PAT_B else s) - a
+    add = -prm[P_P2] * (math.sin(A) + ag / prm[P_G] * math.cos(A))  # Eq (3) with the pattern's p, alpha
+    if pat == PAT_B:
+        NB, TB, PR, PL, NJ, TJ = forces_b(k, sp, a, ad, add, ag)
+        pull = NJ < 0.0
+    else:
+        NB, TB, NJ, TJ, PR, PL = forces_p(s, sp, a, ad, add, ag)
+        pull = NB < 0.0
+    f = min(PR, PL)
+    if f > 0.0:
+        _demand(xo, NB, TB, NJ, TJ)
+    return f, (1.0 if PR > PL else -1.0), pull
+
+
+@njit(cache=True)
+def _face_opens(pat, s, k, sp, prm, W, hs, t, seg, epar, xo, sig_lim):
+    """First fraction in ``(0, sig_lim]`` of the last step of B or P at which the watched face's smaller corner
+    force reaches 0 (16 samples, then bisection): ``(sigma, corner that keeps pressing)``, else ``(-1, 0)``. The
+    friction demand is read at the samples."""
+    c0 = _dense(W, hs, np.int64(0), 1.0)
+    c1 = _dense(W, hs, np.int64(1), 1.0)
+    jump = False
+    for m in range(1, 17):
+        sg = sig_lim * m / 16.0
+        f, side, pull = _one_forces(pat, s, k, sp, prm, c0, c1, sg, t + sg * hs, seg, epar, xo)
+        jump = jump or pull
+        if f <= 0.0:
+            lo = sig_lim * (m - 1) / 16.0
+            hi = sg
+            for _ in range(60):
+                mid = 0.5 * (lo + hi)
+                if mid <= lo or mid >= hi:
+                    break
+                fm, sd, _p = _one_forces(pat, s, k, sp, prm, c0, c1, mid, t + mid * hs, seg, epar, xo)
+                if fm <= 0.0:
+                    hi = mid
+                    side = sd
+                else:
+                    lo = mid
+            if jump:
+                xo[X_N_JUMP] += 1.0
+            return hi, side
+    if jump:
+        xo[X_N_JUMP] += 1.0
+    return -1.0, 0.0
+
+
+@njit(cache=True, inline='always')
+def _impact_ahead(W, hs, col, c):
+    """Fraction of the last step at which the angle in column ``col`` (corner ``c``) comes back to 0, else 1."""
+    e1 = c * W[W_YNEW, col]
+    d0 = c * W[W_Y, col + 1]
+    d1 = c * W[W_YNEW, col + 1]
+    if e1 <= 0.0 or (d0 < 0.0 and d1 > 0.0):
+        sg = _first_down(_dense(W, hs, np.int64(col), c), 0.0, 0.0, 1.0)
+        if sg >= 0.0:
+            return sg
+    return 1.0
+
+
+# ---------------------------------------------------------------------------------------------
+# Pattern BP: the step, its events
+# ---------------------------------------------------------------------------------------------
+@njit(cache=True)
+def _dp5_bp(code, sp, seg, epar, t, h, W, r0):
+    return _dp5_step(_rhs_bp_into, 0, PHASE_ROCKING, code, sp, seg, epar, _NO_HY, 0.0, t, h, W, 0, 4, r0)
+
+
+@njit(cache=True)
+def _take_step_bp(sp, ekind, epar, max_steps, rs, W, t_stop):
+    """One accepted step of pattern BP (4 states) inside ``[t, t_stop]``: ``(ok, hs, last)``."""
+    code = rs[RS_S]
+    t = rs[RS_T]
+    seg = _seg(rs)
+    h = rs[RS_H]
+    if h <= 0.0:
+        h = 0.02 / math.sqrt(sp[P_P2])
+        if ekind != EXC_RECORD:
+            h = min(h, epar[E_TP] / 50.0)
+    if rs[RS_FRESH] != 0.0:
+        _rhs_bp_into(0, PHASE_ROCKING, code, sp, seg, epar, _NO_HY, t, W, W_Y, 0)
+        rs[RS_NRHS] += 1
+        rs[RS_FRESH] = 0.0
+        # a pivot just back at 0 (an impact, an uplift): do not step over a short flight
+        s = 1.0 if code > 0.0 else -1.0
+        k = code - 2.0 * s
+        for col, c in ((0, k), (2, s)):
+            if W[W_Y, col] == 0.0:
+                vel = c * W[W_Y, col + 1]
+                back = -c * W[0, col + 1]
+                if vel > 0.0 and back > 0.0:
+                    h = min(h, 0.5 * vel / back)
+    last = False
+    hs = h
+    err = 2.0
+    steps = rs[RS_STEPS]
+    rej = rs[RS_REJ]
+    nrhs = rs[RS_NRHS]
+    while steps + rej < max_steps:
+        hs = h
+        last = hs >= t_stop - t
+        if last:
+            hs = t_stop - t
+        err = _dp5_bp(code, sp, seg, epar, t, hs, W, np.int64(0))
+        nrhs += 6
+        if err <= 1.0:
+            h = _grown(h, hs, err, last)
+            break
+        rej += 1
+        h = hs * _shrink(err)
+    return _close_step(rs, h, rej, nrhs, steps, err), hs, last
+
+
+@njit(cache=True)
+def _restep_bp(code, sp, seg, epar, t, h, W):
+    _restep_rows(W)
+    _dp5_bp(code, sp, seg, epar, t, h, W, np.int64(W_RE))
+
+
+@njit(cache=True)
+def _abs_max(c, sig_end):
+    """The largest ``|poly(c)|`` on ``[0, sig_end]`` (17 samples, golden section about the largest)."""
+    m = 0.0
+    im = 0
+    for i in range(17):
+        v = abs(_poly(c, sig_end * i / 16.0))
+        if v > m:
+            m, im = v, i
+    sg = 1.0 if _poly(c, sig_end * im / 16.0) > 0.0 else -1.0
+    lo = sig_end * max(im - 1, 0) / 16.0
+    hi = sig_end * min(im + 1, 16) / 16.0
+    return max(m, abs(_poly(c, _golden_max(c, sg, lo, hi))))
+
+
+@njit(cache=True)
+def _bp_peaks(rs, out, xo, sp, W, hs, sig_end):
+    """Peaks of ``|psi|``, ``|theta2|`` and ``|theta1|`` over ``[0, sig_end]`` of the last BP step, and the first
+    time ``|psi|`` reaches alpha1 and ``|theta2|`` alpha_asm."""
+    t = rs[RS_T]
+    for col in (0, 2):
+        c = _dense(W, hs, np.int64(col), 1.0)
+        v_end = abs(_poly(c, sig_end))
+        best, sbest = v_end, sig_end
+        d = _dense(W, hs, np.int64(col + 1), 1.0)
+        for sgn in (1.0, -1.0):
+            dd = (sgn * d[0], sgn * d[1], sgn * d[2], sgn * d[3], sgn * d[4])
+            sp_ = _first_down(dd, 0.0, 0.0, sig_end)
+            if sp_ >= 0.0 and abs(_poly(c, sp_)) > best:
+                best, sbest = abs(_poly(c, sp_)), sp_
+        if col == 0:
+            if best > rs[RS_THMAX]:
+                rs[RS_THMAX] = best
+                out[O_T_THETA_MAX] = t + sbest * hs
+            if math.isnan(out[O_T_EXCEED]) and rs[RS_THMAX] >= sp[S_A1REST]:
+                out[O_T_EXCEED] = t + sbest * hs
+        else:
+            if best > xo[X_PL_MAX]:
+                xo[X_PL_MAX] = best
+                xo[X_PL_T_MAX] = t + sbest * hs
+            if math.isnan(xo[X_PL_T_EXCEED]) and xo[X_PL_MAX] >= sp[S_AAREST]:
+                xo[X_PL_T_EXCEED] = t + sbest * hs
+    a = _dense(W, hs, np.int64(0), 1.0)
+    b = _dense(W, hs, np.int64(2), 1.0)
+    c1 = (a[0] + b[0], a[1] + b[1], a[2] + b[2], a[3] + b[3], a[4] + b[4])
+    xo[X_TILT_MAX] = max(xo[X_TILT_MAX], _abs_max(c1, sig_end))
+
+
+# ---------------------------------------------------------------------------------------------
+# Changes of pattern
+# ---------------------------------------------------------------------------------------------
+@njit(cache=True)
+def _set_pattern(rs, W, xo, s, k, psi, psid, th2, thd2):
+    """Enter the pattern of corners ``(s, k)`` (0: a face) with these states."""
+    for i in range(4):
+        W[W_Y, i] = 0.0
+    if s == 0.0 and k == 0.0:
+        pat = PAT_R
+        rs[RS_PHASE] = PHASE_STUCK
+        rs[RS_S] = 0.0
+    elif s == 0.0:
+        pat = PAT_B
+        rs[RS_PHASE] = PHASE_ROCKING
+        rs[RS_S] = k
+        W[W_Y, 0] = psi
+        W[W_Y, 1] = psid
+    elif k == 0.0:
+        pat = PAT_P
+        rs[RS_PHASE] = PHASE_ROCKING
+        rs[RS_S] = s
+        W[W_Y, 0] = th2
+        W[W_Y, 1] = thd2
+    else:
+        pat = PAT_BP
+        rs[RS_PHASE] = PHASE_ROCKING
+        rs[RS_S] = 2.0 * s + k
+        W[W_Y, 0] = psi
+        W[W_Y, 1] = psid
+        W[W_Y, 2] = th2
+        W[W_Y, 3] = thd2
+    if pat != xo[X_PAT]:
+        xo[X_N_SWITCH] += 1.0
+    xo[X_PAT] = pat
+    xo[X_S] = s
+    xo[X_K] = k
+    rs[RS_FRESH] = 1.0
+
+
+@njit(cache=True)
+def _plinth_lifts(xo, t):
+    if math.isnan(xo[X_PL_T_UPLIFT]):
+        xo[X_PL_T_UPLIFT] = t
+
+
+@njit(cache=True)
+def _rest_check(j, s, k, sp, th2, psi, V, ag):
+    """The rest rule after an impact that leaves pivot ``j`` (0 base, 1 joint) of ``(s, k)`` turning: True (stick it,
+    momentum kept along the rest) when the relative accelerations that pull it back on both corners are positive and
+    the rotation it could still reach against the smaller is below ``rest_tol`` times its slenderness. Returns
+    ``(stick, rates of the stuck pattern (theta2', psi'))``."""
+    e2, e1 = fields(s if j == 1 else 0.0, k if j == 0 else 0.0, sp, th2, psi)
+    q2, q1 = project(sp, e2, e1, V)
+    ag_ = ag
+    rest = math.inf
+    for sg in (1.0, -1.0):
+        if j == 1:
+            pdd, _ = bp_acc(s, sg, sp, th2, 0.0, q2, 0.0, ag_)
+            rest = min(rest, -sg * pdd)
+        else:
+            _, tdd = bp_acc(sg, k, sp, 0.0, psi, 0.0, q1, ag_)
+            rest = min(rest, -sg * tdd)
+    rate = V[5] - V[2] if j == 1 else V[2]
+    alpha = sp[S_A1REST] if j == 1 else sp[S_AAREST]
+    stick = rest > 0.0 and rate * rate < 2.0 * rest * sp[S_REST] * alpha
+    return stick, q2, q1
+
+
+@njit(cache=True)
+def _stack_rests(sp, V, ag):
+    """The rest rule of the whole stack, both angles at 0 after an impact: nothing could lift it from rest under
+    ``ag`` (each interface's restoring moment ``M_j`` at rest positive: ``g b1 - |ag| h1`` for the body,
+    ``(1 + m2)(g b2 - |ag| y_c)`` for the assembly, per unit body mass) and the kinetic energy is below
+    ``rest_tol min_j alpha_j M_j``. For one block this is the single block's rule exactly (``J theta'^2/2 <
+    rest_tol alpha m (g b - |a| h)`` is ``theta'^2/(2 p^2 cos(alpha)(tan(alpha) - |a|/g)) < rest_tol alpha``); it
+    ends the cascades where each impact of the body kicks the plinth off its face by a little (the note)."""
+    g = sp[S_G]
+    b1, h1, b2, h2, m2 = sp[S_B1], sp[S_H1], sp[S_B2], sp[S_H2], sp[S_M2]
+    yc = (m2 * h2 + 2.0 * h2 + h1) / (1.0 + m2)
+    a = abs(ag)
+    M1 = g * b1 - a * h1
+    M0 = (1.0 + m2) * (g * b2 - a * yc)
+    if M1 <= 0.0 or M0 <= 0.0:
+        return False
+    return 0.5 * _dot(sp, V, V) < sp[S_REST] * min(sp[S_A1REST] * M1, sp[S_AAREST] * M0)
+
+
+@njit(cache=True)
+def _after_impact(j, s, k, sp, prm, prm_asm, th2, psi, V, rs, W, out, xo, t, ag):
+    """The pattern after an impact at ``j`` from ``(s, k)`` (generic: any pattern may follow), and the rest rule
+    (the single block's, with the body's or the assembly's parameters, when one body rocks after the impact)."""
+    s1, k1, V1, margin, jump, db, dj, plastic = choose_after_impact(s, k, j, sp, th2, psi, V)
+    if margin < -1e-9:
+        xo[X_N_INCONS] += 1.0
+    if plastic:
+        xo[X_N_PLASTIC] += 1.0
+    if jump:
+        xo[X_N_JUMP] += 1.0
+    xo[X_FRI_B] = max(xo[X_FRI_B], db)
+    xo[X_FRI_J] = max(xo[X_FRI_J], dj)
+    if s1 != 0.0 and th2 == 0.0:
+        _plinth_lifts(xo, t)
+    if k1 != 0.0 and k == 0.0 and out[O_UPLIFTED] == 0.0:
+        _count_uplift(out, t)
+    psid = V1[5] - V1[2]
+    thd2 = V1[2]
+    if th2 == 0.0 and psi == 0.0 and (s1 != 0.0 or k1 != 0.0) and _stack_rests(sp, V1, ag):
+        _set_pattern(rs, W, xo, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+        xo[X_PL_N_RESTS] += 1.0
+        return
+    if (j == 0 and s1 != 0.0) or (j == 1 and k1 != 0.0):
+        if j == 1 and s1 == 0.0:  # the body alone rocks on the still plinth: its own rule
+            if comes_to_rest(prm, ag, psid, prm[P_THR], prm[P_ALPHA]):
+                _set_pattern(rs, W, xo, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+                out[O_N_RESTS] += 1.0
+                return
+        elif j == 0 and k1 == 0.0:  # the assembly rocks as one block
+            if comes_to_rest(prm_asm, ag, thd2, prm_asm[P_THR], prm_asm[P_ALPHA]):
+                _set_pattern(rs, W, xo, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+                xo[X_PL_N_RESTS] += 1.0
+                return
+        else:
+            stick, q2, q1 = _rest_check(j, s1, k1, sp, th2, psi, V1, ag)
+            if stick:
+                if j == 0:
+                    _set_pattern(rs, W, xo, 0.0, k1, psi, q1, 0.0, 0.0)
+                    xo[X_PL_N_RESTS] += 1.0
+                else:
+                    _set_pattern(rs, W, xo, s1, 0.0, 0.0, 0.0, th2, q2)
+                    out[O_N_RESTS] += 1.0
+                return
+    _set_pattern(rs, W, xo, s1, k1, psi, psid, th2, thd2)
+
+
+# ---------------------------------------------------------------------------------------------
+# The run
+# ---------------------------------------------------------------------------------------------
+@njit(cache=True)
+def _hist(H, nh, rs, epar, W, xo, kind):
+    """A history row: ``t, ag, psi, psi', theta2, theta2'`` (the rigid layout's ``theta, theta_dot, u, u_dot``), the
+    pattern code in the ``z`` column, ``kind``."""
+    t = rs[RS_T]
+    pat = xo[X_PAT]
+    if pat == PAT_P:
+        W[W_TMP, 0] = 0.0
+        W[W_TMP, 1] = 0.0
+        W[W_TMP, 2] = W[W_Y, 0]
+        W[W_TMP, 3] = W[W_Y, 1]
+    else:
+        for i in range(4):
+            W[W_TMP, i] = W[W_Y, i] if (pat == PAT_BP or i < 2) else 0.0
+    return _hist_push(H, nh, t, ground_at(t, _seg(rs), epar), W, W_TMP, pat, 0.0, 0.0, kind)
+
+
+@njit(cache=True)
+def _p2s(prm, sp, rs, W, out, xo):
+    """P2S (module notes): True when the body rocking on the still plinth after the excitation is settled."""
+    alpha = prm[P_ALPHA]
+    p2 = prm[P_P2]
+    th = W[W_Y, 0]
+    thd = W[W_Y, 1]
+    if abs(th) >= alpha:
+        return False
+    En = 0.5 * thd * thd + p2 * math.cos(alpha - abs(th))
+    if th * thd < 0.0:  # heading for the pivot: the impact is certain
+        c_a = p2 * prm[P_COSA]
+        En = c_a + prm[P_ETA] ** 2 * (En - c_a)
+    if En >= p2:
+        return False
+    b1, h1, b2, h2, R1, m2, g = sp[S_B1], sp[S_H1], sp[S_B2], sp[S_H2], sp[S_R1], sp[S_M2], sp[S_G]
+    V2 = max(0.0, 2.0 * (En - p2 * prm[P_COSA]))
+    sa = math.sin(alpha)
+    fy = g - R1 * (p2 * sa * sa + V2)
+    fx = R1 * sa * (p2 + V2)
+    e = prm[P_ETA]
+    ratio = h1 * (1.0 - e) / (b1 * (1.0 + e))
+    if not (fy > 0.0 and fy * (b2 - b1) + m2 * g * b2 - 2.0 * h2 * fx > 0.0 and 2.0 * h2 * ratio <= b2 - b1):
+        return False
+    pk = alpha - math.acos(En / p2)  # the single block's P2, as on the ground
+    if pk > rs[RS_THMAX]:
+        rs[RS_THMAX] = pk
+        out[O_T_THETA_MAX] = math.nan
+    xo[X_TILT_MAX] = max(xo[X_TILT_MAX], pk)
+    xo[X_P2S] = 1.0
+    return True
+
+
+@njit(cache=True)
+def simulate_stack(prm, prm_asm, sp, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, tail, horizon, max_steps,
+                   want_history, out, xo):
+    """Integrate a body on its plinth under one excitation (arguments as :func:`rockcli.kernels.simulate_rigid`;
+    ``prm`` the body's parameters on the ground, ``prm_asm`` the assembly's as one block, ``sp`` the stack tuple).
+    ``out`` gets the body's results in the single block's layout (``theta_max``: its peak rotation on the plinth),
+    ``xo`` the stack's (``X_*``). Returns the history rows (columns as the rigid driver's, ``theta, theta_dot`` =
+    ``psi, psi'``, ``u, u_dot`` = ``theta2, theta2'``, ``z`` the pattern)."""
+    W, rs, H = _start(ekind, epar, acc, dt, t_begin, want_history, out)
+    for i in range(N_XO):
+        xo[i] = 0.0
+    xo[X_PL_T_MAX] = np.nan
+    xo[X_PL_T_EXCEED] = np.nan
+    xo[X_PL_T_UPLIFT] = np.nan
+    xo[X_TOPPLED] = -1.0
+    nh = np.int64(0)
+    t_show_end = t_exc_end + tail
+    t_horizon = t_exc_end + max(horizon, tail)
+    body_first = prm[P_THR] <= prm_asm[P_THR]
+    if want_history:
+        H, nh = _hist(H, nh, rs, epar, W, xo, HK_STATE)
+
+    while True:
+        _advance_segment(rs, ekind, epar, acc, dt, t_begin)
+        t_stop = min(rs[RS_SEG_END], t_horizon)
+        if rs[RS_SETTLED] != 0.0 and rs[RS_T] < t_show_end:
+            t_stop = min(t_stop, t_show_end)
+        # ---- the end of the run: P1, P2S -------------------------------------------------------
+        t = rs[RS_T]
+        pat = xo[X_PAT]
+        if rs[RS_SETTLED] == 0.0 and t >= t_exc_end:
+            if pat == PAT_R or (pat == PAT_B and _p2s(prm, sp, rs, W, out, xo)):
+                rs[RS_SETTLED] = 1.0
+                out[O_T_SETTLED] = t
+        if rs[RS_SETTLED] != 0.0 and (not want_history or t >= t_show_end):
+            break
+        if _out_of_time(rs, t_horizon, max_steps):
+            break
+        seg = _seg(rs)
+
+        # ---- at rest: scan the ground for the lower threshold ---------------------------------
+        if pat == PAT_R:
+            t0 = rs[RS_T]
+            if body_first:
+                _stuck_rigid(prm, rs, epar, t_stop, out, False)
+                if rs[RS_PHASE] == PHASE_ROCKING:
+                    _set_pattern(rs, W, xo, 0.0, rs[RS_S], 0.0, 0.0, 0.0, 0.0)
+            else:
+                tu, su = _rigid_uplift(seg, epar, prm_asm[P_THR], rs[RS_T], t_stop)
+                if tu < 0.0:
+                    rs[RS_T] = t_stop
+                else:
+                    rs[RS_T] = tu
+                    _set_pattern(rs, W, xo, su, 0.0, 0.0, 0.0, 0.0, 0.0)
+                    _plinth_lifts(xo, tu)
+            aa = _max_abs_ag(seg, epar, t0, rs[RS_T]) / prm[P_G]
+            xo[X_FR_B] = max(xo[X_FR_B], aa)
+            xo[X_FR_J] = max(xo[X_FR_J], aa)
+            if want_history:
+                H, nh = _hist(H, nh, rs, epar, W, xo, HK_UPLIFT if xo[X_PAT] != PAT_R else HK_STATE)
+            continue
+
+        if ekind == EXC_RECORD:
+            t_stop = _substep_stop(rs[RS_T], rs[RS_SEG_END], dt, t_stop)
+        s = xo[X_S]
+        k = xo[X_K]
+
+        # ---- one pattern, one rigid body: B (the body) or P (the assembly) --------------------
+        if pat == PAT_B or pat == PAT_P:
+            pb = prm if pat == PAT_B else prm_asm
+            c = k if pat == PAT_B else s
+            if pat == PAT_P:  # the rigid events track the plinth's peak: swap its record in
+                rs[RS_THMAX], xo[X_PL_MAX] = xo[X_PL_MAX], rs[RS_THMAX]
+                out[O_T_THETA_MAX], xo[X_PL_T_MAX] = xo[X_PL_T_MAX], out[O_T_THETA_MAX]
+                out[O_T_EXCEED], xo[X_PL_T_EXCEED] = xo[X_PL_T_EXCEED], out[O_T_EXCEED]
+            ok, hs, last = _take_step_rigid(pb, ekind, epar, max_steps, rs, W, t_stop)
+            t_new = t_stop if last else rs[RS_T] + hs
+            code = 0
+            sig = 1.0
+            s_open = -1.0
+            side = 0.0
+            if ok:
+                s_ev = _impact_ahead(W, hs, 0, c)
+                if c * W[W_YNEW, 0] >= HALF_PI:  # nothing past the overturn is read
+                    so = _first_down(_dense(W, hs, np.int64(0), -c), -HALF_PI, 0.0, 1.0)
+                    s_ev = min(s_ev, so if so >= 0.0 else 1.0)
+                s_open, side = _face_opens(pat, s, k, sp, pb, W, hs, rs[RS_T], seg, epar, xo, s_ev)
+                if s_open >= 0.0:  # the step stands up to the face opening: retake it there
+                    _restep_rigid(0, PHASE_ROCKING, c, pb, seg, epar, _NO_HY, rs[RS_T], s_open * hs, W, 0, 2)
+                    rs[RS_NRHS] += 6
+                    W[W_YNEW, 0] = W[W_EV, 0]
+                    W[W_YNEW, 1] = W[W_EV, 1]
+                    t_new = rs[RS_T] + s_open * hs
+                code, sig = _rocking_events(pb, rs, W, out, hs, t_new, 1.0 if s_open < 0.0 else s_open)
+                sig_end = sig if (code == EV_IMPACT or code == EV_OVERTURN) else (1.0 if s_open < 0.0 else s_open)
+                xo[X_TILT_MAX] = max(xo[X_TILT_MAX], min(_abs_max(_dense(W, hs, np.int64(0), 1.0), sig_end),
+                                                         HALF_PI))
+            if pat == PAT_P:
+                rs[RS_THMAX], xo[X_PL_MAX] = xo[X_PL_MAX], rs[RS_THMAX]
+                out[O_T_THETA_MAX], xo[X_PL_T_MAX] = xo[X_PL_T_MAX], out[O_T_THETA_MAX]
+                out[O_T_EXCEED], xo[X_PL_T_EXCEED] = xo[X_PL_T_EXCEED], out[O_T_EXCEED]
+            if not ok:
+                rs[RS_STATUS] = STATUS_MAX_STEPS
+                break
+            if code == EV_OVERTURN:
+                if pat == PAT_B:
+                    _to_overturn(rs, W, out, hs, sig, 2)
+                    xo[X_TOPPLED] = 1.0
+                else:
+                    _state_at(W, hs, sig, 2)
+                    W[W_Y, 0] = W[W_TMP, 0]
+                    W[W_Y, 1] = W[W_TMP, 1]
+                    rs[RS_T] = rs[RS_T] + sig * hs
+                    out[O_T_OVERTURN] = rs[RS_T]
+                    rs[RS_STATUS] = STATUS_OVERTURNED
+                    xo[X_PL_MAX] = HALF_PI
+                    xo[X_TOPPLED] = 0.0
+                if want_history:
+                    H, nh = _hist(H, nh, rs, epar, W, xo, HK_OVERTURN)
+                break
+            if code == EV_FAILED:
+                rs[RS_T] = t_new
+                _set_pattern(rs, W, xo, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+            elif code == EV_IMPACT:
+                _to_impact(_restep_rigid, 0, pb, rs, W, epar, _NO_HY, hs, sig, 2)
+                if want_history:
+                    H, nh = _hist(H, nh, rs, epar, W, xo, HK_IMPACT)
+                thd1 = W[W_Y, 1]
+                t = rs[RS_T]
+                ag = ground_at(t, _seg(rs), epar)
+                if pat == PAT_B:
+                    V = max_velocities(0.0, k, sp, 0.0, 0.0, 0.0, thd1)
+                    s1, k1, V1, margin, jump, db, dj, plastic = choose_after_impact(0.0, k, 1, sp, 0.0, 0.0, V)
+                else:
+                    V = max_velocities(s, 0.0, sp, 0.0, 0.0, thd1, 0.0)
+                    s1, k1, V1, margin, jump, db, dj, plastic = choose_after_impact(s, 0.0, 0, sp, 0.0, 0.0, V)
+                if ((pat == PAT_B and s1 == 0.0) or (pat == PAT_P and k1 == 0.0)) and not plastic:
+                    # the plinth stays (B), the body stays on it (P): the single block's impact map and rest rule
+                    xo[X_FRI_B] = max(xo[X_FRI_B], db)
+                    xo[X_FRI_J] = max(xo[X_FRI_J], dj)
+                    thd2, _ = impact_map(pb, thd1)
+                    rs[RS_S] = -rs[RS_S]
+                    if pat == PAT_B:
+                        xo[X_K] = rs[RS_S]
+                        _bounce(pb, rs, W, out, thd1, t_exc_end, ag, thd2, pb[P_THR])
+                        if rs[RS_PHASE] == PHASE_STUCK:
+                            _set_pattern(rs, W, xo, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+                    else:
+                        xo[X_S] = rs[RS_S]
+                        xo[X_PL_N_IMP_ALL] += 1.0
+                        if t <= t_exc_end:
+                            xo[X_PL_N_IMP] += 1.0
+                        rs[RS_FRESH] = 1.0
+                        if comes_to_rest(pb, ag, thd2, pb[P_THR], pb[P_ALPHA]):
+                            xo[X_PL_N_RESTS] += 1.0
+                            _set_pattern(rs, W, xo, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+                        else:
+                            W[W_Y, 1] = thd2
+                else:
+                    if pat == PAT_B:
+                        out[O_N_IMPACTS_ALL] += 1.0
+                        if t <= t_exc_end:
+                            out[O_N_IMPACTS] += 1.0
+                        _after_impact(1, 0.0, k, sp, prm, prm_asm, 0.0, 0.0, V, rs, W, out, xo, t, ag)
+                    else:
+                        xo[X_PL_N_IMP_ALL] += 1.0
+                        if t <= t_exc_end:
+                            xo[X_PL_N_IMP] += 1.0
+                        _after_impact(0, s, 0.0, sp, prm, prm_asm, 0.0, 0.0, V, rs, W, out, xo, t, ag)
+                if want_history:
+                    H, nh = _hist(H, nh, rs, epar, W, xo, HK_REST if xo[X_PAT] == PAT_R else HK_IMPACT_AFTER)
+                continue
+            elif s_open >= 0.0:
+                # the face opens: the plinth lifts (from B) or the body lifts off it (from P)
+                _to_step_end(rs, W, t_new, 2)
+                if pat == PAT_B:
+                    _set_pattern(rs, W, xo, side, k, W[W_Y, 0], W[W_Y, 1], 0.0, 0.0)
+                    _plinth_lifts(xo, rs[RS_T])
+                else:
+                    _set_pattern(rs, W, xo, s, side, 0.0, 0.0, W[W_Y, 0], W[W_Y, 1])
+                    if out[O_UPLIFTED] == 0.0:  # the body's first rotation on the plinth
+                        _count_uplift(out, rs[RS_T])
+                if want_history:
+                    H, nh = _hist(H, nh, rs, epar, W, xo, HK_UPLIFT)
+                continue
+            else:
+                _to_step_end(rs, W, t_new, 2)
+            if want_history:
+                H, nh = _hist(H, nh, rs, epar, W, xo, HK_STATE)
+            continue
+
+        # ---- both rock -------------------------------------------------------------------------
+        code = rs[RS_S]
+        ok, hs, last = _take_step_bp(sp, ekind, epar, max_steps, rs, W, t_stop)
+        if not ok:
+            rs[RS_STATUS] = STATUS_MAX_STEPS
+            break
+        xo[X_STEPS_BP] += 1.0
+        t_new = t_stop if last else rs[RS_T] + hs
+        # events: an impact at either pivot, a block toppling; the earliest wins
+        sig_b = _impact_ahead(W, hs, 2, s)
+        sig_j = _impact_ahead(W, hs, 0, k)
+        sig_ob = 2.0
+        sig_oj = 2.0
+        if s * W[W_YNEW, 2] >= HALF_PI:
+            so = _first_down(_dense(W, hs, np.int64(2), -s), -HALF_PI, 0.0, 1.0)
+            sig_ob = so if so >= 0.0 else 1.0
+        if k * W[W_YNEW, 0] >= HALF_PI:
+            so = _first_down(_dense(W, hs, np.int64(0), -k), -HALF_PI, 0.0, 1.0)
+            sig_oj = so if so >= 0.0 else 1.0
+        failed_b = sig_b == 1.0 and s * W[W_YNEW, 2] <= 0.0
+        failed_j = sig_j == 1.0 and k * W[W_YNEW, 0] <= 0.0
+        sig = min(sig_b, sig_j, sig_ob, sig_oj, 1.0)
+        ev = 0
+        if sig_ob <= sig and sig_ob <= 1.0:
+            ev = 1
+        elif sig_oj <= sig and sig_oj <= 1.0:
+            ev = 2
+        elif sig_b < 1.0 and sig_b <= sig:
+            ev = 3
+        elif sig_j < 1.0 and sig_j <= sig:
+            ev = 4
+        _bp_peaks(rs, out, xo, sp, W, hs, sig)
+        for m in (0.5, 1.0):
+            pull = _bp_forces(s, k, sp, W, hs, m * sig, rs[RS_T], seg, epar, xo)
+            if pull:
+                xo[X_N_JUMP] += 1.0
+                break
+        if ev == 1 or ev == 2:
+            _state_at(W, hs, sig, 4)
+            rs[RS_T] = rs[RS_T] + sig * hs
+            out[O_T_OVERTURN] = rs[RS_T]
+            rs[RS_STATUS] = STATUS_OVERTURNED
+            if ev == 1:
+                xo[X_TOPPLED] = 0.0
+                xo[X_PL_MAX] = HALF_PI
+            else:
+                xo[X_TOPPLED] = 1.0
+                rs[RS_THMAX] = HALF_PI
+            for i in range(4):
+                W[W_Y, i] = W[W_TMP, i]
+            if want_history:
+                H, nh = _hist(H, nh, rs, epar, W, xo, HK_OVERTURN)
+            break
+        if ev == 3 or ev == 4:
+            col = 2 if ev == 3 else 0
+            t0 = rs[RS_T]
+            _restep_bp(code, sp, seg, epar, t0, sig * hs, W)
+            rs[RS_NRHS] += 6
+            dt_e = -W[W_EV, col] / W[W_FEV, col] if W[W_FEV, col] != 0.0 else 0.0
+            dt_e = min(max(dt_e, -sig * hs), (1.0 - sig) * hs)
+            _shift_event(W, dt_e, 0, 4)
+            for i in range(4):
+                W[W_Y, i] = W[W_EV, i]
+            W[W_Y, col] = 0.0
+            rs[RS_T] = t0 + sig * hs + dt_e
+            t = rs[RS_T]
+            if want_history:
+                H, nh = _hist(H, nh, rs, epar, W, xo, HK_IMPACT)
+            psi, psid, th2, thd2 = W[W_Y, 0], W[W_Y, 1], W[W_Y, 2], W[W_Y, 3]
+            V = max_velocities(s, k, sp, th2, psi, thd2, psid)
+            ag = ground_at(t, _seg(rs), epar)
+            if ev == 3:
+                xo[X_PL_N_IMP_ALL] += 1.0
+                if t <= t_exc_end:
+                    xo[X_PL_N_IMP] += 1.0
+                _after_impact(0, s, k, sp, prm, prm_asm, th2, psi, V, rs, W, out, xo, t, ag)
+            else:
+                out[O_N_IMPACTS_ALL] += 1.0
+                if t <= t_exc_end:
+                    out[O_N_IMPACTS] += 1.0
+                _after_impact(1, s, k, sp, prm, prm_asm, th2, psi, V, rs, W, out, xo, t, ag)
+            if want_history:
+                H, nh = _hist(H, nh, rs, epar, W, xo, HK_IMPACT_AFTER)
+            continue
+        _to_step_end(rs, W, t_new, 4)
+        if failed_b or failed_j:
+            # a pivot that never rose above 0 within the step (an uplift that did not take): stuck again
+            psi, psid, th2, thd2 = W[W_Y, 0], W[W_Y, 1], W[W_Y, 2], W[W_Y, 3]
+            if failed_b and failed_j:
+                _set_pattern(rs, W, xo, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+            elif failed_b:
+                _set_pattern(rs, W, xo, 0.0, k, psi, psid, 0.0, 0.0)
+            else:
+                _set_pattern(rs, W, xo, s, 0.0, 0.0, 0.0, th2, thd2)
+        if want_history:
+            H, nh = _hist(H, nh, rs, epar, W, xo, HK_STATE)
+
+    _finish(rs, W, out)
+    return H[:nh]

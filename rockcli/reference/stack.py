@@ -1,0 +1,431 @@
+"""The slow reference of a stack of rocking blocks on a rigid foundation (a body on its plinth: two blocks):
+SciPy ``solve_ivp`` with events for every contact change, phases chained in plain Python.
+
+Written independently of :mod:`rockcli.kernels` and of the closed forms of docs/physics-plinth.md: the
+mechanics are the separate bodies' Newton-Euler equations with the contact constraints of each pattern
+(:class:`rockcli.reference.stack_mechanics.StackModel`), for any number of blocks. The rules are those of the
+note:
+
+* At rest every interface is a face; the face forces are linear in ``ag``, so the ground motion is scanned for
+  the first ``ag`` at which a corner force of some face reaches 0, solved by ``brentq``; that face opens about its
+  other corner.
+* Rocking: the relative angles of the pivots are integrated; terminal events: a pivot's angle back to 0 (an
+  impact), a pivot's angle at ``pi/2`` (the block above it topples), a corner force of a face down to 0 (the face
+  opens about its other corner; while a face is watched the steps stay below ``0.02/p`` of the fastest block, so
+  that a short dip of its force below 0 is not stepped over).
+* Impact at interface ``j``: every candidate pattern after it (the interfaces at angle 0 free to be a face or
+  either pivot; the others keep their pivot) gets its velocities from the plastic impact (impulses at its own
+  constraints) or, with a restitution ``E``, from the energetic rule (the impacting pivot's new rate is ``E`` times
+  the largest the kinetic energy allows); the one whose impulses press (every corner impulse >= 0) and whose new
+  pivots open is taken. A persistent pivot's impulse is not required to press: a pulling one is counted as a
+  jump (``n_jumps``; the rocking-only assumption fails there).
+* Rest: after an impact with every angle at 0, the whole stack is at rest when nothing could lift it from rest
+  and its kinetic energy is below ``rest_tol`` times the smallest slenderness-weighted restoring moment; else, an
+  impact that leaves the impacting interface pivoting sticks it again (plastic, momentum kept along the other
+  pivots) when the ground and the rest of the stack could not open it (both corners' relative accelerations
+  restore it) and the rotation it could still reach against the smaller of them is below ``rest_tol`` times its
+  slenderness. Both are the single block's rule for one block.
+* The run ends at rest after the excitation, when a block topples, or ``horizon`` after the excitation.
+
+Friction demand ``|T|/N`` is read on each rocking phase's dense output at its steps, ``demand_points`` equally
+spaced times and the midpoints between all of these, and while at rest it is ``|ag|/g`` (on the rest scan's
+grid); the impulsive demand is ``|T|/N`` of the impulses of each impact.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from rockcli.reference.equations import ground_function
+from rockcli.reference.ivp import Work
+from rockcli.reference.stack_mechanics import StackModel
+from rockcli.units import G
+
+
+@dataclass
+class StackRefResult:
+    """Outcome of :func:`reference_stack` (SI). Per interface ``i`` (0 the ground, ``n - 1`` under the top block):
+    ``peak`` max ``|psi_i|`` [rad] (the block above it relative to the one below), ``t_uplift`` its first
+    opening, ``n_impacts`` while the ground moves, ``friction`` the peak continuous ``|T|/N``, ``friction_impulsive``
+    the peak of impulses; per block ``theta_peak`` its peak absolute tilt. ``toppled``: the interface that reached
+    ``pi/2`` (the blocks above it fall), or -1."""
+
+    verdict: str
+    toppled: int
+    peak: list
+    theta_peak: list
+    t_uplift: list
+    t_overturn: float
+    n_impacts: list
+    friction: list
+    friction_impulsive: list
+    n_jumps: int = 0
+    n_inconsistent: int = 0
+    settled: bool = True
+    t_end: float = math.nan
+    impacts: list = field(default_factory=list)
+    patterns: list = field(default_factory=list)
+    steps: int = 0
+    nfev: int = 0
+    wall_s: float = math.nan
+
+
+def stack_blocks(stack) -> list:
+    """``[(b, h, m), ...]`` bottom to top of a :class:`rockcli.models.Stack` (body mass 1)."""
+    return [(stack.b2, stack.h2, stack.m2), (stack.b1, stack.h1, 1.0)]
+
+
+def reference_plinth(stack, excitation, **kw) -> StackRefResult:
+    """:func:`reference_stack` of a body on its plinth (``stack``: a :class:`rockcli.models.Stack`)."""
+    return reference_stack(stack_blocks(stack), excitation, **kw)
+
+
+def reference_stack(blocks, excitation, *, rtol=1e-10, atol=None, horizon=600.0, rest_tol=1e-8, restitution=None,
+                    method="DOP853", align=True, max_phases=200000, demand_points=8, record_impacts=False,
+                    deadline_s=None, tol=1e-9) -> StackRefResult:
+    """Run the stack ``blocks`` (``[(b, h, m), ...]`` bottom to top) under ``excitation`` (a record or a pulse).
+
+    ``atol`` None: ``rtol`` times the state scales (each interface's slenderness and ``p alpha``); ``align``: a
+    record's sample intervals integrated one by one (no step across a kink); ``record_impacts``: keep every
+    impact's states and energies in ``impacts`` (the tests' conservation checks); ``tol``: the relative slack of
+    the impact consistency tests.
+    """
+    t_wall = time.perf_counter()
+    run = _Run(StackModel(blocks), excitation, rtol, atol, horizon, rest_tol, restitution, method, align, demand_points,
+               record_impacts, deadline_s, tol)
+    for _ in range(max_phases):
+        if not run.phase():
+            break
+    out = run.result()
+    out.wall_s = time.perf_counter() - t_wall
+    return out
+
+
+def _candidates(model, st, q, j, E):
+    """The patterns that may follow an impact at ``j``: the interfaces at angle 0 a face or either pivot (with a
+    restitution the impacting one on its new corner), the others keeping their pivot."""
+    import itertools
+
+    opts = []
+    for i in range(model.n):
+        if i == j and E is not None:
+            opts.append((-st[j],))
+        elif q[i] == 0.0:
+            opts.append((0, 1, -1))
+        else:
+            opts.append((st[i],))
+    return list(itertools.product(*opts))
+
+
+def post_velocities(model, c, q, v_minus, j, E):
+    """Velocities and impulses after an impact at ``j`` into the pattern ``c``: plastic, or with a restitution the
+    energetic rule (docs/physics-plinth.md)."""
+    if E is None or c[j] == 0:
+        return model.impact(c, q, v_minus)
+    s0 = list(c)
+    s0[j] = 0
+    v0, _ = model.impact(s0, q, v_minus)  # the plastic part: every motion but the impacting pivot's
+    w, _ = model.impact(c, q, np.zeros_like(v_minus), rate=(j, 1.0))  # the impacting pivot's own mode
+    dv = v_minus - v0
+    W = math.sqrt(max(0.0, float(np.sum(model.Mdiag * dv * dv)) / float(np.sum(model.Mdiag * w * w))))
+    target = E * W * math.copysign(1.0, model.rel_rates(v_minus)[j])
+    return model.impact(c, q, v_minus, rate=(j, target))
+
+
+def choose_post(model, st, q, v_minus, j, E=None, tol=1e-9):
+    """The pattern after an impact at ``j`` (``q[j] = 0``) from ``st``: ``(pattern, v+, impulses, margin, pulls)``.
+
+    Each candidate's impulses must press (both corners of a face, the corner of a pivot) and its new pivots open;
+    the candidate with the largest smallest margin is taken (``margin < 0``: none was consistent). A restitution
+    that no candidate can carry (its couple would lift a face) gives way to the plastic law. ``pulls`` counts the
+    kept pivots whose impulse pulls (a jump the model does not follow)."""
+    c, v, imp, margin = _best(model, st, q, v_minus, j, E)
+    if E is not None and margin < -tol:  # no pattern carries the rebound: the plastic law
+        c, v, imp, margin = _best(model, st, q, v_minus, j, None)
+    zero = [i for i in range(model.n) if q[i] == 0.0]
+    pscale = max(abs(x[0]) for x in imp)
+    pulls = sum(1 for i in range(model.n) if c[i] != 0 and i not in zero and max(imp[i][2], imp[i][3]) < -tol * pscale)
+    return c, v, imp, margin, pulls
+
+
+def _best(model, st, q, v_minus, j, E):
+    zero = [i for i in range(model.n) if q[i] == 0.0]
+    vscale = float(np.max(np.abs(model.rel_rates(v_minus)))) + 1e-300
+    best = None
+    for c in _candidates(model, st, q, j, E):
+        v, imp = post_velocities(model, c, q, v_minus, j, E)
+        rel = model.rel_rates(v)
+        pscale = max(abs(x[0]) for x in imp) + 1e-300
+        margin = math.inf
+        for i in zero:
+            if c[i] == 0:
+                margin = min(margin, min(imp[i][2], imp[i][3]) / pscale)
+            else:
+                margin = min(margin, c[i] * rel[i] / vscale)
+                if not (i == j and E is not None):
+                    margin = min(margin, max(imp[i][2], imp[i][3]) / pscale)
+        if best is None or margin > best[0]:
+            best = (margin, c, v, imp)
+    margin, c, v, imp = best
+    return c, v, imp, margin
+
+
+class _Run:
+    def __init__(self, model, excitation, rtol, atol, horizon, rest_tol, restitution, method, align, demand_points,
+                 record_impacts, deadline_s, tol):
+        self.M, n = model, model.n
+        self.ag, self.t_exc_end, self.scan_step, self.max_step = ground_function(excitation)
+        self.t_max_end = self.t_exc_end + horizon
+        self.rest_tol, self.E, self.npts, self.rec, self.tol = rest_tol, restitution, demand_points, record_impacts, tol
+        p = np.sqrt(0.75 * G / np.hypot(model.b, model.h))  # each block's frequency parameter: a state scale
+        self.pmax = float(np.max(p))
+        self.scale = np.concatenate([[model.alpha[i], p[i] * model.alpha[i]] for i in range(n)])
+        self.work = Work(method, rtol, atol, lambda k: self.scale[self.cols], deadline_s)
+        if align and hasattr(excitation, "acc"):
+            self.work.breaks = float(excitation.dt) * np.arange(1, np.asarray(excitation.acc).size)
+        self.t, self.st, self.q, self.qd = 0.0, [0] * n, np.zeros(n), np.zeros(n)
+        self.peak, self.theta_peak = [0.0] * n, [0.0] * n
+        self.t_uplift, self.n_imp = [math.nan] * n, [0] * n
+        self.fric, self.fric_imp = [0.0] * n, [0.0] * n
+        self.toppled, self.t_over = -1, math.nan
+        self.n_jumps = self.n_incons = 0
+        self.impacts, self.patterns = [], [(0.0, tuple(self.st))]
+        self.cols = np.arange(0)
+
+    # ---- bookkeeping ----------------------------------------------------------------------------------------
+    def _set(self, st):
+        self.st = [int(s) for s in st]
+        self.patterns.append((self.t, tuple(self.st)))
+
+    def _open(self, i, sigma):
+        self.st[i] = sigma
+        self.q[i] = self.qd[i] = 0.0
+        self.patterns.append((self.t, tuple(self.st)))
+        if math.isnan(self.t_uplift[i]):
+            self.t_uplift[i] = self.t
+
+    def _demand(self, forces):
+        for i, (N, T, _, _) in enumerate(forces):
+            if N > 0:
+                self.fric[i] = max(self.fric[i], abs(T) / N)
+
+    def _peaks(self, q):
+        th = np.cumsum(q)
+        for i in range(self.M.n):
+            self.peak[i] = max(self.peak[i], abs(q[i]))
+            self.theta_peak[i] = max(self.theta_peak[i], abs(th[i]))
+
+    # ---- one phase -------------------------------------------------------------------------------------------
+    def phase(self) -> bool:
+        if self.t >= self.t_max_end - 1e-12 or self.toppled >= 0:
+            return False
+        if all(s == 0 for s in self.st):
+            return self._rest()
+        return self._rock()
+
+    def _rest(self) -> bool:
+        """At rest: the face forces are ``P0 + ag P1``; the first ``ag`` that brings a corner force to 0 opens it."""
+        from scipy.optimize import brentq
+
+        if self.t >= self.t_exc_end:
+            return False
+        z = np.zeros(self.M.n)
+        f0 = self.M.dynamics(self.st, z, z, 0.0)[1]
+        f1 = self.M.dynamics(self.st, z, z, 1.0)[1]
+        up, lo, which_up, which_lo = math.inf, -math.inf, None, None
+        for i in range(self.M.n):
+            for c, sigma in ((2, -1), (3, +1)):  # the right corner unloads: pivot left (-1); the left: right (+1)
+                P0, P1 = f0[i][c], f1[i][c] - f0[i][c]
+                if P1 == 0.0:
+                    continue
+                a = -P0 / P1
+                if a > 0 and a < up:
+                    up, which_up = a, (i, sigma)
+                elif a < 0 and a > lo:
+                    lo, which_lo = a, (i, sigma)
+        ag, t = self.ag, self.t
+        grid = np.arange(t, self.t_exc_end + self.scan_step, self.scan_step / 4)
+        grid = np.append(grid[grid < self.t_exc_end], self.t_exc_end)
+        vals = np.array([ag(x) for x in grid])
+        hit = np.nonzero((vals > up) | (vals < lo))[0]
+        k = hit[0] if hit.size else grid.size
+        if k:
+            self.fric = [max(f, float(np.max(np.abs(vals[:k]))) / G) for f in self.fric]
+        if not hit.size:
+            self.t = self.t_exc_end
+            return False
+        above = vals[k] > up
+
+        def excess(x):
+            return ag(x) - up if above else lo - ag(x)
+
+        self.t = grid[0] if k == 0 else brentq(excess, grid[k - 1], grid[k], xtol=1e-14)
+        self.fric = [max(f, abs(ag(self.t)) / G) for f in self.fric]
+        self._open(*(which_up if above else which_lo))
+        return True
+
+    def _rhs_factory(self, piv):
+        M, st, ag = self.M, list(self.st), self.ag
+
+        def unpack(y):
+            q, qd = np.zeros(M.n), np.zeros(M.n)
+            q[piv], qd[piv] = y[0::2], y[1::2]
+            return q, qd
+
+        cache = {}
+
+        def dyn(t, y):
+            key = (t, y.tobytes())
+            if key not in cache:
+                cache.clear()
+                q, qd = unpack(y)
+                cache[key] = M.dynamics(st, q, qd, ag(t))
+            return cache[key]
+
+        def rhs(t, y):
+            qdd = dyn(t, y)[0]
+            out = np.empty_like(y)
+            out[0::2], out[1::2] = y[1::2], qdd[piv]
+            return out
+
+        return rhs, dyn, unpack
+
+    def _rock(self) -> bool:
+        M, st, t0 = self.M, list(self.st), self.t
+        piv = [i for i in range(M.n) if st[i] != 0]
+        faces = [i for i in range(M.n) if st[i] == 0]
+        rhs, dyn, unpack = self._rhs_factory(piv)
+        self.cols = np.concatenate([[2 * i, 2 * i + 1] for i in piv]).astype(int)
+        y0 = np.ravel(np.column_stack([self.q[piv], self.qd[piv]]))
+        # a face that cannot hold at the start opens now (its corner force is already negative)
+        forces = dyn(t0, y0)[1]
+        for f in faces:
+            if min(forces[f][2], forces[f][3]) < -self.tol * M.weight[f]:
+                self._open(f, +1 if forces[f][3] < forces[f][2] else -1)
+                return True
+        events, kinds = [], []
+        for k, i in enumerate(piv):
+            s = st[i]
+            ev = (lambda tt, yy, k=k, s=s: s * yy[2 * k] if tt > t0 else 1.0)
+            ev.terminal, ev.direction = True, -1
+            events.append(ev), kinds.append(("impact", i))
+            ev = (lambda tt, yy, k=k, s=s: s * yy[2 * k] - math.pi / 2)
+            ev.terminal, ev.direction = True, 1
+            events.append(ev), kinds.append(("topple", i))
+            ev = (lambda tt, yy, k=k: yy[2 * k + 1])
+            events.append(ev), kinds.append(("peak", i))
+            ev = (lambda tt, yy, i=i: dyn(tt, yy)[1][i][0] / M.weight[i])
+            ev.direction = -1
+            events.append(ev), kinds.append(("jump", i))
+        for i in range(M.n):  # turning points of each block's absolute tilt
+            ks = [k for k, j in enumerate(piv) if j <= i]
+            if ks:
+                ev = (lambda tt, yy, ks=tuple(ks): sum(yy[2 * k + 1] for k in ks))
+                events.append(ev), kinds.append(("tilt", i))
+        for f in faces:
+            ev = (lambda tt, yy, f=f: min(dyn(tt, yy)[1][f][2], dyn(tt, yy)[1][f][3]) / M.weight[f]
+                  if tt > t0 else 1.0)
+            ev.terminal, ev.direction = True, -1
+            events.append(ev), kinds.append(("open", f))
+        t_end = self.t_exc_end if t0 < self.t_exc_end else self.t_max_end
+        # solve_ivp sees an event only as a sign change between two step ends: a face's corner force that dips
+        # below 0 and comes back within one step would be missed (seen on random scenes with steps of 0.07 s).
+        # While a face is watched, steps are kept below 0.02/p of the fastest block (60 or more per rocking cycle)
+        max_step = min(self.max_step, 0.02 / self.pmax) if faces else self.max_step
+        sol = self.work.ivp(rhs, (t0, t_end), y0, max_step=max_step, events=events, dense_output=True)
+        for yy in sol.y.T:
+            self._peaks(unpack(yy)[0])
+        for k, (kind, i) in enumerate(kinds):
+            if kind in ("peak", "tilt") and sol.y_events[k].size:
+                for yy in sol.y_events[k]:
+                    self._peaks(unpack(yy)[0])
+            if kind == "jump" and sol.t_events[k].size:
+                self.n_jumps += int(sol.t_events[k].size)
+        ts = np.union1d(sol.t, np.linspace(t0, sol.t[-1], self.npts))
+        ts = np.union1d(ts, 0.5 * (ts[1:] + ts[:-1]))
+        for tt in ts:
+            self._demand(dyn(tt, sol.sol(tt))[1])
+        self.t = float(sol.t[-1])
+        self.q, self.qd = unpack(sol.y[:, -1])
+        if sol.status != 1:
+            return True
+        for k, (kind, i) in enumerate(kinds):
+            if sol.t_events[k].size and events[k].__dict__.get("terminal", False):
+                if kind == "topple":
+                    self.toppled, self.t_over = i, self.t
+                    self.peak[i] = math.pi / 2
+                    return False
+                if kind == "impact":
+                    self.q[i] = 0.0
+                    self._impact(i)
+                    return True
+                if kind == "open":
+                    f = dyn(self.t, sol.y[:, -1])[1][i]
+                    self._open(i, +1 if f[3] < f[2] else -1)
+                    return True
+        return True
+
+    # ---- impacts -------------------------------------------------------------------------------------------
+    def _impact(self, j):
+        M, t = self.M, self.t
+        v_minus = M.velocities(self.st, self.q, self.qd)
+        if t <= self.t_exc_end:
+            self.n_imp[j] += 1
+        c, v, imp, margin, pulls = choose_post(M, self.st, self.q, v_minus, j, self.E, self.tol)
+        if margin < -self.tol:
+            self.n_incons += 1
+        self.n_jumps += pulls
+        for i in range(M.n):
+            if imp[i][0] > 0:
+                self.fric_imp[i] = max(self.fric_imp[i], abs(imp[i][1]) / imp[i][0])
+        if self.rec:
+            self.impacts.append(dict(t=t, j=j, pre=tuple(self.st), post=tuple(c), q=self.q.copy(), v_minus=v_minus,
+                                     v_plus=v, ke_minus=M.kinetic(v_minus), ke_plus=M.kinetic(v), impulses=imp))
+        self._set(c)
+        self.qd = np.where(np.array(c) != 0, M.rel_rates(v), 0.0)
+        if any(c) and not np.any(self.q) and self._stack_rests(v):
+            self._set([0] * M.n)
+            self.qd = np.zeros(M.n)
+        elif c[j] != 0:
+            self._rest_rule(j, v)
+
+    def _stack_rests(self, v) -> bool:
+        """The whole stack's rest rule, every angle at 0: nothing could lift it from rest (each face's restoring
+        moment at rest, twice its half width times its smaller corner force, positive) and its kinetic energy is
+        below ``rest_tol`` times the smallest ``alpha_j`` times that moment (for one block, the single block's
+        rule)."""
+        M = self.M
+        z = np.zeros(M.n)
+        f = M.dynamics([0] * M.n, z, z, self.ag(self.t))[1]
+        moment = np.array([2.0 * M.c[i] * min(f[i][2], f[i][3]) for i in range(M.n)])
+        return bool(np.all(moment > 0) and M.kinetic(v) < self.rest_tol * float(np.min(M.alpha * moment)))
+
+    def _rest_rule(self, j, v):
+        """Stick interface ``j`` again when nothing could open it and its reach is below ``rest_tol alpha_j``."""
+        M, c = self.M, list(self.st)
+        s0 = list(c)
+        s0[j] = 0
+        v0, _ = M.impact(s0, self.q, v)
+        qd0 = np.where(np.array(s0) != 0, M.rel_rates(v0), 0.0)
+        restoring = math.inf
+        for sigma in (1, -1):
+            s1 = list(s0)
+            s1[j] = sigma
+            restoring = min(restoring, -sigma * M.dynamics(s1, self.q, qd0, self.ag(self.t))[0][j])
+        rate = M.rel_rates(v)[j]
+        if restoring > 0 and rate * rate / (2 * restoring) < self.rest_tol * M.alpha[j]:
+            self._set(s0)
+            self.qd = qd0
+
+    def result(self) -> StackRefResult:
+        uplifted = any(not math.isnan(x) for x in self.t_uplift)
+        verdict = "overturned" if self.toppled >= 0 else ("rocked" if uplifted else "no_uplift")
+        settled = self.toppled >= 0 or all(s == 0 for s in self.st)
+        return StackRefResult(verdict, self.toppled, list(self.peak), list(self.theta_peak), list(self.t_uplift),
+                              self.t_over, list(self.n_imp), list(self.fric), list(self.fric_imp), self.n_jumps,
+                              self.n_incons, settled, self.t, self.impacts, self.patterns, self.work.steps,
+                              self.work.nfev)
