@@ -81,7 +81,8 @@ def read_with_extra(path: Path, column, recognised: str | None = None) -> dict[s
                     raise RockcliInputError(f"{path}: a {FORMAT_NAMES.get(recognised, recognised)} file that "
                                             f"gmprocess cannot read either{reason_words(exc)}") from None
                 raise NotARecord(f"{path}: format not recognised by rockcli, ObsPy or gmprocess"
-                                 f"{reason_words(exc)}") from None
+                                 f"{reason_words(exc)}; give it with --format, or convert the record to text "
+                                 f"(a column of accelerations, read with --units and --dt)") from None
     finally:
         root.setLevel(level)
     traces = [tr for st in streams for tr in st]
