@@ -623,5 +623,6 @@ def test_no_exception_name_in_a_refusal(tmp_path, monkeypatch):
         with pytest.raises(RockcliInputError) as info:
             read_record(path)
         msg = str(info.value)
-        assert msg.startswith(f"{path}: format not recognised by rockcli, ObsPy or gmprocess; give it with --format"), msg
+        start = f"{path}: format not recognised by rockcli, ObsPy or gmprocess; give it with --format"
+        assert msg.startswith(start), msg
         assert "Iteration" not in msg and "Error" not in msg, msg
