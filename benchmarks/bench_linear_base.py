@@ -49,7 +49,7 @@ def scenes(n: int, n_real: int, seed: int = 3301):
     """``(block, foundation, record, scale)`` of the comparison (the same list in every version)."""
     from rockcli.models import Block, LinearIsolation
     from rockcli.records import Record
-    from rockcli.units import G
+    from rockcli.io.units import G
 
     rng = np.random.default_rng(seed)
     out = []

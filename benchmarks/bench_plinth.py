@@ -30,7 +30,7 @@ import numpy as np
 
 from rockcli.models import Block, Plinth, Stack
 from rockcli.pulses import OneSine, RickerAntisymmetric, RickerSymmetric
-from rockcli.units import G
+from rockcli.io.units import G
 
 
 def random_scene(rng):

@@ -29,7 +29,7 @@ from rockcli.models import Block, DoubleConcaveSliding, SingleConcaveSliding, co
 from rockcli.pulses import make_pulse  # noqa: E402
 from rockcli.reference import reference_sliding  # noqa: E402
 from rockcli.solve import simulate  # noqa: E402
-from rockcli.units import G  # noqa: E402
+from rockcli.io.units import G  # noqa: E402
 
 UY = (1e-3, 2.5e-4, 1e-4, 5e-5, 1e-5)
 

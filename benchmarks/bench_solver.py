@@ -25,7 +25,7 @@ from rockcli.pulses import make_pulse  # noqa: E402
 from rockcli.records import read_record  # noqa: E402
 from rockcli.reference import reference_simulate  # noqa: E402
 from rockcli.solve import simulate  # noqa: E402
-from rockcli.units import G  # noqa: E402
+from rockcli.io.units import G  # noqa: E402
 
 
 def best_time(fn, repeat=7, number=None):

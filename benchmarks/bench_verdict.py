@@ -16,7 +16,7 @@ import numpy as np
 from rockcli.models import Block, Rigid
 from rockcli.pulses import make_pulse
 from rockcli.solve import simulate_many
-from rockcli.units import G
+from rockcli.io.units import G
 
 
 def grid_jobs(n: int, shape: str = "ricker-sym", alpha_deg: float = 10.0):

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from rockcli.pulses import make_pulse
-from rockcli.units import G
+from rockcli.io.units import G
 
 
 def _absolute_record_folders() -> None:

@@ -11,7 +11,7 @@ from rockcli.bench import band_limited_record
 from rockcli.models import DoubleConcaveSliding, Rigid, column
 from rockcli.pulses import make_pulse
 from rockcli.solve import simulate
-from rockcli.units import G
+from rockcli.io.units import G
 
 
 def _ref_theta_over_alpha(block, foundation, excitation):

@@ -20,7 +20,7 @@ from rockcli.pulses import make_pulse
 from rockcli.records import read_record
 from rockcli.records import catalog as catalog_mod
 from rockcli.solve import simulate, simulate_many
-from rockcli.units import G
+from rockcli.io.units import G
 
 
 # --------------------------------------------------------------------------------------------------

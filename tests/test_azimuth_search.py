@@ -26,7 +26,7 @@ from rockcli.models import (Block, DoubleConcaveSliding, LeadRubber, LinearIsola
 from rockcli.records import Record
 from rockcli.records.orientation import check_pair, project, sweep_azimuths
 from rockcli.solve import simulate_many
-from rockcli.units import G
+from rockcli.io.units import G
 
 #: 31 factors 0.1 .. 4 with 1 among them, as in tests/test_margin_search.py
 GRID = np.unique(np.concatenate([np.geomspace(0.1, 1.0, 19), np.geomspace(1.0, 4.0, 13)]))

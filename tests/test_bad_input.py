@@ -25,10 +25,10 @@ from rockcli.pulses_fit import fit_pulse
 from rockcli.records import read_record
 from rockcli.records.record import Record
 from rockcli.assess import parse_configurations, resolve_excitations, run_assessment, run_fragility
-from rockcli.inputs import check_scale
+from rockcli.io.inputs import check_scale
 from rockcli.solve import default_rtol, simulate, simulate_many
 from rockcli.spectra import critical_sizes, min_overturning_curves, overturning_map
-from rockcli.units import G
+from rockcli.io.units import G
 
 PROC = Path("/proc")
 needs_proc = pytest.mark.skipif(not (PROC / "self").exists(), reason="no /proc file system")
@@ -341,16 +341,16 @@ def test_cli_bad_input(work, case):
 
 
 # --------------------------------------------------------------------------------------------------
-# a full disk: every output written through rockcli.files fails half-way with ENOSPC
+# a full disk: every output written through rockcli.io.files fails half-way with ENOSPC
 # --------------------------------------------------------------------------------------------------
 def _full_disk(monkeypatch):
-    import rockcli.files
+    import rockcli.io.files
 
     def write(fh, data):
         fh.write(data[: len(data) // 2])  # half of it reaches the disk, then the disk is full
         raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
 
-    monkeypatch.setattr(rockcli.files, "_write", write)
+    monkeypatch.setattr(rockcli.io.files, "_write", write)
 
 
 FULL_DISK_CASES = {
@@ -601,7 +601,7 @@ def test_step_cap_is_one_sentence_exit_1_and_nothing_printed(work, monkeypatch):
 
 def test_atomic_write_keeps_the_old_file_when_the_disk_fills(work, monkeypatch):
     """A failed rewrite leaves the previous file intact, and no temporary file."""
-    from rockcli.files import write_text
+    from rockcli.io.files import write_text
 
     target = work / "keep.csv"
     write_text(target, "old\n")
@@ -619,12 +619,12 @@ def test_atomic_write_keeps_the_old_file_when_the_disk_fills(work, monkeypatch):
 ])
 def test_preflight_reports_unwritable_folders(work, monkeypatch, code, words):
     """Running as root, chmod cannot make a folder unwritable: the failing probe is simulated."""
-    import rockcli.output_checks
+    import rockcli.io.output_checks
 
     def refuse(*args, **kwargs):
         raise OSError(code, os.strerror(code))
 
-    monkeypatch.setattr(rockcli.output_checks.tempfile, "mkstemp", refuse)
+    monkeypatch.setattr(rockcli.io.output_checks.tempfile, "mkstemp", refuse)
     before = snapshot(work)
     res = run_cli(["records", "show", "good.AT2", "--plot", "adir/x.png"])
     assert_one_sentence(res, ["--plot adir/x.png: cannot write there", words])
@@ -656,7 +656,7 @@ def test_sliding_bearing_corners_stay_far_below_the_step_cap(spec):
     from rockcli.models import Block, parse_isolation_spec
     from rockcli.pulses import make_pulse
     from rockcli.solve import simulate
-    from rockcli.units import G
+    from rockcli.io.units import G
 
     for pulse in (make_pulse("ricker-sym", 0.5 * G, 0.5), make_pulse("ricker-sym", 5 * G, 0.05)):
         res = simulate(Block.from_degrees(1.0, 10.0), parse_isolation_spec(spec), pulse)
@@ -741,7 +741,7 @@ def test_grid_rows_counts_what_the_kernel_writes():
 
 def test_scale_limit_is_the_motion_peak_limit():
     """One limit for every motion: the records' and the pulses' 100 g are the scale factors' too."""
-    from rockcli.inputs import MOTION_PEAK_MAX_G
+    from rockcli.io.inputs import MOTION_PEAK_MAX_G
     from rockcli.pulses import A_P_MAX_G
     from rockcli.records.reader import PGA_MAX_G
 

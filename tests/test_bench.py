@@ -20,7 +20,7 @@ from rockcli.models import Block, LinearIsolation, Rigid, column
 from rockcli.pulses import make_pulse
 from rockcli.reference import (METHODS, ReferenceTimeout, impact_map_linear_system, reference_simulate,
                                state_scales)
-from rockcli.units import G
+from rockcli.io.units import G
 
 BASSAE = column("bassae")
 RICKER = make_pulse("ricker-sym", 0.5 * G, 1.2)

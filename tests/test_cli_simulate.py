@@ -12,7 +12,7 @@ from rockcli.cli import main
 from rockcli.models import Block, Rigid
 from rockcli.pulses import make_pulse
 from rockcli.solve import simulate
-from rockcli.units import G
+from rockcli.io.units import G
 
 
 def run(*args):

@@ -1,4 +1,4 @@
-"""``cap_ratio`` / ``--cap-ratio GAMMA_C``: a capped colonnade on a rigid foundation (rockcli.colonnade,
+"""``cap_ratio`` / ``--cap-ratio GAMMA_C``: a capped colonnade on a rigid foundation (rockcli.models.colonnade,
 docs/physics-colonnade.md), against an independent reference that assembles the equation of motion from
 the separate bodies (each column a rigid rectangle given by Gauss points, the beam a translating mass on
 whichever top corners are highest), and the verdict-only shortcuts re-checked."""
@@ -13,12 +13,12 @@ import pytest
 from click.testing import CliRunner
 from scipy.integrate import solve_ivp
 
-from rockcli.colonnade import colonnade_restitution, frequency_factor
+from rockcli.models.colonnade import colonnade_restitution, frequency_factor
 from rockcli.errors import RockcliInputError
 from rockcli.models import Block, Rigid
 from rockcli.pulses import make_pulse
 from rockcli.solve import simulate
-from rockcli.units import G
+from rockcli.io.units import G
 from test_verdict_paths import _compare_modes, random_scenes
 
 _GL = np.array([-1.0, 1.0]) / math.sqrt(3.0)  # 2-point Gauss-Legendre: exact for the quadratic mass moments

@@ -1,4 +1,4 @@
-"""``cap_ratio`` on an isolated base: a capped colonnade on linear bearings (rockcli.colonnade,
+"""``cap_ratio`` on an isolated base: a capped colonnade on linear bearings (rockcli.models.colonnade,
 docs/physics-colonnade.md) against an independent multi-body reference.
 
 The reference takes the bodies one by one (each column a rigid rectangle given by Gauss points, the
@@ -20,11 +20,11 @@ import pytest
 from click.testing import CliRunner
 from scipy.integrate import solve_ivp
 
-from rockcli.colonnade import colonnade_restitution, effective_gamma, frequency_factor, impact_ratio_on_base
+from rockcli.models.colonnade import colonnade_restitution, effective_gamma, frequency_factor, impact_ratio_on_base
 from rockcli.models import Block, LinearIsolation, Rigid
 from rockcli.pulses import make_pulse
 from rockcli.solve import simulate
-from rockcli.units import G
+from rockcli.io.units import G
 from test_colonnade import Colonnade
 from test_verdict_paths import _compare_modes, random_scenes
 

@@ -19,7 +19,7 @@ from rockcli.models import Block, DoubleConcaveSliding, LeadRubber, LinearIsolat
 from rockcli.pulses import make_pulse
 from rockcli.records import Record
 from rockcli.solve import simulate, simulate_many
-from rockcli.units import G
+from rockcli.io.units import G
 from test_solver import synthetic_record
 
 SHAPES = ("ricker-sym", "ricker-anti", "sine", "cosine")

@@ -49,7 +49,7 @@ def listing(folder: Path) -> dict:
 STAGED_RUN = r"""
 import sys, time
 from pathlib import Path
-from rockcli.files import transaction, write_bytes, write_text
+from rockcli.io.files import transaction, write_bytes, write_text
 out = Path(sys.argv[1])
 with transaction() as t:
     t.declare(out / "table.csv", "--csv")
@@ -316,7 +316,7 @@ def test_margin_bisection_below_double_precision_ends(rtol):
     from rockcli.assess.margin import RTOL_FLOOR
     from rockcli.models import Rigid
     from rockcli.pulses import make_pulse
-    from rockcli.units import G
+    from rockcli.io.units import G
 
     block = parse_column_spec("a:R=0.8,alpha=12")
     scene = (block, Rigid(), make_pulse("ricker-sym", 0.5 * G, 0.6))

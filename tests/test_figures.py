@@ -18,7 +18,7 @@ from click.testing import CliRunner
 from rockcli.cli import main
 from rockcli.models import DEFAULT_GAMMA, DEFAULT_XI
 from rockcli.pulses import make_pulse
-from rockcli.units import G
+from rockcli.io.units import G
 
 from conftest import write_pulse_record
 

@@ -12,7 +12,7 @@ import pytest
 from click.testing import CliRunner
 
 from rockcli.cli import main
-from rockcli.impact import impact_ratio
+from rockcli.models.impact import impact_ratio
 from rockcli.models import Block
 from rockcli.models.block import PLAUSIBLE_SIZE_M, size_warning
 

@@ -22,7 +22,7 @@ from rockcli.assess import MARGIN_GRID, find_overturn_scales, parse_column_spec,
 from rockcli.cli import progress as progress_mod
 from rockcli.pulses import make_pulse
 from rockcli.solve import simulate_many
-from rockcli.units import G
+from rockcli.io.units import G
 
 COARSE_GRID = np.append(MARGIN_GRID[:-1:8], MARGIN_GRID[-1])
 
@@ -204,7 +204,7 @@ from rockcli.pulses import make_pulse
 from rockcli.records import Record
 from rockcli.solve import bearing_force_path, simulate, simulate_many
 from rockcli.assess import parse_column_spec
-from rockcli.units import G
+from rockcli.io.units import G
 block = parse_column_spec("c:R=1.2,alpha=12")
 pulse = make_pulse("ricker-anti", 0.35 * G, 0.9)
 wave = Record(0.3 * G * np.sin(np.linspace(0.0, 25.0, 800)) * np.exp(-np.linspace(0.0, 4.0, 800)), 0.01, "wave")

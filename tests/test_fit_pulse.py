@@ -21,7 +21,7 @@ from rockcli.pulses_fit import (
     scale_to_period,
 )
 from rockcli.records.record import Record
-from rockcli.units import G
+from rockcli.io.units import G
 
 SHAPES = {"symmetric": RickerSymmetric, "antisymmetric": RickerAntisymmetric}
 

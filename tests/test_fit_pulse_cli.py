@@ -15,7 +15,7 @@ from click.testing import CliRunner
 from rockcli.cli import main
 from rockcli.pulses import RickerAntisymmetric, RickerSymmetric
 from rockcli.pulses_fit import fit_pulse
-from rockcli.units import G
+from rockcli.io.units import G
 
 REPO = Path(__file__).resolve().parents[1]
 PULSE_COLUMNS = ("pulse_shape", "a_p_g", "T_p_s", "t0_s", "pulse_energy")

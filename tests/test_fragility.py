@@ -30,7 +30,7 @@ from rockcli.records import read_record
 from rockcli.records.motion import calc_peaks
 from rockcli.records.record import Record
 from rockcli.solve import VERDICT_ERROR, JobError, simulate, simulate_many
-from rockcli.units import G
+from rockcli.io.units import G
 
 THETA, BETA = 0.45, 0.5
 

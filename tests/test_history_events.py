@@ -18,13 +18,13 @@ import pytest
 from click.testing import CliRunner
 
 from rockcli.errors import RockcliInputError
-from rockcli.impact import impact_ratio
+from rockcli.models.impact import impact_ratio
 from rockcli.models import Block, LinearIsolation, Rigid, SingleConcaveSliding
 from rockcli.pulses import make_pulse
 from rockcli.records import Record
 from rockcli.report.response import history_columns, history_table, write_history_csv
 from rockcli.solve import default_rtol, simulate
-from rockcli.units import G
+from rockcli.io.units import G
 
 ALPHA = 0.2
 BLOCK = Block(0.5 / math.sin(ALPHA), ALPHA)

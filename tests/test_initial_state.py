@@ -14,11 +14,11 @@ from click.testing import CliRunner
 from scipy.integrate import quad
 
 from rockcli.errors import RockcliInputError
-from rockcli.impact import housner_restitution
+from rockcli.models.impact import housner_restitution
 from rockcli.models import Block, LinearIsolation, Rigid
 from rockcli.pulses import make_pulse
 from rockcli.solve import simulate
-from rockcli.units import G
+from rockcli.io.units import G
 
 ALPHA = 0.2
 BLOCK = Block(0.5 / math.sin(ALPHA), ALPHA)  # full width B = 1 m

@@ -30,7 +30,7 @@ from hypothesis import strategies as st
 
 from rockcli.cli import main
 from rockcli.errors import RockcliInputError
-from rockcli.inputs import DECIMAL, parse_number
+from rockcli.io.inputs import DECIMAL, parse_number
 
 #: A command that has not returned after this long is hung (they exit 2 in milliseconds).
 HANG_S = 120.0
@@ -404,7 +404,7 @@ def test_scale_factors_keep_the_peak_within_100_g(k, peak):
     given otherwise."""
     from fractions import Fraction
 
-    from rockcli.inputs import check_scale, format_number
+    from rockcli.io.inputs import check_scale, format_number
 
     try:
         got = check_scale(k, peak, "--scale")
@@ -488,7 +488,7 @@ def _python_calls():
                          overturning_map, parse_configurations, parse_grid, resolve_excitations, run_assessment,
                          run_fragility, simulate, simulate_many, simulate_verdicts)
     from rockcli.spectra import rocking_spectrum
-    from rockcli.units import G
+    from rockcli.io.units import G
 
     b, p = Block.from_dimensions(2.0, 0.5), make_pulse("sine", 0.5 * G, 0.5)
     grid = parse_grid("2:3:2")
@@ -545,7 +545,7 @@ def _more_python_calls():
     from rockcli import Block, Rigid, find_overturn_scales, format_verdicts, make_pulse
     from rockcli.records import read_record
     from rockcli.records.orientation import sweep_azimuths
-    from rockcli.units import G
+    from rockcli.io.units import G
 
     scene = (Block.from_dimensions(2.0, 0.5), Rigid(), make_pulse("sine", 0.5 * G, 0.5))
     return {
@@ -577,7 +577,7 @@ def test_python_limits_are_the_clis():
 
     from rockcli.records.orientation import AZIMUTH_STEP_RANGE_DEG, sweep_azimuths
     from rockcli.records.record import Record
-    from rockcli.units import G
+    from rockcli.io.units import G
 
     lo, hi = AZIMUTH_STEP_RANGE_DEG
     assert len(sweep_azimuths(lo)) == 1800 and list(sweep_azimuths(hi)) == [0.0, 90.0]

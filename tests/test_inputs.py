@@ -1,7 +1,7 @@
 """The input layer (issue 23): every example of the issue's input classes, one test each.
 
 Numbers the user writes (options, specs, samples, time steps in comments) go through
-:func:`rockcli.inputs.parse_number`; compressed records are read with the units they state, once;
+:func:`rockcli.io.inputs.parse_number`; compressed records are read with the units they state, once;
 odd environments (``ROCKCLI_RECORDS``, the catalogue) get one sentence and exit code 2. Every CLI case
 asserts exit 2, exactly one line ``Error: ...`` quoting what was written, no traceback, nothing written.
 """
@@ -24,10 +24,10 @@ from click.testing import CliRunner
 
 from rockcli.cli import main
 from rockcli.errors import RockcliInputError
-from rockcli.inputs import format_number, parse_number, spec_items
+from rockcli.io.inputs import format_number, parse_number, spec_items
 from rockcli.pulses import RickerSymmetric
 from rockcli.records import read_record
-from rockcli.units import G
+from rockcli.io.units import G
 from test_bad_input import assert_one_sentence as _one_sentence
 from test_bad_input import snapshot
 

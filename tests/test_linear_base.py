@@ -20,7 +20,7 @@ from rockcli.kernels.linear_base import (advance, base_acceleration, coefficient
 from rockcli.models import Block, LinearIsolation
 from rockcli.records import Record
 from rockcli.solve import simulate, simulate_many
-from rockcli.units import G
+from rockcli.io.units import G
 
 
 def _augmented(w, xi, tau):

@@ -22,7 +22,7 @@ from rockcli.models import (Block, DoubleConcaveSliding, LeadRubber, LinearIsola
 from rockcli.pulses import make_pulse
 from rockcli.records import Record
 from rockcli.solve import simulate_many, with_vertical
-from rockcli.units import G
+from rockcli.io.units import G
 
 #: 31 factors 0.1 .. 4 with 1 among them (ratio ~1.13): the search's logic, not its resolution, is tested
 GRID = np.unique(np.concatenate([np.geomspace(0.1, 1.0, 19), np.geomspace(1.0, 4.0, 13)]))

@@ -24,7 +24,7 @@ from conftest import write_pulse_record
 
 from rockcli.cli import main
 from rockcli.errors import RockcliInputError
-from rockcli.files import Transaction, transaction, write_text
+from rockcli.io.files import Transaction, transaction, write_text
 from rockcli.records.catalog import COLUMNS
 
 REPO = Path(__file__).resolve().parents[1]
@@ -177,7 +177,7 @@ def test_assess_refuses_two_runs_with_one_file_name(work):
 
 
 def test_assess_history_failure_keeps_csv_and_earlier_histories(work, monkeypatch):
-    import rockcli.files
+    import rockcli.io.files
 
     args = [*ASSESS, "bassae", "nemea", "--records", "syn.txt", "--csv", "table.csv", "--history-dir", "h"]
     first = run_cli(args)
@@ -194,7 +194,7 @@ def test_assess_history_failure_keeps_csv_and_earlier_histories(work, monkeypatc
                 raise OSError(28, "No space left on device")
         fh.write(data)
 
-    monkeypatch.setattr(rockcli.files, "_write", failing)
+    monkeypatch.setattr(rockcli.io.files, "_write", failing)
     (work / "table.csv").write_text("the table of an earlier run\n")
     earlier = snapshot(work)
     res = run_cli(args)

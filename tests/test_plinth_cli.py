@@ -13,7 +13,7 @@ from click.testing import CliRunner
 from rockcli.cli import main
 from rockcli.models import Block, Plinth, Rigid, Stack
 from rockcli.pulses import OneSine, RickerSymmetric
-from rockcli.units import G
+from rockcli.io.units import G
 
 STATUE = "statue:height=1.79,width=0.5"
 KOBE = "kobe-1995-takarazuka-000"

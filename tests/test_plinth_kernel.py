@@ -17,7 +17,7 @@ from rockcli.reference.stack import choose_post, reference_plinth, stack_blocks
 from rockcli.reference.stack_mechanics import StackModel
 from rockcli.solve import simulate
 from rockcli.solve.stack import simulate_stack, stack_parameters
-from rockcli.units import G
+from rockcli.io.units import G
 
 
 def _random_stack(rng, mass_ratio=True):

@@ -8,7 +8,7 @@ import pytest
 
 from rockcli.errors import RockcliInputError
 from rockcli.models import Block, Plinth, Stack, parse_plinth_spec
-from rockcli.units import G
+from rockcli.io.units import G
 
 STATUE = Block.from_dimensions(1.79, 0.5, "statue")
 

@@ -17,7 +17,7 @@ from rockcli.records import Record
 from rockcli.reference import reference_simulate
 from rockcli.reference.stack import reference_plinth, reference_stack, stack_blocks
 from rockcli.reference.stack_mechanics import StackModel
-from rockcli.units import G
+from rockcli.io.units import G
 
 STATUE = Block.from_dimensions(1.79, 0.5, "statue")
 

@@ -21,7 +21,7 @@ from rockcli.assess.excitations import Excitation
 from rockcli.cli import progress as display
 from rockcli.errors import RockcliInputError
 from rockcli.pulses import make_pulse
-from rockcli.units import G
+from rockcli.io.units import G
 
 
 class _Tty(io.StringIO):

@@ -19,7 +19,7 @@ from rockcli.pulses import (
     make_pulse,
     parse_pulse_spec,
 )
-from rockcli.units import G
+from rockcli.io.units import G
 
 ALL = [RickerSymmetric, RickerAntisymmetric, OneSine, OneCosine]
 RICKERS = [RickerSymmetric, RickerAntisymmetric]

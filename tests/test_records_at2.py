@@ -8,7 +8,7 @@ import pytest
 from rockcli.errors import RockcliInputError
 from rockcli.records import read_record
 from rockcli.records.at2 import _is_at2, parse_at2, parse_at2_header
-from rockcli.units import G
+from rockcli.io.units import G
 
 #: (layout key, header lines) for every layout met in ../shared/records and extra/.
 LAYOUTS = {

@@ -14,7 +14,7 @@ from click.testing import CliRunner
 from rockcli.cli import main
 from rockcli.errors import RockcliInputError
 from rockcli.records import read_record
-from rockcli.units import G
+from rockcli.io.units import G
 
 
 def _counts(n=400, seed=5):

@@ -15,7 +15,7 @@ from rockcli.models import Block, Rigid
 from rockcli.records.orientation import check_pair, cos_deg, project, read_pair, split_source, sweep_azimuths
 from rockcli.records.record import Record
 from rockcli.solve import simulate
-from rockcli.units import G
+from rockcli.io.units import G
 
 
 def _component(acc, azimuth, name="pair", dt=0.01, station="ST"):

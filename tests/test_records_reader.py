@@ -14,7 +14,7 @@ from rockcli.records.extra import available
 from rockcli.records.motion import calc_peaks, cumtrapz, integrate
 from rockcli.records.reader import read_components
 from rockcli.records.record import Record
-from rockcli.units import G, accel_factor
+from rockcli.io.units import G, accel_factor
 
 #: What the caller must say for files that do not state it (from SOURCES.csv notes).
 OPTIONS = {

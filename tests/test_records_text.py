@@ -8,7 +8,7 @@ import pytest
 from rockcli.errors import RockcliInputError
 from rockcli.records import read_record
 from rockcli.records.text import format_text, parse_comments, parse_text
-from rockcli.units import G
+from rockcli.io.units import G
 
 SEEDS = range(12)
 

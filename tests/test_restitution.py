@@ -1,5 +1,5 @@
 """``restitution`` / ``--restitution E``: the impact map with a given coefficient of restitution
-(rockcli.impact), its limits and invariants, the unchanged default, the options. The verdict-only
+(rockcli.models.impact), its limits and invariants, the unchanged default, the options. The verdict-only
 shortcuts re-proved for every E: tests/test_verdict_paths.py (random restitutions)."""
 
 from __future__ import annotations
@@ -12,11 +12,11 @@ import pytest
 from click.testing import CliRunner
 
 from rockcli.errors import RockcliInputError
-from rockcli.impact import housner_restitution, impact_ratio
+from rockcli.models.impact import housner_restitution, impact_ratio
 from rockcli.models import Block, LinearIsolation, Rigid, SingleConcaveSliding, impact_coefficient
 from rockcli.pulses import make_pulse
 from rockcli.solve import simulate, simulate_many, simulate_verdicts
-from rockcli.units import G
+from rockcli.io.units import G
 from test_solver import angular_momentum_about
 
 
@@ -182,10 +182,10 @@ def test_cli_spectrum_and_assess_pass_restitution(tmp_path):
 
 def test_out_of_range_values_are_quoted_unrounded():
     """Issue 23's class: a limit error names the value as given, never rounded (1.0000001 printed as '1')."""
-    from rockcli.colonnade import check_cap_ratio
+    from rockcli.models.colonnade import check_cap_ratio
     from rockcli.errors import RockcliInputError
-    from rockcli.impact import check_restitution
-    from rockcli.initial import check_initial_state
+    from rockcli.models.impact import check_restitution
+    from rockcli.models.initial import check_initial_state
 
     for call, text in ((lambda: check_restitution(1.0000001), "got 1.0000001"),
                        (lambda: check_initial_state(1.5707964, 0.0), "got 1.5707964")):

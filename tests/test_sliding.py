@@ -28,7 +28,7 @@ from rockcli.models import (Block, DoubleConcaveSliding, LeadRubber, LinearIsola
                             parse_isolation_spec)
 from rockcli.pulses import make_pulse
 from rockcli.solve import bearing_force_path, simulate, simulate_many
-from rockcli.units import G
+from rockcli.io.units import G
 
 SHAPES = ("ricker-sym", "ricker-anti", "sine", "cosine")
 

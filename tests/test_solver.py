@@ -15,7 +15,7 @@ from rockcli.models import Block, LinearIsolation, Rigid, column, impact_coeffic
 from rockcli.pulses import make_pulse
 from rockcli.records import Record
 from rockcli.solve import simulate, simulate_many
-from rockcli.units import G
+from rockcli.io.units import G
 
 FIG1 = Block.from_dimensions(2.0, 0.5, "refrigerator")  # the paper's Figure 1 block
 

@@ -19,7 +19,7 @@ from rockcli.solve import simulate
 from rockcli.spectra import (Family, Grid, Isolation, PulseChoice, critical_R, critical_sizes, min_overturning_curves,
                              overturning_map, overturning_maps, parse_grid, parse_isolation, parse_pulse_choice,
                              run_cells_local, search_min_overturning)
-from rockcli.units import G
+from rockcli.io.units import G
 
 LIN2 = "linear:TbTp=2,xi=0.05,gamma=0.01"
 

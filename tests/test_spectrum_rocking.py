@@ -25,7 +25,7 @@ from rockcli.report.figures import NBSP, spec_text
 from rockcli.report.rocking import ROCKING_COLUMNS
 from rockcli.solve import simulate
 from rockcli.spectra import Runner, rocking_spectrum, size_grid
-from rockcli.units import G
+from rockcli.io.units import G
 
 #: Foundations the differential test draws from: rigid, linear (light and heavy base), a sliding bearing.
 ISOLATIONS = ("none", "linear:Tb=2.5", "linear:Tb=4,xi=0.05,gamma=0.3", "scss:Tb=3,mu=0.1")

@@ -19,7 +19,7 @@ from rockcli.models import Block, LinearIsolation, Rigid
 from rockcli.pulses import make_pulse
 from rockcli.records import Record
 from rockcli.solve import (pulse_impulse_table, record_impulse_table, simulate, simulate_many)
-from rockcli.units import G
+from rockcli.io.units import G
 
 SHAPES = ("ricker-sym", "ricker-anti", "sine", "cosine")
 
@@ -108,7 +108,7 @@ def test_verdict_only_equals_full_history_on_5000_random_scenes():
 
 def test_verdict_only_equals_full_history_for_random_restitutions():
     """Issue 27: the early stops and end-of-run proofs re-proved for a coefficient of restitution 0 < E <= 1
-    (they need only that impacts never add energy, rockcli.impact): 2,000 scenes of issue 9's set, rigid
+    (they need only that impacts never add energy, rockcli.models.impact): 2,000 scenes of issue 9's set, rigid
     and linear bases, E uniform in [0.5, 1] with E = 1 in a tenth of them."""
     jobs = random_scenes(2000, 27)
     rng = np.random.default_rng(27)
@@ -194,10 +194,10 @@ def test_restitution_and_cap_ratio_agree_with_the_slow_reference(chunk):
 
 def test_the_reference_impact_map_with_restitution_and_cap_ratio():
     """The reference's 2x2 momentum system with the beam's terms and E against rockcli's closed forms
-    (rockcli.impact, rockcli.colonnade), and Eqs 14/16 unchanged for the solitary block."""
+    (rockcli.models.impact, rockcli.models.colonnade), and Eqs 14/16 unchanged for the solitary block."""
     from naive import impact_map_linear_system
-    from rockcli.colonnade import effective_gamma, frequency_factor, impact_ratio_on_base
-    from rockcli.impact import impact_ratio
+    from rockcli.models.colonnade import effective_gamma, frequency_factor, impact_ratio_on_base
+    from rockcli.models.impact import impact_ratio
 
     rng = np.random.default_rng(5)
     for _ in range(200):

@@ -20,7 +20,7 @@ from rockcli.models import Block, LinearIsolation, Rigid
 from rockcli.pulses import make_pulse
 from rockcli.records import Record
 from rockcli.solve import attached_vertical, simulate, simulate_many, with_vertical
-from rockcli.units import G
+from rockcli.io.units import G
 from test_solver import synthetic_record
 
 

@@ -38,7 +38,7 @@ from rockcli.models import Block, Plinth, Stack
 from rockcli.pulses import OneSine, RickerSymmetric
 from rockcli.records import Record, read_record
 from rockcli.reference.stack import reference_plinth
-from rockcli.units import G
+from rockcli.io.units import G
 
 HERE = Path(__file__).resolve().parent
 DEPTH = 0.5  # m, out of plane (the model is planar: the depth only scales the masses)

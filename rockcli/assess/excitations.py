@@ -19,8 +19,8 @@ import numpy as np
 
 from rockcli.assess.manifest import MANIFEST_COLUMNS, is_manifest, read_manifest  # noqa: F401 (re-exported)
 from rockcli.errors import RockcliInputError
-from rockcli.inputs import format_number
-from rockcli.units import G
+from rockcli.io.inputs import format_number
+from rockcli.io.units import G
 
 EXCITATION_RECORD = "record"
 EXCITATION_PULSE = "pulse"
@@ -234,7 +234,7 @@ def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto"
         under another name (:class:`Duplicate`).
 
     Every file read (manifests, each file of a folder, both files of a pair) is an input of the open
-    output transaction (:func:`rockcli.files.note_inputs`): an output on one of them is refused.
+    output transaction (:func:`rockcli.io.files.note_inputs`): an output on one of them is refused.
 
     Raises
     ------
@@ -250,7 +250,7 @@ def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto"
     if sources is not None:
         import os
 
-        from rockcli.inputs import as_list, check_type
+        from rockcli.io.inputs import as_list, check_type
 
         sources = as_list(sources, "sources", "a list of catalogue ids, files or folders", one=(str, os.PathLike))
         for src in sources:
@@ -262,7 +262,7 @@ def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto"
     by_id = {e.id: e for e in entries}
     by_file = {f: e for e in entries for f in (e.file_2, e.file) if f}  # a pair's second file is read as its first
     from rockcli.assess.suite import Suite
-    from rockcli.files import note_inputs
+    from rockcli.io.files import note_inputs
     from rockcli.records.orientation import split_source
 
     from rockcli.assess.pairs import catalogue_worst, pair_excitation, pair_label
@@ -374,7 +374,7 @@ def _path_kind(path: Path) -> str:
 def _file_read_kwargs(units, dt, gain=None) -> dict:
     """``read_record`` keywords for files outside the catalogue (validated once, up front)."""
     from rockcli.records.reader import check_gain
-    from rockcli.units import accel_factor
+    from rockcli.io.units import accel_factor
 
     kwargs = {}
     if gain is not None:

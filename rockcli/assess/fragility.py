@@ -56,7 +56,7 @@ from rockcli.assess.lognormal import (CENSORED_LEFT, CENSORED_RIGHT, DEFAULT_N_B
 from rockcli.assess.scenes import Configuration, Excitation, Unavailable
 from rockcli.errors import RockcliInputError
 from rockcli.models import Block
-from rockcli.units import G
+from rockcli.io.units import G
 
 #: Two-sided confidence level of the intervals.
 DEFAULT_LEVEL = 0.90

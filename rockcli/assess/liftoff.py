@@ -84,7 +84,7 @@ def liftoff_floor(block, foundation, motion, **solver) -> float:
     from rockcli.errors import RockcliInputError
     from rockcli.models import LinearIsolation, Rigid
     from rockcli.solve import DEFAULT_HORIZON, DEFAULT_REST_TOL, _parameters, attached_vertical
-    from rockcli.units import G
+    from rockcli.io.units import G
 
     from rockcli.models import Stack
 

@@ -8,7 +8,7 @@ but manifest columns (a record's first line never names a column ``file``). :fun
 strictly: UTF-8 text (a byte order mark is fine), known columns each given once, as many cells per row
 as the header has, at least one row, each naming a file; every refusal is one sentence naming the
 manifest and the line. The manifest is an input of the run: an output on it is refused
-(:func:`rockcli.files.note_inputs`).
+(:func:`rockcli.io.files.note_inputs`).
 """
 
 from __future__ import annotations
@@ -96,8 +96,8 @@ def read_manifest(path: Path, defaults: dict) -> list:
     ``FILE@DEG`` when the row gives an azimuth). A row's units and dt fill in only what its file does not
     state, like ``--units``/``--dt`` (which fill in what a row leaves empty)."""
     from rockcli.assess.pairs import pair_label
-    from rockcli.files import note_inputs
-    from rockcli.inputs import parse_number
+    from rockcli.io.files import note_inputs
+    from rockcli.io.inputs import parse_number
 
     path = Path(path)
     note_inputs([path], "the manifest")

@@ -21,7 +21,7 @@ from pathlib import Path
 from rockcli.assess.excitations import (EXCITATION_RECORD, Excitation, Skipped, Unavailable, _entry_read_kwargs,
                                         _from_entry)
 from rockcli.errors import RockcliInputError
-from rockcli.inputs import format_number
+from rockcli.io.inputs import format_number
 
 #: ``Excitation.as_recorded`` of a catalogue record that names one horizontal component.
 ONE_COMPONENT = "the catalogue knows one horizontal component"
@@ -43,7 +43,7 @@ def one_file_pair(first, second, names=("", "")) -> str:
     """Why ``first`` and ``second`` (each ``FILE`` or ``FILE@DEG``) are no pair: one file named twice (after
     following symbolic links, or by inode); ``""`` when they are two files (or ``second`` is None).
     ``names`` are the options that gave them (``--record``, ``--record-2``), for the sentence."""
-    from rockcli.files import same_file
+    from rockcli.io.files import same_file
     from rockcli.records.orientation import split_source
 
     if second is None:

@@ -48,7 +48,7 @@ def parse_column_spec(text: str) -> Block:
         return column(name)
     if not name:
         raise RockcliInputError(f"column {raw!r} needs a name before ':' (e.g. statue:R=1.2,alpha=14)")
-    from rockcli.inputs import parse_number, spec_items
+    from rockcli.io.inputs import parse_number, spec_items
 
     values = {}
     keys = {"r": "R", "alpha": "alpha", "height": "height", "width": "width"}
@@ -88,7 +88,7 @@ def column_title(block: Block) -> str:
 def check_scenes(columns, excitations, configurations) -> tuple[list, list, list]:
     """The three lists of an assessment (:func:`rockcli.assess.run_assessment`, :func:`rockcli.assess.run_fragility`)
     with the types they must hold, else one sentence naming the argument and what was given."""
-    from rockcli.inputs import as_list, check_type
+    from rockcli.io.inputs import as_list, check_type
 
     cols = as_list(columns, "columns", "a list of Block (parse_column_spec('bassae'), ...)", one=(Block, Stack))
     exc = as_list(excitations, "excitations", "a list of Excitation (resolve_excitations(...))", one=Excitation)
@@ -113,7 +113,7 @@ def check_scale_search(scenes, grid, known=None, progress=None) -> list:
     Returns the scenes as a list."""
     import math
 
-    from rockcli.inputs import as_list, check_type, type_words
+    from rockcli.io.inputs import as_list, check_type, type_words
     from rockcli.pulses.shapes import Pulse
     from rockcli.records.record import Record
     from rockcli.solve import Response
@@ -184,7 +184,7 @@ def parse_configurations(specs: Sequence[str] | None = None) -> list[Configurati
     Headers are short (``none``, ``Tb=2s``) when that is unambiguous, else the spec as written.
     Any spec :func:`rockcli.models.parse_isolation_spec` accepts works.
     """
-    from rockcli.inputs import as_list, check_type
+    from rockcli.io.inputs import as_list, check_type
 
     specs = [] if specs is None else as_list(specs, "specs", "a list of isolation specs ('none', 'linear:Tb=2.5', "
                                                           "...)", one=str)

@@ -2,7 +2,7 @@
 
 :class:`Suite` collects the excitations of :func:`rockcli.assess.resolve_excitations` in order. Two
 excitations are one record when they are read from one file (the same file after following symbolic
-links, or by inode: hard links; :func:`rockcli.files.file_key`) and are the same component of it (the
+links, or by inode: hard links; :func:`rockcli.io.files.file_key`) and are the same component of it (the
 component read, by the name the file gives it, so ``N28W`` and ``332`` are one); a pair of horizontal
 components is its two components (in either order) and the azimuth they are projected onto; a
 catalogued pulse is its catalogue id. The second of two such excitations is not run: when it was named
@@ -42,7 +42,7 @@ class Suite:
         self.unavailable.append(u)
 
     def _key(self, x: Excitation, path, component: str):
-        from rockcli.files import file_key
+        from rockcli.io.files import file_key
 
         if x.pair is not None:
             ends = frozenset((file_key(r.meta.get("path") or r.name), str(r.meta.get("component") or ""))
@@ -56,7 +56,7 @@ class Suite:
 
     def add(self, x: Excitation, path=None, component=None) -> None:
         """Add ``x`` (read from ``path``; ``component`` the one asked for) unless its record is in already."""
-        from rockcli.files import file_key
+        from rockcli.io.files import file_key
 
         comp = _component(x, component)
         key = self._key(x, path, comp)

@@ -493,7 +493,7 @@ def format_verdicts(assessment, width: int = 100) -> str:
 
     from rockcli.assess.table import Assessment
     from rockcli.errors import RockcliInputError
-    from rockcli.inputs import check_type
+    from rockcli.io.inputs import check_type
 
     check_type(assessment, Assessment, "assessment", "the Assessment of run_assessment(...)")
     check_type(width, numbers.Integral, "width", "a whole number of characters >= 40")

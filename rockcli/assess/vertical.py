@@ -45,7 +45,7 @@ def _own_component(x: Excitation, component: str, read_kwargs: dict, scale: floa
     got = cache[path]
     if isinstance(got, RockcliInputError):
         raise got
-    from rockcli.inputs import check_scale, format_number
+    from rockcli.io.inputs import check_scale, format_number
 
     vertical = got if check_scale(scale, got.pga_g, "--vertical-scale", "the vertical component") == 1.0 else \
         got.scaled(scale)
@@ -81,7 +81,7 @@ def attach_verticals(excitations: Sequence[Excitation], *, component: str | None
     from rockcli.models import Rigid
     from rockcli.solve import with_vertical
     from rockcli.solve.excitation import _vertical_arrays
-    from rockcli.units import G
+    from rockcli.io.units import G
 
     if (component is None) == (motion is None):
         raise RockcliInputError("give the vertical motion as exactly one of a component name or a motion")

@@ -71,7 +71,7 @@ def _block(spec: str):
     spec = spec.strip()
     if "=" not in spec:
         return build_block(preset=spec)
-    from rockcli.inputs import parse_number, spec_items
+    from rockcli.io.inputs import parse_number, spec_items
 
     kv = {k.lower(): parse_number(v, f"block {spec!r}: {k}") for k, v, _ in spec_items(spec, f"block {spec!r}")}
     if "r" in kv:

@@ -19,7 +19,7 @@ from rockcli.bench.scenes import SceneUnavailable, excitation_end
 from rockcli.bench.stability_scenes import StabilityScene
 from rockcli.conditioning import ill_conditioned, measure_conditioning
 from rockcli.errors import RockcliInputError
-from rockcli.units import G
+from rockcli.io.units import G
 
 #: Tolerances of the stability study.
 STABILITY_RTOLS = (1e-6, 1e-10)

@@ -14,7 +14,7 @@ from typing import Callable
 import numpy as np
 
 from rockcli.bench.scenes import parse_foundation
-from rockcli.units import G
+from rockcli.io.units import G
 
 
 @dataclass(frozen=True)

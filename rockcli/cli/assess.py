@@ -23,7 +23,7 @@ def assess():
 
 def _restitution_kw(restitution) -> dict:
     """The solver keyword of ``--restitution`` (checked; none when not given: Housner's rule)."""
-    from rockcli.impact import check_restitution
+    from rockcli.models.impact import check_restitution
 
     restitution = check_restitution(restitution, "--restitution")
     return {} if restitution is None else {"restitution": restitution}
@@ -31,7 +31,7 @@ def _restitution_kw(restitution) -> dict:
 
 def _cap_ratio_kw(cap_ratio) -> dict:
     """The solver keyword of ``--cap-ratio`` (checked; none when 0: solitary columns)."""
-    from rockcli.colonnade import check_cap_ratio
+    from rockcli.models.colonnade import check_cap_ratio
 
     cap_ratio = check_cap_ratio(cap_ratio, "--cap-ratio")
     return {} if cap_ratio == 0.0 else {"cap_ratio": cap_ratio}
@@ -63,7 +63,7 @@ def _with_vertical(excitations, configurations, units, dt) -> list:
     from rockcli.assess.vertical import attach_verticals
 
     if v["component"] is not None and v["source"] is None:
-        from rockcli.inputs import check_scale
+        from rockcli.io.inputs import check_scale
 
         check_scale(v["scale"], 0.0, "--vertical-scale")  # each record's own peak: attach_verticals
         return attach_verticals(excitations, component=v["component"], scale=v["scale"],
@@ -420,7 +420,7 @@ def _plan_run_files(columns, excitations, configurations, hist_dir, plot_dir):
     from pathlib import Path
 
     from rockcli.assess import safe_name
-    from rockcli.files import current
+    from rockcli.io.files import current
 
     outputs = current()
     seen = {}
@@ -444,7 +444,7 @@ def _write_histories(result, hist_dir, plot_dir, as_json=False):
     from pathlib import Path
 
     from rockcli.assess import history_runs, safe_name
-    from rockcli.files import transaction
+    from rockcli.io.files import transaction
     from rockcli.report.figures import plot_grid_dt
     from rockcli.report.response import plot_response, write_history_csv
     from rockcli.solve import simulate

@@ -60,7 +60,7 @@ def plinth_notes(result, note: str = "") -> str:
     stacks = [b for b in result.columns if isinstance(b, Stack)]
     if not stacks:
         return ""
-    from rockcli.units import G
+    from rockcli.io.units import G
 
     head = "On a plinth (docs/plinth.md): the body and its plinth rock as two rigid blocks (rocking only, no sliding); "
     if hasattr(result, "curves"):

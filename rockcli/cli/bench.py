@@ -19,7 +19,7 @@ def bench():
 
 
 def _check_outputs(csv=None, plot=None):
-    """Outputs checked before any run (rockcli.files): a long study never fails on its output."""
+    """Outputs checked before any run (rockcli.io.files): a long study never fails on its output."""
     from rockcli.cli.options import check_outputs
 
     check_outputs((csv, "--csv", False), (plot, "--plot", True))
@@ -30,7 +30,7 @@ def _rtols(text, opt):
         return None
     out = []
     from rockcli.errors import RockcliInputError
-    from rockcli.inputs import parse_number
+    from rockcli.io.inputs import parse_number
 
     for item in filter(None, (s.strip() for s in text.split(","))):
         try:

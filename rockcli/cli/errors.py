@@ -40,7 +40,7 @@ def _silence_stdout() -> None:
 def user_errors(func):
     """Decorator for command bodies.
 
-    * The command's outputs are one transaction (:func:`rockcli.files.transaction`): written when
+    * The command's outputs are one transaction (:func:`rockcli.io.files.transaction`): written when
       the body returns (or ends itself with an exit code after its report), discarded on any error
       or on SIGINT/SIGTERM/SIGHUP, so that a failed run changes no file.
     * Library input errors become :class:`InputError` (exit 2); an arithmetic failure inside the
@@ -51,7 +51,7 @@ def user_errors(func):
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
         from rockcli.errors import RockcliInputError
-        from rockcli.files import transaction
+        from rockcli.io.files import transaction
 
         try:
             with transaction() as outputs:
@@ -72,7 +72,7 @@ def user_errors(func):
             _silence_stdout()
             if exc.errno == errno.EPIPE:  # the reader has gone (| head): nothing more to say
                 sys.exit(1)
-            from rockcli.files import os_error_reason
+            from rockcli.io.files import os_error_reason
 
             raise InputError(f"cannot write to the standard output ({os_error_reason(exc)}); no file was "
                              f"written") from None

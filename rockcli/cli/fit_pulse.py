@@ -77,7 +77,7 @@ def _update_catalog(fits):
     import csv
     import io
 
-    from rockcli.files import write_text
+    from rockcli.io.files import write_text
     from rockcli.records.catalog import catalog_path
 
     path = catalog_path()

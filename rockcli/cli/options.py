@@ -256,9 +256,9 @@ def given_vertical() -> dict:
 
 def scaled(motion, factor, option: str, what: str, peak_g: float | None = None):
     """``motion`` (a record or a pulse) times the user's ``factor``, checked first
-    (:func:`rockcli.inputs.check_scale`: finite, non-zero, the peak within 100 g); ``peak_g`` overrides the
+    (:func:`rockcli.io.inputs.check_scale`: finite, non-zero, the peak within 100 g); ``peak_g`` overrides the
     motion's own peak (the largest of every orientation of a pair)."""
-    from rockcli.inputs import check_scale
+    from rockcli.io.inputs import check_scale
 
     if peak_g is None:
         peak_g = motion.pga_g if hasattr(motion, "pga_g") else abs(motion.a_p_g)
@@ -272,7 +272,7 @@ def read_vertical(source, column, pulse, scale, read_kwargs: dict, component=Non
     or ``--vertical-pulse SPEC``, times ``--vertical-scale``. The horizontal record's ``--component`` does not
     apply to it."""
     from rockcli.errors import RockcliInputError
-    from rockcli.inputs import check_scale, format_number
+    from rockcli.io.inputs import check_scale, format_number
 
     if source is not None and pulse is not None:
         raise RockcliInputError("give the vertical ground motion as at most one of --vertical SOURCE or "
@@ -473,7 +473,7 @@ def horizon_option(func):
 
 def restitution_option(func):
     """``--restitution E``: the coefficient of restitution of every impact (``restitution`` keyword of
-    :func:`rockcli.solve.simulate`); the command checks it (:func:`rockcli.impact.check_restitution`)."""
+    :func:`rockcli.solve.simulate`); the command checks it (:func:`rockcli.models.impact.check_restitution`)."""
     return click.option("--restitution", type=NUMBER, default=None, metavar="E",
                         help="Coefficient of restitution, 0 < E <= 1: theta_dot after / before an impact on rigid "
                              "ground [default: Housner's 1 - 1.5 sin^2 alpha]. E is always this rigid-ground ratio: "
@@ -484,7 +484,7 @@ def restitution_option(func):
 
 def cap_ratio_option(func):
     """``--cap-ratio GAMMA_C``: a capped colonnade of the columns (``cap_ratio`` keyword of
-    :func:`rockcli.solve.simulate`) on any foundation (:mod:`rockcli.colonnade`)."""
+    :func:`rockcli.solve.simulate`) on any foundation (:mod:`rockcli.models.colonnade`)."""
     return click.option("--cap-ratio", "cap_ratio", type=NUMBER, default=0.0, metavar="GAMMA_C",
                         help="A capped colonnade of N such columns carrying a rigid beam (Makris & Vassiliou 2013): "
                              "beam mass over the columns' total mass; they rock as one column with p times "
@@ -531,12 +531,12 @@ def check_outputs(*files, folders=(), catalogue_is_input: bool = True):
     """Declare and check every output before any work: ``files`` are ``(path, option, is_image)``,
     ``folders`` ``(path, option)``; entries whose path is None (option not given) are skipped.
 
-    The outputs join the command's transaction (:mod:`rockcli.files`, opened by ``user_errors``):
+    The outputs join the command's transaction (:mod:`rockcli.io.files`, opened by ``user_errors``):
     two outputs on one path are refused, and so is an output on the record catalogue, which every
     command may read (``catalogue_is_input=False`` for the command that updates it). Raises
     ``RockcliInputError`` with one sentence naming the option and the path.
     """
-    from rockcli.files import Transaction, current
+    from rockcli.io.files import Transaction, current
 
     outputs = current() or Transaction()
     if catalogue_is_input:
@@ -559,8 +559,8 @@ def catalog_file():
 
 def add_inputs(paths, what: str) -> None:
     """Files the command reads (records, the catalogue): an output on one of them is refused
-    (:func:`rockcli.files.note_inputs`)."""
-    from rockcli.files import note_inputs
+    (:func:`rockcli.io.files.note_inputs`)."""
+    from rockcli.io.files import note_inputs
 
     note_inputs([p for p in paths if p], what)
 

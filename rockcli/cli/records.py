@@ -230,7 +230,7 @@ def export(source, out, units, dt, fmt, column):
     Example:
       rockcli records export ../shared/records/extra/20161113_110259_WTMC_20.V2A wtmc-n28w.txt --component N28W
     """
-    from rockcli.files import write_text
+    from rockcli.io.files import write_text
     from rockcli.records import read_record
     from rockcli.records.components import record_text
 

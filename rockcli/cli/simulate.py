@@ -104,9 +104,9 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     import json
 
     from rockcli.errors import RockcliInputError
-    from rockcli.impact import check_restitution
+    from rockcli.models.impact import check_restitution
     from rockcli.models import parse_isolation_spec
-    from rockcli.units import G
+    from rockcli.io.units import G
 
     check_outputs((history_path, "--history", False), (plot_path, "--plot", True), (report_path, "--report", False))
     if history_dt is not None:
@@ -117,8 +117,8 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     foundation = parse_isolation_spec(isolation)
     restitution = check_restitution(restitution, "--restitution")
     solver = {} if restitution is None else {"restitution": restitution}
-    from rockcli.colonnade import check_cap_ratio
-    from rockcli.initial import check_initial_state
+    from rockcli.models.colonnade import check_cap_ratio
+    from rockcli.models.initial import check_initial_state
 
     cap_ratio = check_cap_ratio(cap_ratio, "--cap-ratio")
     if cap_ratio > 0.0:
@@ -145,7 +145,7 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
                                 "the block rocking freely with --theta0 RAD and/or --theta-dot0 RAD/S")
     if check and record_source is None and pulse is None:
         raise RockcliInputError("--check-tolerance perturbs the ground motion: it needs --record or --pulse")
-    from rockcli.inputs import check_scale, format_number
+    from rockcli.io.inputs import check_scale, format_number
 
     check_scale(scale, 0.0, "--scale")  # and the motion's peak times it, once read
     factor = -scale if flip else scale
@@ -290,7 +290,7 @@ def _pair_peak_g(pair) -> float:
     """The largest peak [g] of the projections of a perpendicular pair onto any azimuth: ``max_t |(a_1, a_2)|``."""
     import numpy as np
 
-    from rockcli.units import G
+    from rockcli.io.units import G
 
     n = max(r.npts for r in pair)
     a = [np.pad(r.acc, (0, n - r.npts)) for r in pair]
@@ -307,8 +307,8 @@ def _vertical(source, column, pulse, scale, units, dt, fmt):
 
 def _eta(block, foundation, restitution, cap_ratio) -> float:
     """``theta_dot+ / theta_dot-`` at an impact of this block or colonnade on this foundation."""
-    from rockcli.colonnade import impact_ratio_on_base
-    from rockcli.impact import impact_ratio
+    from rockcli.models.colonnade import impact_ratio_on_base
+    from rockcli.models.impact import impact_ratio
 
     if cap_ratio > 0.0:
         return impact_ratio_on_base(block.alpha, foundation.gamma, cap_ratio, restitution)
@@ -317,7 +317,7 @@ def _eta(block, foundation, restitution, cap_ratio) -> float:
 
 def _impact_keys(block, foundation, restitution, cap_ratio=0.0) -> dict:
     """JSON keys of a given restitution and of a colonnade (none for the defaults)."""
-    from rockcli.colonnade import frequency_factor
+    from rockcli.models.colonnade import frequency_factor
 
     out = {} if restitution is None else {"restitution": restitution}
     if cap_ratio > 0.0:
@@ -328,14 +328,14 @@ def _impact_keys(block, foundation, restitution, cap_ratio=0.0) -> dict:
 
 
 def _colonnade_row(block, foundation, cap_ratio) -> str:
-    from rockcli.colonnade import frequency_factor
+    from rockcli.models.colonnade import frequency_factor
 
     return (f"capped, beam/columns mass gamma_c = {cap_ratio:g}: p = {block.p * math.sqrt(frequency_factor(cap_ratio)):.3f} "
             f"rad/s, impact ratio {_eta(block, foundation, None, cap_ratio):.4f} (Makris & Vassiliou 2013)")
 
 
 def _impact_row(block, foundation, restitution, cap_ratio) -> str:
-    from rockcli.impact import housner_restitution
+    from rockcli.models.impact import housner_restitution
 
     return (f"restitution E = {restitution:g} (Housner's {housner_restitution(block.alpha):.4f}): "
             f"theta_dot+ = {_eta(block, foundation, restitution, cap_ratio):.4f} theta_dot-")

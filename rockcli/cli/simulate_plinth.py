@@ -50,7 +50,7 @@ def refuse_with_plinth(foundation, *, cap_ratio, moving, check, report, history_
 
 
 def _g(x: float) -> float:
-    from rockcli.units import G
+    from rockcli.io.units import G
 
     return x / G
 
@@ -84,7 +84,7 @@ def single_friction(block, foundation, excitation, res, mu: float, restitution, 
     """The friction check of a single block on the ground: its peak demand from a run on the grid of
     :func:`rockcli.solve.friction.friction_grid_dt` (the run ``res`` itself when it has that history), and the
     impulsive demand of its impacts (none without impacts)."""
-    from rockcli.impact import impact_ratio
+    from rockcli.models.impact import impact_ratio
     from rockcli.solve import simulate
     from rockcli.solve.friction import friction_grid_dt, friction_peak_single, impulsive_demand_single
 

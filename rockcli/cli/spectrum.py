@@ -111,8 +111,8 @@ def _pulses(pulses, records, units, dt, fmt, column, default=("ricker-sym",)):
 
 def _runner(scheduler, horizon, restitution=None, cap_ratio=0.0, isolations=(), fix="give --isolation none"):
     """The Runner of a spectrum, its options checked (``isolations``: Isolation specs or foundations)."""
-    from rockcli.colonnade import check_cap_ratio
-    from rockcli.impact import check_restitution
+    from rockcli.models.colonnade import check_cap_ratio
+    from rockcli.models.impact import check_restitution
     from rockcli.solve import validate_options
     from rockcli.spectra import Runner
 

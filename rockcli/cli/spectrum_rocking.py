@@ -62,7 +62,7 @@ def rocking(source, alpha, R, isolations, units, dt, fmt, column, scale, csv_pat
     alphas = parse_list(alpha, "--alpha", lo=0, hi=90, lo_open=True, hi_open=True)
     sizes = size_grid(R, "--R")
     foundations = list(dict.fromkeys(parse_isolation_spec(s) for s in isolations))
-    from rockcli.inputs import check_scale, format_number
+    from rockcli.io.inputs import check_scale, format_number
 
     check_scale(scale, 0.0, "--scale")  # and the record's peak times it, once read
     check_outputs((csv_path, "--csv", False), (plot_path, "--plot", True))
@@ -112,7 +112,7 @@ def _echo_summary(curves, name, scale, pga_g, n, elapsed, runner) -> None:
     from rockcli.cli.spectrum import _echo_unproven
     from rockcli.spectra import describe_sizes, isolation_helps, size_ranges
 
-    from rockcli.inputs import format_number
+    from rockcli.io.inputs import format_number
 
     shown = name + (f" x {format_number(scale)}" if scale != 1.0 else "")
     click.echo(f"record {shown} (PGA {pga_g:.3f} g): {n} blocks, R {curves[0].R[0]:g}-{curves[0].R[-1]:g} m, "

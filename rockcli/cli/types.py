@@ -1,4 +1,4 @@
-"""Click parameter types for numbers: every numeric option goes through :func:`rockcli.inputs.parse_number`.
+"""Click parameter types for numbers: every numeric option goes through :func:`rockcli.io.inputs.parse_number`.
 
 ``click``'s own ``float`` and ``int`` take what Python's ``float()``/``int()`` take (``1_0`` is 10,
 ``inf`` and ``nan`` pass) and answer with a usage block; these types refuse those forms and a decimal
@@ -14,7 +14,7 @@ from rockcli.cli.errors import InputError
 
 
 class Number(click.ParamType):
-    """A finite decimal number (optionally within a range), parsed by :func:`rockcli.inputs.parse_number`.
+    """A finite decimal number (optionally within a range), parsed by :func:`rockcli.io.inputs.parse_number`.
 
     Range checks belong to the library when it states the range with its reason (``--R``,
     ``--tail``); give ``lo``/``hi`` here only for options whose range is the option's own
@@ -30,7 +30,7 @@ class Number(click.ParamType):
 
     def convert(self, value, param, ctx):
         from rockcli.errors import RockcliInputError
-        from rockcli.inputs import parse_number
+        from rockcli.io.inputs import parse_number
 
         what = (param.opts[0] if param is not None and param.opts else
                 param.human_readable_name if param is not None else "value")

@@ -584,7 +584,7 @@ def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, ta
        never grows with the ground still: the bearings are passive (P3s), an impact keeps the horizontal
        momentum (and, with Housner's rule, the angular momentum about the new pivot) and changes the kinetic
        energy by ``gamma (2 R^2/3 - gamma h^2/2) (eta^2 - 1) theta'^2 <= 0`` for every ``0 <= eta <= 1``, so for
-       every restitution ``0 < E <= 1`` (:mod:`rockcli.impact`; tests/test_solver.py, tests/test_restitution.py),
+       every restitution ``0 < E <= 1`` (:mod:`rockcli.models.impact`; tests/test_solver.py, tests/test_restitution.py),
        a rest or a failed uplift keeps the momentum and
        loses ``theta'^2 gamma (2 R^2/3 - gamma h^2/2) > 0``. The block's height term alone is
        ``gamma g R (cos(alpha - |theta|) - cos alpha)``, increasing in ``|theta|`` up to alpha. Hence if

@@ -32,7 +32,7 @@ def impact_map(prm, thd1):
     ``theta_dot+ = eta theta_dot-`` and ``u_dot+ = u_dot- + DU theta_dot-`` (``DU = 0`` on a rigid
     foundation). The Bouc-Wen variables of a hysteretic base do not jump: u does not.
 
-    With a coefficient of restitution E (``--restitution``, :mod:`rockcli.impact`) ``eta`` is
+    With a coefficient of restitution E (``--restitution``, :mod:`rockcli.models.impact`) ``eta`` is
     ``E`` on a rigid foundation and ``1 - 4 (1 - E)/(4 - 3 gamma cos^2 alpha)`` on an isolated base,
     and ``DU = gamma h (1 - eta)`` still keeps the horizontal momentum. Every ``0 <= eta <= 1`` with
     that ``DU`` changes the kinetic energy by ``gamma (2 R^2/3 - gamma h^2/2) (eta^2 - 1) theta_dot-^2

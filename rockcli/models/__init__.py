@@ -20,6 +20,9 @@ Read it in this order:
                  :class:`LeadRubber`, :class:`DoubleConcaveSliding`; :data:`HYSTERETIC`
 ``spec``         :func:`parse_isolation_spec`: ``"scss:Tb=3,mu=0.05"`` -> a foundation
 ``stack``        a body on a free plinth: :class:`Plinth`, :class:`Stack`, :func:`parse_plinth_spec`
+``impact``       the impact map with a given coefficient of restitution ``E`` (``--restitution``)
+``initial``      a start away from rest (``--theta0``) and the still ground of a free-rocking run
+``colonnade``    a capped colonnade (``--cap-ratio``): N equal columns carrying a rigid beam
 ===============  ========================================================================================
 
 Every public name is importable from ``rockcli.models``.

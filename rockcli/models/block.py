@@ -9,9 +9,9 @@ import math
 from dataclasses import dataclass
 
 from rockcli.errors import RockcliInputError
-from rockcli.inputs import format_number
+from rockcli.io.inputs import format_number
 from rockcli.models.limits import ALPHA_MIN_DEG, R_RANGE_M, _check, _finite, _num
-from rockcli.units import G
+from rockcli.io.units import G
 
 
 @dataclass(frozen=True)
@@ -99,7 +99,7 @@ def _check_block(R, alpha, source: str = "", alpha_deg=None) -> None:
 
     The slenderness is quoted as it was given: ``alpha_deg`` (degrees, :meth:`Block.from_degrees`), else the
     radians of :class:`Block` with their degrees, or (``source``: derived from a height and a width) the
-    degrees to 12 significant digits (:func:`rockcli.inputs.format_number` with ``derived=True``)."""
+    degrees to 12 significant digits (:func:`rockcli.io.inputs.format_number` with ``derived=True``)."""
     _check(_finite(R) and float(R) > 0, f"block size R must be a positive length in m, got {_num(R)}")
     _check(_finite(alpha) and 0 < float(alpha) < math.pi / 2,
            f"block slenderness alpha must lie strictly between 0 and 90 degrees, got {_num(alpha)} rad")

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from rockcli.models.limits import (DEFAULT_BW_BETA, DEFAULT_BW_GAMMA, DEFAULT_BW_N, DEFAULT_GAMMA, DEFAULT_UY,
                                    DEFAULT_XI, KIND_BILINEAR, KIND_DCSS, KIND_LINEAR, KIND_RIGID, TB_RANGE_S, XI_MAX,
                                    _check, _check_fraction, _check_hysteresis, _check_period, _finite, _num)
-from rockcli.units import G
+from rockcli.io.units import G
 
 
 @dataclass(frozen=True)

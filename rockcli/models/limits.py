@@ -67,7 +67,7 @@ UY_RANGE_M = (1e-6, 0.1)
 
 def _num(x) -> str:
     """A number for a message: plain float formatting (never ``np.float64(...)``), never rounded."""
-    from rockcli.inputs import format_number
+    from rockcli.io.inputs import format_number
 
     return format_number(x)
 

@@ -42,7 +42,7 @@ def parse_isolation_spec(text: str):
         return Rigid()
     if kind not in _SPEC_KEYS:
         raise RockcliInputError(f"unknown isolation {kind!r} in {raw!r} (use {_SPEC_EXAMPLES})")
-    from rockcli.inputs import parse_number, spec_items
+    from rockcli.io.inputs import parse_number, spec_items
 
     keys = _SPEC_KEYS[kind]
     values = {}

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 from rockcli.errors import RockcliInputError
 from rockcli.models.block import Block
 from rockcli.models.limits import _check, _finite, _num
-from rockcli.units import G
+from rockcli.io.units import G
 
 #: Supported plinth mass over body mass: from a thin slab under a heavy bronze to a massive pedestal.
 MASS_RATIO_RANGE = (1e-3, 1e3)
@@ -222,7 +222,7 @@ _KEYS = {"height": "height", "width": "width", "mass_ratio": "mass_ratio", "mass
 def parse_plinth_spec(text: str) -> Plinth:
     """``"plinth:height=1.0,width=0.6[,mass_ratio=2]"`` -> :class:`Plinth` (lengths in m; the name before the
     colon labels it). Any bad spec raises :class:`RockcliInputError` with one sentence."""
-    from rockcli.inputs import parse_number, spec_items
+    from rockcli.io.inputs import parse_number, spec_items
 
     raw = str(text).strip()
     name, colon, rest = raw.partition(":")

@@ -42,11 +42,11 @@ from typing import Optional, Tuple, Union
 import numpy as np
 
 from rockcli.errors import RockcliInputError
-from rockcli.inputs import format_number
+from rockcli.io.inputs import format_number
 from rockcli.pulses.cwt import (WAVELETS, _cwt_grid, _grid_estimate, _grid_shape, coefficient_to_amplitude,
                                 period_to_scale, scale_to_period)
 from rockcli.pulses.shapes import RICKER_HALF_WIDTH, T_P_RANGE_S, RickerAntisymmetric, RickerSymmetric
-from rockcli.units import G
+from rockcli.io.units import G
 
 __all__ = [
     "DEFAULT_PERIODS",
@@ -140,7 +140,7 @@ def parse_periods(text: str) -> Tuple[float, float]:
     parts = str(text).split(":")
     if len(parts) != 2:
         raise RockcliInputError(f"--periods {text!r} must be MIN:MAX in seconds, e.g. 0.1:6")
-    from rockcli.inputs import parse_number
+    from rockcli.io.inputs import parse_number
 
     bad = f"--periods {text!r} must be two numbers MIN:MAX in seconds, e.g. 0.1:6"
     if any(p.strip().lower().lstrip("+-") in ("nan", "inf", "infinity") for p in parts):

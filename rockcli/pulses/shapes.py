@@ -45,8 +45,8 @@ from typing import ClassVar, Optional, Tuple
 import numpy as np
 
 from rockcli.errors import RockcliInputError
-from rockcli.inputs import format_number
-from rockcli.units import G
+from rockcli.io.inputs import format_number
+from rockcli.io.units import G
 
 __all__ = [
     "RICKER_ANTI_BETA",

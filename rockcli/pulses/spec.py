@@ -11,7 +11,7 @@ from typing import Optional, Union
 
 from rockcli.errors import RockcliInputError
 from rockcli.pulses.shapes import A_P_MAX_G, PULSE_SHAPES, OneCosine, OneSine, RickerAntisymmetric, RickerSymmetric
-from rockcli.units import G
+from rockcli.io.units import G
 
 __all__ = ["PulseLike", "make_pulse", "parse_pulse_spec"]
 
@@ -66,7 +66,7 @@ def parse_pulse_spec(text: str) -> PulseLike:
         shape, _, rest = raw.partition(":")
     else:
         shape, rest = raw, ""
-    from rockcli.inputs import parse_number, spec_items
+    from rockcli.io.inputs import parse_number, spec_items
 
     cls = _shape_class(shape)
     values, texts = {}, {}

@@ -204,7 +204,7 @@ def parse_numbers(lines: list[str], first_line: int, filename: str) -> np.ndarra
         except ValueError:
             values = None
     if values is None:
-        from rockcli.inputs import parse_number
+        from rockcli.io.inputs import parse_number
 
         out: list[float] = []
         for k, line in enumerate(lines):
@@ -326,7 +326,7 @@ def parse_at2(filename, headonly: bool = False) -> tuple[np.ndarray, dict[str, A
     if header["npts"] <= 0:
         raise RockcliInputError(f"{filename}, line 4: the AT2 header states NPTS={header['npts']}; it must be positive")
     if not header["dt"] > 0:
-        from rockcli.inputs import format_number
+        from rockcli.io.inputs import format_number
 
         raise RockcliInputError(f"{filename}, line 4: the AT2 header states DT={format_number(header['dt'])} s; "
                                 f"the time step must be positive")
@@ -373,7 +373,7 @@ def _is_at2(filename) -> bool:
 
 def at2_factor(header: dict[str, Any], filename="AT2 file") -> float:
     """Factor from the file's stated units to m/s^2 (raises if the units are unknown)."""
-    from rockcli.units import accel_factor
+    from rockcli.io.units import accel_factor
 
     if header.get("units") is None:
         raise RockcliInputError(f"{filename}: the AT2 header states no units; give them (--units g, ...)")

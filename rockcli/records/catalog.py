@@ -130,12 +130,12 @@ def _parse_cell(name: str, text: str, where: str):
     if name in _FLOATS or name in _INTS:
         if not text:
             return None
-        from rockcli.inputs import parse_number
+        from rockcli.io.inputs import parse_number
 
         return parse_number(text, f"{where}: column {name!r} holds", integer=name in _INTS,
                             bad=f"{where}: column {name!r} holds {text!r}, not a number")
     if name == "units" and text:
-        from rockcli.units import ACCEL_UNITS, KNOWN_UNITS, is_counts
+        from rockcli.io.units import ACCEL_UNITS, KNOWN_UNITS, is_counts
 
         if text.lower().replace(" ", "") not in ACCEL_UNITS and not is_counts(text):
             raise RockcliInputError(f"{where}: column 'units' holds {text!r}, which is not a units word rockcli knows "
@@ -238,7 +238,7 @@ def write_catalog(entries, path: str | os.PathLike | None = None) -> Path:
     ``load_catalog(write_catalog(load_catalog()))`` gives the same entries, and the file is
     byte-identical when it was written by this function.
     """
-    from rockcli.files import write_text
+    from rockcli.io.files import write_text
 
     path = Path(path) if path is not None else catalog_path()
     return write_text(path, format_catalog(entries))

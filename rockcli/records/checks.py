@@ -65,7 +65,7 @@ def check_peak(filename, values: np.ndarray, stated: float, written: str, where:
         return
     peak = float(np.max(np.abs(values))) * factor
     if not peak_agrees(stated, written, peak):
-        from rockcli.inputs import format_number
+        from rockcli.io.inputs import format_number
 
         unit = f" {units}" if units else ""
         raise disagree(filename, f"a peak of {written}{unit} ({where})",
@@ -88,7 +88,7 @@ def check_duration(filename, npts: int, dt: float, stated: float, written: str, 
         return
     tol = dt + last_digit(written)
     if min(abs(stated - npts * dt), abs(stated - (npts - 1) * dt)) > tol:
-        from rockcli.inputs import format_number
+        from rockcli.io.inputs import format_number
 
         raise disagree(filename, f"a duration of {written} s ({where})",
                        f"its {npts} samples at dt = {format_number(dt)} s last "
@@ -105,7 +105,7 @@ def check_positive_scale(filename, value: float, written: str, where: str) -> No
 def known_units(filename, word: str | None, where: str) -> str | None:
     """``word`` when it is a units word rockcli knows, None when the header holds none there (the file does not
     state its units); an unknown word is one sentence naming where the header holds it."""
-    from rockcli.units import ACCEL_UNITS, KNOWN_UNITS
+    from rockcli.io.units import ACCEL_UNITS, KNOWN_UNITS
 
     if word is None or not str(word).strip():
         return None

@@ -172,7 +172,7 @@ def check_angle(value, what: str) -> float:
 def record_text(rec) -> str:
     """``rec`` as a plain text record that rockcli reads back identically: comments with its source, time step
     and units (m/s^2), then one sample per line written with 17 significant digits (a float64 round trip)."""
-    from rockcli.inputs import format_number
+    from rockcli.io.inputs import format_number
 
     head = [f"# rockcli export of {rec.meta.get('path') or rec.name}",
             f"# component: {component_name(rec)} ({orientation_text(rec)})",

@@ -72,7 +72,7 @@ def _read_esm(lines: list[str], filename: str, column: int | None) -> dict[str, 
                               where("DURATION_S"))
     units = checks.known_units(filename, header.get("UNITS"), where("UNITS") if "UNITS" in header else "UNITS")
     if units is not None and header.get("PGA_CM/S^2"):  # the peak in cm/s^2 whatever UNITS says: checks both
-        from rockcli.units import accel_factor
+        from rockcli.io.units import accel_factor
 
         checks.check_peak(filename, values, _header_value(header["PGA_CM/S^2"]), header["PGA_CM/S^2"],
                           where("PGA_CM/S^2"), "cm/s^2", accel_factor(units) / accel_factor("cm/s^2"))
@@ -125,7 +125,7 @@ def _read_itaca(lines: list[str], filename: str, column: int | None) -> dict[str
     units = checks.known_units(filename, units, f"line {units_line}")
     pga_key = next((k for k in header if re.match(r"PGA\s*\(", k)), None)
     if pga_key is not None and units is not None:  # "PGA (m/s/s) : 5.0693293E+00": a peak in stated units
-        from rockcli.units import accel_factor
+        from rockcli.io.units import accel_factor
 
         pga_units = checks.known_units(filename, re.match(r"PGA\s*\((.*)\)", pga_key).group(1),
                                        f"line {line_of[pga_key]}")
@@ -197,7 +197,7 @@ def _read_cosmos(lines: list[str], filename: str, column: int | None) -> dict[st
         raise checks.disagree(filename, f"{quantity} ({block_line})", f"its integer header (value 2) codes the data "
                               f"as {_COSMOS_TYPES[type_code]} ({type_code})")
     units = checks.known_units(filename, units, block_line)
-    from rockcli.units import accel_factor
+    from rockcli.io.units import accel_factor
 
     for code, where in ((int(ints[2]) if ints.size > 2 else _COSMOS_UNKNOWN, "its integer header (value 3)"),
                         (int(m.group(5)) if m.group(5) else _COSMOS_UNKNOWN, "the units code in parentheses")):
@@ -257,9 +257,9 @@ def _read_cwb(lines: list[str], filename: str, column: int | None) -> dict[str, 
 # --------------------------------------------------------------------------------------------
 
 def _header_number(text: str, integer: bool = False):
-    """A header value as a plain number (:func:`rockcli.inputs.parse_number`: ``1_0`` is not 10); raises
+    """A header value as a plain number (:func:`rockcli.io.inputs.parse_number`: ``1_0`` is not 10); raises
     ``RockcliInputError``, a ``ValueError``, which the readers turn into their sentence on the header."""
-    from rockcli.inputs import parse_number
+    from rockcli.io.inputs import parse_number
 
     return parse_number(text, "header value", integer=integer, fortran=True)
 

@@ -27,7 +27,7 @@ from pathlib import Path
 import numpy as np
 
 from rockcli.errors import RockcliInputError
-from rockcli.inputs import format_number
+from rockcli.io.inputs import format_number
 from rockcli.records.record import Record
 
 #: Default step of ``--azimuth worst`` [deg].
@@ -135,7 +135,7 @@ def project(first: Record, second: Record, azimuth_deg: float) -> Record:
 def check_azimuth_step(step, what: str = "--azimuth-step") -> float:
     """``step`` [deg] of ``--azimuth worst`` when it lies in :data:`AZIMUTH_STEP_RANGE_DEG`, else one sentence
     naming ``what``, the limits and why."""
-    from rockcli.inputs import parse_number
+    from rockcli.io.inputs import parse_number
 
     lo, hi = AZIMUTH_STEP_RANGE_DEG
     if isinstance(step, (int, float)) and not isinstance(step, bool) and math.isfinite(step) and lo <= step <= hi:
@@ -161,7 +161,7 @@ def parse_azimuth(text) -> float | str | None:
     s = str(text).strip()
     if s.lower() == "worst":
         return "worst"
-    from rockcli.inputs import parse_number
+    from rockcli.io.inputs import parse_number
 
     return parse_number(s, "--azimuth")
 

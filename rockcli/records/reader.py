@@ -14,7 +14,7 @@ import numpy as np
 from rockcli.errors import RockcliInputError
 from rockcli.records.components import MultiComponent, NotARecord
 from rockcli.records.record import Record
-from rockcli.units import G
+from rockcli.io.units import G
 
 #: Format names rockcli parses itself (anything else is handed to ``obspy.read``).
 TEXT_FORMATS = {"TEXT", "TXT", "ASCII"}
@@ -33,7 +33,7 @@ PGA_MAX_G = 100.0
 def _check_units(units):
     if units is None:
         return None
-    from rockcli.units import accel_factor
+    from rockcli.io.units import accel_factor
 
     accel_factor(units)  # raises on an unknown word
     return str(units)
@@ -41,7 +41,7 @@ def _check_units(units):
 
 def _num(x) -> str:
     """A number in a message exactly as it reads back (never rounded: 0.0100001 stays 0.0100001)."""
-    from rockcli.inputs import format_number
+    from rockcli.io.inputs import format_number
 
     return format_number(x)
 
@@ -62,7 +62,7 @@ def check_gain(gain, units):
     """``gain`` as a positive finite float (None when not given); it needs ``units``, the units it yields."""
     if gain is None:
         return None
-    from rockcli.inputs import parse_number
+    from rockcli.io.inputs import parse_number
 
     value = parse_number(gain, "--gain", lo=0, lo_open=True)
     if units is None:
@@ -175,7 +175,7 @@ def read_record(source, *, format=None, units=None, dt=None, column=None, compon
 
 def _check_source(source) -> None:
     """A record's source is a path (text or path-like), a catalogue id or a :class:`Record`: else one sentence."""
-    from rockcli.inputs import check_type
+    from rockcli.io.inputs import check_type
 
     check_type(source, (str, os.PathLike, Record), "source", "a record file's path or a catalogue id (text)")
 
@@ -513,7 +513,7 @@ def _orientation(path: Path, fmt, component) -> dict:
 
 def _finish(path: Path, out: dict[str, Any], units, dt, given_by: str, gain=None) -> Record:
     """Reconcile stated and given units and time step, convert to m/s^2, build the Record."""
-    from rockcli.units import accel_factor, is_counts
+    from rockcli.io.units import accel_factor, is_counts
 
     name = str(path)
     stated_units = out.get("units")
@@ -534,7 +534,7 @@ def _finish(path: Path, out: dict[str, Any], units, dt, given_by: str, gain=None
         try:
             factor = accel_factor(stated_units)
         except RockcliInputError:
-            from rockcli.units import KNOWN_UNITS
+            from rockcli.io.units import KNOWN_UNITS
 
             raise RockcliInputError(f"{name}: the file states units {stated_units!r}, which rockcli does not know "
                                     f"(known: {KNOWN_UNITS}; give the file's units in one of these words)") from None

@@ -7,7 +7,7 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from rockcli.units import G
+from rockcli.io.units import G
 
 
 @dataclass(frozen=True, eq=False)
@@ -77,9 +77,9 @@ class Record:
         ------
         RockcliInputError
             ``k`` is not a finite non-zero number, or takes the record's peak past the 100 g that rockcli runs
-            (:func:`rockcli.inputs.check_scale`, the check of ``--scale``).
+            (:func:`rockcli.io.inputs.check_scale`, the check of ``--scale``).
         """
-        from rockcli.inputs import check_scale
+        from rockcli.io.inputs import check_scale
 
         k = check_scale(k, self.pga_g, "Record.scaled: the factor", f"the record {self.name}")
         return replace(self, acc=self.acc * k, meta={**self.meta, "scale": self.meta.get("scale", 1.0) * k})

@@ -54,7 +54,7 @@ TIME_UNIFORMITY_RTOL = 1e-3
 
 
 def _known_unit(word: str) -> bool:
-    from rockcli.units import ACCEL_UNITS
+    from rockcli.io.units import ACCEL_UNITS
 
     return word.strip().lower().replace(" ", "").rstrip(".") in ACCEL_UNITS
 
@@ -78,7 +78,7 @@ def parse_comments(comments: list[str], filename: str = "text file") -> dict[str
 
 def _comment_dt(m: re.Match, line: str, filename: str) -> float:
     """The time step [s] of a ``_DT_RE`` match: its number as written, times its unit (seconds when bare)."""
-    from rockcli.inputs import parse_number
+    from rockcli.io.inputs import parse_number
 
     what = f"{filename}: a comment states the time step as {line.strip()[:80]!r}:"
     value = parse_number(m.group("dt").rstrip(",."), f"{what} the number", fortran=True)
@@ -197,7 +197,7 @@ def _check_plain_numbers(rows: list[list[str]], row_lines: list[int], filename: 
     digits); NaN and infinities pass here and are named with their column below."""
     if _PLAIN_CHARS.fullmatch("".join("".join(r) for r in rows)):
         return
-    from rockcli.inputs import parse_number
+    from rockcli.io.inputs import parse_number
 
     for tokens, number in zip(rows, row_lines):
         for token in tokens:
@@ -313,7 +313,7 @@ def parse_text(text: str, filename: str = "text file", column: int | None = None
     if time_col:
         dt, t0 = check_time_column(table[:, 0], row_lines, filename)
         if stated["dt"] is not None and not np.isclose(stated["dt"], dt, rtol=1e-3):
-            from rockcli.inputs import format_number
+            from rockcli.io.inputs import format_number
 
             raise RockcliInputError(f"{filename}: a comment states dt={format_number(stated['dt'])} s but the time "
                                     f"column has steps of {format_number(dt)} s")

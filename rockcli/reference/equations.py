@@ -8,7 +8,7 @@ docs/physics-colonnade.md) is written from its bodies' mass properties (:func:`c
 rocking accelerations as the 2x2 system of Lagrange's equations in u and theta, the impact map as the
 2x2 momentum system with the beam's terms; never through the kernel's effective block. A given
 coefficient of restitution ``E`` replaces the momentum before the impact by ``E`` times the one after it
-on the ground (the impulsive couple of rockcli.impact).
+on the ground (the impulsive couple of rockcli.models.impact).
 """
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ from typing import NamedTuple
 import numpy as np
 
 from rockcli.models import Block
-from rockcli.units import G
+from rockcli.io.units import G
 
 
 def ground_function(excitation):

@@ -18,7 +18,7 @@ import numpy as np
 from rockcli.reference.equations import ground_function, rocking_accelerations
 from rockcli.reference.phases import Phases
 from rockcli.reference.result import RefResult
-from rockcli.units import G
+from rockcli.io.units import G
 
 
 @dataclass

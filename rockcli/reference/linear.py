@@ -18,7 +18,7 @@ from rockcli.models import LinearIsolation
 from rockcli.reference.equations import colonnade_masses, ground_function, rocking_accelerations
 from rockcli.reference.phases import Phases
 from rockcli.reference.result import RefResult
-from rockcli.units import G
+from rockcli.io.units import G
 
 
 def reference_linear(block, foundation, excitation, work, *, horizon, rest_tol, max_phases,

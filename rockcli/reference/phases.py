@@ -16,7 +16,7 @@ import numpy as np
 
 from rockcli.reference.equations import colonnade_masses, impact_map_linear_system
 from rockcli.reference.result import RefResult
-from rockcli.units import G
+from rockcli.io.units import G
 
 
 class Phases:

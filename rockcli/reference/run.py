@@ -43,7 +43,7 @@ def reference_simulate(block: Block, foundation, excitation, *, rtol=1e-10, atol
         in Eq (3), in the uplift threshold and in the rest rule.
     restitution : float, optional
         Coefficient of restitution E (theta_dot+ = E theta_dot- on a rigid foundation; on a base the
-        momentum map with the impulsive couple of :mod:`rockcli.impact`); None: Housner's rule.
+        momentum map with the impulsive couple of :mod:`rockcli.models.impact`); None: Housner's rule.
     cap_ratio : float
         A capped colonnade of such columns (beam mass over the columns'; docs/physics-colonnade.md),
         written from its bodies' mass properties; on a base ``gamma`` is columns + beam over the moving mass.

@@ -43,7 +43,7 @@ import numpy as np
 from rockcli.reference.equations import ground_function
 from rockcli.reference.ivp import Work
 from rockcli.reference.stack_mechanics import StackModel
-from rockcli.units import G
+from rockcli.io.units import G
 
 
 @dataclass

@@ -24,7 +24,7 @@ import math
 
 import numpy as np
 
-from rockcli.units import G
+from rockcli.io.units import G
 
 
 def _rot(t: float, x: float, y: float):

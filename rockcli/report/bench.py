@@ -12,7 +12,7 @@ from pathlib import Path
 
 from rockcli.bench import NOISE_DRAWS
 from rockcli.errors import RockcliInputError
-from rockcli.files import atomic_path, save_figure
+from rockcli.io.files import atomic_path, save_figure
 
 #: Columns of ``rockcli bench work-precision --csv``: one row per run (scene-level values repeated).
 WP_COLUMNS = ("scene", "method", "rtol", "verdict", "verdict_ok", "theta_max_over_alpha", "err_theta_max_over_alpha",

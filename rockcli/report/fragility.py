@@ -10,7 +10,7 @@ import os
 from pathlib import Path
 
 from rockcli.errors import RockcliInputError
-from rockcli.files import check_output, save_figure, write_text
+from rockcli.io.files import check_output, save_figure, write_text
 
 
 def _fmt(v, spec=".3g") -> str:

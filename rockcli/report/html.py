@@ -26,7 +26,7 @@ import platform
 from datetime import datetime, timezone
 from pathlib import Path
 
-from rockcli.files import write_text
+from rockcli.io.files import write_text
 
 #: Section ids and titles, in the order of the page.
 SECTIONS = (("answer", "The answer"), ("body", "The body"), ("configurations", "How it stands"),
@@ -164,7 +164,7 @@ def plural(n: int, word: str) -> str:
 def body_section(blocks) -> str:
     """Dimensions, R, alpha and p of every body, with what they mean."""
     from rockcli.assess.verdicts import body_noun
-    from rockcli.units import G
+    from rockcli.io.units import G
 
     rows = [(esc(b.name), esc(body_noun(b)), num(b.height, ".3f", "m"), num(b.width, ".3f", "m"),
              num(b.h / b.b, ".2f"), num(b.R, ".3f", "m"), num(b.alpha_deg, ".2f", "deg"), num(b.p, ".3f", "rad/s"),

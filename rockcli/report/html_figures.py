@@ -45,10 +45,10 @@ PAGE_WIDTH_IN, FIGURE_WIDTH_IN = 11.45, 8.5
 def png_of(draw) -> bytes:
     """The PNG bytes that ``draw(path)`` (a plotter that writes a figure file) would write.
 
-    The figure is captured in memory (:func:`rockcli.files.captured_figures`); the path names a private
+    The figure is captured in memory (:func:`rockcli.io.files.captured_figures`); the path names a private
     temporary folder only so that the plotter's checks of its output path pass.
     """
-    from rockcli.files import captured_figures
+    from rockcli.io.files import captured_figures
 
     with tempfile.TemporaryDirectory(prefix="rockcli-report-") as folder, captured_figures() as got:
         path = Path(folder) / "figure.png"

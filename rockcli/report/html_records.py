@@ -36,7 +36,7 @@ def provenance(excitation) -> dict:
     if motion is None:
         return {"label": label, "error": getattr(excitation, "error", "") or "could not be read"}
     if not hasattr(motion, "acc"):
-        from rockcli.units import G
+        from rockcli.io.units import G
 
         return {"label": label, "kind": "pulse", "shape": motion.shape, "a_p_g": motion.a_p / G,
                 "T_p_s": motion.T_p, "source": getattr(excitation, "source", "analytic pulse")}

@@ -10,8 +10,8 @@ import csv
 import io
 from pathlib import Path
 
-from rockcli.files import check_output, save_figure, write_text
-from rockcli.units import G
+from rockcli.io.files import check_output, save_figure, write_text
+from rockcli.io.units import G
 
 #: Columns of ``rockcli fit-pulse --csv``.
 FIT_COLUMNS = ("record", "wavelet", "pulse_shape", "a_p_g", "T_p_s", "t0_s", "energy_fraction",

@@ -11,7 +11,7 @@ import io
 import os
 from pathlib import Path
 
-from rockcli.files import check_output, save_figure, write_text
+from rockcli.io.files import check_output, save_figure, write_text
 
 #: Columns of the ``rockcli records list --csv`` table.
 LIST_COLUMNS = ("id", "event", "year", "station", "component", "mw", "distance_km", "pga_published_g",
@@ -42,7 +42,7 @@ def plot_record(record, path: str | os.PathLike, baseline: str = "linear") -> Pa
     """
     from rockcli.records.motion import integrate
     from rockcli.report.figures import new_figure, plain, pyplot, title
-    from rockcli.units import G
+    from rockcli.io.units import G
 
     check_output(path, image=True)
     plt = pyplot()

@@ -12,8 +12,8 @@ from pathlib import Path
 
 import numpy as np
 
-from rockcli.files import check_output, save_figure, write_text
-from rockcli.units import G
+from rockcli.io.files import check_output, save_figure, write_text
+from rockcli.io.units import G
 
 #: Columns of a history CSV (SI units, g only where labelled).
 HISTORY_COLUMNS = ("t_s", "ag_mps2", "ag_g", "theta_rad", "theta_over_alpha", "theta_dot_radps", "u_m", "u_dot_mps")

@@ -10,7 +10,7 @@ import csv
 import io
 from pathlib import Path
 
-from rockcli.files import check_output, save_figure, write_text
+from rockcli.io.files import check_output, save_figure, write_text
 from rockcli.report.figures import spec_text
 from rockcli.report.spectra import _column_text, _pyplot, constant_columns
 
@@ -85,7 +85,7 @@ def plot_rocking_spectrum(curves, path, *, title: str, dpi: int = 120) -> Path:
     from matplotlib.lines import Line2D
 
     from rockcli.spectra.rocking import frequency_parameter
-    from rockcli.units import G
+    from rockcli.io.units import G
 
     check_output(path, image=True)
     plt = _pyplot()

@@ -12,8 +12,8 @@ import io
 import math
 from pathlib import Path
 
-from rockcli.files import check_output, save_figure, write_text
-from rockcli.units import G
+from rockcli.io.files import check_output, save_figure, write_text
+from rockcli.io.units import G
 
 #: Columns of ``rockcli spectrum overturning --csv`` (one row per cell of every map).
 MAP_COLUMNS = ("alpha_deg", "pulse", "isolation", "T_p_s", "R_m", "wp_over_p", "ap_over_g_tan_alpha", "ap_g",

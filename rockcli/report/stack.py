@@ -8,8 +8,8 @@ from pathlib import Path
 
 import numpy as np
 
-from rockcli.files import write_text
-from rockcli.units import G
+from rockcli.io.files import write_text
+from rockcli.io.units import G
 
 #: Columns of a stack's history CSV (SI, g where labelled): the body's rotation on the plinth ``psi``, the plinth's
 #: ``theta2``, the pattern of motion of the row and its event.
@@ -40,7 +40,7 @@ def plot_stack_response(response, stack, path: str | os.PathLike, *, excitation=
     its history rows (every step end and event of the run); a red line marks the instant a block topples."""
     import math
 
-    from rockcli.files import check_output, save_figure
+    from rockcli.io.files import check_output, save_figure
     from rockcli.report.figures import (block_text, excitation_samples, foundation_text, motion_text, new_figure,
                                         pyplot, title)
 

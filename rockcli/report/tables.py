@@ -13,7 +13,7 @@ import os
 from pathlib import Path
 
 
-from rockcli.files import write_text
+from rockcli.io.files import write_text
 
 #: Columns of the CSV report, in order (units in the names; see rockcli.assess.AssessmentRow).
 CSV_COLUMNS = ("column", "R_m", "alpha_deg", "height_m", "width_m", "record", "excitation", "source", "pga_g",

@@ -34,7 +34,7 @@ To replace a helper in a test, patch it in the module that calls it (e.g. ``rock
 Solver contract
 ---------------
 * The block starts at rest on its base, base and ground at rest, at the start of the excitation
-  (or, with ``theta0``/``theta_dot0``, rocking from that state: :mod:`rockcli.initial`).
+  (or, with ``theta0``/``theta_dot0``, rocking from that state: :mod:`rockcli.models.initial`).
 * A record is piecewise linear between its samples, zero after its last sample. A pulse is
   evaluated analytically and is zero outside its support.
 * Uplift when the absolute base acceleration ``a`` passes ``-g tan(alpha)`` (rocking on the
@@ -49,7 +49,7 @@ Solver contract
   ``k = (4 - 3 gamma) cot^2(alpha)`` (Housner's ``1 - 1.5 sin^2 alpha`` when gamma = 0). A given
   coefficient of restitution ``0 < E <= 1`` replaces it by ``E`` on a rigid foundation and by
   ``1 - 4 (1 - E)/(4 - 3 gamma cos^2 alpha)`` on an isolated base (horizontal momentum kept;
-  derivation in :mod:`rockcli.impact`).
+  derivation in :mod:`rockcli.models.impact`).
 * Rest: after an impact, when the current base acceleration ``a`` could not lift the block
   (``|a| < g tan alpha``) and the rotation it could still reach against the restoring
   acceleration ``p^2 cos(alpha) (tan(alpha) - |a|/g)``, ``theta_dot^2 / (2 p^2 cos(alpha) (tan(alpha) -

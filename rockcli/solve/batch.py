@@ -10,9 +10,9 @@ import math
 
 import numpy as np
 
-from rockcli.colonnade import check_cap_ratio
+from rockcli.models.colonnade import check_cap_ratio
 from rockcli.errors import RockcliInputError
-from rockcli.impact import check_restitution
+from rockcli.models.impact import check_restitution
 from rockcli.models import Block, Rigid
 from rockcli.solve.excitation import _excitation_arrays, _vertical_arrays, attached_vertical
 from rockcli.solve.options import (DEFAULT_HORIZON, DEFAULT_MAX_STEPS, DEFAULT_REST_TOL, DEFAULT_TAIL, TAIL_MAX,
@@ -197,7 +197,7 @@ def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress
     Returns ``(outs, alphas, failed)``: ``outs`` has one row per valid job in job order,
     ``alphas`` one entry per job (NaN for a failed one), ``failed`` maps job index -> JobError.
     """
-    from rockcli.inputs import as_list
+    from rockcli.io.inputs import as_list
 
     jobs = as_list(jobs, "jobs", "a list of (block, foundation, excitation[, scale]) tuples")
     tails_in = np.asarray(tail, dtype=float)
@@ -232,7 +232,7 @@ def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress
     for i, job in enumerate(jobs):
         try:
             if not isinstance(job, (tuple, list)) or not 3 <= len(job) <= 4:
-                from rockcli.inputs import type_words
+                from rockcli.io.inputs import type_words
 
                 raise RockcliInputError(f"job {i} must be a tuple (block, foundation, excitation[, scale]), got "
                                         f"{type_words(job)}")

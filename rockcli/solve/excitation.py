@@ -9,7 +9,7 @@ import math
 import numpy as np
 
 from rockcli.errors import RockcliInputError
-from rockcli.inputs import format_number
+from rockcli.io.inputs import format_number
 from rockcli.solve.options import _kernel
 
 

@@ -11,7 +11,7 @@ import math
 import numpy as np
 
 from rockcli.errors import RockcliInputError
-from rockcli.inputs import format_number
+from rockcli.io.inputs import format_number
 from rockcli.models import DoubleConcaveSliding, LeadRubber, LinearIsolation, Rigid, SingleConcaveSliding
 
 #: The foundations a scene stands on.
@@ -24,7 +24,7 @@ def check_foundation(foundation, what: str = "foundation"):
     if foundation is None:
         return Rigid()
     if not isinstance(foundation, FOUNDATION_TYPES):
-        from rockcli.inputs import type_words
+        from rockcli.io.inputs import type_words
 
         raise RockcliInputError(f"{what} must be a rockcli foundation (Rigid(), LinearIsolation(T_b=2.5), ...; from "
                                 f"a spec such as 'none' or 'linear:Tb=2.5': parse_isolation_spec(spec)), got "

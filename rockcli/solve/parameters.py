@@ -9,18 +9,18 @@ import math
 import numpy as np
 
 from rockcli.errors import RockcliInputError
-from rockcli.colonnade import apply_cap_ratio, check_cap_ratio
-from rockcli.impact import impact_ratio
+from rockcli.models.colonnade import apply_cap_ratio, check_cap_ratio
+from rockcli.models.impact import impact_ratio
 from rockcli.models import Block, DoubleConcaveSliding, LeadRubber, LinearIsolation, Rigid, SingleConcaveSliding
 from rockcli.solve.options import DEFAULT_REST_TOL, DEFAULT_RTOL, _kernel, _rtol
-from rockcli.units import G
+from rockcli.io.units import G
 
 
 def _parameters(block: Block, foundation, rtol, rest_tol: float, restitution: float | None = None,
                 cap_ratio: float = 0.0):
     """``(fkind, prm)``: the kernel's foundation code and parameter vector (``rockcli.kernels.layout``);
-    ``rtol`` None takes the foundation's default; ``restitution`` None Housner's (:mod:`rockcli.impact`);
-    ``cap_ratio`` > 0 a capped colonnade (:mod:`rockcli.colonnade`)."""
+    ``rtol`` None takes the foundation's default; ``restitution`` None Housner's (:mod:`rockcli.models.impact`);
+    ``cap_ratio`` > 0 a capped colonnade (:mod:`rockcli.models.colonnade`)."""
     k = _kernel()
     rtol = _rtol(foundation, rtol)
     prm = np.zeros(k.N_PRM)

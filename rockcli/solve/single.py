@@ -7,9 +7,9 @@ import math
 import numpy as np
 
 from rockcli.errors import RockcliInputError
-from rockcli.impact import check_restitution
-from rockcli.inputs import format_number, type_words
-from rockcli.initial import check_initial_state, still_ground_arrays
+from rockcli.models.impact import check_restitution
+from rockcli.io.inputs import format_number, type_words
+from rockcli.models.initial import check_initial_state, still_ground_arrays
 from rockcli.models import Block
 from rockcli.solve.excitation import _excitation_arrays, _vertical_arrays, attached_vertical
 from rockcli.solve.options import (DEFAULT_HORIZON, DEFAULT_MAX_STEPS, DEFAULT_REST_TOL, DEFAULT_TAIL, _kernel,
@@ -59,13 +59,13 @@ def simulate(block: Block, foundation=None, excitation=None, *, rtol: float | No
     restitution : float, optional
         Coefficient of restitution E, 0 < E <= 1: ``theta_dot+ = E theta_dot-`` at an impact on a
         rigid foundation (None: Housner's ``1 - 1.5 sin^2 alpha``); on an isolated base the map
-        keeps the horizontal momentum and E enters as in :mod:`rockcli.impact`.
+        keeps the horizontal momentum and E enters as in :mod:`rockcli.models.impact`.
     theta0, theta_dot0 : float
         Start rocking from this tilt [rad] (``|theta0| < pi/2``) and angular velocity [rad/s]
-        instead of at rest (:mod:`rockcli.initial`); ``excitation`` may then be None (free rocking).
+        instead of at rest (:mod:`rockcli.models.initial`); ``excitation`` may then be None (free rocking).
     cap_ratio : float
         A capped colonnade of such columns: beam mass over the columns' total mass, >= 0 (0: the
-        solitary column; :mod:`rockcli.colonnade`). On an isolated base the foundation's ``gamma`` is
+        solitary column; :mod:`rockcli.models.colonnade`). On an isolated base the foundation's ``gamma`` is
         the mass of columns and beam over the whole moving mass.
     history_dt : float, optional
         The history on a uniform grid: rows at the times ``k history_dt`` [s] from the start to the

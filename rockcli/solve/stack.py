@@ -14,14 +14,14 @@ from typing import Any
 import numpy as np
 
 from rockcli.errors import RockcliInputError
-from rockcli.impact import check_restitution
+from rockcli.models.impact import check_restitution
 from rockcli.models import Rigid, Stack
 from rockcli.solve.excitation import _excitation_arrays, attached_vertical
 from rockcli.solve.options import (DEFAULT_HORIZON, DEFAULT_MAX_STEPS, DEFAULT_REST_TOL, DEFAULT_TAIL, _kernel, _rtol,
                                    validate_options)
 from rockcli.solve.parameters import _parameters
 from rockcli.solve.response import VERDICT_NO_UPLIFT, VERDICT_OVERTURNED, VERDICT_ROCKED
-from rockcli.units import G
+from rockcli.io.units import G
 
 #: Relative slack of the impact consistency tests (docs/physics-plinth.md, "Which pattern follows").
 IMPACT_TOL = 1e-9

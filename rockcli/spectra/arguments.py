@@ -14,7 +14,7 @@ import math
 import numpy as np
 
 from rockcli.errors import RockcliInputError
-from rockcli.inputs import as_list, check_type, type_words
+from rockcli.io.inputs import as_list, check_type, type_words
 from rockcli.spectra.grids import Grid, parse_grid
 from rockcli.spectra.scenes import Isolation, PulseChoice, parse_isolation, parse_pulse_choice
 
@@ -25,7 +25,7 @@ def as_alphas(values, what: str = "alphas_deg") -> list:
     for a in as_list(values, what, "a list of slenderness values in degrees", one=(int, float, np.floating)):
         check_type(a, (int, float, np.integer, np.floating), f"{what}: each value", "a number of degrees")
         if not (math.isfinite(float(a)) and 0.0 < float(a) < 90.0):
-            from rockcli.inputs import format_number
+            from rockcli.io.inputs import format_number
 
             raise RockcliInputError(f"{what}: alpha = {format_number(a)} deg must lie strictly between 0 and 90 deg")
         out.append(float(a))

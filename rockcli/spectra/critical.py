@@ -21,7 +21,7 @@ from rockcli.spectra.minimum import (DEFAULT_REFINE, DEFAULT_REFINE_BAND, DEFAUL
                                      curves_of, search_min_overturning, y_limit)
 from rockcli.spectra.runner import Runner
 from rockcli.spectra.scenes import REFERENCE_R, Family, Isolation, PulseChoice, parse_isolation
-from rockcli.units import G
+from rockcli.io.units import G
 
 #: The paper's Table I scenes (Figures 6-7): the pulses it states for the Aigio OTE FP 1995 and
 #: Coyote Lake Gilroy #6 230 1979 records, slenderness, T_b/T_p, and the bearings of Figure 6.

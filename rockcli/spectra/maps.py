@@ -85,7 +85,7 @@ def overturning_maps(alphas_deg: Sequence[float], pulses: Sequence[PulseChoice],
 def overturning_map(alpha_deg: float, pulse, isolation, wp_grid: Grid, ap_grid: Grid, **kwargs) -> OverturningMap:
     """One overturning map (see :func:`overturning_maps`); ``pulse`` and ``isolation`` may be spec strings, the
     grids ``"start:stop:count"``; a wrong type is one sentence (:mod:`rockcli.spectra.arguments`)."""
-    from rockcli.inputs import check_type
+    from rockcli.io.inputs import check_type
     from rockcli.spectra.arguments import as_isolation, as_pulse_choice
 
     check_type(alpha_deg, (int, float, np.integer, np.floating), "alpha_deg", "a number of degrees")

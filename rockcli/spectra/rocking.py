@@ -29,7 +29,7 @@ from rockcli.errors import RockcliInputError
 from rockcli.models import R_RANGE_M, Block
 from rockcli.spectra.grids import MAX_CELLS, parse_grid
 from rockcli.spectra.runner import Runner
-from rockcli.units import G
+from rockcli.io.units import G
 
 
 def size_grid(text: str, option: str = "--R") -> np.ndarray:
@@ -126,7 +126,7 @@ def rocking_spectrum(record, alphas_deg: Sequence[float], foundations: Sequence,
     list of RockingCurve
         One per ``(alpha, foundation)``, peaks final (``early=False``, see the module notes).
     """
-    from rockcli.inputs import as_list, check_type
+    from rockcli.io.inputs import as_list, check_type
     from rockcli.records.record import Record
     from rockcli.solve import check_foundation
     from rockcli.spectra.arguments import as_alphas, as_values

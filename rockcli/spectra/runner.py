@@ -105,9 +105,9 @@ class Runner:
     horizon : float, optional
         The solver's horizon [s] for every run (None: its default, 600 s).
     restitution : float, optional
-        The coefficient of restitution of every impact (None: Housner's; :mod:`rockcli.impact`).
+        The coefficient of restitution of every impact (None: Housner's; :mod:`rockcli.models.impact`).
     cap_ratio : float
-        Capped colonnades of the blocks, on any foundation (:mod:`rockcli.colonnade`; 0: none).
+        Capped colonnades of the blocks, on any foundation (:mod:`rockcli.models.colonnade`; 0: none).
     vertical : VerticalChoice, optional
         A vertical pulse under every cell, rigid foundation only (:class:`rockcli.spectra.VerticalChoice`).
     """

@@ -31,7 +31,7 @@ from rockcli.errors import RockcliInputError
 from rockcli.models import Block, Rigid, parse_isolation_spec
 from rockcli.pulses import make_pulse
 from rockcli.spectra.grids import _NUMBER
-from rockcli.units import G
+from rockcli.io.units import G
 
 #: Semi-diagonal of the reference block every cell is run on [m] (``p = sqrt(3 g / 4) = 2.712 rad/s``).
 REFERENCE_R = 1.0
@@ -65,7 +65,7 @@ def parse_pulse_choice(text: str) -> PulseChoice:
     shape = {"one-sine": "sine", "one-cosine": "cosine"}.get(shape, shape)
     if shape not in SHAPES:
         raise RockcliInputError(f"pulse {raw!r}: unknown shape {shape!r} (use {', '.join(SHAPES)})")
-    from rockcli.inputs import parse_number, spec_items
+    from rockcli.io.inputs import parse_number, spec_items
 
     T_p = None
     for key, val, eq in spec_items(rest, f"pulse {raw!r}"):
@@ -121,7 +121,7 @@ class VerticalChoice:
 
 def parse_vertical_choice(text: str, option: str = "--vertical-pulse") -> VerticalChoice:
     """``SHAPE:ap=<a_v in g>[,TvTp=<T_v/T_p>]`` (default ``TvTp=1``); ``|a_v| < 1 g`` (lift-off beyond)."""
-    from rockcli.inputs import parse_number, spec_items
+    from rockcli.io.inputs import parse_number, spec_items
 
     raw = str(text).strip()
     shape, _, rest = raw.partition(":")
@@ -212,7 +212,7 @@ def parse_isolation(text: str) -> Isolation:
     kind = kind.strip().lower()
     if kind in ("none", "rigid", "fixed") and not rest.strip():
         return Isolation("none")
-    from rockcli.inputs import parse_number, spec_items
+    from rockcli.io.inputs import parse_number, spec_items
 
     ratio = None
     params = []

@@ -48,7 +48,7 @@ from __future__ import annotations
 import math
 
 from rockcli.errors import RockcliInputError
-from rockcli.inputs import format_number
+from rockcli.io.inputs import format_number
 from rockcli.models import impact_coefficient
 
 

@@ -1,4 +1,4 @@
-"""Output paths checked before any work, and OS errors as one sentence (used by :mod:`rockcli.files`).
+"""Output paths checked before any work, and OS errors as one sentence (used by :mod:`rockcli.io.files`).
 
 * :func:`check_output` (and :func:`check_output_folder`) run right after the options are parsed:
   the folder must exist (an output folder may be missing: its nearest existing ancestor must

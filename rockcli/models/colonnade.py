@@ -25,7 +25,7 @@ bearings carry above the base over the whole moving mass) Lagrange with ``u`` an
 solitary block's Eqs (10)-(11) exactly, with the semi-diagonal ``R_eff = R (1 + 3 gamma_c)/(1 + 2 gamma_c)``
 (the same ``p_c``) and the mass ratio :func:`effective_gamma`; the impact map (the whole system's
 horizontal momentum and the momentum conjugate to theta of the mechanism after the impact) is the
-isolated map of :mod:`rockcli.impact` with ``E`` the colonnade's ratio on the ground (or the given
+isolated map of :mod:`rockcli.models.impact` with ``E`` the colonnade's ratio on the ground (or the given
 ``--restitution``) and the effective mass ratio. So the isolated kernels run it unchanged, with
 ``P_P2, P_R, P_H, P_GAMMA, P_ETA, P_DU`` replaced (:func:`apply_cap_ratio`); the bearings' forces per
 unit moving mass (``omega_b^2 u``, ``mu g``) take the beam's mass with the rest.
@@ -36,8 +36,8 @@ from __future__ import annotations
 import math
 
 from rockcli.errors import RockcliInputError
-from rockcli.impact import impact_ratio
-from rockcli.inputs import format_number
+from rockcli.models.impact import impact_ratio
+from rockcli.io.inputs import format_number
 from rockcli.models import Rigid
 
 #: Largest cap ratio accepted: a beam 100 times the columns' mass (the factor on p^2 is then 0.6689).
@@ -78,7 +78,7 @@ def effective_gamma(gamma: float, cap_ratio: float) -> float:
 
 def impact_ratio_on_base(alpha: float, gamma: float, cap_ratio: float, restitution: float | None) -> float:
     """``theta_dot+ / theta_dot-`` of a colonnade on a base of mass ratio ``gamma`` (0: rigid foundation):
-    its ratio on the ground (or the given ``restitution``) through the isolated map of :mod:`rockcli.impact`."""
+    its ratio on the ground (or the given ``restitution``) through the isolated map of :mod:`rockcli.models.impact`."""
     E = colonnade_restitution(alpha, cap_ratio) if restitution is None else restitution
     if gamma == 0.0:
         return E

@@ -23,7 +23,7 @@ import math
 import numpy as np
 
 from rockcli.errors import RockcliInputError
-from rockcli.inputs import format_number
+from rockcli.io.inputs import format_number
 
 
 def check_initial_state(theta0, theta_dot0, names=("theta0", "theta_dot0")) -> tuple[float, float]:

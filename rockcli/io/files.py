@@ -3,7 +3,7 @@
 Every file rockcli writes (CSV tables, figures, time histories, the catalogue) goes through this
 module, so that the rules hold everywhere:
 
-* :func:`check_output` (and :func:`check_output_folder`, from :mod:`rockcli.output_checks`) run
+* :func:`check_output` (and :func:`check_output_folder`, from :mod:`rockcli.io.output_checks`) run
   right after the options are parsed: the folder must exist and accept a new file, the path must
   not be a folder, a device or a read-only file, its name must fit ``NAME_MAX``, a figure needs a
   known suffix. A long run therefore never computes for minutes and then fails on its output.
@@ -38,7 +38,7 @@ import threading
 from pathlib import Path
 
 from rockcli.errors import RockcliInputError
-from rockcli.output_checks import (IMAGE_SUFFIXES, _check_image_suffix, _file_in_path, _label, check_output,
+from rockcli.io.output_checks import (IMAGE_SUFFIXES, _check_image_suffix, _file_in_path, _label, check_output,
                                    check_output_folder, describe_os_error, name_max, os_error_reason)
 
 __all__ = ["IMAGE_SUFFIXES", "Transaction", "atomic_path", "check_output", "check_output_folder", "current",
