@@ -15,7 +15,7 @@ import numpy as np
 
 from rockcli.errors import RockcliInputError
 from rockcli.impact import check_restitution
-from rockcli.models import Rigid, Stack
+from rockcli.models import LinearIsolation, Rigid, Stack
 from rockcli.solve.excitation import _excitation_arrays, attached_vertical
 from rockcli.solve.options import (DEFAULT_HORIZON, DEFAULT_MAX_STEPS, DEFAULT_REST_TOL, DEFAULT_TAIL, _kernel, _rtol,
                                    validate_options)
@@ -93,6 +93,8 @@ class StackResponse:
     n_rhs: int
     proof: str
     history: StackHistory | None = field(default=None, repr=False)
+    #: peak base displacement on the bearings [m]; NaN on a rigid foundation
+    base_disp_max: float = math.nan
 
     def as_dict(self) -> dict[str, Any]:
         """JSON-ready (no history)."""
@@ -102,7 +104,8 @@ class StackResponse:
                     "base": self.friction_base, "joint": self.friction_joint,
                     "base_impulsive": self.friction_base_impulsive, "joint_impulsive": self.friction_joint_impulsive},
                 "n_jumps": self.n_jumps, "n_inconsistent": self.n_inconsistent,
-                "t_overturn_s": _num(self.t_overturn_s), "steps": self.steps}
+                "t_overturn_s": _num(self.t_overturn_s), "base_disp_max_m": _num(self.base_disp_max),
+                "steps": self.steps}
 
 
 def _num(x):
@@ -139,7 +142,8 @@ def stack_parameters(stack: Stack, rtol, rest_tol: float, restitution):
 
 def simulate_stack(stack: Stack, excitation, *, rtol: float | None = None, history: bool = False,
                    tail: float = DEFAULT_TAIL, rest_tol: float = DEFAULT_REST_TOL, horizon: float = DEFAULT_HORIZON,
-                   max_steps: int = DEFAULT_MAX_STEPS, restitution: float | None = None) -> StackResponse:
+                   max_steps: int = DEFAULT_MAX_STEPS, restitution: float | None = None,
+                   isolation=None) -> StackResponse:
     """The body of ``stack`` on its plinth under ``excitation`` (a record or a pulse) on a rigid foundation.
 
     Parameters
@@ -155,6 +159,11 @@ def simulate_stack(stack: Stack, excitation, *, rtol: float | None = None, histo
     restitution : float, optional
         Coefficient of restitution ``E`` (``0 < E <= 1``) of every impact, read as the energetic rule of the note
         (``theta_dot+ = E theta_dot-`` for one block on the ground); None: the plastic (Housner-type) law.
+    isolation : Rigid or LinearIsolation, optional
+        What the plinth stands on, as the ``foundation`` of :func:`rockcli.solve.simulate`; None or
+        :class:`rockcli.models.Rigid`: the rigid foundation. Linear bearings are derived and checked in the slow
+        reference (:mod:`rockcli.reference.stack`, docs/physics-plinth.md "On linear bearings") but not yet in the
+        compiled driver, so they are refused here with one sentence, as are sliding and lead-rubber bearings.
 
     Returns
     -------
@@ -167,6 +176,7 @@ def simulate_stack(stack: Stack, excitation, *, rtol: float | None = None, histo
     if attached_vertical(excitation) is not None:
         raise RockcliInputError("a body on a plinth runs under the horizontal ground motion only: the record "
                                 "carries a vertical component")
+    check_stack_isolation(isolation)
     validate_options(rtol, tail, rest_tol, horizon, max_steps)
     restitution = check_restitution(restitution)
     from rockcli.kernels import stack as kst
@@ -180,6 +190,19 @@ def simulate_stack(stack: Stack, excitation, *, rtol: float | None = None, histo
                            tuple(float(v) for v in sp), ekind, tuple(float(v) for v in epar), acc, jtab, dt, t_begin,
                            t_exc_end, float(tail), float(horizon), int(max_steps), bool(history), out, xo)
     return _stack_response(out, xo, H if history else None, stack, k, kst)
+
+
+def check_stack_isolation(isolation) -> None:
+    """Refuse, with one sentence, what a body on a plinth cannot stand on yet (anything but a rigid foundation)."""
+    if isolation is None or isinstance(isolation, Rigid):
+        return
+    if isinstance(isolation, LinearIsolation):
+        raise RockcliInputError("a body on a plinth on linear bearings is derived and checked in the slow reference "
+                                "only (docs/physics-plinth.md), not yet in the compiled driver: run it on a rigid "
+                                "foundation")
+    label = getattr(isolation, "label", type(isolation).__name__)
+    raise RockcliInputError(f"a body on a plinth is modelled on a rigid foundation and on linear bearings; sliding "
+                            f"and lead-rubber bearings ({label.split(':')[0]}) under a plinth are not yet")
 
 
 def _stack_response(out, xo, H, stack: Stack, k, kst) -> StackResponse:
