@@ -429,8 +429,9 @@ class _Run:
         # solve_ivp sees an event only as a sign change between two step ends: a face's corner force that dips
         # below 0 and comes back within one step would be missed (seen on random scenes with steps of 0.07 s).
         # While a face is watched, steps are kept below 0.02/p of the fastest block (60 or more per rocking cycle),
-        # and of the base's frequency on linear bearings
-        max_step = min(self.max_step, 0.02 / max(self.pmax, self.wb)) if faces else self.max_step
+        # and on linear bearings below 0.1/w_b (60 or more per period of the base)
+        max_step = min(self.max_step, 0.02 / self.pmax, 0.1 / self.wb if self.wb else math.inf) if faces \
+            else self.max_step
         sol = self.work.ivp(rhs, (t0, t_end), y0, max_step=max_step, events=events, dense_output=True)
         for yy in sol.y.T:
             self._peaks(unpack(yy)[0])

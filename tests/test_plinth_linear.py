@@ -1,0 +1,168 @@
+"""A body on its plinth on linear bearings in the slow reference (rockcli.reference.stack with the isolated base,
+docs/physics-plinth.md "On linear bearings"): its limits against the single block's own reference on the
+isolated base, the rigid foundation as the bearings stiffen and the base grows heavy, impacts (energy never
+rises, the momenta the impulses cannot touch kept, the total horizontal momentum among them), symmetry; and
+simulate_stack's refusal of what the compiled driver does not run yet. Short pulses, at most 0.5 s after them."""
+
+from __future__ import annotations
+
+import functools
+import math
+
+import numpy as np
+import pytest
+
+from rockcli.errors import RockcliInputError
+from rockcli.models import Block, LinearIsolation, LeadRubber, Plinth, Rigid, SingleConcaveSliding, Stack
+from rockcli.pulses import OneSine, RickerAntisymmetric, RickerSymmetric
+from rockcli.reference import reference_simulate
+from rockcli.reference.stack import reference_plinth, stack_base, stack_blocks
+from rockcli.reference.stack_mechanics import StackModel
+from rockcli.solve import simulate, simulate_stack
+from rockcli.units import G
+
+BODY = Block.from_dimensions(1.2, 0.3)
+WIDE = Stack(BODY, Plinth(0.2, 3.0, mass_ratio=5.0))  # a plinth that cannot lift
+COUPLED = Stack(BODY, Plinth(1.0, 0.5, mass_ratio=1.5))  # both blocks rock
+SQUAT = Stack(Block.from_dimensions(0.3, 0.4), Plinth(1.6, 0.4, mass_ratio=2.0))  # a body that stays on its plinth
+
+
+def test_base_parameters_read_the_isolation_as_for_the_single_block():
+    """gamma = (m1 + m2)/(m1 + m2 + m_b), k_b = (m + m_b) w^2, c_b = 2 xi w (m + m_b): per unit body mass."""
+    iso = LinearIsolation(1.5, 0.08, 0.4)
+    mb, kb, cb = stack_base(COUPLED, iso)
+    total = (1.0 + COUPLED.m2) / 0.4
+    assert mb == pytest.approx(total - 1.0 - COUPLED.m2, rel=1e-15)
+    assert kb == pytest.approx(total * iso.omega_b ** 2, rel=1e-15)
+    assert cb == pytest.approx(2 * 0.08 * iso.omega_b * total, rel=1e-15)
+    assert stack_base(COUPLED, None) is None and stack_base(COUPLED, Rigid()) is None
+
+
+@pytest.mark.parametrize("pulse", [OneSine(0.4 * G, 0.8), RickerAntisymmetric(0.5 * G, 0.6)])
+def test_a_plinth_that_cannot_lift_is_the_single_block_with_the_plinth_in_the_base(pulse):
+    """Pattern B on the bearings: the still plinth is part of the base, so the body is the single block on the
+    isolated base of mass m_b + m2, i.e. gamma1 = m1/(m1 + m2 + m_b) = gamma/(1 + m2), the same T_b and xi (the
+    same total mass, stiffness and damping). Against the single block's reference (angles, uplift, impacts) and
+    its compiled run (the base's peak: the single block's reference does not follow the free base once it rests
+    at the end of the excitation)."""
+    iso = LinearIsolation(0.5, 0.05, 0.5)
+    single = LinearIsolation(0.5, 0.05, 0.5 / (1.0 + WIDE.m2))
+    out = reference_plinth(WIDE, pulse, isolation=iso, horizon=0.2, rtol=1e-10)
+    ref = reference_simulate(BODY, single, pulse, atol=None, horizon=0.2, rtol=1e-10)
+    assert ref.verdict == "rocked" and ref.n_impacts >= 1
+    assert out.verdict == ref.verdict and out.peak[0] == 0.0 and math.isnan(out.t_uplift[0])
+    assert out.peak[1] == pytest.approx(ref.theta_max, rel=1e-8)
+    assert out.t_uplift[1] == pytest.approx(ref.t_uplift, abs=1e-9)
+    assert out.n_impacts[1] == ref.n_impacts
+    fast = simulate(BODY, single, pulse, horizon=0.2)
+    assert out.base_disp_max == pytest.approx(fast.base_disp_max_m, rel=1e-6)
+    assert out.n_jumps == 0 and out.n_inconsistent == 0
+
+
+def test_a_body_that_cannot_lift_rocks_with_its_plinth_as_one_block_on_the_bearings():
+    """Pattern P on the bearings: the assembly is one rigid body of first moment M R_asm and inertia J_asm about
+    the corner. The single block ``as_block()`` (R_e = 3 g/(4 p_asm^2)) has the same p_asm and alpha_asm; its
+    coupling to the base, gamma R per unit moving mass, equals the assembly's gamma R_asm when its gamma is
+    gamma R_asm/R_e; and its impact with the restitution E = eta_asm (the single block's momentum rule E J theta'-)
+    is the assembly's plastic impact (K_asm = eta_asm J_asm)."""
+    iso = LinearIsolation(1.0, 0.1, 0.3)
+    eff = SQUAT.as_block()
+    single = LinearIsolation(1.0, 0.1, 0.3 * SQUAT.R_asm / eff.R)
+    pulse = OneSine(0.4 * G, 0.8)
+    out = reference_plinth(SQUAT, pulse, isolation=iso, horizon=0.5, rtol=1e-11)
+    ref = reference_simulate(eff, single, pulse, restitution=SQUAT.eta_asm, atol=None, horizon=0.5, rtol=1e-11)
+    assert ref.verdict == "rocked" and out.verdict == ref.verdict and out.peak[1] == 0.0
+    assert out.peak[0] == pytest.approx(ref.theta_max, rel=1e-8)
+    assert out.n_impacts[0] == ref.n_impacts
+    assert out.t_uplift[0] == pytest.approx(ref.t_uplift, abs=1e-9)
+
+
+def test_stiff_bearings_under_a_heavy_base_tend_to_the_rigid_foundation():
+    """As T_b falls (gamma = 0.001: a heavy base, so that an impact's impulse moves it by nothing) the stack tends
+    to the rigid foundation's: same verdict and impacts, the peaks' differences falling at least as T_b (measured:
+    10 %, 4.6 %, 1.3 % at T_b = 0.08, 0.04, 0.02 s: about as T_b^2 once T_b is small).
+    (A light base does not tend to the rigid foundation: a spring carries no impulse, so at each impact the base
+    recoils with its own mass whatever its stiffness.)"""
+    pulse = OneSine(-0.35 * G, 0.8)
+    rigid = reference_plinth(COUPLED, pulse, horizon=0.2, rtol=1e-9)
+    diffs = []
+    for Tb in (0.08, 0.04):
+        out = reference_plinth(COUPLED, pulse, isolation=LinearIsolation(Tb, 0.3, 0.001), horizon=0.2, rtol=1e-9)
+        assert out.verdict == rigid.verdict and out.n_impacts == rigid.n_impacts
+        diffs.append(max(abs(a / b - 1) for a, b in zip(out.peak, rigid.peak)))
+    assert diffs[1] < 0.06 and diffs[1] < diffs[0] / 1.8
+
+
+@functools.lru_cache(maxsize=None)
+def _coupled(a_p_g: float, restitution):
+    """Both blocks rock on the bearings, impacts at both interfaces, recorded."""
+    pulse = OneSine(a_p_g * G, 0.8)
+    return reference_plinth(COUPLED, pulse, isolation=LinearIsolation(0.5, 0.05, 0.5), record_impacts=True,
+                            restitution=restitution, horizon=0.3, rtol=1e-9)
+
+
+@pytest.mark.parametrize("restitution", [None, 0.8])
+def test_impacts_on_the_bearings_never_add_energy_and_keep_their_momenta(restitution):
+    """Every impact of a coupled scene on the bearings: the kinetic energy (blocks and base) never rises; the
+    generalized momenta of the pattern after it are kept (with E: all but the impacting pivot's), the total
+    horizontal momentum of blocks and base among them (the bearings' forces are finite)."""
+    iso = LinearIsolation(0.5, 0.05, 0.5)
+    model = StackModel(stack_blocks(COUPLED), stack_base(COUPLED, iso))
+    out = _coupled(0.4, restitution)
+    kinds = set()
+    for d in out.impacts:
+        kinds.add((d["j"], d["post"][1 - d["j"]] != 0))
+        assert d["ke_plus"] <= d["ke_minus"] * (1 + 1e-12)
+        post, q, vm, vp = list(d["post"]), d["q"], d["v_minus"], d["v_plus"]
+        kept = list(post)
+        if restitution is not None:
+            kept[d["j"]] = 0
+        assert np.allclose(model.momenta(kept, q, vm), model.momenta(kept, q, vp), rtol=1e-9, atol=1e-12)
+        px = [float(np.sum(model.Mdiag[0::3][:2] * v[0:6:3]) + model.Mdiag[-1] * v[-1]) for v in (vm, vp)]
+        assert px[1] == pytest.approx(px[0], rel=1e-9, abs=1e-12)
+        assert vp[-1] != vm[-1]  # the base does take part
+    assert {j for j, _ in kinds} == {0, 1}  # impacts at the base and at the joint
+
+
+def test_a_restitution_on_the_bearings_is_the_energetic_rule():
+    """With a plinth that stays, a body's impact with E keeps theta_dot+ = E theta_dot- exactly and the total
+    horizontal momentum (the energetic rule of the note). The single block on an isolated base reads E as an
+    impulsive couple (E J theta_dot- as the momentum before), which gives a smaller rebound: the two agree only on
+    the rigid foundation (docs/physics-plinth.md, "On linear bearings")."""
+    pulse = RickerAntisymmetric(0.5 * G, 0.6)
+    out = reference_plinth(WIDE, pulse, isolation=LinearIsolation(0.5, 0.05, 0.5), restitution=0.8,
+                           record_impacts=True, horizon=0.2, rtol=1e-9)
+    assert len(out.impacts) >= 2
+    for d in out.impacts:
+        assert d["post"][0] == 0 and d["j"] == 1
+        w_m, w_p = d["v_minus"][5], d["v_plus"][5]
+        assert w_p == pytest.approx(0.8 * w_m, rel=1e-9)
+
+
+def test_flipping_the_ground_motion_flips_the_stack_and_its_base():
+    a, b = _coupled(0.4, None), _coupled(-0.4, None)
+    assert a.verdict == b.verdict and a.n_impacts == b.n_impacts
+    assert [tuple(-s for s in p) for _, p in a.patterns] == [p for _, p in b.patterns]
+    assert np.allclose(a.peak, b.peak, rtol=1e-7) and np.allclose(a.theta_peak, b.theta_peak, rtol=1e-7)
+    assert a.base_disp_max == pytest.approx(b.base_disp_max, rel=1e-7)
+
+
+@pytest.mark.parametrize("iso, words", [
+    (LinearIsolation(2.0, 0.1, 0.01), "not yet in the compiled driver"),
+    (SingleConcaveSliding(2.5, 0.05), "sliding and lead-rubber bearings (scss) under a plinth are not yet"),
+    (LeadRubber(2.5, 0.05, 0.01), "under a plinth are not yet")])
+def test_simulate_stack_refuses_what_its_driver_does_not_run(iso, words):
+    with pytest.raises(RockcliInputError, match=re_escape(words)):
+        simulate_stack(WIDE, RickerSymmetric(0.3 * G, 1.0), isolation=iso)
+
+
+def test_simulate_stack_on_a_rigid_foundation_reports_no_base_displacement():
+    r = simulate_stack(WIDE, RickerSymmetric(0.3 * G, 1.0), isolation=Rigid())
+    assert math.isnan(r.base_disp_max) and r.as_dict()["base_disp_max_m"] is None
+    assert r.as_dict() == simulate_stack(WIDE, RickerSymmetric(0.3 * G, 1.0)).as_dict()
+
+
+def re_escape(s):
+    import re
+
+    return re.escape(s)
