@@ -166,3 +166,83 @@ def re_escape(s):
     import re
 
     return re.escape(s)
+
+
+def _bp_linear(stack, iso, s, k, th1, th2, thd1, thd2, u, ud, ag):
+    """Pattern BP on the bearings as docs/physics-plinth.md writes it: the rigid foundation's 2x2 Lagrange system
+    with the base's absolute acceleration a_b for ag, closed by the horizontal momentum balance (3x3)."""
+    b1, h1, b2, h2, m2 = stack.b1, stack.h1, stack.b2, stack.h2, stack.m2
+    R1, a1, R2, a2 = stack.body.R, stack.body.alpha, stack.R2, stack.alpha2
+    D, delta = math.hypot(s * b2 - k * b1, 2 * h2), math.atan2(s * b2 - k * b1, 2 * h2)
+    phi = th1 - k * a1 - th2 + delta
+    M11, M22, M12 = 4 / 3 * R1 ** 2, 4 / 3 * m2 * R2 ** 2 + D ** 2, D * R1 * math.cos(phi)
+    c1 = R1 * math.cos(k * a1 - th1)
+    c2 = m2 * R2 * math.cos(s * a2 - th2) + D * math.cos(th2 - delta)
+    Q1 = -R1 * G * math.sin(k * a1 - th1) - D * R1 * math.sin(phi) * thd2 ** 2
+    Q2 = -m2 * R2 * G * math.sin(s * a2 - th2) + D * G * math.sin(th2 - delta) + D * R1 * math.sin(phi) * thd1 ** 2
+    Mt = (1 + m2) / iso.gamma
+    F = -iso.omega_b ** 2 * u - 2 * iso.xi * iso.omega_b * ud
+    Q3 = Mt * F + R1 * math.sin(th1 - k * a1) * thd1 ** 2 + (m2 * R2 * math.sin(th2 - s * a2)
+                                                              + D * math.sin(th2 - delta)) * thd2 ** 2
+    A = np.array([[M11, M12, c1], [M12, M22, c2], [c1, c2, Mt]])
+    th1dd, th2dd, ab = np.linalg.solve(A, [Q1, Q2, Q3])
+    return th1dd, th2dd, ab - ag
+
+
+def test_the_3x3_system_of_the_note_is_newton_euler_with_constraints():
+    """At random states of every pattern BP, the closed form of the note (3x3: both angles and the base) agrees
+    with the reference's Newton-Euler equations with constraint multipliers."""
+    rng = np.random.default_rng(36)
+    iso = LinearIsolation(0.8, 0.15, 0.4)
+    worst = 0.0
+    for _ in range(200):
+        stack = Stack(Block.from_dimensions(rng.uniform(0.4, 2.5), rng.uniform(0.15, 0.8)),
+                      Plinth(rng.uniform(0.1, 1.5), rng.uniform(0.8, 2.0), mass_ratio=float(rng.uniform(0.2, 5))))
+        model = StackModel(stack_blocks(stack), stack_base(stack, iso))
+        s, k = rng.choice([-1, 1], 2)
+        th2, psi = s * rng.uniform(0, 0.3), k * rng.uniform(0, 0.3)
+        thd2, psid, u, ud, ag = rng.normal(size=5)
+        qdd, _, udd = model.accelerations([int(s), int(k)], [th2, psi], [thd2, psid], ag, u, ud)
+        th1dd, th2dd, udd_n = _bp_linear(stack, iso, s, k, th2 + psi, th2, thd2 + psid, thd2, u, ud, ag)
+        got = np.array([th2dd, th1dd - th2dd, udd_n])
+        ref = np.array([qdd[0], qdd[1], udd])
+        worst = max(worst, float(np.max(np.abs(got - ref)) / (1 + np.max(np.abs(ref)))))
+    assert worst < 1e-11
+
+
+def test_patterns_b_and_p_are_the_single_block_on_the_bearings_at_random_states():
+    """Pattern B is Eqs (10)-(11) of the body with gamma1 = gamma/(1 + m2), pattern P those of ``as_block()``
+    with gamma R_asm/R_e (the note's two equivalences), at random states; the base's corner forces in B are the
+    rigid foundation's with the base's absolute acceleration a_b for ag."""
+    from rockcli.reference.equations import rocking_on_base
+
+    rng = np.random.default_rng(7)
+    iso = LinearIsolation(0.8, 0.15, 0.4)
+    worst = 0.0
+    for _ in range(200):
+        stack = Stack(Block.from_dimensions(rng.uniform(0.4, 2.5), rng.uniform(0.15, 0.8)),
+                      Plinth(rng.uniform(0.1, 1.5), rng.uniform(0.8, 2.0), mass_ratio=float(rng.uniform(0.2, 5))))
+        model = StackModel(stack_blocks(stack), stack_base(stack, iso))
+        c = int(rng.choice([-1, 1]))
+        a, ad, u, ud, ag = c * rng.uniform(0, 0.3), *rng.normal(size=4)
+        F = -iso.omega_b ** 2 * u - 2 * iso.xi * iso.omega_b * ud
+        # B: the body on corner c of the still plinth
+        qdd, f, udd = model.accelerations([0, c], [0.0, a], [0.0, ad], ag, u, ud)
+        b = stack.body
+        thdd, a_abs = rocking_on_base(a, ad, c, F, alpha=b.alpha, p2=b.p ** 2, gamma=iso.gamma / (1 + stack.m2),
+                                      R=b.R)
+        worst = max(worst, abs(qdd[1] - thdd) / (1 + abs(thdd)), abs(udd + ag - a_abs) / (1 + abs(a_abs)))
+        A1 = c * b.alpha - a  # the joint's force from the body's centre acceleration in the base's frame
+        ax = b.R * (thdd * math.cos(A1) + ad ** 2 * math.sin(A1))
+        ay = b.R * (thdd * math.sin(A1) - ad ** 2 * math.cos(A1))
+        FJx, FJy = ax + a_abs, ay + G
+        P_left = (FJy * (stack.b2 - c * stack.b1) + stack.m2 * G * stack.b2 + 2 * stack.h2 * FJx
+                  + stack.m2 * stack.h2 * a_abs) / (2 * stack.b2)
+        worst = max(worst, abs(f[0][3] - P_left) / (1 + stack.m2) / G)
+        # P: the assembly on corner c
+        qdd, f, udd = model.accelerations([c, 0], [a, 0.0], [ad, 0.0], ag, u, ud)
+        e = stack.as_block()
+        thdd, a_abs = rocking_on_base(a, ad, c, F, alpha=stack.alpha_asm, p2=stack.p_asm ** 2,
+                                      gamma=iso.gamma * stack.R_asm / e.R, R=e.R)
+        worst = max(worst, abs(qdd[0] - thdd) / (1 + abs(thdd)), abs(udd + ag - a_abs) / (1 + abs(a_abs)))
+    assert worst < 1e-11
