@@ -51,7 +51,7 @@ def random_scene(rng):
     return stack, pulse
 
 
-def differential(n, seed, with_restitution, ref_rtol=1e-9, rest_tol=1e-5):
+def differential(n, seed, with_restitution, ref_rtol=1e-9, rest_tol=1e-5, linear=False):
     from rockcli.reference.stack import reference_plinth
     from rockcli.solve import simulate_stack
 
@@ -62,13 +62,19 @@ def differential(n, seed, with_restitution, ref_rtol=1e-9, rest_tol=1e-5):
     imp_mismatch = demand_mismatch = 0
     bad = []
     cpu_k = cpu_r = 0.0
+    worst["base"] = 0.0
     for i in range(n):
-        stack, pulse = random_scene(rng)
+        iso = None
+        if linear:
+            stack, iso, pulse = random_linear_scene(rng)
+        else:
+            stack, pulse = random_scene(rng)
         E = float(rng.uniform(0.5, 1.0)) if with_restitution else None
         t0 = time.process_time()
-        a = simulate_stack(stack, pulse, horizon=1.0, tail=1.0, restitution=E, rest_tol=rest_tol)
+        a = simulate_stack(stack, pulse, horizon=1.0, tail=1.0, restitution=E, rest_tol=rest_tol, isolation=iso)
         t1 = time.process_time()
-        r = reference_plinth(stack, pulse, horizon=1.0, restitution=E, rtol=ref_rtol, rest_tol=rest_tol)
+        r = reference_plinth(stack, pulse, horizon=1.0, restitution=E, rtol=ref_rtol, rest_tol=rest_tol,
+                             isolation=iso)
         t2 = time.process_time()
         cpu_k += t1 - t0
         cpu_r += t2 - t1
@@ -89,6 +95,11 @@ def differential(n, seed, with_restitution, ref_rtol=1e-9, rest_tol=1e-5):
             where["plinth"] = (i, a.plinth.theta_max / stack.alpha_asm, r.peak[0] / stack.alpha_asm)
         worst["body"] = max(worst["body"], db)
         worst["plinth"] = max(worst["plinth"], dp)
+        if linear and a.verdict != "overturned":  # the base's peak (after a fall, it rides on without the block)
+            du = abs(a.base_disp_max / r.base_disp_max - 1)
+            if du > worst["base"]:
+                where["base"] = (i, a.base_disp_max, r.base_disp_max)
+            worst["base"] = max(worst["base"], du)
         if [a.plinth.n_impacts, a.body.n_impacts] != r.n_impacts:
             imp_mismatch += 1
             print(f"  impacts differ in scene {i}: kernel {[a.plinth.n_impacts, a.body.n_impacts]}, reference "
@@ -106,11 +117,14 @@ def differential(n, seed, with_restitution, ref_rtol=1e-9, rest_tol=1e-5):
         if (i + 1) % 25 == 0:
             print(f"  {i + 1} scenes: {agree} verdicts agree; worst peak differences body {worst['body']:.2e}, "
                   f"plinth {worst['plinth']:.2e} alpha", flush=True)
-    print(f"{n} random scenes{' with restitution' if with_restitution else ''} (seed {seed}): {agree} verdicts agree "
+    print(f"{n} random scenes{' on linear bearings' if linear else ''}{' with restitution' if with_restitution else ''}"
+          f" (seed {seed}): {agree} verdicts agree "
           f"({rocked} rock, {toppled} topple in the kernel, the rest do not lift)")
     print(f"largest peak differences: body {worst['body']:.3e} alpha1, plinth {worst['plinth']:.3e} alpha_asm; "
           f"impact counts differ in {imp_mismatch}; friction demand below 2: largest relative difference "
-          f"{worst['demand']:.2e}, {demand_mismatch} disagreeing above 2 (the runs where a block topples left out)")
+          f"{worst['demand']:.2e}, {demand_mismatch} disagreeing above 2 (the runs where a block topples left out)"
+          + (f"; base peak: largest relative difference {worst['base']:.2e} (runs that topple left out)"
+             if linear else ""))
     print(f"CPU: kernel {cpu_k:.1f} s ({1e3 * cpu_k / n:.2f} ms a scene), reference {cpu_r:.1f} s")
     print(f"where (scene, kernel, reference): {where}")
     for b in bad:
@@ -246,6 +260,8 @@ def main(argv=None):
     ap.add_argument("--rest-tol", type=float, default=1e-5)
     ap.add_argument("--linear", type=int, default=0)
     ap.add_argument("--mirror", action="store_true")
+    ap.add_argument("--kernel-linear", action="store_true", help="--scenes on linear bearings, kernel vs reference")
+    ap.add_argument("--isolation", default=None, help="--timing on these bearings, e.g. linear:Tb=2,xi=0.1,gamma=0.5")
     args = ap.parse_args(argv)
     if args.linear:
         linear_limits(args.linear, args.seed, rest_tol=args.rest_tol, mirror=args.mirror)
@@ -260,16 +276,22 @@ def main(argv=None):
               f"followed 30 s on ({time.process_time() - t0:.1f} s CPU)")
         return 0
     if args.timing:
-        return run_timing()
+        iso = None
+        if args.isolation:
+            from rockcli.models import parse_isolation_spec
+
+            iso = parse_isolation_spec(args.isolation)
+        return run_timing(isolation=iso)
     if args.drums:
         drums()
         return 0
-    differential(args.scenes, args.seed, args.restitution, args.ref_rtol, args.rest_tol)
+    differential(args.scenes, args.seed, args.restitution, args.ref_rtol, args.rest_tol, args.kernel_linear)
     return 0
 
 
-def run_timing(rounds=5):
-    """CPU per verdict-only run of the statue alone and on two plinths under the ten Table II records."""
+def run_timing(rounds=5, isolation=None):
+    """CPU per verdict-only run of the statue alone and on two plinths under the ten Table II records (on a rigid
+    foundation, or on ``isolation``)."""
     from rockcli.assess.excitations import resolve_excitations
     from rockcli.solve import simulate, simulate_stack
 
@@ -277,8 +299,8 @@ def run_timing(rounds=5):
     recs = [e.motion for e in resolve_excitations(None, "record")[0] if not e.error]
     cases = [("statue alone", None), ("on plinth 0.2 x 4 (cannot lift)", Plinth(0.2, 4.0)),
              ("on plinth 1.0 x 0.6", Plinth(1.0, 0.6))]
-    simulate(statue, None, recs[0])  # compiled / loaded before the clock
-    simulate_stack(Stack(statue, Plinth(1.0, 0.6)), recs[0])
+    simulate(statue, isolation, recs[0])  # compiled / loaded before the clock
+    simulate_stack(Stack(statue, Plinth(1.0, 0.6)), recs[0], isolation=isolation)
     base = None
     for name, plinth in cases:
         times, steps, verdicts = [], 0, []
@@ -286,11 +308,11 @@ def run_timing(rounds=5):
             t0 = time.process_time()
             for rec in recs:
                 if plinth is None:
-                    r = simulate(statue, None, rec)
+                    r = simulate(statue, isolation, rec)
                     steps += r.steps if _ == 0 else 0
                     verdicts += [r.verdict] if _ == 0 else []
                 else:
-                    r = simulate_stack(Stack(statue, plinth), rec)
+                    r = simulate_stack(Stack(statue, plinth), rec, isolation=isolation)
                     steps += r.steps if _ == 0 else 0
                     verdicts += [r.toppled or r.verdict] if _ == 0 else []
             times.append(time.process_time() - t0)

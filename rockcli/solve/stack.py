@@ -179,6 +179,9 @@ def simulate_stack(stack: Stack, excitation, *, rtol: float | None = None, histo
         raise RockcliInputError("a body on a plinth runs under the horizontal ground motion only: the record "
                                 "carries a vertical component")
     check_stack_isolation(isolation)
+    if isinstance(isolation, LinearIsolation):
+        return _simulate_stack_linear(stack, excitation, isolation, rtol=rtol, history=history, tail=tail,
+                                      rest_tol=rest_tol, horizon=horizon, max_steps=max_steps, restitution=restitution)
     validate_options(rtol, tail, rest_tol, horizon, max_steps)
     restitution = check_restitution(restitution)
     from rockcli.kernels import stack as kst
@@ -275,9 +278,7 @@ def check_stack_isolation(isolation) -> None:
     if isolation is None or isinstance(isolation, Rigid):
         return
     if isinstance(isolation, LinearIsolation):
-        raise RockcliInputError("a body on a plinth on linear bearings is derived and checked in the slow reference "
-                                "only (docs/physics-plinth.md), not yet in the compiled driver: run it on a rigid "
-                                "foundation")
+        return
     label = getattr(isolation, "label", type(isolation).__name__)
     raise RockcliInputError(f"a body on a plinth is modelled on a rigid foundation and on linear bearings; sliding "
                             f"and lead-rubber bearings ({label.split(':')[0]}) under a plinth are not yet")
