@@ -152,6 +152,25 @@ def _face_value(s, k, sp, lp, yy, ag):
     return min(f[6], f[7]) / sp[S_G]
 
 
+@njit(cache=True)
+def _rest_bounds(lp, y, K, h):
+    """At rest (pattern R): bounds over the step of ``|F|`` (the bearing's force) and of ``|u|``, from the
+    continuous extension's quartics ``sum_m c_m sigma^m`` (``|p(sigma)| <= sum |c_m|`` on ``[0, 1]``)."""
+    w = lp[L_WB]
+    cf = 2.0 * lp[L_XI] * w
+    fb = abs(bearing(lp, y[4], y[5]))
+    ub = abs(y[4])
+    for m in range(4):
+        cu = 0.0
+        cv = 0.0
+        for j in range(7):
+            cu += _P[j][m] * K[j, 4]
+            cv += _P[j][m] * K[j, 5]
+        fb += h * abs(w * w * cu + cf * cv)
+        ub += h * abs(cu)
+    return fb, ub
+
+
 @njit(cache=True, inline='always')
 def _may_cross(c, a0, r0, a1, r1, kind):
     """Whether a pivot's angle (corner ``c``, from ``a0``, rate ``r0`` to ``a1``, ``r1`` over the step) may reach
@@ -441,11 +460,16 @@ def simulate_stack_linear(sp, lp, ekind, epar, acc, dt, t_begin, t_exc_end, tail
                 sg = _first_fall(1, 2, s, s, k, sp, lp, seg, epar, t, hs, y, K, 1.0)
                 if sg <= sig:
                     sig, ev = sg, 2  # the plinth topples
-        if watched:
+        rest = s == 0.0 and k == 0.0
+        fb = ub = np.inf
+        if rest:  # at rest: the bearing's force and the base's displacement bounded over the step
+            fb, ub = _rest_bounds(lp, y, K, hs)
+        if watched and not (rest and fb < thr):
             sg = _first_fall(2, 0, 0.0, s, k, sp, lp, seg, epar, t, hs, y, K, min(sig, 1.0))
             if sg <= sig:
                 sig, ev = sg, 4  # the watched face opens
-        _scan(s, k, sp, lp, seg, epar, t, hs, y, K, sig, z, 0)
+        if not rest or ev >= 0 or ub > z[Z_UMAX] or fb > min(z[Z_FR0], z[Z_FR1]) * sp[S_G]:
+            _scan(s, k, sp, lp, seg, epar, t, hs, y, K, sig, z, 0)
         if ev >= 0 and sig < 1.0:  # retake the step to the event
             _dp5(s, k, sp, lp, seg, epar, t, sig * hs, y, K, ynew)
             nrhs += 6
