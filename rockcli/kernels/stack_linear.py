@@ -27,7 +27,7 @@ from rockcli.kernels.layout import N_OUT
 from rockcli.kernels.stack_linear_physics import (L_AASM, L_PMAX, L_RTOL, L_SC, L_THR1, L_THRA, L_WB, L_XI, accel,
                                                   bearing, choose_post, impact_into, kinetic_relative, mass_diag,
                                                   rel_rates, rest_moments, restoring, rhs, velocities)
-from rockcli.kernels.stack_physics import S_A1, S_B1, S_B2, S_E, S_G, S_M2, S_REST, S_TOL, forces
+from rockcli.kernels.stack_physics import S_A1, S_E, S_G, S_M2, S_REST, S_TOL, forces
 from rockcli.kernels.steps import _advance_segment, _seg, _start
 from rockcli.kernels.layout import RS_SEG_END, RS_T
 
@@ -182,7 +182,7 @@ def _may_cross(c, a0, r0, a1, r1, kind):
 
 
 @njit(cache=True)
-def _scan(s, k, sp, lp, seg, epar, t, h, y, K, sig_end, z, lvl):
+def _scan(s, k, sp, lp, seg, epar, t, h, y, K, sig_end, z):
     """Peaks, first exceedances and the friction demand over ``[0, sig_end]`` of the step (17 samples, the
     largest of each peak refined by golden section); counts a step where a pivot's normal force is below 0."""
     yy = np.empty(6)
@@ -469,7 +469,7 @@ def simulate_stack_linear(sp, lp, ekind, epar, acc, dt, t_begin, t_exc_end, tail
             if sg <= sig:
                 sig, ev = sg, 4  # the watched face opens
         if not rest or ev >= 0 or ub > z[Z_UMAX] or fb > min(z[Z_FR0], z[Z_FR1]) * sp[S_G]:
-            _scan(s, k, sp, lp, seg, epar, t, hs, y, K, sig, z, 0)
+            _scan(s, k, sp, lp, seg, epar, t, hs, y, K, sig, z)
         if ev >= 0 and sig < 1.0:  # retake the step to the event
             _dp5(s, k, sp, lp, seg, epar, t, sig * hs, y, K, ynew)
             nrhs += 6

@@ -369,14 +369,6 @@ def kinetic_relative(Md, v):
 
 
 @njit(cache=True)
-def kinetic(Md, v):
-    e = 0.0
-    for i in range(7):
-        e += Md[i] * v[i] * v[i]
-    return 0.5 * e
-
-
-@njit(cache=True)
 def rest_moments(sp, lp, a):
     """The restoring moments at rest of the joint (the body) and of the base (the assembly) under the support's
     acceleration ``a``, per unit body mass: ``m1 (g b1 - |a| h1)`` and ``(m1 + m2)(g b2 - |a| y_c)``."""

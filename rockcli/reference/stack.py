@@ -113,8 +113,8 @@ def reference_stack(blocks, excitation, *, rtol=1e-10, atol=None, horizon=600.0,
     (:func:`stack_base`), None the rigid ground.
     """
     t_wall = time.perf_counter()
-    run = _Run(StackModel(blocks, base), excitation, rtol, atol, horizon, rest_tol, restitution, method, align, demand_points,
-               record_impacts, deadline_s, tol)
+    run = _Run(StackModel(blocks, base), excitation, rtol, atol, horizon, rest_tol, restitution, method, align,
+               demand_points, record_impacts, deadline_s, tol)
     for _ in range(max_phases):
         if not run.phase():
             break
@@ -432,6 +432,12 @@ class _Run:
         # and on linear bearings below 0.1/w_b (60 or more per period of the base)
         max_step = min(self.max_step, 0.02 / self.pmax, 0.1 / self.wb if self.wb else math.inf) if faces \
             else self.max_step
+        # an impact is seen only as a sign change of a pivot's angle between two step ends: in a chatter of the body
+        # on the rocking plinth (impacts a millisecond apart) a dip below 0 and back inside one step was missed, so
+        # on the bearings the steps stay below 0.02/p in every pattern (found on a random scene: 50 impacts instead
+        # of the 149 the driver finds at every rtol, the count growing as the reference's rtol tightened)
+        if M.nb:
+            max_step = min(max_step, 0.02 / self.pmax)
         sol = self.work.ivp(rhs, (t0, t_end), y0, max_step=max_step, events=events, dense_output=True)
         for yy in sol.y.T:
             self._peaks(unpack(yy)[0])

@@ -256,7 +256,8 @@ def _simulate_stack_linear(stack: Stack, excitation, isolation: LinearIsolation,
         message = f"the {toppled} topples at t = {z[ksl.Z_T_OVER]:.3f} s"
     elif verdict == VERDICT_ROCKED:
         message = (f"survives: the body peaks at {body.theta_max_over_alpha:.3g} alpha1 on the plinth, the plinth at "
-                   f"{plinth.theta_max / stack.alpha_asm:.3g} alpha_asm" + ("" if settled else " (NOT PROVEN: horizon)"))
+                   f"{plinth.theta_max / stack.alpha_asm:.3g} alpha_asm"
+                   + ("" if settled else " (NOT PROVEN: horizon)"))
     else:
         message = "nothing lifts"
     hist = None
