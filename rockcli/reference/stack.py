@@ -1,5 +1,5 @@
-"""The slow reference of a stack of rocking blocks on a rigid foundation (a body on its plinth: two blocks):
-SciPy ``solve_ivp`` with events for every contact change, phases chained in plain Python.
+"""The slow reference of a stack of rocking blocks on a rigid foundation or on linear bearings (a body on its plinth:
+two blocks): SciPy ``solve_ivp`` with events for every contact change, phases chained in plain Python.
 
 Written independently of :mod:`rockcli.kernels` and of the closed forms of docs/physics-plinth.md: the
 mechanics are the separate bodies' Newton-Euler equations with the contact constraints of each pattern
@@ -26,6 +26,14 @@ note:
   restore it) and the rotation it could still reach against the smaller of them is below ``rest_tol`` times its
   slenderness. Both are the single block's rule for one block.
 * The run ends at rest after the excitation, when a block topples, or ``horizon`` after the excitation.
+
+On linear bearings (``base``, :func:`stack_base`; docs/physics-plinth.md "On linear bearings") the base's
+displacement ``u`` is one more coordinate: the stack at rest rides the base (integrated, with the face events),
+impacts keep the total horizontal momentum, the rest rules ride on the bearing's force after a plastic stick
+(``F(u, u'_stuck)`` for ``ag``), a pivot an impact leaves with no rate goes where the accelerations take it, the
+steps stay below ``0.02/p`` in every pattern (a chatter of impacts was otherwise stepped over) and below
+``0.1/omega_b`` while a face is watched, and the run ends at rest once the free base's energy bound keeps every face
+shut after the excitation (then the base's later peak is read over two periods).
 
 Friction demand ``|T|/N`` is read on each rocking phase's dense output at its steps, ``demand_points`` equally
 spaced times and the midpoints between all of these, and while at rest it is ``|ag|/g`` (on the rest scan's
