@@ -6,6 +6,8 @@
     python benchmarks/bench_plinth.py --drums                   # a column of N drums in the slow reference
     python benchmarks/bench_plinth.py --p2s 5000                # the end-of-run proof P2S against the runs
                                                                 # followed 30 s on (kernel only)
+    python benchmarks/bench_plinth.py --linear 100              # on linear bearings, reference only: its limits
+                                                                # on random scenes (no compiled driver yet)
 
 Random scenes (fixed seed): a body 0.4-2.5 m tall, 0.15-0.8 m wide, on a plinth 0.1-1.5 m tall, 1-3 times as
 wide, mass ratio 0.2-5, under a symmetric or antisymmetric Ricker or a one-sine pulse (0.1-0.6 g, 0.3-1.5 s, either
@@ -15,6 +17,13 @@ cost, one ``solve_ivp`` call per impact, while keeping the two codes on the same
 largest differences of the two peaks over their slenderness, the impact counts, the friction demands below 2
 (above, a normal force falls to 0: both must exceed 2; runs where a block topples are left out, its normal force
 tending to 0 as it falls), and where they disagree.
+
+``--linear N``: random scenes on linear bearings (``T_b`` 0.5-3 s, ``xi`` 0.02-0.3, ``gamma`` 0.05-0.7, pulses
+0.3-1.5 g) in the reference, which is all that runs the stack there; checked on each: the energy (base included)
+never rises at an impact and the total horizontal momentum is kept; the scenes where the plinth never moved against
+the single block on the bearings with ``gamma/(1 + m2)``, those where the body never left its plinth against
+``as_block()`` with ``gamma R_asm/R_e`` and ``E = eta_asm`` (both plastic; the single block's reference at the
+same rtol and horizon): verdicts, peaks and impact counts; with ``--mirror`` also the flipped pulse.
 
 ``--timing``: the statue (1.79 m x 0.5 m) on its own and on two plinths under the catalogue's Table II records
 found in ROCKCLI_RECORDS, at scale 1, CPU per run (median of 5 rounds), verdict-only.
@@ -42,7 +51,7 @@ def random_scene(rng):
     return stack, pulse
 
 
-def differential(n, seed, with_restitution, ref_rtol=1e-9, rest_tol=1e-5):
+def differential(n, seed, with_restitution, ref_rtol=1e-9, rest_tol=1e-5, linear=False):
     from rockcli.reference.stack import reference_plinth
     from rockcli.solve import simulate_stack
 
@@ -53,13 +62,19 @@ def differential(n, seed, with_restitution, ref_rtol=1e-9, rest_tol=1e-5):
     imp_mismatch = demand_mismatch = 0
     bad = []
     cpu_k = cpu_r = 0.0
+    worst["base"] = 0.0
     for i in range(n):
-        stack, pulse = random_scene(rng)
+        iso = None
+        if linear:
+            stack, iso, pulse = random_linear_scene(rng)
+        else:
+            stack, pulse = random_scene(rng)
         E = float(rng.uniform(0.5, 1.0)) if with_restitution else None
         t0 = time.process_time()
-        a = simulate_stack(stack, pulse, horizon=1.0, tail=1.0, restitution=E, rest_tol=rest_tol)
+        a = simulate_stack(stack, pulse, horizon=1.0, tail=1.0, restitution=E, rest_tol=rest_tol, isolation=iso)
         t1 = time.process_time()
-        r = reference_plinth(stack, pulse, horizon=1.0, restitution=E, rtol=ref_rtol, rest_tol=rest_tol)
+        r = reference_plinth(stack, pulse, horizon=1.0, restitution=E, rtol=ref_rtol, rest_tol=rest_tol,
+                             isolation=iso)
         t2 = time.process_time()
         cpu_k += t1 - t0
         cpu_r += t2 - t1
@@ -80,6 +95,11 @@ def differential(n, seed, with_restitution, ref_rtol=1e-9, rest_tol=1e-5):
             where["plinth"] = (i, a.plinth.theta_max / stack.alpha_asm, r.peak[0] / stack.alpha_asm)
         worst["body"] = max(worst["body"], db)
         worst["plinth"] = max(worst["plinth"], dp)
+        if linear and a.verdict != "overturned":  # the base's peak (after a fall, it rides on without the block)
+            du = abs(a.base_disp_max / r.base_disp_max - 1)
+            if du > worst["base"]:
+                where["base"] = (i, a.base_disp_max, r.base_disp_max)
+            worst["base"] = max(worst["base"], du)
         if [a.plinth.n_impacts, a.body.n_impacts] != r.n_impacts:
             imp_mismatch += 1
             print(f"  impacts differ in scene {i}: kernel {[a.plinth.n_impacts, a.body.n_impacts]}, reference "
@@ -97,13 +117,101 @@ def differential(n, seed, with_restitution, ref_rtol=1e-9, rest_tol=1e-5):
         if (i + 1) % 25 == 0:
             print(f"  {i + 1} scenes: {agree} verdicts agree; worst peak differences body {worst['body']:.2e}, "
                   f"plinth {worst['plinth']:.2e} alpha", flush=True)
-    print(f"{n} random scenes{' with restitution' if with_restitution else ''} (seed {seed}): {agree} verdicts agree "
+    print(f"{n} random scenes{' on linear bearings' if linear else ''}{' with restitution' if with_restitution else ''}"
+          f" (seed {seed}): {agree} verdicts agree "
           f"({rocked} rock, {toppled} topple in the kernel, the rest do not lift)")
     print(f"largest peak differences: body {worst['body']:.3e} alpha1, plinth {worst['plinth']:.3e} alpha_asm; "
           f"impact counts differ in {imp_mismatch}; friction demand below 2: largest relative difference "
-          f"{worst['demand']:.2e}, {demand_mismatch} disagreeing above 2 (the runs where a block topples left out)")
+          f"{worst['demand']:.2e}, {demand_mismatch} disagreeing above 2 (the runs where a block topples left out)"
+          + (f"; base peak: largest relative difference {worst['base']:.2e} (runs that topple left out)"
+             if linear else ""))
     print(f"CPU: kernel {cpu_k:.1f} s ({1e3 * cpu_k / n:.2f} ms a scene), reference {cpu_r:.1f} s")
     print(f"where (scene, kernel, reference): {where}")
+    for b in bad:
+        print("  disagree:", b)
+
+
+def random_linear_scene(rng):
+    from rockcli.models import LinearIsolation
+
+    stack, _ = random_scene(rng)
+    iso = LinearIsolation(float(rng.uniform(0.5, 3.0)), float(rng.uniform(0.02, 0.3)), float(rng.uniform(0.05, 0.7)))
+    shape = (RickerSymmetric, RickerAntisymmetric, OneSine)[int(rng.integers(3))]
+    pulse = shape(float(rng.uniform(0.3, 1.5)) * G * rng.choice([-1, 1]), float(rng.uniform(0.3, 1.5)))
+    return stack, iso, pulse
+
+
+def linear_limits(n, seed, rtol=1e-10, horizon=1.0, rest_tol=1e-5, mirror=False):
+    """The reference on linear bearings over random scenes: its own invariants, and the limits it must meet."""
+    from rockcli.models import LinearIsolation
+    from rockcli.reference import reference_simulate
+    from rockcli.reference.stack import reference_plinth, stack_base, stack_blocks
+    from rockcli.reference.stack_mechanics import StackModel
+
+    rng = np.random.default_rng(seed)
+    counts = dict(rocked=0, toppled=0, still=0, impacts=0, b_cases=0, b_agree=0, p_cases=0, p_agree=0,
+                  mirror_agree=0)
+    worst = dict(energy=0.0, momentum=0.0, b_peak=0.0, p_peak=0.0, mirror=0.0)
+    bad = []
+    cpu = 0.0
+    for i in range(n):
+        stack, iso, pulse = random_linear_scene(rng)
+        t0 = time.process_time()
+        r = reference_plinth(stack, pulse, isolation=iso, horizon=horizon, rtol=rtol, rest_tol=rest_tol,
+                             record_impacts=True)
+        cpu += time.process_time() - t0
+        counts["rocked"] += r.verdict == "rocked"
+        counts["toppled"] += r.verdict == "overturned"
+        counts["still"] += r.verdict == "no_uplift"
+        model = StackModel(stack_blocks(stack), stack_base(stack, iso))
+        for d in r.impacts:
+            counts["impacts"] += 1
+            worst["energy"] = max(worst["energy"], d["ke_plus"] / d["ke_minus"] - 1)
+            px = [float(np.dot(model.Mdiag[[0, 3, 6]], v[[0, 3, 6]])) for v in (d["v_minus"], d["v_plus"])]
+            worst["momentum"] = max(worst["momentum"], abs(px[1] - px[0]) / (abs(px[0]) + 1e-300))
+        kw = dict(atol=None, horizon=horizon, rtol=rtol, rest_tol=rest_tol)
+        if r.verdict != "no_uplift" and r.peak[0] == 0.0:  # the plinth never moved: B only
+            counts["b_cases"] += 1
+            s = reference_simulate(stack.body, LinearIsolation(iso.T_b, iso.xi, iso.gamma / (1 + stack.m2)), pulse,
+                                   **kw)
+            d = abs(s.theta_max - r.peak[1]) / stack.body.alpha
+            same = s.verdict == r.verdict and s.n_impacts == r.n_impacts[1]
+            counts["b_agree"] += same
+            worst["b_peak"] = max(worst["b_peak"], d)
+            if not same:
+                bad.append(("B", i, r.verdict, s.verdict, r.n_impacts, s.n_impacts))
+        if r.verdict != "no_uplift" and r.peak[1] == 0.0:  # the body never left its plinth: P only
+            e = stack.as_block()
+            ge = iso.gamma * stack.R_asm / e.R
+            if ge < 1:
+                counts["p_cases"] += 1
+                s = reference_simulate(e, LinearIsolation(iso.T_b, iso.xi, ge), pulse, restitution=stack.eta_asm, **kw)
+                d = abs(s.theta_max - r.peak[0]) / stack.alpha_asm
+                same = s.verdict == r.verdict and s.n_impacts == r.n_impacts[0]
+                counts["p_agree"] += same
+                worst["p_peak"] = max(worst["p_peak"], d)
+                if not same:
+                    bad.append(("P", i, r.verdict, s.verdict, r.n_impacts, s.n_impacts))
+        if mirror:
+            flipped = type(pulse)(-pulse.a_p, pulse.T_p)
+            m = reference_plinth(stack, flipped, isolation=iso, horizon=horizon, rtol=rtol, rest_tol=rest_tol)
+            same = m.verdict == r.verdict and m.n_impacts == r.n_impacts
+            counts["mirror_agree"] += same
+            worst["mirror"] = max(worst["mirror"], max(abs(a - b) for a, b in zip(m.peak, r.peak)),
+                                  abs(m.base_disp_max - r.base_disp_max) / r.base_disp_max)
+            if not same:
+                bad.append(("mirror", i, r.verdict, m.verdict, r.n_impacts, m.n_impacts))
+        if (i + 1) % 10 == 0:
+            print(f"  {i + 1} scenes: {counts} worst {worst}", flush=True)
+    print(f"{n} random scenes on linear bearings (seed {seed}): {counts['rocked']} rock, {counts['toppled']} topple, "
+          f"{counts['still']} do not lift; {counts['impacts']} impacts: energy rises by at most "
+          f"{worst['energy']:.1e} (relative), horizontal momentum kept to {worst['momentum']:.1e}")
+    print(f"plinth never moved: {counts['b_agree']} of {counts['b_cases']} agree with the single block with "
+          f"gamma/(1 + m2) (verdict, impacts), peaks within {worst['b_peak']:.1e} alpha1; body never left its plinth: "
+          f"{counts['p_agree']} of {counts['p_cases']} agree with as_block(), peaks within {worst['p_peak']:.1e} "
+          f"alpha_asm" + (f"; mirror: {counts['mirror_agree']} of {n} agree, peaks within {worst['mirror']:.1e}"
+                          if mirror else ""))
+    print(f"CPU: reference {cpu:.1f} s ({cpu / n:.2f} s a scene)")
     for b in bad:
         print("  disagree:", b)
 
@@ -150,7 +258,14 @@ def main(argv=None):
     ap.add_argument("--p2s", type=int, default=0)
     ap.add_argument("--ref-rtol", type=float, default=1e-9)
     ap.add_argument("--rest-tol", type=float, default=1e-5)
+    ap.add_argument("--linear", type=int, default=0)
+    ap.add_argument("--mirror", action="store_true")
+    ap.add_argument("--kernel-linear", action="store_true", help="--scenes on linear bearings, kernel vs reference")
+    ap.add_argument("--isolation", default=None, help="--timing on these bearings, e.g. linear:Tb=2,xi=0.1,gamma=0.5")
     args = ap.parse_args(argv)
+    if args.linear:
+        linear_limits(args.linear, args.seed, rest_tol=args.rest_tol, mirror=args.mirror)
+        return 0
     if args.p2s:
         sys.path.insert(0, str(__import__("pathlib").Path(__file__).resolve().parents[1] / "tests"))
         from test_plinth_kernel import p2s_mismatches
@@ -161,16 +276,22 @@ def main(argv=None):
               f"followed 30 s on ({time.process_time() - t0:.1f} s CPU)")
         return 0
     if args.timing:
-        return run_timing()
+        iso = None
+        if args.isolation:
+            from rockcli.models import parse_isolation_spec
+
+            iso = parse_isolation_spec(args.isolation)
+        return run_timing(isolation=iso)
     if args.drums:
         drums()
         return 0
-    differential(args.scenes, args.seed, args.restitution, args.ref_rtol, args.rest_tol)
+    differential(args.scenes, args.seed, args.restitution, args.ref_rtol, args.rest_tol, args.kernel_linear)
     return 0
 
 
-def run_timing(rounds=5):
-    """CPU per verdict-only run of the statue alone and on two plinths under the ten Table II records."""
+def run_timing(rounds=5, isolation=None):
+    """CPU per verdict-only run of the statue alone and on two plinths under the ten Table II records (on a rigid
+    foundation, or on ``isolation``)."""
     from rockcli.assess.excitations import resolve_excitations
     from rockcli.solve import simulate, simulate_stack
 
@@ -178,8 +299,8 @@ def run_timing(rounds=5):
     recs = [e.motion for e in resolve_excitations(None, "record")[0] if not e.error]
     cases = [("statue alone", None), ("on plinth 0.2 x 4 (cannot lift)", Plinth(0.2, 4.0)),
              ("on plinth 1.0 x 0.6", Plinth(1.0, 0.6))]
-    simulate(statue, None, recs[0])  # compiled / loaded before the clock
-    simulate_stack(Stack(statue, Plinth(1.0, 0.6)), recs[0])
+    simulate(statue, isolation, recs[0])  # compiled / loaded before the clock
+    simulate_stack(Stack(statue, Plinth(1.0, 0.6)), recs[0], isolation=isolation)
     base = None
     for name, plinth in cases:
         times, steps, verdicts = [], 0, []
@@ -187,11 +308,11 @@ def run_timing(rounds=5):
             t0 = time.process_time()
             for rec in recs:
                 if plinth is None:
-                    r = simulate(statue, None, rec)
+                    r = simulate(statue, isolation, rec)
                     steps += r.steps if _ == 0 else 0
                     verdicts += [r.verdict] if _ == 0 else []
                 else:
-                    r = simulate_stack(Stack(statue, plinth), rec)
+                    r = simulate_stack(Stack(statue, plinth), rec, isolation=isolation)
                     steps += r.steps if _ == 0 else 0
                     verdicts += [r.toppled or r.verdict] if _ == 0 else []
             times.append(time.process_time() - t0)

@@ -31,8 +31,8 @@ What is where, in reading order (every name is importable from ``rockcli.referen
 * :mod:`~rockcli.reference.ivp`: ``solve_ivp`` with the work counted, a wall budget and a record's
   samples as break points.
 * :mod:`~rockcli.reference.stack` and :mod:`~rockcli.reference.stack_mechanics`: a stack of rocking blocks on
-  the ground (a body on its plinth), from the separate bodies' Newton-Euler equations with the contact
-  constraints (:func:`reference_stack`, :func:`reference_plinth`; docs/physics-plinth.md).
+  the ground or on linear bearings (a body on its plinth), from the separate bodies' Newton-Euler equations with
+  the contact constraints (:func:`reference_stack`, :func:`reference_plinth`; docs/physics-plinth.md).
 
 The test suite's ``tests/naive.py`` and ``tests/naive_sliding.py`` re-export this package.
 """

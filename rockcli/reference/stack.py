@@ -1,5 +1,5 @@
-"""The slow reference of a stack of rocking blocks on a rigid foundation (a body on its plinth: two blocks):
-SciPy ``solve_ivp`` with events for every contact change, phases chained in plain Python.
+"""The slow reference of a stack of rocking blocks on a rigid foundation or on linear bearings (a body on its plinth:
+two blocks): SciPy ``solve_ivp`` with events for every contact change, phases chained in plain Python.
 
 Written independently of :mod:`rockcli.kernels` and of the closed forms of docs/physics-plinth.md: the
 mechanics are the separate bodies' Newton-Euler equations with the contact constraints of each pattern
@@ -26,6 +26,14 @@ note:
   restore it) and the rotation it could still reach against the smaller of them is below ``rest_tol`` times its
   slenderness. Both are the single block's rule for one block.
 * The run ends at rest after the excitation, when a block topples, or ``horizon`` after the excitation.
+
+On linear bearings (``base``, :func:`stack_base`; docs/physics-plinth.md "On linear bearings") the base's
+displacement ``u`` is one more coordinate: the stack at rest rides the base (integrated, with the face events),
+impacts keep the total horizontal momentum, the rest rules ride on the bearing's force after a plastic stick
+(``F(u, u'_stuck)`` for ``ag``), a pivot an impact leaves with no rate goes where the accelerations take it, the
+steps stay below ``0.02/p`` in every pattern (a chatter of impacts was otherwise stepped over) and below
+``0.1/omega_b`` while a face is watched, and the run ends at rest once the free base's energy bound keeps every face
+shut after the excitation (then the base's later peak is read over two periods).
 
 Friction demand ``|T|/N`` is read on each rocking phase's dense output at its steps, ``demand_points`` equally
 spaced times and the midpoints between all of these, and while at rest it is ``|ag|/g`` (on the rest scan's
@@ -72,6 +80,7 @@ class StackRefResult:
     steps: int = 0
     nfev: int = 0
     wall_s: float = math.nan
+    base_disp_max: float = math.nan
 
 
 def stack_blocks(stack) -> list:
@@ -79,24 +88,41 @@ def stack_blocks(stack) -> list:
     return [(stack.b2, stack.h2, stack.m2), (stack.b1, stack.h1, 1.0)]
 
 
-def reference_plinth(stack, excitation, **kw) -> StackRefResult:
-    """:func:`reference_stack` of a body on its plinth (``stack``: a :class:`rockcli.models.Stack`)."""
-    return reference_stack(stack_blocks(stack), excitation, **kw)
+def stack_base(stack, isolation):
+    """``(m_b, k_b, c_b)`` per unit body mass of a :class:`rockcli.models.LinearIsolation` under ``stack``, or None
+    (a rigid foundation). The isolation's ``gamma = m/(m + m_b)`` reads ``m`` as everything the base carries, body
+    and plinth (``m1 + m2``), and its ``T_b``, ``xi`` as for the single block: ``k_b = (m + m_b) omega_b^2``,
+    ``c_b = 2 xi omega_b (m + m_b)`` (docs/physics-plinth.md, "On linear bearings")."""
+    if isolation is None or getattr(isolation, "kind", None) == 0:
+        return None
+    m = 1.0 + stack.m2
+    if not isolation.gamma > 0:
+        raise ValueError("the stack reference needs a base of finite mass (gamma > 0)")
+    total = m / isolation.gamma
+    w = isolation.omega_b
+    return (total - m, total * w * w, 2.0 * isolation.xi * w * total)
+
+
+def reference_plinth(stack, excitation, isolation=None, **kw) -> StackRefResult:
+    """:func:`reference_stack` of a body on its plinth (``stack``: a :class:`rockcli.models.Stack`) on a rigid
+    foundation or on linear bearings (``isolation``: a :class:`rockcli.models.LinearIsolation`)."""
+    return reference_stack(stack_blocks(stack), excitation, base=stack_base(stack, isolation), **kw)
 
 
 def reference_stack(blocks, excitation, *, rtol=1e-10, atol=None, horizon=600.0, rest_tol=1e-8, restitution=None,
                     method="DOP853", align=True, max_phases=200000, demand_points=8, record_impacts=False,
-                    deadline_s=None, tol=1e-9) -> StackRefResult:
+                    deadline_s=None, tol=1e-9, base=None) -> StackRefResult:
     """Run the stack ``blocks`` (``[(b, h, m), ...]`` bottom to top) under ``excitation`` (a record or a pulse).
 
     ``atol`` None: ``rtol`` times the state scales (each interface's slenderness and ``p alpha``); ``align``: a
     record's sample intervals integrated one by one (no step across a kink); ``record_impacts``: keep every
     impact's states and energies in ``impacts`` (the tests' conservation checks); ``tol``: the relative slack of
-    the impact consistency tests.
+    the impact consistency tests; ``base``: ``(m_b, k_b, c_b)`` of an isolated base on linear bearings
+    (:func:`stack_base`), None the rigid ground.
     """
     t_wall = time.perf_counter()
-    run = _Run(StackModel(blocks), excitation, rtol, atol, horizon, rest_tol, restitution, method, align, demand_points,
-               record_impacts, deadline_s, tol)
+    run = _Run(StackModel(blocks, base), excitation, rtol, atol, horizon, rest_tol, restitution, method, align,
+               demand_points, record_impacts, deadline_s, tol)
     for _ in range(max_phases):
         if not run.phase():
             break
@@ -184,10 +210,20 @@ class _Run:
         p = np.sqrt(0.75 * G / np.hypot(model.b, model.h))  # each block's frequency parameter: a state scale
         self.pmax = float(np.max(p))
         self.scale = np.concatenate([[model.alpha[i], p[i] * model.alpha[i]] for i in range(n)])
+        self.wb = 0.0
+        if model.nb:  # the base's scales as the single block's: g tan(alpha)/w^2, g tan(alpha)/w, w = max(w_b, p)
+            mb, kb, cb = model.base
+            total = mb + float(np.sum(model.m))
+            self.wb, self.zeta = math.sqrt(kb / total), cb / (2.0 * math.sqrt(kb * total))
+            w = max(self.wb, self.pmax)
+            thr = G * math.tan(float(np.min(model.alpha)))
+            self.scale = np.concatenate([self.scale, [thr / w ** 2, thr / w]])
         self.work = Work(method, rtol, atol, lambda k: self.scale[self.cols], deadline_s)
         if align and hasattr(excitation, "acc"):
             self.work.breaks = float(excitation.dt) * np.arange(1, np.asarray(excitation.acc).size)
         self.t, self.st, self.q, self.qd = 0.0, [0] * n, np.zeros(n), np.zeros(n)
+        self.u = self.ud = self.u_max = 0.0
+        self.done = False
         self.peak, self.theta_peak = [0.0] * n, [0.0] * n
         self.t_uplift, self.n_imp = [math.nan] * n, [0] * n
         self.fric, self.fric_imp = [0.0] * n, [0.0] * n
@@ -221,11 +257,57 @@ class _Run:
 
     # ---- one phase -------------------------------------------------------------------------------------------
     def phase(self) -> bool:
-        if self.t >= self.t_max_end - 1e-12 or self.toppled >= 0:
+        if self.t >= self.t_max_end - 1e-12 or self.toppled >= 0 or self.done:
             return False
         if all(s == 0 for s in self.st):
+            if self.M.nb:
+                if self.t >= self.t_exc_end and self._base_settled(self.u, self.ud):
+                    return False
+                return self._rock()
             return self._rest()
         return self._rock()
+
+    # ---- the isolated base ----------------------------------------------------------------------------------
+    def _bearing(self, u, ud) -> float:
+        """The bearing's force per unit moving mass [m/s^2]: the absolute acceleration of a stack at rest on it."""
+        return -self.wb * self.wb * u - 2.0 * self.zeta * self.wb * ud
+
+    def _rest_thresholds(self):
+        """The absolute accelerations ``(lo < 0 < up)`` of its support that lift the stack at rest (the face
+        forces at rest are linear in it)."""
+        G_ = self.M.ground
+        z = np.zeros(self.M.n)
+        f0 = G_.dynamics([0] * self.M.n, z, z, 0.0)[1]
+        f1 = G_.dynamics([0] * self.M.n, z, z, 1.0)[1]
+        up, lo = math.inf, -math.inf
+        for i in range(self.M.n):
+            for c in (2, 3):
+                P0, P1 = f0[i][c], f1[i][c] - f0[i][c]
+                if P1 != 0.0:
+                    a = -P0 / P1
+                    up, lo = (min(up, a), lo) if a > 0 else (up, max(lo, a))
+        return lo, up
+
+    def _base_settled(self, u, ud) -> bool:
+        """After the excitation, the stack at rest on the free base stays at rest for ever: the free base's energy
+        ``(u'^2 + w^2 u^2)/2`` never grows and bounds its acceleration by ``w sqrt(1 + 4 xi^2)`` times its square
+        root (the single block's rule), which stays inside both rest thresholds."""
+        lo, up = self._rest_thresholds()
+        return self.wb * math.hypot(1.0, 2.0 * self.zeta) * math.hypot(ud, self.wb * u) < min(up, -lo)
+
+    def _base_tail(self):
+        """The free base's later peak ``|u|`` after the run ends at rest (two periods of the free oscillator)."""
+        from scipy.integrate import solve_ivp
+
+        w, z = self.wb, self.zeta
+
+        def f(t, y):
+            return [y[1], -w * w * y[0] - 2 * z * w * y[1]]
+        def turn(t, y):
+            return y[1]
+        sol = solve_ivp(f, (0.0, 4 * math.pi / w), [self.u, self.ud], rtol=1e-12, atol=1e-15, events=turn)
+        for yy in sol.y_events[0]:
+            self.u_max = max(self.u_max, abs(float(yy[0])))
 
     def _rest(self) -> bool:
         """At rest: the face forces are ``P0 + ag P1``; the first ``ag`` that brings a corner force to 0 opens it."""
@@ -269,11 +351,13 @@ class _Run:
         return True
 
     def _rhs_factory(self, piv):
+        """The state ``y``: the pivots' ``(angle, rate)`` pairs, then on linear bearings the base's ``(u, u')``."""
         M, st, ag = self.M, list(self.st), self.ag
+        npv = 2 * len(piv)
 
         def unpack(y):
             q, qd = np.zeros(M.n), np.zeros(M.n)
-            q[piv], qd[piv] = y[0::2], y[1::2]
+            q[piv], qd[piv] = y[0:npv:2], y[1:npv:2]
             return q, qd
 
         cache = {}
@@ -283,13 +367,18 @@ class _Run:
             if key not in cache:
                 cache.clear()
                 q, qd = unpack(y)
-                cache[key] = M.dynamics(st, q, qd, ag(t))
+                if M.nb:
+                    cache[key] = M.accelerations(st, q, qd, ag(t), y[npv], y[npv + 1])
+                else:
+                    cache[key] = M.dynamics(st, q, qd, ag(t))
             return cache[key]
 
         def rhs(t, y):
-            qdd = dyn(t, y)[0]
+            d = dyn(t, y)
             out = np.empty_like(y)
-            out[0::2], out[1::2] = y[1::2], qdd[piv]
+            out[0:npv:2], out[1:npv:2] = y[1:npv:2], d[0][piv]
+            if M.nb:
+                out[npv], out[npv + 1] = y[npv + 1], d[2]
             return out
 
         return rhs, dyn, unpack
@@ -299,8 +388,11 @@ class _Run:
         piv = [i for i in range(M.n) if st[i] != 0]
         faces = [i for i in range(M.n) if st[i] == 0]
         rhs, dyn, unpack = self._rhs_factory(piv)
-        self.cols = np.concatenate([[2 * i, 2 * i + 1] for i in piv]).astype(int)
+        nb, npv = M.nb, 2 * len(piv)
+        self.cols = np.concatenate([[2 * i, 2 * i + 1] for i in piv] + [[2 * M.n, 2 * M.n + 1]] * nb).astype(int)
         y0 = np.ravel(np.column_stack([self.q[piv], self.qd[piv]]))
+        if nb:
+            y0 = np.concatenate([y0, [self.u, self.ud]])
         # a face that cannot hold at the start opens now (its corner force is already negative)
         forces = dyn(t0, y0)[1]
         for f in faces:
@@ -331,18 +423,40 @@ class _Run:
                   if tt > t0 else 1.0)
             ev.terminal, ev.direction = True, -1
             events.append(ev), kinds.append(("open", f))
+        if nb:
+            ev = (lambda tt, yy: yy[npv + 1])  # turning points of the base's displacement
+            events.append(ev), kinds.append(("upeak", -1))
+            if not piv and t0 >= self.t_exc_end:  # at rest on the free base: settled for ever (_base_settled)
+                lo, up = self._rest_thresholds()
+                lim = min(up, -lo)
+                ev = (lambda tt, yy: self.wb * math.hypot(1.0, 2.0 * self.zeta) * math.hypot(yy[1], self.wb * yy[0])
+                      - lim)
+                ev.terminal, ev.direction = True, -1
+                events.append(ev), kinds.append(("settled", -1))
         t_end = self.t_exc_end if t0 < self.t_exc_end else self.t_max_end
         # solve_ivp sees an event only as a sign change between two step ends: a face's corner force that dips
         # below 0 and comes back within one step would be missed (seen on random scenes with steps of 0.07 s).
-        # While a face is watched, steps are kept below 0.02/p of the fastest block (60 or more per rocking cycle)
-        max_step = min(self.max_step, 0.02 / self.pmax) if faces else self.max_step
+        # While a face is watched, steps are kept below 0.02/p of the fastest block (60 or more per rocking cycle),
+        # and on linear bearings below 0.1/w_b (60 or more per period of the base)
+        max_step = min(self.max_step, 0.02 / self.pmax, 0.1 / self.wb if self.wb else math.inf) if faces \
+            else self.max_step
+        # an impact is seen only as a sign change of a pivot's angle between two step ends: in a chatter of the body
+        # on the rocking plinth (impacts a millisecond apart) a dip below 0 and back inside one step was missed, so
+        # on the bearings the steps stay below 0.02/p in every pattern (found on a random scene: 50 impacts instead
+        # of the 149 the driver finds at every rtol, the count growing as the reference's rtol tightened)
+        if M.nb:
+            max_step = min(max_step, 0.02 / self.pmax)
         sol = self.work.ivp(rhs, (t0, t_end), y0, max_step=max_step, events=events, dense_output=True)
         for yy in sol.y.T:
             self._peaks(unpack(yy)[0])
+        if nb:
+            self.u_max = max(self.u_max, float(np.max(np.abs(sol.y[npv]))))
         for k, (kind, i) in enumerate(kinds):
             if kind in ("peak", "tilt") and sol.y_events[k].size:
                 for yy in sol.y_events[k]:
                     self._peaks(unpack(yy)[0])
+            if kind == "upeak" and sol.y_events[k].size:
+                self.u_max = max(self.u_max, float(np.max(np.abs(sol.y_events[k][:, npv]))))
             if kind == "jump" and sol.t_events[k].size:
                 self.n_jumps += int(sol.t_events[k].size)
         ts = np.union1d(sol.t, np.linspace(t0, sol.t[-1], self.npts))
@@ -351,6 +465,8 @@ class _Run:
             self._demand(dyn(tt, sol.sol(tt))[1])
         self.t = float(sol.t[-1])
         self.q, self.qd = unpack(sol.y[:, -1])
+        if nb:
+            self.u, self.ud = float(sol.y[npv, -1]), float(sol.y[npv + 1, -1])
         if sol.status != 1:
             return True
         for k, (kind, i) in enumerate(kinds):
@@ -367,12 +483,15 @@ class _Run:
                     f = dyn(self.t, sol.y[:, -1])[1][i]
                     self._open(i, +1 if f[3] < f[2] else -1)
                     return True
+                if kind == "settled":
+                    self.done = True
+                    return False
         return True
 
     # ---- impacts -------------------------------------------------------------------------------------------
     def _impact(self, j):
         M, t = self.M, self.t
-        v_minus = M.velocities(self.st, self.q, self.qd)
+        v_minus = M.velocities(self.st, self.q, self.qd, self.ud)
         if t <= self.t_exc_end:
             self.n_imp[j] += 1
         c, v, imp, margin, pulls = choose_post(M, self.st, self.q, v_minus, j, self.E, self.tol)
@@ -387,11 +506,43 @@ class _Run:
                                      v_plus=v, ke_minus=M.kinetic(v_minus), ke_plus=M.kinetic(v), impulses=imp))
         self._set(c)
         self.qd = np.where(np.array(c) != 0, M.rel_rates(v), 0.0)
+        self.ud = M.base_velocity(v)
         if any(c) and not np.any(self.q) and self._stack_rests(v):
             self._set([0] * M.n)
             self.qd = np.zeros(M.n)
+            if M.nb:  # a plastic rest: the stack and the base keep their horizontal momentum
+                self.ud = M.base_velocity(M.impact([0] * M.n, self.q, v)[0])
         elif c[j] != 0:
             self._rest_rule(j, v)
+        if M.nb and self.st[j] != 0:
+            self._no_rate(j, float(np.max(np.abs(M.rel_rates(v_minus)))))
+
+    def _no_rate(self, j, vscale):
+        """On the bearings, a pivot that leaves an impact with no opening rate (the plastic impact took it all) goes
+        where the accelerations take it: it stays if it opens, takes the other corner if that one opens, else the
+        interface sticks (a plastic stick). Without this rule a plinth carrying a rocking body on a light base was
+        seen to chatter between its corners at one instant, thousands of impacts with no rate either way."""
+        M, st = self.M, list(self.st)
+        if st[j] * self.qd[j] > self.tol * vscale:
+            return
+        ag = self.ag(self.t)
+        qd = self.qd.copy()
+        qd[j] = 0.0
+        if st[j] * M.accelerations(st, self.q, qd, ag, self.u, self.ud)[0][j] > 0:
+            self.qd = qd
+            return
+        flipped = list(st)
+        flipped[j] = -st[j]
+        if flipped[j] * M.accelerations(flipped, self.q, qd, ag, self.u, self.ud)[0][j] > 0:
+            self._set(flipped)
+            self.qd = qd
+            return
+        s0 = list(st)
+        s0[j] = 0
+        v0, _ = M.impact(s0, self.q, M.velocities(st, self.q, qd, self.ud))
+        self._set(s0)
+        self.qd = np.where(np.array(s0) != 0, M.rel_rates(v0), 0.0)
+        self.ud = M.base_velocity(v0)
 
     def _stack_rests(self, v) -> bool:
         """The whole stack's rest rule, every angle at 0: nothing could lift it from rest (each face's restoring
@@ -400,9 +551,16 @@ class _Run:
         rule)."""
         M = self.M
         z = np.zeros(M.n)
-        f = M.dynamics([0] * M.n, z, z, self.ag(self.t))[1]
+        f = M.ground.dynamics([0] * M.n, z, z, self._ride(v, [0] * M.n))[1]
         moment = np.array([2.0 * M.c[i] * min(f[i][2], f[i][3]) for i in range(M.n)])
-        return bool(np.all(moment > 0) and M.kinetic(v) < self.rest_tol * float(np.min(M.alpha * moment)))
+        return bool(np.all(moment > 0) and M.kinetic_relative(v) < self.rest_tol * float(np.min(M.alpha * moment)))
+
+    def _ride(self, v, st) -> float:
+        """The acceleration a rest rule rides on: the ground's, or on linear bearings the bearing's force per unit
+        moving mass with the base's velocity after a plastic rest into ``st`` (the single block's rule)."""
+        if not self.M.nb:
+            return self.ag(self.t)
+        return self._bearing(self.u, self.M.base_velocity(self.M.impact(st, self.q, v)[0]))
 
     def _rest_rule(self, j, v):
         """Stick interface ``j`` again when nothing could open it and its reach is below ``rest_tol alpha_j``."""
@@ -411,21 +569,29 @@ class _Run:
         s0[j] = 0
         v0, _ = M.impact(s0, self.q, v)
         qd0 = np.where(np.array(s0) != 0, M.rel_rates(v0), 0.0)
+        a_ride = self._ride(v, s0)
         restoring = math.inf
         for sigma in (1, -1):
             s1 = list(s0)
             s1[j] = sigma
-            restoring = min(restoring, -sigma * M.dynamics(s1, self.q, qd0, self.ag(self.t))[0][j])
+            restoring = min(restoring, -sigma * M.ground.dynamics(s1, self.q, qd0, a_ride)[0][j])
         rate = M.rel_rates(v)[j]
         if restoring > 0 and rate * rate / (2 * restoring) < self.rest_tol * M.alpha[j]:
             self._set(s0)
             self.qd = qd0
+            self.ud = M.base_velocity(v0)
 
     def result(self) -> StackRefResult:
         uplifted = any(not math.isnan(x) for x in self.t_uplift)
         verdict = "overturned" if self.toppled >= 0 else ("rocked" if uplifted else "no_uplift")
         settled = self.toppled >= 0 or all(s == 0 for s in self.st)
-        return StackRefResult(verdict, self.toppled, list(self.peak), list(self.theta_peak), list(self.t_uplift),
+        if self.M.nb and settled and self.toppled < 0:
+            settled = self.done or self._base_settled(self.u, self.ud)
+            if settled:
+                self._base_tail()
+        out = StackRefResult(verdict, self.toppled, list(self.peak), list(self.theta_peak), list(self.t_uplift),
                               self.t_over, list(self.n_imp), list(self.fric), list(self.fric_imp), self.n_jumps,
                               self.n_incons, settled, self.t, self.impacts, self.patterns, self.work.steps,
                               self.work.nfev)
+        out.base_disp_max = self.u_max if self.M.nb else math.nan
+        return out

@@ -14,8 +14,8 @@ from typing import Any
 import numpy as np
 
 from rockcli.errors import RockcliInputError
+from rockcli.models import LinearIsolation, Rigid, Stack
 from rockcli.models.impact import check_restitution
-from rockcli.models import Rigid, Stack
 from rockcli.solve.excitation import _excitation_arrays, attached_vertical
 from rockcli.solve.options import (DEFAULT_HORIZON, DEFAULT_MAX_STEPS, DEFAULT_REST_TOL, DEFAULT_TAIL, _kernel, _rtol,
                                    validate_options)
@@ -63,6 +63,8 @@ class StackHistory:
     theta2_dot: np.ndarray
     pattern: np.ndarray
     event: np.ndarray
+    #: the base's displacement [m] on linear bearings (None on a rigid foundation)
+    u: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
@@ -93,6 +95,8 @@ class StackResponse:
     n_rhs: int
     proof: str
     history: StackHistory | None = field(default=None, repr=False)
+    #: peak base displacement on the bearings [m]; NaN on a rigid foundation
+    base_disp_max: float = math.nan
 
     def as_dict(self) -> dict[str, Any]:
         """JSON-ready (no history)."""
@@ -102,7 +106,8 @@ class StackResponse:
                     "base": self.friction_base, "joint": self.friction_joint,
                     "base_impulsive": self.friction_base_impulsive, "joint_impulsive": self.friction_joint_impulsive},
                 "n_jumps": self.n_jumps, "n_inconsistent": self.n_inconsistent,
-                "t_overturn_s": _num(self.t_overturn_s), "steps": self.steps}
+                "t_overturn_s": _num(self.t_overturn_s), "base_disp_max_m": _num(self.base_disp_max),
+                "steps": self.steps}
 
 
 def _num(x):
@@ -139,7 +144,8 @@ def stack_parameters(stack: Stack, rtol, rest_tol: float, restitution):
 
 def simulate_stack(stack: Stack, excitation, *, rtol: float | None = None, history: bool = False,
                    tail: float = DEFAULT_TAIL, rest_tol: float = DEFAULT_REST_TOL, horizon: float = DEFAULT_HORIZON,
-                   max_steps: int = DEFAULT_MAX_STEPS, restitution: float | None = None) -> StackResponse:
+                   max_steps: int = DEFAULT_MAX_STEPS, restitution: float | None = None,
+                   isolation=None) -> StackResponse:
     """The body of ``stack`` on its plinth under ``excitation`` (a record or a pulse) on a rigid foundation.
 
     Parameters
@@ -155,6 +161,11 @@ def simulate_stack(stack: Stack, excitation, *, rtol: float | None = None, histo
     restitution : float, optional
         Coefficient of restitution ``E`` (``0 < E <= 1``) of every impact, read as the energetic rule of the note
         (``theta_dot+ = E theta_dot-`` for one block on the ground); None: the plastic (Housner-type) law.
+    isolation : Rigid or LinearIsolation, optional
+        What the plinth stands on, as the ``foundation`` of :func:`rockcli.solve.simulate`; None or
+        :class:`rockcli.models.Rigid`: the rigid foundation. Linear bearings are derived and checked in the slow
+        reference (:mod:`rockcli.reference.stack`, docs/physics-plinth.md "On linear bearings") but not yet in the
+        compiled driver, so they are refused here with one sentence, as are sliding and lead-rubber bearings.
 
     Returns
     -------
@@ -167,6 +178,10 @@ def simulate_stack(stack: Stack, excitation, *, rtol: float | None = None, histo
     if attached_vertical(excitation) is not None:
         raise RockcliInputError("a body on a plinth runs under the horizontal ground motion only: the record "
                                 "carries a vertical component")
+    check_stack_isolation(isolation)
+    if isinstance(isolation, LinearIsolation):
+        return _simulate_stack_linear(stack, excitation, isolation, rtol=rtol, history=history, tail=tail,
+                                      rest_tol=rest_tol, horizon=horizon, max_steps=max_steps, restitution=restitution)
     validate_options(rtol, tail, rest_tol, horizon, max_steps)
     restitution = check_restitution(restitution)
     from rockcli.kernels import stack as kst
@@ -180,6 +195,94 @@ def simulate_stack(stack: Stack, excitation, *, rtol: float | None = None, histo
                            tuple(float(v) for v in sp), ekind, tuple(float(v) for v in epar), acc, jtab, dt, t_begin,
                            t_exc_end, float(tail), float(horizon), int(max_steps), bool(history), out, xo)
     return _stack_response(out, xo, H if history else None, stack, k, kst)
+
+
+def linear_parameters(stack: Stack, isolation: LinearIsolation, rtol) -> np.ndarray:
+    """The bearings' tuple ``lp`` of :mod:`rockcli.kernels.stack_linear_physics` (docs/physics-plinth.md, "On
+    linear bearings": ``gamma`` reads ``m`` as body and plinth)."""
+    from rockcli.kernels import stack_linear_physics as lph
+
+    if not isolation.gamma > 0:
+        raise RockcliInputError("a body on a plinth on linear bearings needs a base of finite mass: give gamma > 0 "
+                                "(gamma = 0, an infinitely heavy base, is modelled for the single block only)")
+    lp = np.zeros(lph.N_LP)
+    body, eff = stack.body, stack.as_block()
+    m = 1.0 + stack.m2
+    total = m / isolation.gamma
+    w = isolation.omega_b
+    lp[lph.L_P1SQ], lp[lph.L_PASQ], lp[lph.L_AASM] = body.p ** 2, stack.p_asm ** 2, stack.alpha_asm
+    lp[lph.L_RE], lp[lph.L_ETA] = eff.R, stack.eta_asm
+    lp[lph.L_G1], lp[lph.L_GE] = isolation.gamma / m, isolation.gamma * stack.R_asm / eff.R
+    lp[lph.L_MT], lp[lph.L_WB], lp[lph.L_XI], lp[lph.L_MB] = total, w, isolation.xi, total - m
+    lp[lph.L_RTOL] = _rtol(isolation, rtol)
+    pmax = max(body.p, stack.p_asm)
+    thr = G * math.tan(min(body.alpha, stack.alpha_asm))
+    ws = max(w, pmax)
+    lp[lph.L_SC:lph.L_SC + 6] = (body.alpha, body.p * body.alpha, stack.alpha_asm, stack.p_asm * stack.alpha_asm,
+                                  thr / ws ** 2, thr / ws)
+    lp[lph.L_THR1], lp[lph.L_THRA] = stack.body_uplift_acceleration, stack.assembly_uplift_acceleration
+    lp[lph.L_PMAX], lp[lph.L_YC] = pmax, stack.y_c
+    return lp
+
+
+def _simulate_stack_linear(stack: Stack, excitation, isolation: LinearIsolation, *, rtol=None, history=False,
+                           tail=DEFAULT_TAIL, rest_tol=DEFAULT_REST_TOL, horizon=DEFAULT_HORIZON,
+                           max_steps=DEFAULT_MAX_STEPS, restitution=None) -> StackResponse:
+    """The compiled driver on linear bearings (:mod:`rockcli.kernels.stack_linear`), read into a
+    :class:`StackResponse`. Not reachable from :func:`simulate_stack` until checked against the reference."""
+    from rockcli.kernels import stack_linear as ksl
+
+    validate_options(rtol, tail, rest_tol, horizon, max_steps)
+    restitution = check_restitution(restitution)
+    ekind, epar, acc, jtab, dt, t_begin, t_exc_end = _excitation_arrays(excitation)
+    _, _, sp = stack_parameters(stack, rtol, float(rest_tol), restitution)
+    lp = linear_parameters(stack, isolation, rtol)
+    z = np.zeros(ksl.N_Z)
+    H = ksl.simulate_stack_linear(tuple(float(v) for v in sp), tuple(float(v) for v in lp), ekind,
+                                  tuple(float(v) for v in epar), acc, dt, t_begin, t_exc_end, float(tail),
+                                  float(horizon), int(max_steps), bool(history), z)
+    toppled = {0: "plinth", 1: "body"}.get(int(z[ksl.Z_TOPPLED]))
+    up = not (math.isnan(z[ksl.Z_TUP0]) and math.isnan(z[ksl.Z_TUP1]))
+    verdict = VERDICT_OVERTURNED if toppled else (VERDICT_ROCKED if up else VERDICT_NO_UPLIFT)
+    settled = bool(z[ksl.Z_SETTLED])
+    body = BlockPeak(float(z[ksl.Z_PEAK1]), stack.body.alpha, float(z[ksl.Z_TUP1]), float(z[ksl.Z_TEX1]),
+                     int(z[ksl.Z_NIMP1]))
+    plinth = BlockPeak(float(z[ksl.Z_PEAK0]), stack.alpha2, float(z[ksl.Z_TUP0]), float(z[ksl.Z_TEX0]),
+                       int(z[ksl.Z_NIMP0]))
+    status = int(z[ksl.Z_STATUS])
+    if status == -1:
+        message = "FAILED: the step cap was reached"
+    elif toppled is not None:
+        message = f"the {toppled} topples at t = {z[ksl.Z_T_OVER]:.3f} s"
+    elif verdict == VERDICT_ROCKED:
+        message = (f"survives: the body peaks at {body.theta_max_over_alpha:.3g} alpha1 on the plinth, the plinth at "
+                   f"{plinth.theta_max / stack.alpha_asm:.3g} alpha_asm"
+                   + ("" if settled else " (NOT PROVEN: horizon)"))
+    else:
+        message = "nothing lifts"
+    hist = None
+    if history:
+        names = {1.0: "uplift", 2.0: "impact", 3.0: "rest", 4.0: "overturn"}
+        hist = StackHistory(H[:, 0].copy(), H[:, 1].copy(), H[:, 2].copy(), H[:, 3].copy(), H[:, 4].copy(),
+                            H[:, 5].copy(), np.array([PATTERNS[int(x)] for x in H[:, 8]], dtype=object),
+                            np.array([names.get(float(x), "") for x in H[:, 9]], dtype=object), H[:, 6].copy())
+    return StackResponse(verdict, toppled, status, settled, message, body, plinth, float(z[ksl.Z_TILT]),
+                         stack.alpha_asm, float(z[ksl.Z_FR0]), float(z[ksl.Z_FR1]), float(z[ksl.Z_FRI0]),
+                         float(z[ksl.Z_FRI1]), int(z[ksl.Z_JUMPS]), int(z[ksl.Z_INCONS]), float(z[ksl.Z_T_OVER]),
+                         int(z[ksl.Z_STEPS]), int(z[ksl.Z_REJ]), int(z[ksl.Z_NRHS]),
+                         "bearings at rest" if settled and toppled is None else "", hist,
+                         base_disp_max=float(z[ksl.Z_UMAX]))
+
+
+def check_stack_isolation(isolation) -> None:
+    """Refuse, with one sentence, what a body on a plinth cannot stand on yet (anything but a rigid foundation)."""
+    if isolation is None or isinstance(isolation, Rigid):
+        return
+    if isinstance(isolation, LinearIsolation):
+        return
+    label = getattr(isolation, "label", type(isolation).__name__)
+    raise RockcliInputError(f"a body on a plinth is modelled on a rigid foundation and on linear bearings; sliding "
+                            f"and lead-rubber bearings ({label.split(':')[0]}) under a plinth are not yet")
 
 
 def _stack_response(out, xo, H, stack: Stack, k, kst) -> StackResponse:

@@ -1,0 +1,542 @@
+"""The stack driver on linear bearings: :func:`simulate_stack_linear` runs a body on its plinth on an isolated
+base (docs/physics-plinth.md, "On linear bearings"), event-driven, one pattern at a time.
+
+States ``y = (psi, psi', theta2, theta2', u, u')`` in every pattern (the angles of a face stay 0), integrated by
+Dormand-Prince 5(4) with its continuous extension (the coefficients of SciPy's ``RK45``), the error of each state
+kept below ``rtol max(|y|, scale)``. On every accepted step the events are looked for on the continuous extension
+at 16 points and located by bisection: a pivot's angle back to 0 (an impact), at ``pi/2`` (its block topples), the
+watched face's smaller corner force down to 0 (R: the bearing's force reaching the lower uplift threshold; B: the
+plinth's base; P: the joint), and the step is taken again to the first of them (so that no step crosses an event).
+While a face is watched the steps stay below ``0.32/p`` and ``1.6/omega_b`` (16 samples each ``0.02/p`` and
+``0.1/omega_b`` apart, the reference's resolution). Impacts, the pattern after them and the rest rules are those of
+the reference (:mod:`rockcli.kernels.stack_linear_physics`). The run ends at rest once the free base provably
+cannot lift the stack again (after the excitation, its energy bound below the lower threshold; the base then
+followed two periods for its later peak), when a block topples, or at the horizon. No early stop during the
+excitation: verdict-only and history runs take the same steps.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from rockcli.kernels.ground import ground_at
+from rockcli.kernels.layout import N_OUT
+from rockcli.kernels.stack_linear_physics import (L_AASM, L_PMAX, L_RTOL, L_SC, L_THR1, L_THRA, L_WB, L_XI, accel,
+                                                  bearing, choose_post, impact_into, kinetic_relative, mass_diag,
+                                                  rel_rates, rest_moments, restoring, rhs, velocities)
+from rockcli.kernels.stack_physics import S_A1, S_E, S_G, S_M2, S_REST, S_TOL, forces
+from rockcli.kernels.steps import _advance_segment, _seg, _start
+from rockcli.kernels.layout import RS_SEG_END, RS_T
+
+# outputs ``z``
+Z_STATUS, Z_TOPPLED, Z_T_OVER, Z_PEAK0, Z_PEAK1, Z_TILT, Z_UMAX = 0, 1, 2, 3, 4, 5, 6
+Z_TUP0, Z_TUP1, Z_NIMP0, Z_NIMP1, Z_NIMPALL0, Z_NIMPALL1 = 7, 8, 9, 10, 11, 12
+Z_FR0, Z_FR1, Z_FRI0, Z_FRI1, Z_JUMPS, Z_INCONS, Z_SETTLED = 13, 14, 15, 16, 17, 18, 19
+Z_T_END, Z_STEPS, Z_REJ, Z_NRHS, Z_TEX0, Z_TEX1, Z_NPLASTIC, Z_T_SETTLED, Z_NRESTS = 20, 21, 22, 23, 24, 25, 26, 27, 28
+N_Z = 29
+
+# history rows: t, ag, psi, psi', theta2, theta2', u, u', pattern (0 R, 1 B, 2 P, 3 BP), event
+ZH_N = 10
+EVH_STATE, EVH_UPLIFT, EVH_IMPACT, EVH_REST, EVH_OVERTURN = 0.0, 1.0, 2.0, 3.0, 4.0
+
+HALF_PI = 0.5 * math.pi
+
+_C = (0.0, 0.2, 0.3, 0.8, 8.0 / 9.0, 1.0)
+_A = ((0.0, 0.0, 0.0, 0.0, 0.0),
+      (0.2, 0.0, 0.0, 0.0, 0.0),
+      (3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0),
+      (44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0),
+      (19372.0 / 6561.0, -25360.0 / 2187.0, 64448.0 / 6561.0, -212.0 / 729.0, 0.0),
+      (9017.0 / 3168.0, -355.0 / 33.0, 46732.0 / 5247.0, 49.0 / 176.0, -5103.0 / 18656.0))
+_B = (35.0 / 384.0, 0.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0)
+_E = (-71.0 / 57600.0, 0.0, 71.0 / 16695.0, -71.0 / 1920.0, 17253.0 / 339200.0, -22.0 / 525.0, 1.0 / 40.0)
+_P = ((1.0, -8048581381.0 / 2820520608.0, 8663915743.0 / 2820520608.0, -12715105075.0 / 11282082432.0),
+      (0.0, 0.0, 0.0, 0.0),
+      (0.0, 131558114200.0 / 32700410799.0, -68118460800.0 / 10900136933.0, 87487479700.0 / 32700410799.0),
+      (0.0, -1754552775.0 / 470086768.0, 14199869525.0 / 1410260304.0, -10690763975.0 / 1880347072.0),
+      (0.0, 127303824393.0 / 49829197408.0, -318862633887.0 / 49829197408.0, 701980252875.0 / 199316789632.0),
+      (0.0, -282668133.0 / 205662961.0, 2019193451.0 / 616988883.0, -1453857185.0 / 822651844.0),
+      (0.0, 40617522.0 / 29380423.0, -110615467.0 / 29380423.0, 69997945.0 / 29380423.0))
+
+
+@njit(cache=True)
+def _dp5(s, k, sp, lp, seg, epar, t, h, y, K, ynew):
+    """One Dormand-Prince step from ``y`` (``K[0] = f(t, y)`` given) into ``ynew``, ``K[6] = f(t + h, ynew)``:
+    the error norm (<= 1: accepted)."""
+    yt = np.empty(6)
+    for st in range(1, 6):
+        for i in range(6):
+            acc = 0.0
+            for j in range(st):
+                acc += _A[st][j] * K[j, i]
+            yt[i] = y[i] + h * acc
+        rhs(s, k, sp, lp, yt, ground_at(t + _C[st] * h, seg, epar), K[st])
+    for i in range(6):
+        acc = 0.0
+        for j in range(6):
+            acc += _B[j] * K[j, i]
+        ynew[i] = y[i] + h * acc
+    rhs(s, k, sp, lp, ynew, ground_at(t + h, seg, epar), K[6])
+    err = 0.0
+    rtol = lp[L_RTOL]
+    for i in range(6):
+        e = 0.0
+        for j in range(7):
+            e += _E[j] * K[j, i]
+        sc = rtol * max(lp[L_SC + i], abs(y[i]), abs(ynew[i]))
+        err = max(err, abs(h * e) / sc)
+    return err
+
+
+@njit(cache=True, inline='always')
+def _dense(y, K, h, sig, out):
+    s2 = sig * sig
+    w = np.empty(7)
+    for j in range(7):
+        w[j] = _P[j][0] * sig + _P[j][1] * s2 + _P[j][2] * s2 * sig + _P[j][3] * s2 * s2
+    for i in range(6):
+        acc = 0.0
+        for j in range(7):
+            acc += w[j] * K[j, i]
+        out[i] = y[i] + h * acc
+
+
+@njit(cache=True)
+def _value(kind, c, sgn, s, k, sp, lp, seg, epar, t, h, y, K, sg, yy):
+    """The value whose first fall to 0 is the event, at fraction ``sg`` of the step: ``kind`` 0 an impact of the
+    pivot in column ``c`` on corner ``sgn``, 1 its block's overturn, 2 the watched face (:func:`_face_value`)."""
+    _dense(y, K, h, sg, yy)
+    if kind == 0:
+        return sgn * yy[c]
+    if kind == 1:
+        return HALF_PI - sgn * yy[c]
+    return _face_value(s, k, sp, lp, yy, ground_at(t + sg * h, seg, epar))
+
+
+@njit(cache=True)
+def _first_fall(kind, c, sgn, s, k, sp, lp, seg, epar, t, h, y, K, sig_lim):
+    """First fraction in ``(0, sig_lim]`` of the step where the event value is <= 0 (16 samples, bisection;
+    the start counts as above 0), else 2."""
+    yy = np.empty(6)
+    lo = 0.0
+    for m in range(1, 17):
+        sg = sig_lim * m / 16.0
+        if _value(kind, c, sgn, s, k, sp, lp, seg, epar, t, h, y, K, sg, yy) <= 0.0:
+            hi = sg
+            for _ in range(60):
+                mid = 0.5 * (lo + hi)
+                if mid <= lo or mid >= hi:
+                    break
+                if _value(kind, c, sgn, s, k, sp, lp, seg, epar, t, h, y, K, mid, yy) <= 0.0:
+                    hi = mid
+                else:
+                    lo = mid
+            return hi
+        lo = sg
+    return 2.0
+
+
+@njit(cache=True)
+def _face_value(s, k, sp, lp, yy, ag):
+    """R: the lower uplift threshold less the bearing's force; B: the plinth's smaller base corner force over its
+    load; P: the joint's over the body's weight."""
+    if s == 0.0 and k == 0.0:
+        return min(lp[L_THR1], lp[L_THRA]) - abs(bearing(lp, yy[4], yy[5]))
+    pdd, tdd, ab = accel(s, k, sp, lp, yy, ag)
+    f = forces(s, k, sp, yy[2], yy[0], yy[3], yy[1], tdd, pdd, ab)
+    if s == 0.0:
+        return min(f[2], f[3]) / ((1.0 + sp[S_M2]) * sp[S_G])
+    return min(f[6], f[7]) / sp[S_G]
+
+
+@njit(cache=True)
+def _rest_bounds(lp, y, K, h):
+    """At rest (pattern R): bounds over the step of ``|F|`` (the bearing's force) and of ``|u|``, from the
+    continuous extension's quartics ``sum_m c_m sigma^m`` (``|p(sigma)| <= sum |c_m|`` on ``[0, 1]``)."""
+    w = lp[L_WB]
+    cf = 2.0 * lp[L_XI] * w
+    fb = abs(bearing(lp, y[4], y[5]))
+    ub = abs(y[4])
+    for m in range(4):
+        cu = 0.0
+        cv = 0.0
+        for j in range(7):
+            cu += _P[j][m] * K[j, 4]
+            cv += _P[j][m] * K[j, 5]
+        fb += h * abs(w * w * cu + cf * cv)
+        ub += h * abs(cu)
+    return fb, ub
+
+
+@njit(cache=True, inline='always')
+def _may_cross(c, a0, r0, a1, r1, kind):
+    """Whether a pivot's angle (corner ``c``, from ``a0``, rate ``r0`` to ``a1``, ``r1`` over the step) may reach
+    0 (``kind`` 0) or pi/2 (1) inside the step: its end is there, or the angle turned inside it (a minimum, or a
+    maximum above 1 rad), or the pivot has just started from 0 (a fresh uplift that may fall straight back)."""
+    if kind == 0:
+        return c * a1 <= 0.0 or (c * r0 < 0.0 and c * r1 > 0.0) or a0 == 0.0
+    return c * a1 >= HALF_PI or (c * r0 > 0.0 and c * r1 < 0.0 and max(c * a0, c * a1) > 1.0)
+
+
+@njit(cache=True)
+def _scan(s, k, sp, lp, seg, epar, t, h, y, K, sig_end, z):
+    """Peaks, first exceedances and the friction demand over ``[0, sig_end]`` of the step (17 samples, the
+    largest of each peak refined by golden section); counts a step where a pivot's normal force is below 0."""
+    yy = np.empty(6)
+    best = np.zeros(4)
+    arg = np.zeros(4, dtype=np.int64)
+    jump = False
+    for m in range(17):
+        sg = sig_end * m / 16.0
+        _dense(y, K, h, sg, yy)
+        vals = (abs(yy[2]), abs(yy[0]), abs(yy[0] + yy[2]), abs(yy[4]))
+        for q in range(4):
+            if vals[q] > best[q]:
+                best[q] = vals[q]
+                arg[q] = m
+        if s == 0.0 and k == 0.0:  # at rest: both interfaces carry the weight and |a_b| of it sideways
+            fr = abs(bearing(lp, yy[4], yy[5])) / sp[S_G]
+            z[Z_FR0] = max(z[Z_FR0], fr)
+            z[Z_FR1] = max(z[Z_FR1], fr)
+            continue
+        ag = ground_at(t + sg * h, seg, epar)
+        pdd, tdd, ab = accel(s, k, sp, lp, yy, ag)
+        f = forces(s, k, sp, yy[2], yy[0], yy[3], yy[1], tdd, pdd, ab)
+        if f[0] > 0.0 and (s != 0.0 or min(f[2], f[3]) > 0.0):
+            z[Z_FR0] = max(z[Z_FR0], abs(f[1]) / f[0])
+        if f[4] > 0.0 and (k != 0.0 or min(f[6], f[7]) > 0.0):
+            z[Z_FR1] = max(z[Z_FR1], abs(f[5]) / f[4])
+        if (s != 0.0 and f[0] < 0.0) or (k != 0.0 and f[4] < 0.0):
+            jump = True
+        if math.isnan(z[Z_TEX0]) and abs(yy[2]) >= lp[L_AASM]:
+            z[Z_TEX0] = t + sg * h
+        if math.isnan(z[Z_TEX1]) and abs(yy[0]) >= sp[S_A1]:
+            z[Z_TEX1] = t + sg * h
+    cols = (2, 0, -1, 4)
+    record = (z[Z_PEAK0], z[Z_PEAK1], z[Z_TILT], z[Z_UMAX])
+    for q in range(4):
+        m = arg[q]
+        if best[q] == 0.0 or best[q] < 0.9 * record[q]:
+            # a sampled maximum below 0.9 of the peak so far cannot raise it (between samples 1/16 of a step apart,
+            # a smooth maximum exceeds the samples by (w dt)^2/8 relatively: below 2e-3 with the steps' caps)
+            continue
+        a = sig_end * max(m - 1, 0) / 16.0
+        b = sig_end * min(m + 1, 16) / 16.0
+        gr = 0.5 * (math.sqrt(5.0) - 1.0)
+        for _ in range(40):
+            x1 = b - gr * (b - a)
+            x2 = a + gr * (b - a)
+            _dense(y, K, h, x1, yy)
+            f1 = abs(yy[0] + yy[2]) if cols[q] < 0 else abs(yy[cols[q]])
+            _dense(y, K, h, x2, yy)
+            f2 = abs(yy[0] + yy[2]) if cols[q] < 0 else abs(yy[cols[q]])
+            best[q] = max(best[q], f1, f2)
+            if f1 > f2:
+                b = x2
+            else:
+                a = x1
+    z[Z_PEAK0] = max(z[Z_PEAK0], best[0])
+    z[Z_PEAK1] = max(z[Z_PEAK1], best[1])
+    z[Z_TILT] = max(z[Z_TILT], best[2])
+    z[Z_UMAX] = max(z[Z_UMAX], best[3])
+    if jump:
+        z[Z_JUMPS] += 1.0
+
+
+@njit(cache=True)
+def _after_impact(j, s, k, sp, lp, Md, y, t, t_exc_end, z, ag):
+    """The impact at interface ``j`` (its angle set to 0): the pattern after it, the rest rules. Returns the new
+    ``(s, k)``; ``y`` is updated."""
+    q0 = y[2] if j == 1 else 0.0
+    q1 = y[0] if j == 0 else 0.0
+    if j == 0:
+        y[2] = 0.0
+    else:
+        y[0] = 0.0
+    vm = velocities(s, k, sp, q0, q1, y[3] if s != 0.0 else 0.0, y[1] if k != 0.0 else 0.0, y[5])
+    if t <= t_exc_end:
+        z[Z_NIMP0 + j] += 1.0
+    z[Z_NIMPALL0 + j] += 1.0
+    tol = sp[S_TOL]
+    c0, c1, v, imp, margin, pulls, plastic = choose_post(s, k, j, sp, Md, q0, q1, vm, sp[S_E], tol)
+    if margin < -tol:
+        z[Z_INCONS] += 1.0
+    if plastic:
+        z[Z_NPLASTIC] += 1.0
+    z[Z_JUMPS] += pulls
+    for i in range(2):
+        if imp[i, 0] > 0.0:
+            z[Z_FRI0 + i] = max(z[Z_FRI0 + i], abs(imp[i, 1]) / imp[i, 0])
+    r0, r1 = rel_rates(v)
+    y[3] = r0 if c0 != 0.0 else 0.0
+    y[1] = r1 if c1 != 0.0 else 0.0
+    y[5] = v[6]
+    rest = sp[S_REST]
+    if (c0 != 0.0 or c1 != 0.0) and q0 == 0.0 and q1 == 0.0:
+        # the whole stack's rest rule: nothing could lift it at rest, its energy below rest_tol min(alpha_j M_j)
+        vs, _ = impact_into(0.0, 0.0, sp, Md, q0, q1, v, 0, 0.0, False)
+        m1, m0 = rest_moments(sp, lp, bearing(lp, y[4], vs[6]))
+        if m1 > 0.0 and m0 > 0.0 and kinetic_relative(Md, v) < rest * min(sp[S_A1] * m1, lp[L_AASM] * m0):
+            y[1] = 0.0
+            y[3] = 0.0
+            y[5] = vs[6]
+            z[Z_NRESTS] += 1.0
+            return 0.0, 0.0
+    cj = c1 if j else c0
+    if cj != 0.0:
+        s0 = 0.0 if j == 0 else c0
+        k0 = 0.0 if j == 1 else c1
+        v0, _ = impact_into(s0, k0, sp, Md, q0, q1, v, 0, 0.0, False)
+        d0, d1 = rel_rates(v0)
+        d0 = d0 if s0 != 0.0 else 0.0
+        d1 = d1 if k0 != 0.0 else 0.0
+        R = restoring(j, s0, k0, sp, lp, q0, q1, d0, d1, bearing(lp, y[4], v0[6]))
+        rate = r1 if j else r0
+        if R > 0.0 and rate * rate / (2.0 * R) < rest * (sp[S_A1] if j else lp[L_AASM]):
+            y[3] = d0
+            y[1] = d1
+            y[5] = v0[6]
+            z[Z_NRESTS] += 1.0
+            return s0, k0
+        # a pivot left with no opening rate goes where the accelerations take it (the reference's _no_rate)
+        rm0, rm1 = rel_rates(vm)
+        if cj * rate <= tol * max(abs(rm0), abs(rm1)):
+            if j:
+                y[1] = 0.0
+            else:
+                y[3] = 0.0
+            pdd, tdd, _ = accel(c0, c1, sp, lp, y, ag)
+            if cj * (pdd if j else tdd) > 0.0:
+                return c0, c1
+            f0 = -c0 if j == 0 else c0
+            f1 = -c1 if j == 1 else c1
+            pdd, tdd, _ = accel(f0, f1, sp, lp, y, ag)
+            if -cj * (pdd if j else tdd) > 0.0:
+                return f0, f1
+            v0, _ = impact_into(s0, k0, sp, Md, q0, q1,
+                                velocities(c0, c1, sp, q0, q1, y[3] if c0 != 0.0 else 0.0,
+                                           y[1] if c1 != 0.0 else 0.0, y[5]), 0, 0.0, False)
+            d0, d1 = rel_rates(v0)
+            y[3] = d0 if s0 != 0.0 else 0.0
+            y[1] = d1 if k0 != 0.0 else 0.0
+            y[5] = v0[6]
+            return s0, k0
+    return c0, c1
+
+
+@njit(cache=True)
+def _hist(H, nh, t, ag, y, s, k, kind):
+    if nh >= H.shape[0]:
+        H2 = np.empty((2 * H.shape[0], ZH_N))
+        H2[:nh] = H[:nh]
+        H = H2
+    H[nh, 0] = t
+    H[nh, 1] = ag
+    for i in range(6):
+        H[nh, 2 + i] = y[i]
+    H[nh, 8] = (0.0 if s == 0.0 else 2.0) + (0.0 if k == 0.0 else 1.0)
+    H[nh, 9] = kind
+    return H, nh + 1
+
+
+@njit(cache=True)
+def _uplift(z, j, t):
+    if math.isnan(z[Z_TUP0 + j]):
+        z[Z_TUP0 + j] = t
+
+
+@njit(cache=True)
+def simulate_stack_linear(sp, lp, ekind, epar, acc, dt, t_begin, t_exc_end, tail, horizon, max_steps, want_history,
+                          z):
+    """Integrate a body on its plinth on linear bearings under one excitation (``sp`` the stack tuple of
+    :func:`rockcli.solve.stack.stack_parameters`, ``lp`` the bearings' tuple ``L_*``). ``z`` gets the outputs
+    (``Z_*``); returns the history rows (``t, ag, psi, psi', theta2, theta2', u, u', pattern, event``)."""
+    out = np.zeros(N_OUT)
+    _W, rs, _H = _start(ekind, epar, acc, dt, t_begin, False, out)
+    for i in range(N_Z):
+        z[i] = 0.0
+    z[Z_TOPPLED] = -1.0
+    for i in (Z_T_OVER, Z_TUP0, Z_TUP1, Z_TEX0, Z_TEX1, Z_T_SETTLED):
+        z[i] = np.nan
+    H = np.empty((1024 if want_history else 1, ZH_N))
+    nh = 0
+    Md = mass_diag(sp, lp)
+    y = np.zeros(6)
+    ynew = np.zeros(6)
+    K = np.zeros((7, 6))
+    s = 0.0
+    k = 0.0
+    t = t_begin
+    h = 0.0
+    fresh = True
+    settled = False
+    t_tail = np.inf
+    wb = lp[L_WB]
+    thr = min(lp[L_THR1], lp[L_THRA])
+    body_first = lp[L_THR1] <= lp[L_THRA]
+    t_horizon = t_exc_end + max(horizon, tail)
+    t_show = t_exc_end + tail
+    bound = wb * math.sqrt(1.0 + 4.0 * lp[L_XI] ** 2)
+    steps = 0
+    rej = 0
+    nrhs = 0
+    if want_history:
+        H, nh = _hist(H, nh, t, 0.0, y, s, k, EVH_STATE)
+    while True:
+        rs[RS_T] = t
+        _advance_segment(rs, ekind, epar, acc, dt, t_begin)
+        seg = _seg(rs)
+        if s == 0.0 and k == 0.0 and not settled and t >= t_exc_end:
+            if bound * math.hypot(y[5], wb * y[4]) < thr:
+                settled = True
+                z[Z_T_SETTLED] = t
+                t_tail = t + 4.0 * math.pi / wb
+                if want_history:
+                    t_tail = max(t_tail, t_show)
+        if settled and t >= t_tail - 1e-12:
+            break
+        if t >= t_horizon - 1e-12:
+            break
+        if steps + rej >= max_steps:
+            z[Z_STATUS] = -1.0
+            break
+        t_stop = min(rs[RS_SEG_END], t_horizon, t_tail)
+        if fresh:
+            ag0 = ground_at(t, seg, epar)
+            rhs(s, k, sp, lp, y, ag0, K[0])
+            nrhs += 1
+            fresh = False
+            if s == 0.0 or k == 0.0:  # a face that cannot hold at the start opens now
+                if _face_value(s, k, sp, lp, y, ag0) < -sp[S_TOL]:
+                    s, k = _open(s, k, sp, lp, y, ag0, body_first, z, t)
+                    fresh = True
+                    if want_history:
+                        H, nh = _hist(H, nh, t, ag0, y, s, k, EVH_UPLIFT)
+                    continue
+        watched = s == 0.0 or k == 0.0
+        cap = min(0.32 / lp[L_PMAX], 1.6 / wb) if watched else np.inf
+        if h <= 0.0:
+            h = min(0.02 / lp[L_PMAX], 0.1 / wb)
+        h = min(h, cap)
+        # ---- one accepted step ----
+        while True:
+            last = h >= t_stop - t
+            hs = t_stop - t if last else h
+            err = _dp5(s, k, sp, lp, seg, epar, t, hs, y, K, ynew)
+            nrhs += 6
+            if err <= 1.0:
+                fac = 5.0 if err == 0.0 else min(5.0, max(0.2, 0.9 * err ** -0.2))
+                h = max(h, hs * fac) if last else hs * fac
+                break
+            rej += 1
+            h = hs * max(0.2, 0.9 * err ** -0.2)
+            if steps + rej >= max_steps:
+                break
+        if err > 1.0:
+            z[Z_STATUS] = -1.0
+            break
+        steps += 1
+        # ---- events ----
+        sig = 1.0
+        ev = -1
+        if k != 0.0:
+            if _may_cross(k, y[0], y[1], ynew[0], ynew[1], 0):
+                sg = _first_fall(0, 0, k, s, k, sp, lp, seg, epar, t, hs, y, K, 1.0)
+                if sg <= sig:
+                    sig, ev = sg, 1  # the joint's impact
+            if _may_cross(k, y[0], y[1], ynew[0], ynew[1], 1):
+                sg = _first_fall(1, 0, k, s, k, sp, lp, seg, epar, t, hs, y, K, 1.0)
+                if sg <= sig:
+                    sig, ev = sg, 3  # the body topples
+        if s != 0.0:
+            if _may_cross(s, y[2], y[3], ynew[2], ynew[3], 0):
+                sg = _first_fall(0, 2, s, s, k, sp, lp, seg, epar, t, hs, y, K, 1.0)
+                if sg < sig or (sg <= sig and ev < 0):
+                    sig, ev = sg, 0  # the base's impact
+            if _may_cross(s, y[2], y[3], ynew[2], ynew[3], 1):
+                sg = _first_fall(1, 2, s, s, k, sp, lp, seg, epar, t, hs, y, K, 1.0)
+                if sg <= sig:
+                    sig, ev = sg, 2  # the plinth topples
+        rest = s == 0.0 and k == 0.0
+        fb = ub = np.inf
+        if rest:  # at rest: the bearing's force and the base's displacement bounded over the step
+            fb, ub = _rest_bounds(lp, y, K, hs)
+        if watched and not (rest and fb < thr):
+            sg = _first_fall(2, 0, 0.0, s, k, sp, lp, seg, epar, t, hs, y, K, min(sig, 1.0))
+            if sg <= sig:
+                sig, ev = sg, 4  # the watched face opens
+        if not rest or ev >= 0 or ub > z[Z_UMAX] or fb > min(z[Z_FR0], z[Z_FR1]) * sp[S_G]:
+            _scan(s, k, sp, lp, seg, epar, t, hs, y, K, sig, z)
+        if ev >= 0 and sig < 1.0:  # retake the step to the event
+            _dp5(s, k, sp, lp, seg, epar, t, sig * hs, y, K, ynew)
+            nrhs += 6
+        t = t + sig * hs if sig < 1.0 else (t_stop if last else t + hs)
+        for i in range(6):
+            y[i] = ynew[i]
+        if ev < 0:
+            for i in range(6):
+                K[0, i] = K[6, i]
+            if want_history:
+                H, nh = _hist(H, nh, t, ground_at(t, seg, epar), y, s, k, EVH_STATE)
+            continue
+        fresh = True
+        ag = ground_at(t, seg, epar)
+        if ev == 2 or ev == 3:
+            z[Z_TOPPLED] = 0.0 if ev == 2 else 1.0
+            z[Z_PEAK0 if ev == 2 else Z_PEAK1] = HALF_PI
+            z[Z_T_OVER] = t
+            z[Z_STATUS] = 1.0
+            if want_history:
+                H, nh = _hist(H, nh, t, ag, y, s, k, EVH_OVERTURN)
+            break
+        if ev == 0 or ev == 1:
+            j = 0 if ev == 0 else 1
+            if want_history:
+                yy = y.copy()
+                yy[2 * (1 - j)] = 0.0
+                H, nh = _hist(H, nh, t, ag, yy, s, k, EVH_IMPACT)
+            s, k = _after_impact(j, s, k, sp, lp, Md, y, t, t_exc_end, z, ag)
+            if want_history:
+                H, nh = _hist(H, nh, t, ag, y, s, k, EVH_REST if (s == 0.0 and k == 0.0) else EVH_IMPACT)
+            continue
+        # the watched face opens
+        s, k = _open(s, k, sp, lp, y, ag, body_first, z, t)
+        if want_history:
+            H, nh = _hist(H, nh, t, ag, y, s, k, EVH_UPLIFT)
+    z[Z_SETTLED] = 1.0 if (settled or z[Z_TOPPLED] >= 0.0) else 0.0
+    z[Z_T_END] = t
+    z[Z_STEPS] = steps
+    z[Z_REJ] = rej
+    z[Z_NRHS] = nrhs
+    return H[:nh]
+
+
+@njit(cache=True)
+def _open(s, k, sp, lp, y, ag, body_first, z, t):
+    """The watched face opens about the corner that keeps pressing: R -> B or P (the lower threshold), B -> BP
+    (the plinth lifts), P -> BP (the body lifts off it). Returns the new ``(s, k)``."""
+    if s == 0.0 and k == 0.0:
+        side = -1.0 if bearing(lp, y[4], y[5]) > 0.0 else 1.0
+        if body_first:
+            _uplift(z, 1, t)
+            y[0] = 0.0
+            y[1] = 0.0
+            return 0.0, side
+        _uplift(z, 0, t)
+        y[2] = 0.0
+        y[3] = 0.0
+        return side, 0.0
+    pdd, tdd, ab = accel(s, k, sp, lp, y, ag)
+    f = forces(s, k, sp, y[2], y[0], y[3], y[1], tdd, pdd, ab)
+    if s == 0.0:
+        _uplift(z, 0, t)
+        y[2] = 0.0
+        y[3] = 0.0
+        return (1.0 if f[2] > f[3] else -1.0), k
+    _uplift(z, 1, t)
+    y[0] = 0.0
+    y[1] = 0.0
+    return s, (1.0 if f[6] > f[7] else -1.0)
