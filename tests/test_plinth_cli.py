@@ -101,7 +101,7 @@ def test_the_history_of_a_stack(tmp_path):
     (("--on", "plinth:height=1"), "needs width"),
     (("--on", "plinth:height=1,width=1,mass_ratio=1e6"), "mass_ratio"),
     (("--on", "plinth:height=1,width=1,depth=2"), "is not one of height"),
-    (("--on", "plinth:height=1,width=1", "--isolation", "linear:Tb=2"), "rigid foundation only"),
+    (("--on", "plinth:height=1,width=1", "--isolation", "scss:Tb=3,mu=0.05"), "sliding and lead-rubber bearings"),
     (("--on", "plinth:height=1,width=1", "--cap-ratio", "0.2"), "--cap-ratio"),
     (("--on", "plinth:height=1,width=1", "--report", "x.html"), "--report"),
     (("--on", "plinth:height=1,width=1", "--vertical-pulse", "sine:ap=0.1,Tp=0.3"), "--vertical"),
@@ -191,10 +191,14 @@ def test_simulate_many_runs_stacks_and_blocks_in_order():
             assert r.overturned == (ref.toppled is not None)
         else:
             assert r.verdict == simulate(*job).verdict
-    from rockcli.models import LinearIsolation
+    from rockcli.models import LinearIsolation, SingleConcaveSliding
 
-    bad = simulate_many([(jobs[0][0], LinearIsolation(2.0, 0.1, 0.01), jobs[0][2])])[0]
-    assert bad.verdict == "error" and "rigid foundation only" in bad.error
+    bearings = LinearIsolation(2.0, 0.1, 0.01)
+    on, ref = simulate_many([(jobs[0][0], bearings, jobs[0][2])])[0], simulate_stack(jobs[0][0], jobs[0][2],
+                                                                                    isolation=bearings)
+    assert on.verdict == ref.verdict and on.base_disp_max_m == ref.base_disp_max > 0.0
+    bad = simulate_many([(jobs[0][0], SingleConcaveSliding(3.0, 0.05), jobs[0][2])])[0]
+    assert bad.verdict == "error" and "sliding and lead-rubber bearings" in bad.error
 
 
 def test_the_stack_s_liftoff_floor_is_exact_on_random_scenes():
@@ -239,9 +243,9 @@ def test_assess_column_on_a_plinth_compares_with_the_statue_alone():
                      "--records", "superstition-1987-parachute-225")
     assert code == 0, out
     assert "statue on plinth" in out and "Does the plinth help?" in out
-    assert "left out of the default set" in out  # the bearings: not modelled with a plinth yet
+    assert "left out of the default set" not in out  # the default set's linear bearings run with a plinth
     d = _json("assess", "column", STATUE, "--on", "plinth:height=1.0,width=0.6", "--records", KOBE,
-              "--records", "superstition-1987-parachute-225")
+              "--records", "superstition-1987-parachute-225", "--isolation", "none")
     rows = {(r["column"], r["record"]): r for r in d["rows"]}
     assert {c for c, _ in rows} == {"statue", "statue on plinth"}
     assert {r["configuration"] for r in d["rows"]} == {"none"}
@@ -260,10 +264,10 @@ def test_assess_column_on_a_plinth_compares_with_the_statue_alone():
         assert mine[key] == alone[key]
 
 
-def test_assess_refuses_named_bearings_with_a_plinth():
+def test_assess_refuses_named_sliding_bearings_with_a_plinth():
     code, out = _run("assess", "column", STATUE, "--on", "plinth:height=1.0,width=0.6", "--records", KOBE,
-                     "--isolation", "none", "--isolation", "linear:Tb=3")
-    assert code == 2 and "rigid foundation only" in out and "--isolation none" in out
+                     "--isolation", "none", "--isolation", "scss:Tb=3,mu=0.05")
+    assert code == 2 and "sliding and lead-rubber bearings" in out and "--isolation none or linear" in out
     code, out = _run("assess", "column", STATUE, "--on", "plinth:height=1.0,width=0.3", "--records", KOBE)
     assert code == 2 and "no wider than its plinth" in out
 

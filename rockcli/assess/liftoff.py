@@ -38,6 +38,17 @@ safety margin), and the margin search (:mod:`rockcli.assess.margin`) never runs 
   R: its verdict is ``no_uplift``, nothing overturns, and after the excitation R is proven at once (P1). No
   vertical motion (the stack refuses it). Margin :data:`RIGID_MARGIN` for the rounding of ``s * acc``.
   Tested against every factor of a scan on random stacks and motions (tests/test_plinth_cli.py).
+* A body on a free plinth on linear bearings under a record: at rest the body, the plinth and the base move as one
+  rigid mass on the bearings, a linear oscillator of the same ``omega_b`` and ``xi`` as a single block's base (the
+  stack's ``gamma`` counts body and plinth as the mass the base carries, docs/physics-plinth.md, "On linear
+  bearings"), so ``M`` is the single block's (:func:`rockcli.kernels.linear_base.stuck_peak`, with P3 after the
+  record), and each block's patterns are the rigid foundation's with the base's absolute acceleration in place of
+  ``ag``: the stack leaves rest where ``|a_b|`` first exceeds the smaller static threshold, as above. The stack
+  driver integrates its rest phase by Dormand-Prince (not by the exact recurrence), so its ``a_b`` differs from
+  ``s`` times the exact one by the integration error (relative ``rtol``, 5e-9 by default, at most
+  :data:`STACK_LINEAR_RTOL_MAX` = 1e-5 for this floor, else 0; a damped oscillator does not amplify it); margin
+  :data:`STACK_LINEAR_MARGIN` = 1e-3, far above it and a tenth of the grid's 1 % step
+  (tested: at the floor nothing lifts, on random stacks, bearings and records, tests/test_plinth_floor.py).
 * Anything else (sliding and lead-rubber bearings, a pulse on linear bearings, a scene the solver
   would refuse): floor 0, every factor may need a run.
 """
@@ -52,6 +63,10 @@ import numpy as np
 RIGID_MARGIN = 1e-9
 #: Relative safety margin of the floor on linear bearings (see the module notes).
 LINEAR_MARGIN = 1e-9
+#: Relative safety margin of a plinth's floor on linear bearings (see the module notes).
+STACK_LINEAR_MARGIN = 1e-3
+#: The loosest ``rtol`` for which that margin is taken (looser: floor 0).
+STACK_LINEAR_RTOL_MAX = 1e-5
 #: After the record, ``stuck_peak`` stops where P3's bound is within this of the bound so far.
 P3_SLACK = 1e-3
 #: ``stuck_peak`` refines its bound inside the sample intervals to this relative width.
@@ -95,36 +110,68 @@ def liftoff_floor(block, foundation, motion, **solver) -> float:
             thr = block.uplift_acceleration * (1.0 + _vertical_low(motion, solver, G) / G)
             peak = _peak(motion)
             return math.inf if peak == 0.0 else thr / peak * (1.0 - RIGID_MARGIN)
-        if not (isinstance(foundation, LinearIsolation) and hasattr(motion, "acc")):
+        m = _linear_base_peak(block, foundation, motion, **solver)
+        if m is None:
             return 0.0
-        if solver.get("vertical") is not None or attached_vertical(motion) is not None:
-            return 0.0  # refused on bearings: the runs say why
-        from rockcli.kernels.linear_base import stuck_peak
-        from rockcli.solve.excitation import _samples
+        from rockcli.solve.options import _kernel
 
         _, prm = _parameters(block, foundation, solver.get("rtol"), float(solver.get("rest_tol", DEFAULT_REST_TOL)),
                              solver.get("restitution"), solver.get("cap_ratio", 0.0) or 0.0)
-        from rockcli.solve.options import _kernel
-
-        k = _kernel()
-        acc, dt = _samples(motion, "record")
-        t_limit = (acc.size - 1) * dt + float(solver.get("horizon", DEFAULT_HORIZON))
-        m, t_proof = stuck_peak(float(prm[k.P_W]), float(prm[k.P_XI]), acc, dt, 1.0, t_limit, P3_SLACK, PEAK_TOL)
-        if not math.isfinite(t_proof):
-            return 0.0
-        return math.inf if m == 0.0 else float(prm[k.P_THR]) / m * (1.0 - LINEAR_MARGIN)
+        return math.inf if m == 0.0 else float(prm[_kernel().P_THR]) / m * (1.0 - LINEAR_MARGIN)
     except (RockcliInputError, TypeError, ValueError):
         return 0.0
 
 
+def _linear_base_peak(block, foundation, motion, **solver):
+    """``M``: the bound of the absolute acceleration of a standing body's linear base over the whole run at ``s = 1``
+    (module notes), or None when there is none (not linear bearings, not a record, a vertical motion, or P3 does
+    not prove the run before the horizon)."""
+    from rockcli.models import LinearIsolation
+    from rockcli.solve import DEFAULT_HORIZON, DEFAULT_REST_TOL, _parameters, attached_vertical
+
+    if not (isinstance(foundation, LinearIsolation) and hasattr(motion, "acc")):
+        return None
+    if solver.get("vertical") is not None or attached_vertical(motion) is not None:
+        return None  # refused on bearings: the runs say why
+    from rockcli.kernels.linear_base import stuck_peak
+    from rockcli.solve.excitation import _samples
+    from rockcli.solve.options import _kernel
+
+    _, prm = _parameters(block, foundation, solver.get("rtol"), float(solver.get("rest_tol", DEFAULT_REST_TOL)),
+                         solver.get("restitution"), solver.get("cap_ratio", 0.0) or 0.0)
+    k = _kernel()
+    acc, dt = _samples(motion, "record")
+    t_limit = (acc.size - 1) * dt + float(solver.get("horizon", DEFAULT_HORIZON))
+    m, t_proof = stuck_peak(float(prm[k.P_W]), float(prm[k.P_XI]), acc, dt, 1.0, t_limit, P3_SLACK, PEAK_TOL)
+    return float(m) if math.isfinite(t_proof) else None
+
+
 def _stack_floor(stack, foundation, motion, **solver) -> float:
-    """A body on a plinth on a rigid foundation: the smaller static threshold over the motion's peak (module notes);
-    0 on any other foundation (every factor may need a run)."""
+    """A body on a plinth: the smaller static threshold over the peak of what it stands on (module notes), on a rigid
+    foundation or on linear bearings under a record; 0 on any other foundation (every factor may need a run)."""
     from rockcli.errors import RockcliInputError
     from rockcli.models import Rigid
 
-    if not (foundation is None or isinstance(foundation, Rigid)) or solver.get("vertical") is not None:
+    if solver.get("vertical") is not None:
         return 0.0
+    if not (foundation is None or isinstance(foundation, Rigid)):
+        if solver.get("rtol") is not None and float(solver["rtol"]) > STACK_LINEAR_RTOL_MAX:
+            return 0.0  # an integration error that could approach the margin
+        try:
+            m = _linear_base_peak(stack.body, foundation, motion, **solver)
+            if m is None:
+                return 0.0
+            from rockcli.solve import DEFAULT_REST_TOL
+            from rockcli.solve.options import _kernel
+            from rockcli.solve.stack import stack_parameters
+
+            k = _kernel()
+            rest_tol = float(solver.get("rest_tol", DEFAULT_REST_TOL))
+            prm, prm_asm, _ = stack_parameters(stack, solver.get("rtol"), rest_tol, solver.get("restitution"))
+            thr = min(float(prm[k.P_THR]), float(prm_asm[k.P_THR]))
+        except (RockcliInputError, TypeError, ValueError):
+            return 0.0
+        return math.inf if m == 0.0 else thr / m * (1.0 - STACK_LINEAR_MARGIN)
     try:
         from rockcli.solve import DEFAULT_REST_TOL
         from rockcli.solve.options import _kernel

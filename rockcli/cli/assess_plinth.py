@@ -4,12 +4,10 @@ Each body named is assessed twice, alone and standing on the plinth (a :class:`r
 its own named ``statue on plinth``), on the same configurations and records, so that the answer can say whether the
 plinth helps or hurts (:func:`rockcli.assess.verdicts.plinth_summary`).
 
-Foundations (the choice, docs/plinth.md): a body on a plinth is modelled on the rigid foundation only for now
-(:func:`rockcli.solve.stack_many.plinth_foundation_supported`). Without ``--isolation`` the default set would
-include linear bearings: they are left out with a note (the user asked about the plinth, and the answer on the
-ground is what the model gives); an isolated configuration the user names with ``--on`` is refused in one
-sentence (a cell that cannot be computed is not an answer to what was asked). Once the stack runs on linear
-bearings, those configurations simply pass.
+Foundations (the choice, docs/plinth.md): a body on a plinth is modelled on the rigid foundation and on linear
+bearings (:func:`rockcli.solve.stack_many.plinth_foundation_supported`). A configuration of another kind in a
+default set is left out with a note; one the user names with ``--on`` is refused in one sentence (a cell that
+cannot be computed is not an answer to what was asked).
 """
 
 from __future__ import annotations
@@ -44,18 +42,18 @@ def with_plinth(columns, configurations, plinth_spec, *, isolation_given: bool, 
     left = [c for c in configurations if c not in kept]
     if left and isolation_given:
         raise RockcliInputError(f"--on: {PLINTH_RIGID_ONLY} ({', '.join(c.spec for c in left)}); give "
-                                f"--isolation none")
+                                f"--isolation none or linear:...")
     note = ""
     if left:
-        note = (f"Plinth: {PLINTH_RIGID_ONLY}, so every body, alone and on its plinth, is assessed on the rigid "
-                f"foundation only (left out of the default set: {', '.join(c.header for c in left)}).")
+        note = (f"Plinth: {PLINTH_RIGID_ONLY}, so every body, alone and on its plinth, is assessed without them "
+                f"(left out of the default set: {', '.join(c.header for c in left)}).")
     return out, kept, note
 
 
 def plinth_notes(result, note: str = "") -> str:
     """The notes of an assessment with plinths: what the columns of the stacks mean, and the note of
     :func:`with_plinth`."""
-    from rockcli.models import Stack
+    from rockcli.models import Rigid, Stack
 
     stacks = [b for b in result.columns if isinstance(b, Stack)]
     if not stacks:
@@ -69,6 +67,8 @@ def plinth_notes(result, note: str = "") -> str:
         head += ("r is the body's peak rotation on the plinth over its own alpha, pQ the plinth's over the slenderness "
                  "of body and plinth as one block (alpha_asm); OVERTURNS body/plinth: which one topples (the body "
                  "falls with its plinth).")
+    if any(not isinstance(c.foundation, Rigid) for c in getattr(result, "configurations", ())):
+        head += " On bearings gamma counts body and plinth together as the mass the base carries."
     lines = ["", head]
     for s in stacks:
         p = s.plinth

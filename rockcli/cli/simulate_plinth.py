@@ -37,7 +37,7 @@ def refuse_with_plinth(foundation, *, cap_ratio, moving, check, report, history_
     from rockcli.solve.stack_many import PLINTH_RIGID_ONLY, plinth_foundation_supported
 
     if not plinth_foundation_supported(foundation):
-        raise RockcliInputError(f"--on: {PLINTH_RIGID_ONLY}; give --isolation none")
+        raise RockcliInputError(f"--on: {PLINTH_RIGID_ONLY}; give --isolation none or linear:...")
     refused = [name for name, given in (("--cap-ratio", cap_ratio), ("--theta0/--theta-dot0", moving),
                                         ("--check-tolerance", check), ("--report", report),
                                         ("--history-dt", history_dt is not None),
@@ -133,8 +133,9 @@ def plain_words(stack, res) -> str:
     if res.toppled == "plinth":
         return f"The {plinth[4:]} topples at {res.t_overturn_s:.2f} s, and {body} with it."
     head = "" if res.settled else "Not proven (still moving at the horizon): "
+    isolated = math.isfinite(getattr(res, "base_disp_max", math.nan))
     if not body_up and not pl_up:
-        return head + f"Nothing lifts: {body} and {plinth} move with the ground."
+        return head + f"Nothing lifts: {body} and {plinth} move with the {'isolated base' if isolated else 'ground'}."
     b = f"{100 * res.body.theta_max_over_alpha:.0f} %"
     a = f"{100 * res.plinth.theta_max / res.alpha_asm:.0f} %"
     if not pl_up:
@@ -197,6 +198,7 @@ def run_plinth(stack, foundation, excitation, label: str, *, restitution, rtol, 
         verdict += (" (the body topples off its plinth)" if res.toppled == "body" else
                     " (the plinth topples, the body with it)")
     pl = res.plinth
+    isolated = math.isfinite(getattr(res, "base_disp_max", math.nan))
     rows = [
         ("block", f"{body.name}: R = {body.R:.3f} m, alpha = {body.alpha_deg:.2f} deg (h/b = {body.h / body.b:.2f}), "
                   f"p = {body.p:.3f} rad/s"),
@@ -217,8 +219,10 @@ def run_plinth(stack, foundation, excitation, label: str, *, restitution, rtol, 
         ("plinth peak", "does not lift" if math.isnan(pl.t_uplift_s) else
          (f"|theta2| = {pl.theta_max:.4g} rad: {pl.theta_max / res.alpha_asm:.4f} alpha_asm, "
           f"{pl.theta_max_over_alpha:.4f} alpha2" if res.toppled != "plinth" else "overturned")),
-        ("impacts", f"{res.body.n_impacts} of the body on the plinth, {pl.n_impacts} of the plinth on the ground "
-                    f"(during shaking)"),
+        ("impacts", f"{res.body.n_impacts} of the body on the plinth, {pl.n_impacts} of the plinth on the "
+                    f"{'isolated base' if isolated else 'ground'} (during shaking)"),
+        *([("peak base disp.", f"{res.base_disp_max:.4f} m (the isolated base relative to the ground: the stroke "
+                               f"the bearings must allow)")] if isolated else []),
         ("friction demand", f"peak |T|/N base {_demand(res.friction_base)}, joint {_demand(res.friction_joint)}; "
                             f"at impacts base {_demand(res.friction_base_impulsive)}, joint "
                             f"{_demand(res.friction_joint_impulsive)}"

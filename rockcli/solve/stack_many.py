@@ -6,14 +6,12 @@ search, the assessment table and the fragility read those).
 A plain loop, not the thread pool of the single block: the stack's compiled driver holds the GIL (it is not
 compiled ``nogil``), so threads would only take turns. Measured in docs/plinth.md.
 
-Foundations: :func:`plinth_foundation_supported` says which ones a stack runs on. Today the rigid foundation only;
-when :func:`rockcli.solve.simulate_stack` takes ``isolation=`` (linear bearings under the plinth), the
-foundation is passed through as that keyword and nothing else here changes.
+Foundations: :func:`plinth_foundation_supported` says which ones a stack runs on: the rigid foundation and linear
+bearings (passed to :func:`rockcli.solve.simulate_stack` as ``isolation=``).
 """
 
 from __future__ import annotations
 
-import inspect
 import math
 from dataclasses import dataclass
 from typing import Any
@@ -23,22 +21,13 @@ from rockcli.models import LinearIsolation, Rigid, Stack
 from rockcli.solve.response import JobError
 
 #: Why a stack on another foundation is refused (one sentence, the option to give named by the caller).
-PLINTH_RIGID_ONLY = ("a body on a free plinth is modelled on a rigid foundation only: the plinth on isolation "
-                     "bearings is not modelled yet")
-
-
-def _takes_isolation() -> bool:
-    from rockcli.solve.stack import simulate_stack
-
-    return "isolation" in inspect.signature(simulate_stack).parameters
+PLINTH_RIGID_ONLY = ("a body on a free plinth is modelled on a rigid foundation and on linear bearings: sliding and "
+                     "lead-rubber bearings under a plinth are not modelled yet")
 
 
 def plinth_foundation_supported(foundation) -> bool:
-    """A body on a plinth can run on ``foundation``: the rigid foundation, and linear bearings once
-    :func:`rockcli.solve.simulate_stack` takes ``isolation=``."""
-    if foundation is None or isinstance(foundation, Rigid):
-        return True
-    return isinstance(foundation, LinearIsolation) and _takes_isolation()
+    """A body on a plinth can run on ``foundation``: the rigid foundation and linear bearings."""
+    return foundation is None or isinstance(foundation, (Rigid, LinearIsolation))
 
 
 @dataclass(frozen=True)
@@ -135,7 +124,8 @@ def simulate_stacks(jobs, *, early: bool = False, progress=None, done: int = 0, 
         except RockcliInputError as exc:
             out.append(JobError(str(exc)))
         else:
-            disp = getattr(res, "base_disp_max_m", 0.0)
+            disp = 0.0 if math.isnan(res.base_disp_max) else res.base_disp_max  # 0 on a rigid foundation, as
+            # a single block's Response
             out.append(StackRun(res, base_disp_max_m=disp))
         if progress is not None:
             progress(done + i + 1)
