@@ -238,3 +238,27 @@ def test_the_single_block_friction_demand():
     on_plinth = simulate_stack(Stack(body, Plinth(0.2, 4.0)), pulse).friction_joint
     assert single == pytest.approx(on_plinth, rel=1e-3)
     assert friction_demand_single(body, [0.0], [0.0], [0.2 * G])[0] == pytest.approx(0.2)  # at rest: |ag|/g
+
+
+def test_a_settled_history_ends_at_the_tail():
+    """A history run that comes to rest after the record shows the free motion up to ``tail`` after it, as the single
+    block's does (its last row jumped to the horizon, 600 s on, before); a run still rocking then goes on to rest."""
+    import numpy as np
+
+    from rockcli.models import Block, Plinth, Stack
+    from rockcli.records import Record
+    from rockcli.solve import simulate_stack
+    from rockcli.io.units import G
+
+    dt = 0.01
+    t = np.arange(0.0, 3.0, dt)
+    acc = np.where(t < 1.0, 0.25 * G * np.sin(2 * np.pi * t), 0.0)
+    rec = Record(acc, dt, "one-sine")
+    stack = Stack(Block.from_dimensions(1.79, 0.5, "statue"), Plinth(1.0, 0.6))
+    for tail in (2.0, 30.0):
+        res = simulate_stack(stack, rec, history=True, tail=tail)
+        assert res.settled and res.toppled is None
+        assert not np.isnan(res.plinth.t_uplift_s) and not np.isnan(res.body.t_uplift_s)  # both rocked
+        assert res.history.t[-1] == pytest.approx((acc.size - 1) * dt + tail, abs=1e-9)
+    res = simulate_stack(stack, rec, history=True, tail=0.0)
+    assert res.settled and res.history.t[-1] < 100.0

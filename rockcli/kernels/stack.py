@@ -499,8 +499,6 @@ def simulate_stack(prm, prm_asm, sp, ekind, epar, acc, jtab, dt, t_begin, t_exc_
     while True:
         _advance_segment(rs, ekind, epar, acc, dt, t_begin)
         t_stop = min(rs[RS_SEG_END], t_horizon)
-        if rs[RS_SETTLED] != 0.0 and rs[RS_T] < t_show_end:
-            t_stop = min(t_stop, t_show_end)
         # ---- the end of the run: P1, P2S -------------------------------------------------------
         t = rs[RS_T]
         pat = xo[X_PAT]
@@ -508,6 +506,8 @@ def simulate_stack(prm, prm_asm, sp, ekind, epar, acc, jtab, dt, t_begin, t_exc_
             if pat == PAT_R or (pat == PAT_B and _p2s(prm, sp, rs, W, out, xo)):
                 rs[RS_SETTLED] = 1.0
                 out[O_T_SETTLED] = t
+        if rs[RS_SETTLED] != 0.0 and rs[RS_T] < t_show_end:  # a settled run's history ends at the tail's end
+            t_stop = min(t_stop, t_show_end)
         if rs[RS_SETTLED] != 0.0 and (not want_history or t >= t_show_end):
             break
         if _out_of_time(rs, t_horizon, max_steps):

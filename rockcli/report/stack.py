@@ -23,13 +23,17 @@ def write_stack_history_csv(response, stack, path: str | os.PathLike) -> Path:
     H = response.history
     if H is None:
         raise ValueError("this response was computed without history (simulate_stack(..., history=True))")
-    table = np.column_stack([H.t, H.ag, H.ag / G, H.psi, H.psi / stack.body.alpha, H.psi_dot, H.theta2,
-                             H.theta2 / stack.alpha_asm, H.theta2_dot])
+    columns = [H.t, H.ag, H.ag / G, H.psi, H.psi / stack.body.alpha, H.psi_dot, H.theta2,
+               H.theta2 / stack.alpha_asm, H.theta2_dot]
+    names = list(STACK_HISTORY_COLUMNS)
+    if H.u is not None:  # on bearings: the base's displacement relative to the ground, before the pattern
+        columns.append(H.u)
+        names.insert(len(columns) - 1, "u_m")
     buf = io.StringIO()
-    np.savetxt(buf, table, delimiter=",", comments="", fmt="%.10g")
+    np.savetxt(buf, np.column_stack(columns), delimiter=",", comments="", fmt="%.10g")
     lines = buf.getvalue().splitlines()
     body = "".join(f"{line},{pat},{ev}\n" for line, pat, ev in zip(lines, H.pattern, H.event))
-    return write_text(path, ",".join(STACK_HISTORY_COLUMNS) + "\n" + body)
+    return write_text(path, ",".join(names) + "\n" + body)
 
 
 def plot_stack_response(response, stack, path: str | os.PathLike, *, excitation=None, motion: str | None = None,
