@@ -33,9 +33,13 @@ ENV = {**os.environ, "PYTHONPATH": str(REPO)}
 
 
 def _default_signals():
-    """In the child: SIGINT and SIGHUP act as in a terminal even when the test runner ignores them."""
-    for sig in (signal.SIGINT, signal.SIGHUP, signal.SIGTERM):
+    """In the child: SIGINT, SIGHUP and SIGTERM act as in a terminal even when the test runner ignores or blocks
+    them (a child inherits its parent thread's signal mask: in CI a worker had them blocked, and the child slept
+    through them until the test's timeout)."""
+    stops = (signal.SIGINT, signal.SIGHUP, signal.SIGTERM)
+    for sig in stops:
         signal.signal(sig, signal.SIG_DFL)
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, stops)
 
 
 def listing(folder: Path) -> dict:

@@ -111,7 +111,7 @@ def test_restitution_is_the_rigid_ground_ratio_and_the_help_says_what_a_base_doe
 
 def test_the_docs_say_it():
     physics = (ROOT / "docs" / "physics.md").read_text()
-    assert "### No plinth (yet)" in physics and "A plinth is not modelled yet" in physics
+    assert "### A free plinth" in physics and "[a statue on its plinth](plinth.md)" in physics
     assert "### Restitution on an isolated base" in physics
     assert "counted from the record's first sample" in " ".join((ROOT / "docs" / "simulate.md").read_text().split())
     assert (ROOT / "docs" / "python.md").read_text().count("## Reference notes") == 1
