@@ -250,16 +250,7 @@ def _simulate_stack_linear(stack: Stack, excitation, isolation: LinearIsolation,
     plinth = BlockPeak(float(z[ksl.Z_PEAK0]), stack.alpha2, float(z[ksl.Z_TUP0]), float(z[ksl.Z_TEX0]),
                        int(z[ksl.Z_NIMP0]))
     status = int(z[ksl.Z_STATUS])
-    if status == -1:
-        message = "FAILED: the step cap was reached"
-    elif toppled is not None:
-        message = f"the {toppled} topples at t = {z[ksl.Z_T_OVER]:.3f} s"
-    elif verdict == VERDICT_ROCKED:
-        message = (f"survives: the body peaks at {body.theta_max_over_alpha:.3g} alpha1 on the plinth, the plinth at "
-                   f"{plinth.theta_max / stack.alpha_asm:.3g} alpha_asm"
-                   + ("" if settled else " (NOT PROVEN: horizon)"))
-    else:
-        message = "nothing lifts"
+    message = _message(status, toppled, verdict, settled, float(z[ksl.Z_T_OVER]), body, plinth, stack)
     hist = None
     if history:
         names = {1.0: "uplift", 2.0: "impact", 3.0: "rest", 4.0: "overturn"}
@@ -272,6 +263,19 @@ def _simulate_stack_linear(stack: Stack, excitation, isolation: LinearIsolation,
                          int(z[ksl.Z_STEPS]), int(z[ksl.Z_REJ]), int(z[ksl.Z_NRHS]),
                          "bearings at rest" if settled and toppled is None else "", hist,
                          base_disp_max=float(z[ksl.Z_UMAX]))
+
+
+def _message(status: int, toppled, verdict: str, settled: bool, t_overturn: float, body: BlockPeak,
+             plinth: BlockPeak, stack: Stack) -> str:
+    """The run's one-line message (both foundations' drivers)."""
+    if status == -1:
+        return "FAILED: the step cap was reached"
+    if toppled is not None:
+        return f"the {toppled} topples at t = {t_overturn:.3f} s"
+    if verdict == VERDICT_ROCKED:
+        return (f"survives: the body peaks at {body.theta_max_over_alpha:.3g} alpha1 on the plinth, the plinth at "
+                f"{plinth.theta_max / stack.alpha_asm:.3g} alpha_asm" + ("" if settled else " (NOT PROVEN: horizon)"))
+    return "nothing lifts"
 
 
 def check_stack_isolation(isolation) -> None:
@@ -301,16 +305,7 @@ def _stack_response(out, xo, H, stack: Stack, k, kst) -> StackResponse:
                      float(out[k.O_T_EXCEED]), int(out[k.O_N_IMPACTS]))
     plinth = BlockPeak(float(xo[kst.X_PL_MAX]), stack.alpha2, float(xo[kst.X_PL_T_UPLIFT]),
                        float(xo[kst.X_PL_T_EXCEED]), int(xo[kst.X_PL_N_IMP]))
-    if status == -1:
-        message = "FAILED: the step cap was reached"
-    elif toppled is not None:
-        message = f"the {toppled} topples at t = {out[k.O_T_OVERTURN]:.3f} s"
-    elif verdict == VERDICT_ROCKED:
-        message = (f"survives: the body peaks at {body.theta_max_over_alpha:.3g} alpha1 on the plinth, the plinth at "
-                   f"{plinth.theta_max / stack.alpha_asm:.3g} alpha_asm"
-                   + ("" if settled else " (NOT PROVEN: horizon)"))
-    else:
-        message = "nothing lifts"
+    message = _message(status, toppled, verdict, settled, float(out[k.O_T_OVERTURN]), body, plinth, stack)
     hist = None if H is None else _history(H, k)
     return StackResponse(verdict, toppled, status, settled, message, body, plinth, float(xo[kst.X_TILT_MAX]),
                          stack.alpha_asm, float(xo[kst.X_FR_B]), float(xo[kst.X_FR_J]), float(xo[kst.X_FRI_B]),
