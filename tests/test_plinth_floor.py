@@ -16,22 +16,8 @@ import pytest
 from rockcli.assess.liftoff import STACK_LINEAR_MARGIN, liftoff_floors
 from rockcli.assess.margin import MARGIN_RTOL, find_overturn_scales
 from rockcli.models import Block, LinearIsolation, Plinth, Stack
-from rockcli.records import Record
-from test_margin_search import _full_scan
+from test_margin_search import _full_scan, _record
 from rockcli.solve.stack import simulate_stack
-from rockcli.io.units import G
-
-
-def _record(rng, n=None, dt=0.01):
-    """A short random accelerogram: a few enveloped sines, PGA 0.15 .. 0.8 g."""
-    n = n or int(rng.integers(150, 350))
-    t = np.arange(n) * dt
-    acc = np.zeros(n)
-    for f in rng.uniform(0.3, 4.0, 5):
-        acc += rng.normal() * np.sin(2 * np.pi * f * t + rng.uniform(0, 2 * np.pi))
-    acc *= np.sin(np.pi * t / t[-1]) ** 2
-    acc *= rng.uniform(0.15, 0.8) * G / np.max(np.abs(acc))
-    return Record(acc, dt, "synthetic")
 
 
 def _scene(rng):
@@ -46,7 +32,7 @@ def _scene(rng):
 
 def test_nothing_lifts_at_the_floor_on_linear_bearings():
     rng = np.random.default_rng(3601)
-    scenes = [_scene(rng) for _ in range(600)]
+    scenes = [_scene(rng) for _ in range(800)]
     floors = liftoff_floors(scenes)
     ran = lifted_above = 0
     for (stack, bearings, rec), floor in zip(scenes, floors):
@@ -61,7 +47,7 @@ def test_nothing_lifts_at_the_floor_on_linear_bearings():
         above = simulate_stack(stack, rec.scaled(floor * 1.01), isolation=bearings)
         lifted_above += not (math.isnan(above.body.t_uplift_s) and math.isnan(above.plinth.t_uplift_s))
     assert ran >= 300
-    assert lifted_above >= 0.95 * ran  # (385 of 385 with this seed; a peak may fall between the driver's samples)
+    assert lifted_above >= 0.95 * ran  # (410 of 410 with this seed; a peak may fall between the driver's samples)
     assert STACK_LINEAR_MARGIN <= 1e-3
 
 
