@@ -192,6 +192,13 @@ def _bp_linear(stack, iso, s, k, th1, th2, thd1, thd2, u, ud, ag):
     return th1dd, th2dd, ab - ag
 
 
+def _random_stack_model(rng, iso):
+    """A random body on a random plinth of its own mass ratio, and the reference's model of it on ``iso``."""
+    stack = Stack(Block.from_dimensions(rng.uniform(0.4, 2.5), rng.uniform(0.15, 0.8)),
+                  Plinth(rng.uniform(0.1, 1.5), rng.uniform(0.8, 2.0), mass_ratio=float(rng.uniform(0.2, 5))))
+    return stack, StackModel(stack_blocks(stack), stack_base(stack, iso))
+
+
 def test_the_3x3_system_of_the_note_is_newton_euler_with_constraints():
     """At random states of every pattern BP, the closed form of the note (3x3: both angles and the base) agrees
     with the reference's Newton-Euler equations with constraint multipliers."""
@@ -199,9 +206,7 @@ def test_the_3x3_system_of_the_note_is_newton_euler_with_constraints():
     iso = LinearIsolation(0.8, 0.15, 0.4)
     worst = 0.0
     for _ in range(200):
-        stack = Stack(Block.from_dimensions(rng.uniform(0.4, 2.5), rng.uniform(0.15, 0.8)),
-                      Plinth(rng.uniform(0.1, 1.5), rng.uniform(0.8, 2.0), mass_ratio=float(rng.uniform(0.2, 5))))
-        model = StackModel(stack_blocks(stack), stack_base(stack, iso))
+        stack, model = _random_stack_model(rng, iso)
         s, k = rng.choice([-1, 1], 2)
         th2, psi = s * rng.uniform(0, 0.3), k * rng.uniform(0, 0.3)
         thd2, psid, u, ud, ag = rng.normal(size=5)
@@ -223,9 +228,7 @@ def test_patterns_b_and_p_are_the_single_block_on_the_bearings_at_random_states(
     iso = LinearIsolation(0.8, 0.15, 0.4)
     worst = 0.0
     for _ in range(200):
-        stack = Stack(Block.from_dimensions(rng.uniform(0.4, 2.5), rng.uniform(0.15, 0.8)),
-                      Plinth(rng.uniform(0.1, 1.5), rng.uniform(0.8, 2.0), mass_ratio=float(rng.uniform(0.2, 5))))
-        model = StackModel(stack_blocks(stack), stack_base(stack, iso))
+        stack, model = _random_stack_model(rng, iso)
         c = int(rng.choice([-1, 1]))
         a, ad, u, ud, ag = c * rng.uniform(0, 0.3), *rng.normal(size=4)
         F = -iso.omega_b ** 2 * u - 2 * iso.xi * iso.omega_b * ud
