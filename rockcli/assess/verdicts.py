@@ -121,11 +121,22 @@ def scene_sentence(row, *, isolated: bool = False, stroke: bool = True) -> str:
             parts.append(f"topples: {fall or 'it overturns'}")
         if getattr(row, "toppled", "") == "plinth":
             parts.append("the plinth topples, and the body with it")
+        elif getattr(row, "toppled", "") == "body":
+            parts.append("the body topples off its plinth")
     else:
         r = row.theta_max_over_alpha
+        stacked = bool(getattr(row, "plinth", ""))  # a body on a plinth: each block's peak (plinth_words)
+        if stacked:
+            from rockcli.assess.plinth_words import row_peak_words
+
+            words = row_peak_words(row)
         if what == UNDECIDED:
-            head = (f"undecided: still rocking when the computation stopped, at up to {_pct(r)} of its overturning "
+            head = (f"undecided: still moving when the computation stopped ({words} so far); not counted as "
+                    "surviving" if stacked else
+                    f"undecided: still rocking when the computation stopped, at up to {_pct(r)} of its overturning "
                     "angle so far; not counted as surviving")
+        elif stacked:
+            head = f"survives: {words}"
         elif row.verdict == "no_uplift":
             head = "survives: it does not even lift off its base"
         elif r < 0.005:
@@ -221,7 +232,11 @@ def configuration_sentence(rows, *, isolated: bool = False) -> str:
         parts.append(f"survives {len(survived)} of {n} records" if undecided else
                      "survives both records" if n == 2 else f"survives all {n} records")
         peak = max(survived, key=lambda r: r.theta_max_over_alpha)
-        if all(r.verdict == "no_uplift" for r in survived):
+        if any(getattr(r, "plinth", "") for r in survived):  # a body on a plinth: each block's largest peak
+            from rockcli.assess.plinth_words import survivors_peak_words
+
+            parts.append(survivors_peak_words(survived))
+        elif all(r.verdict == "no_uplift" for r in survived):
             parts.append("it does not even lift off its base")
         else:
             parts.append(f"at most it rocks to {_pct(peak.theta_max_over_alpha)} of its overturning angle "
@@ -391,74 +406,6 @@ def isolation_summary(assessment, block) -> str:
     return "In short: " + ". ".join(p if k == 0 else p[:1].upper() + p[1:] for k, p in enumerate(parts)) + "."
 
 
-def plinth_summary(assessment, stack) -> str:
-    """Does the plinth help the body? One sentence per configuration on which both ran, comparing the body on the
-    plinth (``stack``, a :class:`rockcli.models.Stack` column) with the same body alone (the column
-    ``stack.body``), record by record (:func:`compare_foundations`): the records whose verdict the plinth changes
-    decide it (``makes it worse``: it topples the body under records it survives alone, and saves it under none;
-    ``better``: the reverse; ``helps under some records and hurts under others``); with no verdict changed, the
-    closest calls (the smallest toppling factors) and the peaks compare the margins (``no difference`` when they
-    agree to the 1 % of the margin search). Empty when the body alone is not in the assessment."""
-    names = {b.name for b in assessment.columns}
-    if stack.body.name not in names:
-        return ""
-    body, on = body_noun(stack.body), f"its {stack.plinth.name.replace('_', ' ')}"
-    ran = [x for x in assessment.excitations if x.motion is not None]
-    parts = []
-    for c in assessment.configurations:
-        alone = [assessment.row(stack.body.name, x.label, c.header) for x in ran]
-        onp = [assessment.row(stack.name, x.label, c.header) for x in ran]
-        cmp = compare_foundations(alone, onp)
-        where = configuration_words(c)
-        n, ka, kp = cmp["n"], len(cmp["ground"]), len(cmp["isolated"])
-        if not n:
-            parts.append(f"{where}: not compared (undecided or not computed)")
-            continue
-        counts = (f"{kp} of {n} records topple it on {on} against {ka} of {n} alone" if kp != ka else
-                  f"{kp} of {n} records topple it either way")
-        effect = cmp["effect"]
-        if effect == "worse":
-            text = (f"{on} makes it worse: {body} topples on it under {_names(cmp['harmed'])}, which it survives "
-                    f"standing alone; {counts}")
-        elif effect == "better":
-            text = (f"{on} makes it better: {body} survives on it under {_names(cmp['saved'])}, which topple"
-                    f"{'s' if len(cmp['saved']) == 1 else ''} it standing alone; {counts}")
-        elif effect == "mixed":
-            text = (f"{on} helps under some records and hurts under others: {body} survives on it under "
-                    f"{_names(cmp['saved'])} (which topple it alone) but topples under {_names(cmp['harmed'])} (which "
-                    f"it survives alone); {counts}")
-        else:
-            text = f"{on} changes no verdict ({counts})"
-        text += _margin_words(alone, onp, on)
-        if cmp["open"]:
-            text += f" ({_names(cmp['open'])} not compared: undecided or not computed on one of the two)"
-        parts.append(f"{where}, {text}")
-    if not parts:
-        return ""
-    return "Does the plinth help? " + ". ".join(p[:1].upper() + p[1:] for p in parts) + "."
-
-
-def _margin_words(alone, onp, on: str) -> str:
-    """With the same verdicts: the closest calls (smallest toppling factor over the records) and the largest peaks
-    of the survivors, alone and on the plinth, and which way they point (``no difference`` within 1 %)."""
-    sa, sp = _smallest_factor(alone), _smallest_factor(onp)
-    out = []
-    if math.isfinite(sa) and math.isfinite(sp):
-        if abs(sp / sa - 1.0) <= 0.01:
-            out.append(f"no difference in the margin: the smallest toppling factor is {_x(sa)} alone and {_x(sp)} "
-                       f"on {on}")
-        else:
-            out.append(f"by the margin {on} makes it {'better' if sp > sa else 'worse'}: the smallest toppling factor "
-                       f"over the records is {_x(sa)} alone and {_x(sp)} on {on}")
-    survived = [(a, p) for a, p in zip(alone, onp) if outcome(a) == SURVIVES and outcome(p) == SURVIVES]
-    if survived:
-        pa = max(a.theta_max_over_alpha for a, _ in survived)
-        pp = max(p.theta_max_over_alpha for _, p in survived)
-        out.append(f"where it survives, it rocks to at most {_pct(pa)} of its overturning angle alone and {_pct(pp)} "
-                   f"on {on}")
-    return ("; " + "; ".join(out)) if out else ""
-
-
 def question(assessment) -> str:
     """The question an assessment answers, in one sentence."""
     nouns = sorted({body_noun(b) for b in assessment.columns})
@@ -516,3 +463,6 @@ def format_verdicts(assessment, width: int = 100) -> str:
         if short:
             lines.append(textwrap.fill(short, width, initial_indent="  ", subsequent_indent="      "))
     return "\n".join(lines)
+
+
+from rockcli.assess.plinth_words import plinth_summary  # noqa: E402  (the plinth's words, re-exported)

@@ -121,37 +121,11 @@ def _demand(x: float) -> str:
     return f"{x:.3f}" if math.isfinite(x) else "unbounded"
 
 
-def plain_words(stack, res) -> str:
-    """The run in one or two sentences: which block topples, or how each one rocks."""
-    from rockcli.assess.verdicts import body_noun
-
-    body, plinth = body_noun(stack.body), f"its {stack.plinth.name}"
-    pl_up = not math.isnan(res.plinth.t_uplift_s)
-    body_up = res.body.theta_max > 0.0 or not math.isnan(res.body.t_uplift_s)
-    if res.toppled == "body":
-        return f"{body.capitalize()} topples off {plinth} at {res.t_overturn_s:.2f} s."
-    if res.toppled == "plinth":
-        return f"The {plinth[4:]} topples at {res.t_overturn_s:.2f} s, and {body} with it."
-    head = "" if res.settled else "Not proven (still moving at the horizon): "
-    isolated = math.isfinite(getattr(res, "base_disp_max", math.nan))
-    if not body_up and not pl_up:
-        return head + f"Nothing lifts: {body} and {plinth} move with the {'isolated base' if isolated else 'ground'}."
-    b = f"{100 * res.body.theta_max_over_alpha:.0f} %"
-    a = f"{100 * res.plinth.theta_max / res.alpha_asm:.0f} %"
-    if not pl_up:
-        return head + (f"The {plinth[4:]} does not move: {body} rocks on it as on the ground, to {b} of its "
-                       f"overturning angle, and survives.")
-    if not body_up:
-        return head + (f"{body.capitalize()} and {plinth} rock together as one block, to {a} of the assembly's "
-                       f"overturning angle, and survive; {body} does not lift off {plinth}.")
-    return head + (f"Both rock and survive: {body} on {plinth} to {b} of its overturning angle, {plinth} to {a} of "
-                   f"the assembly's.")
-
-
 def run_plinth(stack, foundation, excitation, label: str, *, restitution, rtol, tail, horizon, history_path,
                as_json: bool, friction, pga: str, plot_path=None, motion=None):
     """``simulate --on``: one run of the body on its plinth, printed (or ``--json``), its history written, its
     figure drawn (with the body alone on the ground beside it)."""
+    from rockcli.assess.plinth_words import run_sentence
     from rockcli.cli.options import echo_json
     from rockcli.solve.stack_many import run_stack
 
@@ -188,7 +162,7 @@ def run_plinth(stack, foundation, excitation, label: str, *, restitution, rtol, 
         out = {"block": body.name, "R_m": body.R, "alpha_deg": body.alpha_deg, "p_radps": body.p,
                "plinth_model": plinth_dict(stack), "isolation": foundation.label, "excitation": label,
                **({"restitution": restitution} if restitution is not None else {}), **d,
-               **({"friction": checked} if checked is not None else {}), "plain_words": plain_words(stack, res)}
+               **({"friction": checked} if checked is not None else {}), "plain_words": run_sentence(stack, res)}
         echo_json(out)
         return
     p = stack.plinth
@@ -250,4 +224,4 @@ def run_plinth(stack, foundation, excitation, label: str, *, restitution, rtol, 
     if not res.settled and res.toppled is None:
         click.echo("NOTE: the verdict is NOT PROVEN: the run reached the horizon still moving; lengthen --horizon")
     click.echo("")
-    click.echo("In plain words: " + plain_words(stack, res))
+    click.echo("In plain words: " + run_sentence(stack, res))

@@ -6,6 +6,10 @@
   side on common axes (:func:`rockcli.report.html_figures.responses_png`), under a heading that says
   which verdict the record decides.
 
+* :func:`stack_runs`, :func:`stack_figures`: the same for a body on a plinth (``--on``): each record that
+  decides its verdict on a configuration, rerun there with its history beside the body alone on the same
+  foundation, drawn by :func:`rockcli.report.stack.plot_stack_response` (the figure of ``simulate --on --plot``).
+
 The figures then agree with the answer: a configuration that topples the body is shown toppling it.
 """
 
@@ -121,3 +125,74 @@ def response_figures(assessment, block) -> str:
     return (f"<p>For each configuration, the records that decide {esc(noun)}'s verdict: every record that topples "
             f"it (at most {MAX_DECIDING}, the most severe first), else the closest call; each on every "
             "configuration, side by side.</p>" + "".join(out))
+
+
+#: The solver options a stack run takes (as :func:`rockcli.solve.stack_many.mixed` passes them on).
+_STACK_OPTIONS = ("rtol", "tail", "rest_tol", "horizon", "max_steps", "restitution")
+
+
+def stack_runs(assessment, stack) -> list:
+    """The records that decide the verdicts of ``stack`` (a body on its plinth, :func:`deciding_records`), each
+    rerun on the configuration it decides with its history, and the body alone there:
+    ``[(excitation, configuration, why, run, alone)]`` (``run`` a :class:`rockcli.solve.StackResponse`,
+    ``alone`` a :class:`rockcli.solve.Response`; None when the rerun failed), with the assessment's solver options,
+    so that each run is the table's run (the stack driver takes the same steps with and without history)."""
+    from rockcli.report.figures import plot_grid_dt
+    from rockcli.solve import simulate
+    from rockcli.solve.stack_many import run_stack
+
+    options = {k: v for k, v in assessment.solver.items() if k in _STACK_OPTIONS and v is not None}
+    confs = {c.header: c for c in assessment.configurations}
+    out = []
+    for header, (why, rows) in deciding_records(assessment, stack).items():
+        c = confs[header]
+        for r in rows[:MAX_DECIDING]:
+            x = next(x for x in assessment.excitations if x.label == r.record)
+            run = run_stack(stack, c.foundation, x.motion, history=True, **options)
+            alone = simulate(stack.body, c.foundation, x.motion, history=True, history_dt=plot_grid_dt(x.motion),
+                             **assessment.solver)
+            out.append((x, c, why, run if run.status >= 0 else None, alone if alone.status >= 0 else None))
+    return out
+
+
+def _stack_caption(x, c, stack, run, alone) -> str:
+    from rockcli.assess.plinth_words import plinth_name
+
+    name = plinth_name(stack)
+    noun = body_noun(stack.body)
+    return (f"{x.label} {configuration_words(c)}: ground acceleration; {noun}'s tilt on its {name} over its own "
+            f"alpha (blue) beside {noun} alone on the same foundation (grey, dashed); the {name}'s tilt over "
+            f"alpha_asm = {math.degrees(stack.alpha_asm):.3g}°, the slenderness of {name} and {noun[4:]} as one block "
+            f"(the tilt at which the {name} tips over while {noun} rests on it)"
+            + ("; the displacement of the isolated base" if c.isolated else "")
+            + ". Beyond the dotted lines at +-1 a block leans past its tipping point (it falls unless the ground "
+            "pushes it back). " + ("A red line marks the instant a block topples. " if run.toppled else "")
+            + ("A grey line the instant the body alone topples. " if alone is not None and alone.overturned else "")
+            + "The panels end when the motion has died out.")
+
+
+def stack_figures(assessment, stack) -> str:
+    """The time histories of a body on its plinth (:func:`stack_runs`) under headings that say which verdict each
+    record decides; a note where a rerun disagrees with the table (it should not: the same run)."""
+    from rockcli.report.html_figures import DPI, png_of
+    from rockcli.report.stack import plot_stack_response
+
+    noun = body_noun(stack)
+    out = []
+    for x, c, why, run, alone in stack_runs(assessment, stack):
+        head = f"<h3>{esc(x.label)}: the record that {esc(_why_words(why, c, noun))}</h3>"
+        if run is None:
+            out.append(head + "<p class='note'>The rerun with its history failed: no figure.</p>")
+            continue
+        row = assessment.row(stack.name, x.label, c.header)
+        note = ("" if (run.toppled or "") == row.toppled and run.verdict == row.verdict else
+                "<p class='note'>The rerun with its history gives another verdict than the table (please report "
+                "the command line).</p>")
+        png = png_of(lambda path: plot_stack_response(run, stack, path, excitation=x.motion, motion=x.label,
+                                                      alone=alone, foundation=c.foundation, dpi=DPI))
+        out.append(head + figure(png, _stack_caption(x, c, stack, run, alone)) + note)
+    if not out:
+        return ""
+    return (f"<p>For each configuration, the records that decide the verdict of {esc(noun)}: every record that "
+            f"topples it (at most {MAX_DECIDING}, the most severe first), else the closest call; each drawn on that "
+            "configuration, the body on its plinth beside the body alone.</p>" + "".join(out))

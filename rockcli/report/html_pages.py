@@ -17,7 +17,7 @@ from rockcli.assess.verdicts import (SURVIVES, TOPPLES, body_noun, body_words, c
                                      survivor_stroke, verdict_lines)
 from rockcli.report.html import (assumptions_section, body_section, card, configurations_section, esc, figure,
                                  num, page, plural, reproduce_section, table)
-from rockcli.report.html_deciding import response_figures
+from rockcli.report.html_deciding import response_figures, stack_figures
 from rockcli.report.html_records import records_section
 from rockcli.report.figures import block_text
 from rockcli.report.html_figures import margins_png, png_of, share_png, stroke_png
@@ -213,9 +213,8 @@ def assessment_report(assessment, *, check=None, command: str = "") -> str:
     for b in blocks:
         if getattr(b, "plinth", None) is None:  # the response figures draw a single block's rocking
             figs.append(response_figures(assessment, b))
-        else:
-            figs.append(f"<p class='note'>{esc(body_words(b))}: no time-history figure of a body on its plinth yet "
-                        f"(<code>rockcli simulate --on ... --history FILE</code> writes its history).</p>")
+        else:  # a body on its plinth: both blocks, beside the body alone
+            figs.append(stack_figures(assessment, b))
         records = [x.label for x in assessment.excitations if x.motion is not None]
         rows = [r for r in assessment.rows if r.column == b.name]
         confs = assessment.configurations
