@@ -136,6 +136,11 @@ def plinth_summary(assessment, stack) -> str:
                     f"it survives alone); {counts}")
         else:
             text = f"{on} changes no verdict ({counts})"
+        islands = [p.record for p in onp if p.record in cmp["saved"]
+                   and math.isfinite(getattr(p, "overturn_scale", math.nan)) and p.overturn_scale <= 1]
+        if islands:  # a save by the luck of the timing is no margin (docs/assess.md, safe islands)
+            text += (f" (but only by the luck of the timing: under {_names(islands)} it survives on {on} on a 'safe "
+                     f"island', a weaker version of the record toppling it)")
         text += _margin_words(alone, onp, on, body)
         if cmp["open"]:
             text += f" ({_names(cmp['open'])} not compared: undecided or not computed on one of the two)"
@@ -165,8 +170,9 @@ def _margin_words(alone, onp, on: str, body: str = "the body") -> str:
         pa = max(a.theta_max_over_alpha for a, _ in survived)
         alone_words = ("it does not lift off its base" if pa == 0 else
                        f"it rocks to at most {_share(pa)} of its overturning angle")
-        out.append(f"where it survives both ways, alone {alone_words}; on {on}, "
-                   + survivors_peak_words([p for _, p in survived], body=body, named=False))
+        words = survivors_peak_words([p for _, p in survived], body=body, named=False)
+        out.append(f"where it survives both ways, alone {alone_words}; "
+                   + (f"on {on}, {words}" if words.startswith("nothing") else words))
     return ("; " + "; ".join(out)) if out else ""
 
 

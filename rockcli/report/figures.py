@@ -198,6 +198,9 @@ def wrap_to(fig, text: str, fontsize: float, share: float = 1.0) -> str:
                    lambda m: "\0=\0" + m.group(1) + (m.group(2) or "").replace(" ", "\0"), glued)
     out = []
     for para in glued.split("\n"):
+        if text_width_pt(para.replace("\0", " "), fontsize) <= room:  # it fits: no word would move (a prefix of
+            out.append(para)  # a line is never wider than the line), one measurement instead of one a word
+            continue
         line = ""
         for word in para.split(" "):
             trial = f"{line} {word}" if line else word
