@@ -92,7 +92,8 @@ def run_sentence(stack, res) -> str:
         isolated = math.isfinite(getattr(res, "base_disp_max", math.nan))
         return head + (words[:1].upper() + words[1:] + f": both move with the "
                        f"{'isolated base' if isolated else 'ground'}.")
-    return head + ("Both survive" if res.settled else "Neither has toppled") + ": " + words + "."
+    return head + (f"{body.capitalize()} and its {name} survive" if res.settled else
+                   f"Neither {body} nor its {name} has toppled") + ": " + words + "."
 
 
 def plinth_summary(assessment, stack) -> str:
