@@ -90,7 +90,7 @@ def plot_stack_response(response, stack, path: str | os.PathLike, *, excitation=
                     label=f"{noun} alone, {where}: {_alone_words(alone)}")
         ax.set_ylabel(f"{noun[4:]}'s tilt /\nits alpha ({math.degrees(a1):.3g}°)")
         ax = axes["plinth"]
-        ax.plot(H.t, H.theta2 / aa, lw=1.1, color="tab:brown", label=f"the {name}: {_plinth_words(response)}")
+        ax.plot(H.t, H.theta2 / aa, lw=1.1, color="tab:brown", label=f"the {name}: {_plinth_words(response, noun)}")
         ax.set_ylabel(f"{name}'s tilt /\nalpha_asm ({math.degrees(aa):.3g}°)")
         if on_bearings:
             ax = axes["base"]
@@ -174,12 +174,17 @@ def _time_window(response, A, alone, excitation, t_end):
     return t0, t1 + 0.04 * (t1 - t0)
 
 
+def _peak(v: float) -> str:
+    """A peak over a tipping angle: two decimals, one significant digit under 0.01 (a lift is never "0.00")."""
+    return f"peak {v:.2f}" if v >= 0.01 else f"peak {v:.1g}"
+
+
 def _alone_words(alone) -> str:
     if alone.verdict == "overturned":
         return f"topples at {alone.t_overturn_s:.2f} s"
     if alone.verdict == "no_uplift":
         return "does not lift off"
-    return f"peak {alone.theta_max_over_alpha:.2f}" + ("" if alone.settled else " so far")
+    return _peak(alone.theta_max_over_alpha) + ("" if alone.settled else " so far")
 
 
 def _body_words(res) -> str:
@@ -189,12 +194,12 @@ def _body_words(res) -> str:
         return f"falls with it at {res.t_overturn_s:.2f} s"
     if res.body.theta_max == 0.0:
         return "stays put on it (does not lift)"
-    return f"peak {res.body.theta_max_over_alpha:.2f}"
+    return _peak(res.body.theta_max_over_alpha)
 
 
-def _plinth_words(res) -> str:
+def _plinth_words(res, noun: str) -> str:
     if res.toppled == "plinth":
         return f"topples at {res.t_overturn_s:.2f} s"
     if math.isnan(res.plinth.t_uplift_s):
         return "does not rock"
-    return f"peak {res.plinth.theta_max / res.alpha_asm:.2f}" + (" until the body fell" if res.toppled else "")
+    return _peak(res.plinth.theta_max / res.alpha_asm) + (f" until {noun} fell" if res.toppled else "")
