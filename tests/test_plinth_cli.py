@@ -103,7 +103,6 @@ def test_the_history_of_a_stack(tmp_path):
     (("--on", "plinth:height=1,width=1,depth=2"), "is not one of height"),
     (("--on", "plinth:height=1,width=1", "--isolation", "scss:Tb=3,mu=0.05"), "sliding and lead-rubber bearings"),
     (("--on", "plinth:height=1,width=1", "--cap-ratio", "0.2"), "--cap-ratio"),
-    (("--on", "plinth:height=1,width=1", "--report", "x.html"), "--report"),
     (("--on", "plinth:height=1,width=1", "--vertical-pulse", "sine:ap=0.1,Tp=0.3"), "--vertical"),
     (("--friction", "0"), "--friction must be a friction coefficient"),
     (("--friction", "nan"), "--friction"),

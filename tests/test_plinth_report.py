@@ -193,3 +193,24 @@ def test_the_report_draws_the_stack_s_runs_of_the_table(tmp_path, monkeypatch):
     assert {k: r.toppled for k, r in drawn.items()} == EXPECTED  # each block toppling, E = 0.9 honoured
     page = html.read_text(encoding="utf-8")
     assert page.count("the record that") == len(expected)  # one heading a figure (the body alone's left out)
+
+
+def test_simulate_on_writes_a_report_that_says_what_the_printout_says(tmp_path):
+    """``simulate --on --report``: the sentence and the numbers of ``--json``, the body alone beside it, the figure."""
+    import html as html_lib
+    import json
+
+    pytest.importorskip("matplotlib")
+    from rockcli.cli import main
+
+    report = tmp_path / "one.html"
+    res = CliRunner().invoke(main, ["simulate", "--body", "statue:height=1.79,width=0.5", "--pulse",
+                                    "ricker-sym:ap=0.6,Tp=1", "--on", "plinth:height=1.0,width=0.6", "--json",
+                                    "--report", str(report)])
+    assert res.exit_code == 0, res.output
+    d = json.loads(res.output)
+    page = html_lib.unescape(report.read_text(encoding="utf-8"))
+    assert d["toppled"] == "plinth"  # the pulse topples the plinth, and the statue alone survives it
+    assert d["plain_words"].rstrip(".") in page and "(the plinth topples, the statue with it)" in page
+    assert f"{d['t_overturn_s']:.3f} s" in page and "The statue alone, standing on the ground" in page
+    assert page.count("<img") == 1 and "A red line marks the instant a block topples" in page

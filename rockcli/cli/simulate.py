@@ -134,7 +134,7 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     if stack is not None:
         from rockcli.cli.simulate_plinth import refuse_with_plinth
 
-        refuse_with_plinth(foundation, cap_ratio=cap_ratio, moving=moving, check=check, report=report_path,
+        refuse_with_plinth(foundation, cap_ratio=cap_ratio, moving=moving, check=check,
                            history_dt=history_dt, vertical=(vertical_source, vertical_pulse))
     if moving:
         solver.update(theta0=theta0, theta_dot0=theta_dot0)
@@ -190,7 +190,8 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
 
         return run_plinth(stack, foundation, excitation, label, restitution=restitution, rtol=rtol, tail=tail,
                           horizon=horizon, history_path=history_path, as_json=as_json, friction=friction,
-                          pga=_pga(excitation, G), plot_path=plot_path, motion=None if pulse is not None else label)
+                          pga=_pga(excitation, G), plot_path=plot_path, motion=None if pulse is not None else label,
+                          report_path=report_path)
     from rockcli.solve import simulate as run
 
     res = run(block, foundation, excitation, rtol=rtol, tail=tail, horizon=horizon,

@@ -31,7 +31,7 @@ def check_friction_scene(friction, foundation, cap_ratio, *vertical) -> float:
     return mu
 
 
-def refuse_with_plinth(foundation, *, cap_ratio, moving, check, report, history_dt, vertical) -> None:
+def refuse_with_plinth(foundation, *, cap_ratio, moving, check, history_dt, vertical) -> None:
     """What ``--on`` does not take (yet), each refused with one sentence."""
     from rockcli.cli.azimuth import wants_worst
     from rockcli.solve.stack_many import PLINTH_RIGID_ONLY, plinth_foundation_supported
@@ -39,7 +39,7 @@ def refuse_with_plinth(foundation, *, cap_ratio, moving, check, report, history_
     if not plinth_foundation_supported(foundation):
         raise RockcliInputError(f"--on: {PLINTH_RIGID_ONLY}; give --isolation none or linear:...")
     refused = [name for name, given in (("--cap-ratio", cap_ratio), ("--theta0/--theta-dot0", moving),
-                                        ("--check-tolerance", check), ("--report", report),
+                                        ("--check-tolerance", check),
                                         ("--history-dt", history_dt is not None),
                                         ("--vertical/--vertical-pulse", any(v is not None for v in vertical)),
                                         ("--azimuth worst", wants_worst())) if given]
@@ -122,9 +122,9 @@ def _demand(x: float) -> str:
 
 
 def run_plinth(stack, foundation, excitation, label: str, *, restitution, rtol, tail, horizon, history_path,
-               as_json: bool, friction, pga: str, plot_path=None, motion=None):
+               as_json: bool, friction, pga: str, plot_path=None, motion=None, report_path=None):
     """``simulate --on``: one run of the body on its plinth, printed (or ``--json``), its history written, its
-    figure drawn (with the body alone on the ground beside it)."""
+    figure drawn and its HTML report written (with the body alone on the same foundation beside it)."""
     from rockcli.assess.plinth_words import run_sentence
     from rockcli.cli.options import echo_json
     from rockcli.solve.stack_many import run_stack
@@ -133,7 +133,7 @@ def run_plinth(stack, foundation, excitation, label: str, *, restitution, rtol, 
         raise RockcliInputError("--on runs a body on its plinth under a ground motion: give --record or --pulse")
     # through run_stack: a foundation other than the rigid one goes to simulate_stack as isolation=, once it takes it
     res = run_stack(stack, foundation, excitation, rtol=rtol, tail=tail, horizon=horizon,
-                    history=bool(history_path or plot_path), restitution=restitution)
+                    history=bool(history_path or plot_path or report_path), restitution=restitution)
     if res.status < 0:
         raise click.ClickException(f"the integrator stopped at its safety cap of {res.steps:,} steps: no result is "
                                    f"given (please report the command line)")
@@ -141,19 +141,27 @@ def run_plinth(stack, foundation, excitation, label: str, *, restitution, rtol, 
         from rockcli.report.stack import write_stack_history_csv
 
         write_stack_history_csv(res, stack, history_path)
-    if plot_path:
+    if plot_path or report_path:
         from rockcli.report.figures import plot_grid_dt
-        from rockcli.report.stack import plot_stack_response
         from rockcli.solve import simulate
 
         solver = {} if restitution is None else {"restitution": restitution}
         alone = simulate(stack.body, foundation, excitation, rtol=rtol, tail=tail, horizon=horizon, history=True,
                          history_dt=plot_grid_dt(excitation), **solver)
+    if plot_path:
+        from rockcli.report.stack import plot_stack_response
         from rockcli.solve.excitation import _excitation_arrays
 
         t_show = _excitation_arrays(excitation)[6] + tail  # the figure shows the excitation and --tail after it
         plot_stack_response(res, stack, plot_path, excitation=excitation, motion=motion, alone=alone, t_end=t_show,
                             foundation=foundation)
+    if report_path:
+        from rockcli.cli.options import command_line
+        from rockcli.report.html import write_report
+        from rockcli.report.html_stack import stack_report
+
+        write_report(report_path, stack_report(stack, foundation, excitation, res, alone, label=label,
+                                               command=command_line()))
     checked = stack_friction(res, friction) if friction is not None else None
     body = stack.body
     if as_json:
