@@ -193,6 +193,7 @@ def test_the_report_draws_the_stack_s_runs_of_the_table(tmp_path, monkeypatch):
     assert {k: r.toppled for k, r in drawn.items()} == EXPECTED  # each block toppling, E = 0.9 honoured
     page = html.read_text(encoding="utf-8")
     assert page.count("the record that") == len(expected)  # one heading a figure (the body alone's left out)
+    assert "body stays put,<br>plinth does not rock" in page  # rock.txt on the bearings: the peak cell, each block
 
 
 def test_simulate_on_writes_a_report_that_says_what_the_printout_says(tmp_path):

@@ -62,6 +62,12 @@ def _list(items) -> str:
 def _peak_cell(r) -> str:
     if r.error or r.overturned:
         return "-"
+    if getattr(r, "plinth", ""):  # a body on a plinth: each block over its own tipping angle, or that it stays put
+        def pct(v: float, still: str) -> str:
+            return still if not v > 0 else "&lt;1 %" if v < 0.005 else num(100 * v, ".0f", "%")
+
+        return (f"body {pct(r.theta_max_over_alpha, 'stays put')},<br>plinth "
+                f"{pct(r.plinth_theta_max_over_alpha_asm, 'does not rock')}")
     return "no lift-off" if r.verdict == "no_uplift" else num(100 * r.theta_max_over_alpha, ".0f", "%")
 
 
@@ -84,7 +90,12 @@ def _verdict_table(assessment, block) -> str:
                          f"<code>{esc(format_cell(r, assessment.margin, assessment.neighbourhood))}</code>"))
     head = ("record", "configuration", "verdict", "peak rocking", "toppling factor", "base moves up to",
             "&plusmn;10 % share toppling", "in words", "terse")
-    return f"<h3>{esc(body_words(block))}</h3>" + table(head, rows, numeric=(3, 4, 5, 6))
+    note = ("" if getattr(block, "plinth", None) is None else
+            f"<p class='note'>Peak rocking on the plinth: the body's tilt on its plinth over its own alpha "
+            f"({block.body.alpha_deg:.3g} deg), the plinth's over alpha_asm ({math.degrees(block.alpha_asm):.3g} deg: "
+            "the slenderness of body and plinth as one block, the tilt at which the plinth tips over while the body "
+            "rests on it).</p>")
+    return f"<h3>{esc(body_words(block))}</h3>" + table(head, rows, numeric=(3, 4, 5, 6)) + note
 
 
 def _certainty(assessment, check) -> str:
