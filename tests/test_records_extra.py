@@ -71,6 +71,26 @@ def test_every_format_loads_with_the_extra(formats_rows):
                            for c in comps), (name, az)
 
 
+def test_gmprocess_configuration_parsed_once_is_a_fresh_parse():
+    """The configuration rockcli hands gmprocess's readers (parsed once per process, then copied) equals a
+    fresh parse, each call gets its own copy, and gmprocess's own function is back after the read."""
+    pytest.importorskip("gmprocess")
+    import gmprocess.core.stationtrace as trace_module
+    from gmprocess.utils.config import get_config
+
+    from rockcli.records.extra import _config_parsed_once
+
+    before = trace_module.get_config
+    with _config_parsed_once() as once:
+        first, second = once(), once()
+        assert trace_module.get_config is once
+    assert trace_module.get_config is before
+    fresh = get_config()
+    assert first == fresh and second == fresh
+    first["read"]["sac_source"] = "edited by a reader"
+    assert second["read"]["sac_source"] == fresh["read"]["sac_source"]
+
+
 def test_cosmos_units_as_gmprocess_converts_them(tmp_path, monkeypatch):
     """gmprocess's COSMOS reader multiplies a file in g by 980.665 (to cm/s^2) but leaves ``units`` = "g": the
     samples are read as the cm/s^2 they are, not converted a second time (a stand-in for read_data here)."""

@@ -31,6 +31,47 @@ _COSMOS_CONVERTED = {"g", "g/10", "g*10", "mg", "in/s/s"}
 _loaded = False
 
 
+class _config_parsed_once:
+    """While a file is read, gmprocess's default configuration is parsed once per process, not once per trace.
+
+    gmprocess 2.8 builds every trace (``StationTrace.__init__``) and ``read_data`` itself with
+    ``get_config()`` when no configuration is passed, and most of its readers pass none: each call parses
+    the package's YAML file anew with ruamel (about 0.5 s of CPU; 124 parses, three quarters of the time, to
+    read the 17 files of ``records/extra``). Exact: ``get_config()`` without a folder reads only the file
+    installed with gmprocess and validates it, so a deep copy of its first result is what every later call
+    would return (a copy, so that a reader that edits its configuration edits its own). A call with a folder,
+    or any other call, goes to gmprocess unchanged; the two module names are restored on the way out.
+    tests/test_records_extra.py compares the copy with a fresh parse."""
+
+    _parsed = None
+
+    def __enter__(self):
+        import gmprocess.core.stationtrace as trace_module
+        import gmprocess.io.read as read_module
+
+        self._modules = [m for m in (trace_module, read_module) if hasattr(m, "get_config")]
+        self._saved = [m.get_config for m in self._modules]
+        original = self._saved[0]
+
+        def get_config(config_path=None):
+            if config_path is not None:
+                return original(config_path)
+            if _config_parsed_once._parsed is None:
+                _config_parsed_once._parsed = original()
+            import copy
+
+            return copy.deepcopy(_config_parsed_once._parsed)
+
+        for m in self._modules:
+            m.get_config = get_config
+        return get_config
+
+    def __exit__(self, *exc):
+        for m, saved in zip(self._modules, self._saved):
+            m.get_config = saved
+        return False
+
+
 def available() -> bool:
     """True when gmprocess is installed (found without importing it)."""
     import importlib.util
@@ -68,7 +109,8 @@ def read_with_extra(path: Path, column, recognised: str | None = None) -> dict[s
             from gmprocess.io.read import read_data
 
             try:
-                streams = read_data(str(path))
+                with _config_parsed_once():
+                    streams = read_data(str(path))
             except (KeyboardInterrupt, SystemExit, GeneratorExit):
                 raise
             except BaseException as exc:  # noqa: BLE001 -- gmprocess raises many kinds (its DMG reader a bare
