@@ -250,8 +250,9 @@ def _history(k, H, fkind: int, grid_dt: float | None) -> History:
     shown_rows = H[shown]
     order = np.argsort(shown_rows[:, k.H_T], kind="stable")
     shown_rows = shown_rows[order]
-    names = dict((getattr(k, code), name) for code, name in EVENT_KINDS)
-    labels = np.array([names.get(kind, "") for kind in shown_rows[:, k.H_KIND]], dtype=object)
+    labels = np.full(len(shown_rows), "", dtype=object)  # each row's event name ("" for a plain row)
+    for code, name in EVENT_KINDS:
+        labels[shown_rows[:, k.H_KIND] == getattr(k, code)] = name
     P = H[plain]
     return History(t=P[:, k.H_T].copy(), ag=P[:, k.H_AG].copy(), theta=P[:, k.H_TH].copy(),
                    theta_dot=P[:, k.H_THD].copy(), u=P[:, k.H_U].copy(), u_dot=P[:, k.H_UD].copy(),
