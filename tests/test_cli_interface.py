@@ -132,14 +132,14 @@ def test_old_spelling_runs_with_one_note_on_stderr():
     (["spectrum", "overturning", "--alpha", "10", "--isolation", "linear:Tb=2"], ["TbTp=<ratio>"]),
     (["assess", "column", "bassae", "--records", "x", "--plot", "statue.png"], ["--plot-dir"]),
 ])
-def test_refusal_suggests_the_right_syntax(tmp_path, args, words):
-    with CliRunner().isolated_filesystem(temp_dir=tmp_path) as here:
-        res = invoke(args)
-        assert res.exit_code == 2, res.output
-        assert "Traceback" not in res.output
-        for w in words:
-            assert w in res.output
-        assert list(Path(here).iterdir()) == []  # nothing written (no folder named statue.png)
+def test_refusal_suggests_the_right_syntax(tmp_path, monkeypatch, args, words):
+    monkeypatch.chdir(tmp_path)
+    res = invoke(args)
+    assert res.exit_code == 2, res.output
+    assert "Traceback" not in res.output
+    for w in words:
+        assert w in res.output
+    assert list(tmp_path.iterdir()) == []  # nothing written (no folder named statue.png)
 
 
 def test_did_you_mean_never_offers_a_hidden_old_spelling():
@@ -153,10 +153,17 @@ def test_did_you_mean_never_offers_a_hidden_old_spelling():
 # --json: stdout is one JSON document
 # --------------------------------------------------------------------------------------------------
 def _json(args, tmp_path):
-    with CliRunner().isolated_filesystem(temp_dir=tmp_path):
+    """Run ``args`` in a new empty folder under ``tmp_path`` (the working folder restored after)."""
+    import tempfile
+
+    here = os.getcwd()
+    os.chdir(tempfile.mkdtemp(dir=tmp_path))
+    try:
         res = invoke(args)
-        assert res.exit_code == 0, res.output
-        return json.loads(res.stdout), res
+    finally:
+        os.chdir(here)
+    assert res.exit_code == 0, res.output
+    return json.loads(res.stdout), res
 
 
 @needs_records
