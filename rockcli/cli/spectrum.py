@@ -10,6 +10,7 @@ from rockcli.cli.options import (add_inputs, alias_option, cap_ratio_option, ech
                                  progress_bar, quiet_option, record_kwargs, record_options, restitution_option,
                                  spectrum_vertical_option)
 from rockcli.cli.options import DEFAULT_GAMMA_TEXT, DEFAULT_XI_TEXT, GAMMA_HELP, Group
+from rockcli.cli.spectrum_plinth import on_option, plinth_summary, spectrum_plinths
 from rockcli.cli.types import NUMBER
 
 _SHAPES = "ricker-sym|ricker-anti|sine|cosine"
@@ -192,9 +193,10 @@ def _echo_notes(pcs, err=False):
               help="--early (the default) stops each run as soon as its verdict is proven, even during the "
                    "pulse: theta_max_over_alpha is then only a lower bound where peak_final is 0. --full-peaks "
                    "follows every run until its peak is final (the same map, slower).")
+@on_option
 @user_errors
 def overturning(alpha, pulses, records, isolations, csv_path, plot_path, scheduler, as_json, units, dt, fmt, column,
-                wp_p, ap, early, horizon, restitution, cap_ratio):
+                wp_p, ap, early, horizon, restitution, cap_ratio, plinth_spec):
     """Overturning map over omega_p/p x a_p/(g tan alpha), like the paper's Figures 6 and 9.
 
     Light grey: the block rocks and survives; dark grey: it overturns; white: it never uplifts.
@@ -217,13 +219,15 @@ def overturning(alpha, pulses, records, isolations, csv_path, plot_path, schedul
     _check_ap_reach(ap, ap_grid.stop, alphas)
     isos = [parse_isolation(s) for s in isolations]
     _check_outputs(csv_path, plot_path)
+    plinths = spectrum_plinths(plinth_spec, alphas, isos, cap_ratio=cap_ratio)
     runner = _runner(scheduler, horizon, restitution, cap_ratio, isos)
     pcs = _pulses(pulses, records, units, dt, fmt, column)
-    n = len(alphas) * len(pcs) * len(isos) * wp_grid.count * ap_grid.count
+    n = len(alphas) * len(pcs) * len(isos) * len(plinths) * wp_grid.count * ap_grid.count
     t0 = time.perf_counter()
     with runner, progress_bar(n, "cells") as bar:
         update = bar.update if bar else None
-        maps = overturning_maps(alphas, pcs, isos, wp_grid, ap_grid, runner=runner, progress=update, early=early)
+        maps = overturning_maps(alphas, pcs, isos, wp_grid, ap_grid, runner=runner, progress=update, early=early,
+                                plinths=plinths)
     elapsed = time.perf_counter() - t0
     _echo_notes(pcs, as_json)
     summaries = []
@@ -231,10 +235,11 @@ def overturning(alpha, pulses, records, isolations, csv_path, plot_path, schedul
         cells = m.overturned.size
         unsettled = int((~m.settled & ~m.overturned).sum())  # reached the solver's horizon unproven
         summaries.append({"alpha_deg": m.alpha_deg, "pulse": m.pulse.label, "isolation": m.isolation.label,
-                          "n_cells": cells, "n_overturn": int(m.overturned.sum()), "n_never_uplift": int((~m.uplifted).sum()),
+                          **(plinth_summary(m.plinth) if plinth_spec else {}), "n_cells": cells, "n_overturn": int(m.overturned.sum()), "n_never_uplift": int((~m.uplifted).sum()),
                           "n_not_proven": unsettled})
         if not as_json:
-            click.echo(f"alpha = {m.alpha_deg:g} deg, {m.pulse.label}, {m.isolation.label}: "
+            on = "" if not plinth_spec else (" on " + m.plinth.label if m.plinth else " alone")
+            click.echo(f"alpha = {m.alpha_deg:g} deg, {m.pulse.label}, {m.isolation.label}{on}: "
                        f"{int(m.overturned.sum())} of {cells} cells overturn, {int((~m.uplifted).sum())} never uplift"
                        + (f", {unsettled} NOT PROVEN (still moving at the solver's horizon)" if unsettled else ""))
     if as_json:
@@ -252,7 +257,7 @@ def overturning(alpha, pulses, records, isolations, csv_path, plot_path, schedul
     if plot_path:
         from rockcli.report.spectra import plot_maps
 
-        plot_maps(maps, plot_path, n_cols=len(pcs) * len(isos))
+        plot_maps(maps, plot_path, n_cols=len(pcs) * len(isos) * len(plinths))
         click.echo(f"wrote {plot_path}", err=as_json)
 
 
@@ -289,10 +294,11 @@ def _search_options(f):
 @click.option("--ap-max", type=NUMBER, default=20.0, show_default=True,
               help="Largest a_p/(g tan alpha) tried; above it the curve is left empty.")
 @_search_options
+@on_option
 @user_errors
 def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, scheduler, as_json, units, dt, fmt,
                     column, gammas, wp_p, ap_max, step, tol, refine, refine_band, horizon, restitution,
-                    cap_ratio):
+                    cap_ratio, plinth_spec):
     """Minimum overturning acceleration over omega_p/p, like the paper's Figures 7, 8, 9 and 11.
 
     For each omega_p/p: the smallest a_p that overturns, found by scanning up from the uplift
@@ -324,14 +330,15 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
             iso.foundation(1.0)
     isos = list(dict.fromkeys(isos))
     _check_outputs(csv_path, plot_path)
+    plinths = spectrum_plinths(plinth_spec, alphas, isos, cap_ratio=cap_ratio)
     runner = _runner(scheduler, horizon, restitution, cap_ratio, isos)
     pcs = _pulses(pulses, records, units, dt, fmt, column)
-    n = len(alphas) * len(pcs) * len(isos) * xs.size
+    n = len(alphas) * len(pcs) * len(isos) * len(plinths) * xs.size
     t0 = time.perf_counter()
     with runner, progress_bar(n, "search", eta=False, unit="columns") as bar:
         update = bar.update if bar else None
         curves = min_overturning_curves(alphas, pcs, isos, xs, ap_max=ap_max, step=step, tol=tol, refine=refine,
-                                        refine_band=refine_band, runner=runner, progress=update)
+                                        refine_band=refine_band, runner=runner, progress=update, plinths=plinths)
     elapsed = time.perf_counter() - t0
 
     from rockcli.report.spectra import format_min_table, min_rows

@@ -250,6 +250,8 @@ def _uplift_thresholds(families, fam, n, ap_max, run, vertical: bool = False, li
     monotone in y too, but not at y = 1: bisection on every column."""
     y_u = np.ones(n)
     iso_cols = np.array([i for i in range(n) if vertical or not families[fam[i]].isolation.rigid], dtype=np.int64)
+    if not vertical:
+        iso_cols = np.union1d(iso_cols, _stack_thresholds(families, fam, n, run, y_u)).astype(np.int64)
     if iso_cols.size:
         top = np.full(iso_cols.size, 2.0 * ap_max)
         if limits is not None:
@@ -277,6 +279,41 @@ def _uplift_thresholds(families, fam, n, ap_max, run, vertical: bool = False, li
             act = act[(hi[act] - lo[act]) > 1e-7 * hi[act]]
         y_u[iso_cols] = np.where(ok, lo, np.nan)
     return y_u
+
+
+#: Relative gap above a plinth's static uplift threshold at which :func:`_stack_thresholds` checks that something
+#: lifts: the resolution of the bisection of an isolated base's threshold (:func:`_uplift_thresholds`).
+STACK_UPLIFT_GAP = 1e-7
+
+
+def _stack_thresholds(families, fam, n, run, y_u) -> np.ndarray:
+    """Uplift thresholds of the columns of a body on a plinth on the rigid foundation, written into ``y_u``; returns
+    the columns left to the bisection of :func:`_uplift_thresholds`.
+
+    Theorem (docs/plinth.md, "lifts from rest"): from rest, until something lifts the body and its plinth move with
+    the ground, so the body lifts off the plinth when ``|a_g|`` passes ``g tan(alpha1)`` and the two lift off the
+    ground together when it passes ``g tan(alpha_asm)``; every pulse peaks at exactly ``|a_p|``, so nothing lifts
+    for ``y <= y_s = min(1, tan(alpha_asm)/tan(alpha1))`` and something lifts above it. Uplift is monotone in ``y``:
+    the threshold is ``y_s``. Not assumed but checked, with two runs of the stack driver per column: nothing lifts
+    at ``y_s`` (the scan's first value, counted safe, is a run that did not lift) and something lifts at ``y_s (1 +
+    STACK_UPLIFT_GAP)`` (the threshold within the isolated base's bisection resolution). A column where either
+    check fails (rounding at the threshold) goes to the bisection, as an isolated base's."""
+    cols = np.array([i for i in range(n) if families[fam[i]].plinth is not None and families[fam[i]].isolation.rigid],
+                    dtype=np.int64)
+    if not cols.size:
+        return cols
+    from rockcli.io.units import G
+
+    ys = np.empty(cols.size)
+    for j, i in enumerate(cols):
+        f = families[fam[i]]
+        st = f.body
+        ys[j] = min(1.0, st.assembly_uplift_acceleration / (G * math.tan(f.alpha)))
+    below = run(cols, ys, early=False).uplifted
+    above = run(cols, ys * (1.0 + STACK_UPLIFT_GAP), early=False).uplifted
+    ok = ~below & above
+    y_u[cols[ok]] = ys[ok]
+    return cols[~ok]
 
 
 def _scan(y_u, active, ratio, cap, run) -> dict:
@@ -367,6 +404,8 @@ class MinCurve:
     refine_band: float = DEFAULT_REFINE_BAND
     refined: Optional[np.ndarray] = None
     capped: bool = False
+    #: the plinth the block stands on (:class:`rockcli.spectra.plinth.PlinthRatio`; None: alone)
+    plinth: Optional[object] = None
 
     @property
     def found_by(self) -> str:
@@ -374,14 +413,16 @@ class MinCurve:
 
 
 def curves_of(search: MinSearch, keys, xs, *, ap_max, step, tol, refine, refine_band) -> list[MinCurve]:
-    """The curves of ``search`` over columns laid out as ``keys x xs`` (``keys``: (alpha_deg, pulse, isolation))."""
+    """The curves of ``search`` over columns laid out as ``keys x xs`` (``keys``: (alpha_deg, pulse, isolation[,
+    plinth]))."""
     refined = search.refined if search.refined is not None else np.zeros(search.ap_min.size, bool)
     out = []
-    for j, (a, pc, iso) in enumerate(keys):
+    for j, (a, pc, iso, *pl) in enumerate(keys):
         s = slice(j * xs.size, (j + 1) * xs.size)
         top = min(ap_max, y_limit(math.radians(a)))  # the search's cap (MinSearch.ap_cap) for this alpha
         out.append(MinCurve(float(a), pc, iso, xs, search.ap_min[s], search.ap_safe[s], search.ap_uplift[s],
-                            top, step, tol, refine, refine_band, refined[s], capped=top < ap_max))
+                            top, step, tol, refine, refine_band, refined[s], capped=top < ap_max,
+                            plinth=pl[0] if pl else None))
     return out
 
 
@@ -400,15 +441,16 @@ def min_overturning_curves(alphas_deg: Sequence[float], pulses: Sequence[PulseCh
                            isolations: Sequence[Isolation], wp_values, *, ap_max: float = DEFAULT_AP_MAX,
                            step: float = DEFAULT_STEP, tol: float = DEFAULT_TOL, refine: float = DEFAULT_REFINE,
                            refine_band: float = DEFAULT_REFINE_BAND, R: float = REFERENCE_R,
-                           runner: Optional[Runner] = None, progress=None) -> list[MinCurve]:
-    """Minimum overturning curves for every ``alpha x pulse x isolation`` (nesting order), one search. Pulses and
-    isolations may be spec strings; a wrong type is one sentence (:mod:`rockcli.spectra.arguments`)."""
+                           runner: Optional[Runner] = None, progress=None, plinths: Sequence = (None,)) -> list[MinCurve]:
+    """Minimum overturning curves for every ``alpha x pulse x isolation x plinth`` (nesting order), one search.
+    Pulses and isolations may be spec strings; a wrong type is one sentence (:mod:`rockcli.spectra.arguments`).
+    ``plinths``: None (the block alone) and/or :class:`rockcli.spectra.plinth.PlinthRatio` plinths it stands on."""
     from rockcli.spectra.arguments import as_alphas, as_isolations, as_pulses, as_values
 
     alphas_deg, pulses, isolations = as_alphas(alphas_deg), as_pulses(pulses), as_isolations(isolations)
     xs = as_values(wp_values, "wp_values", positive=True)
-    keys = [(a, pc, iso) for a in alphas_deg for pc in pulses for iso in isolations]
-    families = [Family(math.radians(a), pc.shape, iso, R) for a, pc, iso in keys]
+    keys = [(a, pc, iso, pl) for a in alphas_deg for pc in pulses for iso in isolations for pl in plinths]
+    families = [Family(math.radians(a), pc.shape, iso, R, pl) for a, pc, iso, pl in keys]
     fam = np.repeat(np.arange(len(families)), xs.size)
     res = search_min_overturning(families, fam, np.tile(xs, len(families)), ap_max=ap_max, step=step, tol=tol,
                                  refine=refine, refine_band=refine_band, runner=runner, progress=progress)

@@ -3,7 +3,9 @@
 A cell is one run of a :class:`~rockcli.spectra.scenes.Family` at ``(x, y)``. Runs go through
 :func:`rockcli.solve.simulate_verdicts`, all columns in one batch; ``early=True`` stops each run as
 soon as its verdict is proven (the same verdicts; the peak then only a lower bound for runs stopped
-during the pulse, ``peak_final`` False).
+during the pulse, ``peak_final`` False). The cells of a family on a plinth (``--on``) are runs of the stack
+driver (:func:`rockcli.solve.stack_many.simulate_stacks`), whatever ``early`` says: its verdict is exactly the
+stack driver's at that point and its peak final (the driver has no early stop during the excitation).
 """
 
 from __future__ import annotations
@@ -26,13 +28,48 @@ class Cells:
     settled: np.ndarray
     peak_final: np.ndarray
     nfev: np.ndarray
+    #: which block toppled where a cell is a body on a plinth: 0 none (or a single block), 1 the body, 2 the plinth
+    #: (None: no cell of the batch has a plinth)
+    toppled: Optional[np.ndarray] = None
 
     @staticmethod
     def concatenate(parts: Sequence["Cells"]) -> "Cells":
         if not parts:
             return Cells(*(np.zeros(0, dt) for dt in (bool, bool, float, bool, bool, np.int64)))
-        return Cells(*(np.concatenate([getattr(p, f) for p in parts])
-                       for f in ("overturned", "uplifted", "theta_max_over_alpha", "settled", "peak_final", "nfev")))
+        out = [np.concatenate([getattr(p, f) for p in parts])
+               for f in ("overturned", "uplifted", "theta_max_over_alpha", "settled", "peak_final", "nfev")]
+        if any(p.toppled is not None for p in parts):
+            out.append(np.concatenate([p.toppled if p.toppled is not None else np.zeros(p.nfev.size, np.int8)
+                                       for p in parts]))
+        return Cells(*out)
+
+
+#: :attr:`Cells.toppled` codes of a stack run's ``toppled``.
+TOPPLED_CODES = {None: 0, "body": 1, "plinth": 2}
+
+
+def _run_stacks(jobs, horizon, restitution, progress) -> Cells:
+    """The cells that are bodies on plinths, one :func:`rockcli.solve.stack_many.simulate_stacks` run each: the
+    stack driver's own verdict (it has no early stop during the excitation, so every peak is final), its uplift
+    (either block lifted: the verdict is not ``no_uplift``), the body's peak over its own alpha (as ``simulate
+    --on`` prints it) and which block toppled."""
+    from rockcli.solve.stack_many import simulate_stacks
+    from rockcli.solve.response import VERDICT_NO_UPLIFT
+
+    runs = simulate_stacks(jobs, horizon=horizon, restitution=restitution, progress=progress)
+    bad = [r for r in runs if not hasattr(r, "stack")]
+    if bad:  # a scene the model does not cover: the command refuses it before any run
+        from rockcli.errors import RockcliInputError
+
+        raise RockcliInputError(bad[0].error)
+    for r in runs:
+        if r.status < 0:
+            raise RuntimeError(f"a body on a plinth stopped at the integrator's safety cap of {r.steps:,} steps: "
+                               f"no verdict (please report the command line)")
+    return Cells(np.array([r.overturned for r in runs], bool), np.array([r.verdict != VERDICT_NO_UPLIFT for r in runs], bool),
+                 np.array([r.theta_max_over_alpha for r in runs], float), np.array([r.settled for r in runs], bool),
+                 np.array([r.peak_final for r in runs], bool), np.array([r.nfev for r in runs], np.int64),
+                 np.array([TOPPLED_CODES[r.stack.toppled] for r in runs], np.int8))
 
 
 def run_cells_local(families: Sequence[Family], fam: np.ndarray, x: np.ndarray, y: np.ndarray,
@@ -48,6 +85,7 @@ def run_cells_local(families: Sequence[Family], fam: np.ndarray, x: np.ndarray, 
     ``vertical``: a :class:`~rockcli.spectra.scenes.VerticalChoice` under every cell (None: none).
     """
     from rockcli.solve import DEFAULT_HORIZON, simulate_verdicts
+    from rockcli.solve.stack_many import is_stack_job
 
     n = len(x)
     if n == 0:
@@ -75,6 +113,30 @@ def run_cells_local(families: Sequence[Family], fam: np.ndarray, x: np.ndarray, 
     # run the cells in a fixed shuffled order so that every piece carries a fair share, and put the
     # results back. Cells are independent: the order changes no result.
     order = np.random.default_rng(0).permutation(n)
+    stacked = np.array([is_stack_job(jobs[i]) for i in range(n)], bool)
+    if stacked.any():
+        # bodies on plinths (the stack driver) and single blocks (the batch) apart, put back in cell order
+        if cap_ratio or vertical is not None:
+            from rockcli.errors import RockcliInputError
+
+            raise RockcliInputError("a body on a plinth stands alone under the horizontal ground motion: no capped "
+                                    "colonnade (cap_ratio) or vertical pulse with a plinth")
+        out = {f: np.empty(n, dt) for f, dt in (("overturned", bool), ("uplifted", bool), ("theta_max_over_alpha",
+                                                float), ("settled", bool), ("peak_final", bool), ("nfev", np.int64))}
+        toppled = np.zeros(n, np.int8)
+        flat = order[~stacked[order]]
+        on = order[stacked[order]]
+        if flat.size:
+            v = simulate_verdicts([jobs[i] for i in flat], early=early, progress=step if progress else None,
+                                  horizon=DEFAULT_HORIZON if horizon is None else horizon, restitution=restitution)
+            for f in out:
+                out[f][flat] = getattr(v, f)
+        c = _run_stacks([jobs[i] for i in on], DEFAULT_HORIZON if horizon is None else horizon, restitution,
+                        (lambda k: step(flat.size + k)) if progress else None)
+        for f in out:
+            out[f][on] = getattr(c, f)
+        toppled[on] = c.toppled
+        return Cells(**out, toppled=toppled)
     v = simulate_verdicts([jobs[i] for i in order], early=early, progress=step if progress else None,
                           horizon=DEFAULT_HORIZON if horizon is None else horizon, restitution=restitution,
                           cap_ratio=cap_ratio, vertical=None if vjobs is None else [vjobs[i] for i in order])
