@@ -409,9 +409,11 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
 @horizon_option
 @restitution_option
 @spectrum_vertical_option
+@on_option
 @user_errors
 def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, fmt, column, wp_p, xtol, ap_max,
-                  step, tol, refine, refine_band, csv_path, plot_path, scheduler, as_json, horizon, restitution):
+                  step, tol, refine, refine_band, csv_path, plot_path, scheduler, as_json, horizon, restitution,
+                  plinth_spec):
     """Block size beyond which a block is safer without isolation, like the paper's Table I.
 
     Where the minimum overturning curves of the rigid foundation and of the isolated base cross
@@ -446,6 +448,7 @@ def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, 
         gamma = DEFAULT_GAMMA
     isos = table_i_isolations(ratios, xi=xi, gamma=gamma, template=bearing)
     _check_outputs(csv_path, plot_path)
+    plinths = spectrum_plinths(plinth_spec, alphas, isos)
     runner = _runner(scheduler, horizon, restitution, isolations=isos,
                      fix="critical-size compares the rigid foundation with isolated bases, so it cannot take one")
     if pulses or records:
@@ -458,12 +461,13 @@ def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, 
         if pc.T_p is None:
             raise InputError(f"--pulse {pc.shape}: give its period, e.g. {pc.shape}:Tp=0.6")
     shapes = list(dict.fromkeys(pc.shape for pc in pcs))
-    n = len(shapes) * len(alphas) * (1 + len(isos)) * grid.count
+    n = len(shapes) * len(alphas) * len(plinths) * (1 + len(isos)) * grid.count
     t0 = time.perf_counter()
     with runner, progress_bar(n, "search", eta=False, unit="columns") as bar:
         update = bar.update if bar else None
         result = critical_sizes(pcs, alphas, isos, wp_grid=grid, xtol=xtol, ap_max=ap_max, step=step, tol=tol,
-                                refine=refine, refine_band=refine_band, runner=runner, progress=update)
+                                refine=refine, refine_band=refine_band, runner=runner, progress=update,
+                                plinths=plinths)
     elapsed = time.perf_counter() - t0
 
     from rockcli.report.spectra import format_critical_table
@@ -472,7 +476,8 @@ def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, 
     isolation = isos[0].label.replace(f'TbTp={isos[0].ratio:g}', 'TbTp=<ratio>')
     if as_json:
         echo_json({"isolation": isolation, **_csv_options(runner),
-                   "rows": [{**r.as_dict(), "ap_cross_over_g_tan_alpha": r.ap_cross_over_g_tan_alpha,
+                   "rows": [{**r.as_dict(), **({"plinth": r.plinth or None} if plinth_spec else {}),
+                             "ap_cross_over_g_tan_alpha": r.ap_cross_over_g_tan_alpha,
                              "note": r.note or None} for r in result.rows],
                    "notes": list(result.notes)})
     else:
@@ -480,7 +485,8 @@ def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, 
         click.echo(format_critical_table(result.rows))
         for r in result.rows:
             if r.note:
-                click.echo(f"note: {r.source}, alpha = {r.alpha_deg:g} deg, T_b/T_p = {r.Tb_over_Tp:g}: {r.note}")
+                click.echo(f"note: {r.source}, alpha = {r.alpha_deg:g} deg, T_b/T_p = {r.Tb_over_Tp:g}"
+                           f"{' on ' + r.plinth if r.plinth else ''}: {r.note}")
         for note in result.notes:
             click.echo(f"note: {note}")
     click.echo(f"{len(result.rows)} crossings: {result.runs} runs in {elapsed:.2f} s (omega_p/p grid {grid}, "
@@ -499,7 +505,8 @@ def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, 
             if r.wp_over_p_cross == r.wp_over_p_cross:
                 crossings.setdefault((r.alpha_deg, r.pulse), []).append(
                     (r.wp_over_p_cross, r.ap_cross_over_g_tan_alpha,
-                     f"$R$ = {r.R_critical_m:.2f} m ($T_p$ = {r.T_p_s:.3g} s, $T_b/T_p$ = {r.Tb_over_Tp:g})"))
+                     f"$R$ = {r.R_critical_m:.2f} m ($T_p$ = {r.T_p_s:.3g} s, $T_b/T_p$ = {r.Tb_over_Tp:g}"
+                     f"{', on the plinth' if r.plinth else ''})"))
         plot_min_curves(result.curves, plot_path, crossings=crossings)
         click.echo(f"wrote {plot_path}", err=as_json)
 

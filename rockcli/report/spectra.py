@@ -487,17 +487,24 @@ def _num(v, ap_max=None):
 def write_critical_csv(rows, path, extra: dict | None = None) -> Path:
     """Write the critical sizes (:class:`rockcli.spectra.CriticalRow`) as CSV (:data:`CRITICAL_COLUMNS`;
     ``extra`` appended)."""
-    return _write_rows(path, CRITICAL_COLUMNS, (r.as_dict() for r in rows), extra)
+    rows = list(rows)
+    on = any(getattr(r, "plinth", "") for r in rows)  # --on: the plinth of each row (empty: the body alone)
+    return _write_rows(path, CRITICAL_COLUMNS + (("plinth",) if on else ()),
+                       ({**r.as_dict(), **({"plinth": r.plinth} if on else {})} for r in rows), extra)
 
 
 def format_critical_table(rows) -> str:
     """Table I as aligned text: one line per pulse, slenderness and T_b/T_p."""
     head = ["source", "pulse", "T_p [s]", "alpha [deg]", "Tb/Tp", "T_b [s]", "wp/p cross", "R_critical [m]"]
+    rows = list(rows)
+    on = any(getattr(r, "plinth", "") for r in rows)
+    head += ["on"] if on else []
     table = [head]
     for r in rows:
         table.append([r.source, r.pulse, f"{r.T_p_s:.3g}", f"{r.alpha_deg:g}", f"{r.Tb_over_Tp:g}", f"{r.Tb_s:.3g}",
                       "-" if math.isnan(r.wp_over_p_cross) else f"{r.wp_over_p_cross:.3f}",
-                      "-" if math.isnan(r.R_critical_m) else f"{r.R_critical_m:.3f}"])
+                      "-" if math.isnan(r.R_critical_m) else f"{r.R_critical_m:.3f}"]
+                     + ([r.plinth.partition(":")[0] if r.plinth else "alone"] if on else []))
     widths = [max(len(t[j]) for t in table) for j in range(len(head))]
     out = []
     for k, t in enumerate(table):
