@@ -174,3 +174,34 @@ def test_parse_plinth_ratio_reads_the_spec():
     assert (p.name, p.height_ratio, p.width_ratio, p.mass_ratio) == ("pedestal", 0.25, 1.2, 3.0)
     assert p.label == "pedestal:height_ratio=0.25,width_ratio=1.2,mass_ratio=3"
     assert parse_plinth_ratio(p.label) == p
+
+
+def test_the_rocking_spectrum_on_a_plinth_is_the_stack_run_of_each_size(tmp_path):
+    """``spectrum rocking --on``: each size's point on the plinth is the stack driver's run of that body on the plinth
+    scaled with it (the same verdict, toppled block and peak, bit for bit: the same run), the block-alone curve is
+    the one without ``--on``, and the CSV names the plinth."""
+    from conftest import write_pulse_record
+
+    from rockcli.models import Block, Rigid
+    from rockcli.records import read_record
+    from rockcli.solve.stack_many import run_stack
+
+    path = write_pulse_record(tmp_path / "ricker.txt", a_p_g=0.5, T_p=0.6, pad=2.0)
+    args = ["spectrum", "rocking", str(path), "--alpha", "14", "--R", "0.3:3:4", "--json"]
+    code, out = _run(*args, "--on", ON)
+    assert code == 0, out
+    on = json.JSONDecoder().raw_decode(out)[0]["curves"]
+    code, out = _run(*args)
+    assert code == 0, out
+    alone = json.JSONDecoder().raw_decode(out)[0]["curves"]
+    assert [c["plinth"] for c in on] == [None, ON]
+    assert {k: v for k, v in on[0].items() if k != "plinth"} == alone[0]
+    record = read_record(str(path))
+    plinth = parse_plinth_ratio(ON)
+    curve = on[1]
+    assert any(curve["overturned"]) and not all(curve["overturned"])
+    for i, R in enumerate(curve["R_m"]):
+        res = run_stack(plinth.stack(Block.from_degrees(R, 14.0)), Rigid(), record)
+        assert curve["overturned"][i] == (res.toppled is not None)
+        assert curve["toppled"][i] == (res.toppled or "")
+        assert curve["theta_max_over_alpha"][i] == res.body.theta_max_over_alpha

@@ -27,9 +27,10 @@ def on_option(func):
     return click.option("--on", "plinth_spec", default=None, metavar="PLINTH", help=ON_HELP)(func)
 
 
-def spectrum_plinths(plinth_spec, alphas_deg, isolations, *, cap_ratio=0.0, R=None) -> list:
+def spectrum_plinths(plinth_spec, alphas_deg, isolations, *, cap_ratio=0.0, sizes=None) -> list:
     """``[None]`` without ``--on``; else ``[None, PlinthRatio]`` (alone, then on the plinth), after checking that
-    every configuration can take it. ``isolations``: the spectra's :class:`rockcli.spectra.Isolation` list."""
+    every configuration can take it. ``isolations``: the spectra's :class:`rockcli.spectra.Isolation` list, or
+    foundations (``spectrum rocking``); ``sizes``: the block sizes R [m] to check (None: the reference block)."""
     if plinth_spec is None:
         return [None]
     from rockcli.cli.options import given_vertical
@@ -44,12 +45,13 @@ def spectrum_plinths(plinth_spec, alphas_deg, isolations, *, cap_ratio=0.0, R=No
     if given_vertical()["pulse"] is not None:
         raise RockcliInputError("--on: a body on a plinth runs under the horizontal ground motion only, so "
                                 "--vertical-pulse is not taken with it")
-    left = [iso.label for iso in isolations if not plinth_foundation_supported(iso.foundation(1.0))]
+    left = [iso.label for iso in isolations
+            if not plinth_foundation_supported(iso.foundation(1.0) if hasattr(iso, "foundation") else iso)]
     if left:
         raise RockcliInputError(f"--on: {PLINTH_RIGID_ONLY} ({', '.join(left)}); give --isolation none or "
-                                f"linear:TbTp=...")
-    check_plinth_ratio(plinth, [Block(REFERENCE_R if R is None else R, math.radians(a), "reference")
-                                for a in alphas_deg])
+                                f"linear:...")
+    check_plinth_ratio(plinth, [Block(R, math.radians(a), "reference") for a in alphas_deg
+                                for R in ([REFERENCE_R] if sizes is None else sorted({min(sizes), max(sizes)}))])
     return [None, plinth]
 
 
