@@ -2,7 +2,8 @@
 free plinth in proportion to it (:mod:`rockcli.spectra.plinth`: why ratios and not metres).
 
 What ``--on`` does not take is refused in one sentence before any run: a plinth in metres, a vertical pulse, a
-capped colonnade, a foundation the stack is not modelled on (:func:`rockcli.solve.stack_many.plinth_foundation_supported`).
+capped colonnade, a foundation the stack is not modelled on
+(:func:`rockcli.solve.stack_many.plinth_foundation_supported`).
 """
 
 from __future__ import annotations

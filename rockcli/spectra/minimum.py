@@ -247,7 +247,9 @@ def _uplift_thresholds(families, fam, n, ap_max, run, vertical: bool = False, li
     the block does not uplift up to 2 ap_max, or up to its 100 g limit ``limits`` when that is lower:
     the bracket then stops at the limit). Under a vertical pulse (rigid foundation) the block
     uplifts when ``y tan(alpha) |f(t)| > (1 + a_v(t)/g) tan(alpha)`` at some t, with ``g + a_v > 0``:
-    monotone in y too, but not at y = 1: bisection on every column."""
+    monotone in y too, but not at y = 1: bisection on every column. A body on a plinth (``--on``): on linear
+    bearings body, plinth and base move together before anything lifts, a linear oscillator, so the same
+    bisection; on the rigid foundation the static threshold, checked (:func:`_stack_thresholds`)."""
     y_u = np.ones(n)
     iso_cols = np.array([i for i in range(n) if vertical or not families[fam[i]].isolation.rigid], dtype=np.int64)
     if not vertical:
@@ -290,7 +292,7 @@ def _stack_thresholds(families, fam, n, run, y_u) -> np.ndarray:
     """Uplift thresholds of the columns of a body on a plinth on the rigid foundation, written into ``y_u``; returns
     the columns left to the bisection of :func:`_uplift_thresholds`.
 
-    Theorem (docs/plinth.md, "lifts from rest"): from rest, until something lifts the body and its plinth move with
+    Theorem (docs/physics-plinth.md, "From rest"): from rest, until something lifts the body and its plinth move with
     the ground, so the body lifts off the plinth when ``|a_g|`` passes ``g tan(alpha1)`` and the two lift off the
     ground together when it passes ``g tan(alpha_asm)``; every pulse peaks at exactly ``|a_p|``, so nothing lifts
     for ``y <= y_s = min(1, tan(alpha_asm)/tan(alpha1))`` and something lifts above it. Uplift is monotone in ``y``:
@@ -441,7 +443,8 @@ def min_overturning_curves(alphas_deg: Sequence[float], pulses: Sequence[PulseCh
                            isolations: Sequence[Isolation], wp_values, *, ap_max: float = DEFAULT_AP_MAX,
                            step: float = DEFAULT_STEP, tol: float = DEFAULT_TOL, refine: float = DEFAULT_REFINE,
                            refine_band: float = DEFAULT_REFINE_BAND, R: float = REFERENCE_R,
-                           runner: Optional[Runner] = None, progress=None, plinths: Sequence = (None,)) -> list[MinCurve]:
+                           runner: Optional[Runner] = None, progress=None,
+                           plinths: Sequence = (None,)) -> list[MinCurve]:
     """Minimum overturning curves for every ``alpha x pulse x isolation x plinth`` (nesting order), one search.
     Pulses and isolations may be spec strings; a wrong type is one sentence (:mod:`rockcli.spectra.arguments`).
     ``plinths``: None (the block alone) and/or :class:`rockcli.spectra.plinth.PlinthRatio` plinths it stands on."""

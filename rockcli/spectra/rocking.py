@@ -109,7 +109,8 @@ class RockingCurve:
 
 
 def rocking_spectrum(record, alphas_deg: Sequence[float], foundations: Sequence, R: Sequence[float], *,
-                     runner: Optional[Runner] = None, progress=None, plinths: Sequence = (None,)) -> list[RockingCurve]:
+                     runner: Optional[Runner] = None, progress=None,
+                     plinths: Sequence = (None,)) -> list[RockingCurve]:
     """The rocking spectra of ``record`` for every ``alpha x foundation`` (in that nesting order).
 
     Parameters

@@ -66,7 +66,8 @@ def _run_stacks(jobs, horizon, restitution, progress) -> Cells:
         if r.status < 0:
             raise RuntimeError(f"a body on a plinth stopped at the integrator's safety cap of {r.steps:,} steps: "
                                f"no verdict (please report the command line)")
-    return Cells(np.array([r.overturned for r in runs], bool), np.array([r.verdict != VERDICT_NO_UPLIFT for r in runs], bool),
+    return Cells(np.array([r.overturned for r in runs], bool),
+                 np.array([r.verdict != VERDICT_NO_UPLIFT for r in runs], bool),
                  np.array([r.theta_max_over_alpha for r in runs], float), np.array([r.settled for r in runs], bool),
                  np.array([r.peak_final for r in runs], bool), np.array([r.nfev for r in runs], np.int64),
                  np.array([TOPPLED_CODES[r.stack.toppled] for r in runs], np.int8))
