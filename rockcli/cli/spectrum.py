@@ -31,6 +31,9 @@ def spectrum():
 
     'rocking' is the spectrum of one record instead: peak theta/alpha against the block size R,
     with bearings given by their period in s (docs/rocking-spectrum.md).
+
+    --on NAME:height_ratio=H2/H1,width_ratio=B2/B1 runs every configuration alone and standing on a
+    free plinth in proportion to the block (docs/spectra.md).
     """
 
 
