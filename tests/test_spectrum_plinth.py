@@ -137,8 +137,9 @@ def test_the_minimum_on_a_plinth_starts_at_the_static_uplift_threshold():
 def test_the_csv_names_the_plinth_and_the_toppled_block(tmp_path):
     out = tmp_path / "m.csv"
     code, text = _run("spectrum", "overturning", "--alpha", "12", "--wp-over-p", "2:4:2", "--ap", "1:5:3", "--on", ON,
-                      "--csv", str(out))
+                      "--csv", str(out), "--plot", str(tmp_path / "m.png"))
     assert code == 0, text
+    assert (tmp_path / "m.png").stat().st_size > 10_000  # drawn (the hatching of the plinth's topples was looked at by hand)
     rows = list(csv.DictReader(out.open()))
     assert len(rows) == 12 and {r["plinth"] for r in rows} == {"", ON}
     assert {r["toppled"] for r in rows if r["plinth"] == ""} <= {""}

@@ -240,6 +240,14 @@ def plot_maps(maps, path, *, n_cols: int | None = None, title: str | None = None
             dy = (y[-1] - y[0]) / max(1, y.size - 1) if y.size > 1 else 1.0
             ax.imshow(code, origin="lower", aspect="auto", cmap=cmap, norm=norm, interpolation="nearest",
                       extent=(x[0] - dx / 2, x[-1] + dx / 2, y[0] - dy / 2, y[-1] + dy / 2))
+            if m.toppled is not None and (np.asarray(m.toppled) == 2).any():  # --on: where the plinth topples
+                from matplotlib.collections import PatchCollection
+                from matplotlib.patches import Rectangle
+
+                rows, cols = np.nonzero(np.asarray(m.toppled) == 2)
+                ax.add_collection(PatchCollection(
+                    [Rectangle((x[j] - dx / 2, y[i] - dy / 2), dx, dy) for i, j in zip(rows, cols)],
+                    facecolor="none", edgecolor="white", hatch="////", linewidth=0.0))
             put_title(ax, f"$\\alpha$ = {m.alpha_deg:g}°, {_pulse_words(m.pulse)}\n{legend[_iso_label(m.isolation)]}"
                       + _on_words(m, maps), fontsize=8)
             ax.set_xlabel(r"$\omega_p / p$", fontsize=8)
@@ -248,7 +256,10 @@ def plot_maps(maps, path, *, n_cols: int | None = None, title: str | None = None
             _r_axis(ax, m.pulse.T_p)
         handles = [Patch(facecolor=c, edgecolor="0.5", label=lab)
                    for c, lab in zip(MAP_COLOURS, ("no uplift", "no overturning", "overturning"))]
-        fig.legend(handles=handles, loc="outside lower center", ncol=3, fontsize=8, frameon=False)
+        if any(m.toppled is not None for m in maps):
+            handles.append(Patch(facecolor=MAP_COLOURS[2], edgecolor="white", hatch="////",
+                                 label="overturning: the plinth topples (else the body off it)"))
+        fig.legend(handles=handles, loc="outside lower center", ncol=len(handles), fontsize=8, frameon=False)
         if common and not title:
             title = f"isolation: {common}"
         return _finish(fig, path, dpi, _plinth_title(title, maps))
