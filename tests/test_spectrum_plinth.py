@@ -229,3 +229,24 @@ def test_chunks_as_a_scheduler_runs_them_give_the_one_batch():
     for f in ("overturned", "uplifted", "theta_max_over_alpha", "settled", "toppled"):
         np.testing.assert_array_equal(getattr(both, f), getattr(one, f))
     assert (one.toppled[fam == 0] == 0).all() and one.overturned.any()
+
+
+def test_uplift_only_runs_give_the_full_runs_uplift_and_end_a_chatter():
+    """The minimum search asks stack runs only whether something lifts (``uplift_only``): they stop at 20,000 steps,
+    exact for that flag (a lift is recorded when it happens; a run stopped before any lift is run again in full).
+    20 random cells around the thresholds on linear bearings: the same flags as the full runs. And the cell the
+    search met just above a threshold (alpha 10 deg, T_b/T_p = 4, omega_p/p = 3.5), where the body lifts by a hair
+    and the stack driver chatters to its 5-million-step cap (minutes; docs/spectra.md): lifted, in about a second."""
+    from rockcli.spectra.runner import UPLIFT_ONLY_STEPS
+
+    plinth = PlinthRatio(0.5, 1.5)
+    fam = [Family(math.radians(10), "ricker-sym", parse_isolation("linear:TbTp=2"), plinth=plinth)]
+    rng = np.random.default_rng(3)
+    x, y = rng.uniform(1.0, 6.0, 20), rng.uniform(1.0, 2.5, 20)
+    full = run_cells_local(fam, np.zeros(20, int), x, y)
+    quick = run_cells_local(fam, np.zeros(20, int), x, y, uplift_only=True)
+    assert 0 < full.uplifted.sum() < 20
+    np.testing.assert_array_equal(quick.uplifted, full.uplifted)
+    chatter = [Family(math.radians(10), "ricker-sym", parse_isolation("linear:TbTp=4"), plinth=plinth)]
+    c = run_cells_local(chatter, np.zeros(1, int), np.array([3.5]), np.array([8.421630859375]), uplift_only=True)
+    assert c.uplifted[0] and c.nfev[0] > 10 * UPLIFT_ONLY_STEPS  # it did reach the cap: a chatter, cut short

@@ -14,6 +14,7 @@ from pathlib import Path
 
 from rockcli.io.files import check_output, save_figure, write_text
 from rockcli.io.units import G
+from rockcli.report.spectra_plinth import on_words, plinth_columns, plinth_title, with_plinth
 
 #: Columns of ``rockcli spectrum overturning --csv`` (one row per cell of every map).
 MAP_COLUMNS = ("alpha_deg", "pulse", "isolation", "T_p_s", "R_m", "wp_over_p", "ap_over_g_tan_alpha", "ap_g",
@@ -128,39 +129,14 @@ def map_columns(m, plinth: bool | None = None) -> dict:
             "uplift": np.asarray(m.uplifted, dtype=bool).ravel(),
             "peak_final": np.asarray(m.peak_final, dtype=bool).ravel(),
             "proven": (np.asarray(m.settled, dtype=bool) | np.asarray(m.overturned, dtype=bool)).ravel(),
-            **(_plinth_columns(m, n) if (m.plinth is not None if plinth is None else plinth) else {})}
-
-
-def _plinth_columns(m, n) -> dict:
-    """A map's ``plinth`` and ``toppled`` columns (``--on``)."""
-    import numpy as np
-
-    label = "" if m.plinth is None else m.plinth.label
-    toppled = np.zeros(n, np.int8) if m.toppled is None else np.asarray(m.toppled).ravel()
-    return {"plinth": np.full(n, label, dtype=object),
-            "toppled": np.array(["", "body", "plinth"], dtype=object)[toppled]}
-
-
-def _with_plinth(columns, items) -> tuple:
-    """``columns`` with ``plinth`` after ``isolation`` (and ``toppled`` after ``overturned``) when any of ``items``
-    (maps or curves) stands on a plinth: the CSV of ``--on`` names the plinth on every row."""
-    if not any(getattr(i, "plinth", None) is not None for i in items):
-        return tuple(columns)
-    out = []
-    for c in columns:
-        out.append(c)
-        if c == "isolation":
-            out.append("plinth")
-        elif c == "overturned":
-            out.append("toppled")
-    return tuple(out)
+            **(plinth_columns(m, n) if (m.plinth is not None if plinth is None else plinth) else {})}
 
 
 def write_map_csv(maps, path, extra: dict | None = None) -> Path:
     """Write every cell of ``maps`` (:class:`rockcli.spectra.OverturningMap`) as CSV, atomically
     (``extra``: constant columns appended, see :func:`constant_columns`)."""
     maps = list(maps)
-    columns = _with_plinth(MAP_COLUMNS, maps)
+    columns = with_plinth(MAP_COLUMNS, maps)
     fh = io.StringIO()
     w = csv.writer(fh, lineterminator="\n")
     w.writerow(columns)
@@ -249,7 +225,7 @@ def plot_maps(maps, path, *, n_cols: int | None = None, title: str | None = None
                     [Rectangle((x[j] - dx / 2, y[i] - dy / 2), dx, dy) for i, j in zip(rows, cols)],
                     facecolor="none", edgecolor="white", hatch="////", linewidth=0.0))
             put_title(ax, f"$\\alpha$ = {m.alpha_deg:g}°, {_pulse_words(m.pulse)}\n{legend[_iso_label(m.isolation)]}"
-                      + _on_words(m, maps), fontsize=8)
+                      + on_words(m, maps), fontsize=8)
             ax.set_xlabel(r"$\omega_p / p$", fontsize=8)
             ax.set_ylabel(r"$a_p / (g \tan\alpha)$", fontsize=8)
             ax.tick_params(labelsize=7)
@@ -262,7 +238,7 @@ def plot_maps(maps, path, *, n_cols: int | None = None, title: str | None = None
         fig.legend(handles=handles, loc="outside lower center", ncol=len(handles), fontsize=8, frameon=False)
         if common and not title:
             title = f"isolation: {common}"
-        return _finish(fig, path, dpi, _plinth_title(title, maps))
+        return _finish(fig, path, dpi, plinth_title(title, maps))
     finally:
         plt.close(fig)
 
@@ -293,7 +269,7 @@ def min_rows(curves):
 def write_min_csv(curves, path, extra: dict | None = None) -> Path:
     """Write the minimum-overturning curves as CSV (:data:`MIN_COLUMNS`; ``extra`` appended), atomically."""
     curves = list(curves)
-    return _write_rows(path, _with_plinth(MIN_COLUMNS, curves), min_rows(curves), extra)
+    return _write_rows(path, with_plinth(MIN_COLUMNS, curves), min_rows(curves), extra)
 
 
 def _panels(curves) -> list:
@@ -331,9 +307,9 @@ def plot_min_curves(curves, path, *, crossings=None, title: str | None = None, y
     on = any(c.plinth is not None for c in curves)
     isos = list(dict.fromkeys(_iso_label(c.isolation) for c in curves))
     legend, common = split_labels(_iso_label(c.isolation) for c in curves)
-    chars = max(len(lab.replace("$", "")) + len(_on_words(c, curves)) for lab, c in
+    chars = max(len(lab.replace("$", "")) + len(on_words(c, curves)) for lab, c in
                 ((legend[_iso_label(c.isolation)], c) for c in curves))
-    n_leg = len({(legend[_iso_label(c.isolation)], _on_words(c, curves)) for c in curves})
+    n_leg = len({(legend[_iso_label(c.isolation)], on_words(c, curves)) for c in curves})
     ncol = max(1, min(n_leg, int((4.6 * len(shapes) + 0.4) * 72.0 / (chars * 0.5 * 7.0 + 40.0))))
     fig, axes, under = _panel_grid(len(alphas), len(shapes), plt, width=4.6, height=3.6, extra=0.7,
                                    legend_rows=0.065 * math.ceil(n_leg / ncol) / len(alphas) ** 0.5)
@@ -348,7 +324,7 @@ def plot_min_curves(curves, path, *, crossings=None, title: str | None = None, y
                 y = np.asarray(c.ap_min, dtype=float)
                 if np.isfinite(y).any():
                     top = max(top, float(np.nanmax(y)))
-                label = legend[_iso_label(c.isolation)] + _on_words(c, curves)
+                label = legend[_iso_label(c.isolation)] + on_words(c, curves)
                 if on:  # --on: one colour per foundation, solid alone and dashed on the plinth
                     j = isos.index(_iso_label(c.isolation))
                     colour = "k" if c.isolation.rigid else f"C{j % 10}"
@@ -388,35 +364,9 @@ def plot_min_curves(curves, path, *, crossings=None, title: str | None = None, y
         footnote(fig, _search_note(curves), fontsize=6.5)
         if common and not title:
             title = f"isolation: {common}"
-        return _finish(fig, path, dpi, _plinth_title(title, curves))
+        return _finish(fig, path, dpi, plinth_title(title, curves))
     finally:
         plt.close(fig)
-
-
-def _on_words(item, items) -> str:
-    """``, on plinth`` for a map or curve on a plinth, ``, alone`` for one without among some with (``--on``), empty
-    otherwise (the plinth's proportions are in the title: :func:`_plinth_title`)."""
-    if item.plinth is None:
-        return ", alone" if any(getattr(i, "plinth", None) is not None for i in items) else ""
-    from rockcli.report.figures import plain
-
-    return f", on {plain(item.plinth.name)}"
-
-
-def _plinth_title(title, items):
-    """The figure's title with the plinth of ``--on`` in words: ``on a free plinth: H2/H1 = 0.5, B2/B1 = 1.5 (the
-    body's height and width), same density`` (``title`` alone when no item stands on a plinth)."""
-    plinths = list(dict.fromkeys(i.plinth for i in items if getattr(i, "plinth", None) is not None))
-    if not plinths:
-        return title
-    from rockcli.report.figures import plain
-
-    words = []
-    for p in plinths:
-        mass = "same density" if p.mass_ratio is None else f"$M_2/M_1$ = {p.mass_ratio:g}"
-        words.append(f"{plain(p.name)}: $H_2/H_1$ = {p.height_ratio:g}, $B_2/B_1$ = {p.width_ratio:g} "
-                     f"(of the body's height and width), {mass}, rocking with the body")
-    return "; ".join(([title] if title else []) + words)
 
 
 def _iso_label(isolation) -> str:

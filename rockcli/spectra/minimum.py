@@ -191,11 +191,18 @@ def search_min_overturning(families: Sequence[Family], fam, x, *, ap_max: float 
     limits = np.array([y_limit(f.alpha) for f in families])
     cap = np.minimum(ap_max, limits[fam]) if n else np.zeros(0)  # the 100 g limit (module notes)
 
-    def run(idx, yv, early=True):
+    def run(idx, yv, early=True, uplift_only=False):
         nonlocal runs, unproven
         runs += len(idx)
-        out = runner(families, fam[idx], x[idx], yv, early=early)
-        unproven += int(np.count_nonzero(~out.settled & ~out.overturned))
+        single = np.array([families[f].plinth is None for f in fam[idx]], bool)
+        if uplift_only and not single.all():
+            # only the uplift flags are read: the stack runs may stop once they lift (spectra.runner._run_stacks),
+            # and are no verdicts to count
+            out = runner(families, fam[idx], x[idx], yv, early=early, uplift_only=True)
+        else:
+            out = runner(families, fam[idx], x[idx], yv, early=early)
+            single[:] = True
+        unproven += int(np.count_nonzero((~out.settled & ~out.overturned)[single]))
         return out
 
     def tell(k):
@@ -264,7 +271,7 @@ def _uplift_thresholds(families, fam, n, ap_max, run, vertical: bool = False, li
         found = np.zeros(iso_cols.size, bool)
         pending = np.arange(iso_cols.size)
         while pending.size:  # bracket: double hi until the block uplifts
-            up = run(iso_cols[pending], hi[pending], early=False).uplifted
+            up = run(iso_cols[pending], hi[pending], early=False, uplift_only=True).uplifted
             found[pending[up]] = True
             still = pending[~up]
             lo[still] = hi[still]
@@ -275,7 +282,7 @@ def _uplift_thresholds(families, fam, n, ap_max, run, vertical: bool = False, li
         act = np.flatnonzero(ok)
         while act.size:
             mid = 0.5 * (lo[act] + hi[act])
-            up = run(iso_cols[act], mid, early=False).uplifted
+            up = run(iso_cols[act], mid, early=False, uplift_only=True).uplifted
             hi[act[up]] = mid[up]
             lo[act[~up]] = mid[~up]
             act = act[(hi[act] - lo[act]) > 1e-7 * hi[act]]
@@ -311,8 +318,8 @@ def _stack_thresholds(families, fam, n, run, y_u) -> np.ndarray:
         f = families[fam[i]]
         st = f.body
         ys[j] = min(1.0, st.assembly_uplift_acceleration / (G * math.tan(f.alpha)))
-    below = run(cols, ys, early=False).uplifted
-    above = run(cols, ys * (1.0 + STACK_UPLIFT_GAP), early=False).uplifted
+    below = run(cols, ys, early=False, uplift_only=True).uplifted
+    above = run(cols, ys * (1.0 + STACK_UPLIFT_GAP), early=False, uplift_only=True).uplifted
     ok = ~below & above
     y_u[cols[ok]] = ys[ok]
     return cols[~ok]
