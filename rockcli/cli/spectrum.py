@@ -10,6 +10,7 @@ from rockcli.cli.options import (add_inputs, alias_option, cap_ratio_option, ech
                                  progress_bar, quiet_option, record_kwargs, record_options, restitution_option,
                                  spectrum_vertical_option)
 from rockcli.cli.options import DEFAULT_GAMMA_TEXT, DEFAULT_XI_TEXT, GAMMA_HELP, Group
+from rockcli.cli.spectrum_plinth import on_option, plinth_summary, spectrum_plinths
 from rockcli.cli.types import NUMBER
 
 _SHAPES = "ricker-sym|ricker-anti|sine|cosine"
@@ -30,6 +31,9 @@ def spectrum():
 
     'rocking' is the spectrum of one record instead: peak theta/alpha against the block size R,
     with bearings given by their period in s (docs/rocking-spectrum.md).
+
+    --on NAME:height_ratio=H2/H1,width_ratio=B2/B1 runs every configuration alone and standing on a
+    free plinth in proportion to the block (docs/spectra.md).
     """
 
 
@@ -192,9 +196,10 @@ def _echo_notes(pcs, err=False):
               help="--early (the default) stops each run as soon as its verdict is proven, even during the "
                    "pulse: theta_max_over_alpha is then only a lower bound where peak_final is 0. --full-peaks "
                    "follows every run until its peak is final (the same map, slower).")
+@on_option
 @user_errors
 def overturning(alpha, pulses, records, isolations, csv_path, plot_path, scheduler, as_json, units, dt, fmt, column,
-                wp_p, ap, early, horizon, restitution, cap_ratio):
+                wp_p, ap, early, horizon, restitution, cap_ratio, plinth_spec):
     """Overturning map over omega_p/p x a_p/(g tan alpha), like the paper's Figures 6 and 9.
 
     Light grey: the block rocks and survives; dark grey: it overturns; white: it never uplifts.
@@ -217,13 +222,15 @@ def overturning(alpha, pulses, records, isolations, csv_path, plot_path, schedul
     _check_ap_reach(ap, ap_grid.stop, alphas)
     isos = [parse_isolation(s) for s in isolations]
     _check_outputs(csv_path, plot_path)
+    plinths = spectrum_plinths(plinth_spec, alphas, isos, cap_ratio=cap_ratio)
     runner = _runner(scheduler, horizon, restitution, cap_ratio, isos)
     pcs = _pulses(pulses, records, units, dt, fmt, column)
-    n = len(alphas) * len(pcs) * len(isos) * wp_grid.count * ap_grid.count
+    n = len(alphas) * len(pcs) * len(isos) * len(plinths) * wp_grid.count * ap_grid.count
     t0 = time.perf_counter()
     with runner, progress_bar(n, "cells") as bar:
         update = bar.update if bar else None
-        maps = overturning_maps(alphas, pcs, isos, wp_grid, ap_grid, runner=runner, progress=update, early=early)
+        maps = overturning_maps(alphas, pcs, isos, wp_grid, ap_grid, runner=runner, progress=update, early=early,
+                                plinths=plinths)
     elapsed = time.perf_counter() - t0
     _echo_notes(pcs, as_json)
     summaries = []
@@ -231,10 +238,11 @@ def overturning(alpha, pulses, records, isolations, csv_path, plot_path, schedul
         cells = m.overturned.size
         unsettled = int((~m.settled & ~m.overturned).sum())  # reached the solver's horizon unproven
         summaries.append({"alpha_deg": m.alpha_deg, "pulse": m.pulse.label, "isolation": m.isolation.label,
-                          "n_cells": cells, "n_overturn": int(m.overturned.sum()), "n_never_uplift": int((~m.uplifted).sum()),
+                          **(plinth_summary(m.plinth) if plinth_spec else {}), "n_cells": cells, "n_overturn": int(m.overturned.sum()), "n_never_uplift": int((~m.uplifted).sum()),
                           "n_not_proven": unsettled})
         if not as_json:
-            click.echo(f"alpha = {m.alpha_deg:g} deg, {m.pulse.label}, {m.isolation.label}: "
+            on = "" if not plinth_spec else (" on " + m.plinth.label if m.plinth else " alone")
+            click.echo(f"alpha = {m.alpha_deg:g} deg, {m.pulse.label}, {m.isolation.label}{on}: "
                        f"{int(m.overturned.sum())} of {cells} cells overturn, {int((~m.uplifted).sum())} never uplift"
                        + (f", {unsettled} NOT PROVEN (still moving at the solver's horizon)" if unsettled else ""))
     if as_json:
@@ -252,7 +260,7 @@ def overturning(alpha, pulses, records, isolations, csv_path, plot_path, schedul
     if plot_path:
         from rockcli.report.spectra import plot_maps
 
-        plot_maps(maps, plot_path, n_cols=len(pcs) * len(isos))
+        plot_maps(maps, plot_path, n_cols=len(pcs) * len(isos) * len(plinths))
         click.echo(f"wrote {plot_path}", err=as_json)
 
 
@@ -289,10 +297,11 @@ def _search_options(f):
 @click.option("--ap-max", type=NUMBER, default=20.0, show_default=True,
               help="Largest a_p/(g tan alpha) tried; above it the curve is left empty.")
 @_search_options
+@on_option
 @user_errors
 def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, scheduler, as_json, units, dt, fmt,
                     column, gammas, wp_p, ap_max, step, tol, refine, refine_band, horizon, restitution,
-                    cap_ratio):
+                    cap_ratio, plinth_spec):
     """Minimum overturning acceleration over omega_p/p, like the paper's Figures 7, 8, 9 and 11.
 
     For each omega_p/p: the smallest a_p that overturns, found by scanning up from the uplift
@@ -324,14 +333,15 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
             iso.foundation(1.0)
     isos = list(dict.fromkeys(isos))
     _check_outputs(csv_path, plot_path)
+    plinths = spectrum_plinths(plinth_spec, alphas, isos, cap_ratio=cap_ratio)
     runner = _runner(scheduler, horizon, restitution, cap_ratio, isos)
     pcs = _pulses(pulses, records, units, dt, fmt, column)
-    n = len(alphas) * len(pcs) * len(isos) * xs.size
+    n = len(alphas) * len(pcs) * len(isos) * len(plinths) * xs.size
     t0 = time.perf_counter()
     with runner, progress_bar(n, "search", eta=False, unit="columns") as bar:
         update = bar.update if bar else None
         curves = min_overturning_curves(alphas, pcs, isos, xs, ap_max=ap_max, step=step, tol=tol, refine=refine,
-                                        refine_band=refine_band, runner=runner, progress=update)
+                                        refine_band=refine_band, runner=runner, progress=update, plinths=plinths)
     elapsed = time.perf_counter() - t0
 
     from rockcli.report.spectra import format_min_table, min_rows
@@ -402,9 +412,11 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
 @horizon_option
 @restitution_option
 @spectrum_vertical_option
+@on_option
 @user_errors
 def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, fmt, column, wp_p, xtol, ap_max,
-                  step, tol, refine, refine_band, csv_path, plot_path, scheduler, as_json, horizon, restitution):
+                  step, tol, refine, refine_band, csv_path, plot_path, scheduler, as_json, horizon, restitution,
+                  plinth_spec):
     """Block size beyond which a block is safer without isolation, like the paper's Table I.
 
     Where the minimum overturning curves of the rigid foundation and of the isolated base cross
@@ -439,6 +451,7 @@ def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, 
         gamma = DEFAULT_GAMMA
     isos = table_i_isolations(ratios, xi=xi, gamma=gamma, template=bearing)
     _check_outputs(csv_path, plot_path)
+    plinths = spectrum_plinths(plinth_spec, alphas, isos)
     runner = _runner(scheduler, horizon, restitution, isolations=isos,
                      fix="critical-size compares the rigid foundation with isolated bases, so it cannot take one")
     if pulses or records:
@@ -451,12 +464,13 @@ def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, 
         if pc.T_p is None:
             raise InputError(f"--pulse {pc.shape}: give its period, e.g. {pc.shape}:Tp=0.6")
     shapes = list(dict.fromkeys(pc.shape for pc in pcs))
-    n = len(shapes) * len(alphas) * (1 + len(isos)) * grid.count
+    n = len(shapes) * len(alphas) * len(plinths) * (1 + len(isos)) * grid.count
     t0 = time.perf_counter()
     with runner, progress_bar(n, "search", eta=False, unit="columns") as bar:
         update = bar.update if bar else None
         result = critical_sizes(pcs, alphas, isos, wp_grid=grid, xtol=xtol, ap_max=ap_max, step=step, tol=tol,
-                                refine=refine, refine_band=refine_band, runner=runner, progress=update)
+                                refine=refine, refine_band=refine_band, runner=runner, progress=update,
+                                plinths=plinths)
     elapsed = time.perf_counter() - t0
 
     from rockcli.report.spectra import format_critical_table
@@ -465,7 +479,8 @@ def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, 
     isolation = isos[0].label.replace(f'TbTp={isos[0].ratio:g}', 'TbTp=<ratio>')
     if as_json:
         echo_json({"isolation": isolation, **_csv_options(runner),
-                   "rows": [{**r.as_dict(), "ap_cross_over_g_tan_alpha": r.ap_cross_over_g_tan_alpha,
+                   "rows": [{**r.as_dict(), **({"plinth": r.plinth or None} if plinth_spec else {}),
+                             "ap_cross_over_g_tan_alpha": r.ap_cross_over_g_tan_alpha,
                              "note": r.note or None} for r in result.rows],
                    "notes": list(result.notes)})
     else:
@@ -473,7 +488,8 @@ def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, 
         click.echo(format_critical_table(result.rows))
         for r in result.rows:
             if r.note:
-                click.echo(f"note: {r.source}, alpha = {r.alpha_deg:g} deg, T_b/T_p = {r.Tb_over_Tp:g}: {r.note}")
+                click.echo(f"note: {r.source}, alpha = {r.alpha_deg:g} deg, T_b/T_p = {r.Tb_over_Tp:g}"
+                           f"{' on ' + r.plinth if r.plinth else ''}: {r.note}")
         for note in result.notes:
             click.echo(f"note: {note}")
     click.echo(f"{len(result.rows)} crossings: {result.runs} runs in {elapsed:.2f} s (omega_p/p grid {grid}, "
@@ -492,7 +508,8 @@ def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, 
             if r.wp_over_p_cross == r.wp_over_p_cross:
                 crossings.setdefault((r.alpha_deg, r.pulse), []).append(
                     (r.wp_over_p_cross, r.ap_cross_over_g_tan_alpha,
-                     f"$R$ = {r.R_critical_m:.2f} m ($T_p$ = {r.T_p_s:.3g} s, $T_b/T_p$ = {r.Tb_over_Tp:g})"))
+                     f"$R$ = {r.R_critical_m:.2f} m ($T_p$ = {r.T_p_s:.3g} s, $T_b/T_p$ = {r.Tb_over_Tp:g}"
+                     f"{', on the plinth' if r.plinth else ''})"))
         plot_min_curves(result.curves, plot_path, crossings=crossings)
         click.echo(f"wrote {plot_path}", err=as_json)
 

@@ -8,6 +8,7 @@ from rockcli.cli.errors import InputError, user_errors
 from rockcli.cli.options import (Command, add_inputs, cap_ratio_option, check_outputs, echo_json, horizon_option,
                                  json_option, progress_bar, quiet_option, record_kwargs, record_options,
                                  restitution_option, scaled)
+from rockcli.cli.spectrum_plinth import on_option
 from rockcli.cli.types import NUMBER
 
 
@@ -36,9 +37,10 @@ from rockcli.cli.types import NUMBER
 @horizon_option
 @restitution_option
 @cap_ratio_option
+@on_option
 @user_errors
 def rocking(source, alpha, R, isolations, units, dt, fmt, column, scale, csv_path, plot_path, as_json, scheduler,
-            horizon, restitution, cap_ratio):
+            horizon, restitution, cap_ratio, plinth_spec):
     """Rocking spectrum of one record: peak |theta|/alpha against the block size R (Makris & Konstantinidis 2003).
 
     SOURCE is a record file or a catalogue id ('rockcli records list'). Every point is the block
@@ -67,17 +69,20 @@ def rocking(source, alpha, R, isolations, units, dt, fmt, column, scale, csv_pat
     check_scale(scale, 0.0, "--scale")  # and the record's peak times it, once read
     check_outputs((csv_path, "--csv", False), (plot_path, "--plot", True))
     from rockcli.cli.spectrum import _runner
+    from rockcli.cli.spectrum_plinth import spectrum_plinths
+
+    plinths = spectrum_plinths(plinth_spec, alphas, foundations, cap_ratio=cap_ratio, sizes=sizes)
 
     runner = _runner(scheduler, horizon, restitution, cap_ratio, foundations)
     record = read_record(source, **record_kwargs(units, dt, fmt, column))
     add_inputs([record.meta.get("path")], "the record")
     name = record.name
     record = scaled(record, scale, "--scale", "the record")
-    n = len(alphas) * len(foundations) * sizes.size
+    n = len(alphas) * len(foundations) * len(plinths) * sizes.size
     t0 = time.perf_counter()
     with runner, progress_bar(n, "blocks") as bar:
         curves = rocking_spectrum(record, alphas, foundations, sizes, runner=runner,
-                                  progress=bar.update if bar else None)
+                                  progress=bar.update if bar else None, plinths=plinths)
     elapsed = time.perf_counter() - t0
     from rockcli.cli.spectrum import _csv_options
 
@@ -117,18 +122,27 @@ def _echo_summary(curves, name, scale, pga_g, n, elapsed, runner) -> None:
     shown = name + (f" x {format_number(scale)}" if scale != 1.0 else "")
     click.echo(f"record {shown} (PGA {pga_g:.3f} g): {n} blocks, R {curves[0].R[0]:g}-{curves[0].R[-1]:g} m, "
                f"in {elapsed:.2f} s (every run to the end of the motion: peaks final)")
-    rigid = {c.alpha_deg: c for c in curves if c.isolation == "none"}
+    rigid = {(c.alpha_deg, c.plinth): c for c in curves if c.isolation == "none"}
+    alone = {(c.alpha_deg, c.isolation): c for c in curves if c.plinth is None}
+    on = any(c.plinth is not None for c in curves)
     for c in curves:
         over = np.asarray(c.overturned, bool)
         alive = ~over & np.asarray(c.uplifted, bool)
         peak = f", largest surviving peak {c.theta_max_over_alpha[alive].max():.3f}" if alive.any() else ""
-        click.echo(f"alpha = {c.alpha_deg:g} deg, {c.isolation}: overturns at R = "
+        where = "" if not on else (f" on {c.plinth.label}" if c.plinth is not None else " alone")
+        click.echo(f"alpha = {c.alpha_deg:g} deg, {c.isolation}{where}: overturns at R = "
                    f"{describe_sizes(size_ranges(c.R, over))}{peak}; never uplifts at R = "
                    f"{describe_sizes(size_ranges(c.R, ~np.asarray(c.uplifted, bool)))}")
-        base = rigid.get(c.alpha_deg)
+        base = rigid.get((c.alpha_deg, c.plinth))
         if base is not None and c is not base:
             helps = isolation_helps(base, c)
             hurts = isolation_helps(c, base)
             click.echo(f"  isolation lowers the peak at R = {describe_sizes(size_ranges(c.R, helps))}; raises it at "
                        f"R = {describe_sizes(size_ranges(c.R, hurts))}")
+        base = alone.get((c.alpha_deg, c.isolation))
+        if c.plinth is not None and base is not None:  # the body's own peak, alone and on its plinth
+            helps = isolation_helps(base, c)
+            hurts = isolation_helps(c, base)
+            click.echo(f"  the plinth lowers the body's peak at R = {describe_sizes(size_ranges(c.R, helps))}; raises "
+                       f"it at R = {describe_sizes(size_ranges(c.R, hurts))}")
     _echo_unproven(runner)

@@ -13,6 +13,7 @@ from pathlib import Path
 from rockcli.io.files import check_output, save_figure, write_text
 from rockcli.report.figures import spec_text
 from rockcli.report.spectra import _column_text, _pyplot, constant_columns
+from rockcli.report.spectra_plinth import on_words, plinth_columns, plinth_title, with_plinth
 
 #: Columns of ``rockcli spectrum rocking --csv`` (one row per block size of every curve); the same names
 #: in its ``--json`` curves.
@@ -20,8 +21,9 @@ ROCKING_COLUMNS = ("record", "scale", "alpha_deg", "isolation", "R_m", "p_radps"
                    "overturned", "uplift", "proven", "peak_final")
 
 
-def rocking_columns(curve, record: str, scale: float) -> dict:
-    """One curve (:class:`rockcli.spectra.RockingCurve`) as columns keyed by :data:`ROCKING_COLUMNS`."""
+def rocking_columns(curve, record: str, scale: float, plinth: bool | None = None) -> dict:
+    """One curve (:class:`rockcli.spectra.RockingCurve`) as columns keyed by :data:`ROCKING_COLUMNS` (with
+    ``plinth``, None: when the curve has one, also ``plinth`` and ``toppled``, as the overturning maps')."""
     import numpy as np
 
     n = curve.R.size
@@ -30,18 +32,21 @@ def rocking_columns(curve, record: str, scale: float) -> dict:
             "R_m": np.asarray(curve.R, float), "p_radps": np.asarray(curve.p, float),
             "theta_max_over_alpha": np.asarray(curve.theta_max_over_alpha, float),
             "overturned": np.asarray(curve.overturned, bool), "uplift": np.asarray(curve.uplifted, bool),
-            "proven": np.asarray(curve.proven, bool), "peak_final": np.asarray(curve.peak_final, bool)}
+            "proven": np.asarray(curve.proven, bool), "peak_final": np.asarray(curve.peak_final, bool),
+            **(plinth_columns(curve, n) if (curve.plinth is not None if plinth is None else plinth) else {})}
 
 
 def write_rocking_csv(curves, path, record: str, scale: float = 1.0, extra: dict | None = None) -> Path:
     """Every point of ``curves`` as CSV, atomically (``extra``: constant columns appended, e.g. a given
     ``restitution``; :func:`rockcli.report.spectra.constant_columns`)."""
+    curves = list(curves)
+    columns = with_plinth(ROCKING_COLUMNS, curves)
     fh = io.StringIO()
     w = csv.writer(fh, lineterminator="\n")
-    w.writerow(ROCKING_COLUMNS)
+    w.writerow(columns)
     for c in curves:
-        cols = rocking_columns(c, record, scale)
-        w.writerows(zip(*(_column_text(cols[k]) for k in ROCKING_COLUMNS)))
+        cols = rocking_columns(c, record, scale, plinth=columns != ROCKING_COLUMNS)
+        w.writerows(zip(*(_column_text(cols[k]) for k in columns)))
     return write_text(path, constant_columns(fh.getvalue(), extra))
 
 
@@ -52,6 +57,8 @@ def rocking_json(curves) -> list:
     for c in curves:
         cols = rocking_columns(c, "", 1.0)
         out.append({"alpha_deg": float(c.alpha_deg), "isolation": c.isolation,
+                    **({"plinth": c.plinth.label, "toppled": cols["toppled"].tolist()} if c.plinth is not None else
+                       {"plinth": None} if any(d.plinth is not None for d in curves) else {}),
                     **{k: cols[k].tolist() for k in ROCKING_COLUMNS[4:]}})
     return out
 
@@ -100,8 +107,11 @@ def plot_rocking_spectrum(curves, path, *, title: str, dpi: int = 120) -> Path:
             style = _STYLES[alphas.index(c.alpha_deg) % len(_STYLES)]
             rigid = c.isolation == "none"
             colour = "k" if rigid else f"C{isolated.index(c.isolation) % 10}"
-            label = f"$\\alpha$ = {c.alpha_deg:g}$\\degree$, {spec_text(c.isolation)}"
-            ax.plot(c.R, c.plotted, ls=style, lw=2.6 if rigid else 1.3, color=colour, label=label,
+            label = f"$\\alpha$ = {c.alpha_deg:g}$\\degree$, {spec_text(c.isolation)}" + on_words(c, curves)
+            mark = {} if c.plinth is None else {"marker": "v", "ms": 3.5, "mfc": "none", "mew": 0.8,
+                                                 "markevery": max(1, c.R.size // 12)}  # --on: marked, thinner
+            ax.plot(c.R, c.plotted, ls=style, lw=2.6 if rigid and c.plinth is None else 1.3, color=colour, label=label,
+                    **mark,
                     zorder=3 if rigid else 4)
             over = np.asarray(c.overturned, bool)
             if over.any():
@@ -133,7 +143,8 @@ def plot_rocking_spectrum(curves, path, *, title: str, dpi: int = 120) -> Path:
         if any(np.asarray(c.overturned).any() for c in curves):
             handles.append(Line2D([], [], color="0.3", marker="o", mfc="none", ls="none", mew=0.8))
             labels.append(r"overturns (drawn at $|\theta|/\alpha$ = 1)")
-        ax.set_title(title, fontsize=9)
+        ax.set_title(plinth_title(title, curves), fontsize=9,
+                     **({"wrap": True} if any(c.plinth is not None for c in curves) else {}))
         fig.legend(handles, labels, fontsize=7, frameon=False, loc="lower center", ncol=2)
         fig.tight_layout(rect=(0, (0.05 + 0.15 * rows) / height, 1, 1))
         return save_figure(fig, path, dpi=dpi)

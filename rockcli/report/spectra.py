@@ -14,6 +14,7 @@ from pathlib import Path
 
 from rockcli.io.files import check_output, save_figure, write_text
 from rockcli.io.units import G
+from rockcli.report.spectra_plinth import on_words, plinth_columns, plinth_title, with_plinth
 
 #: Columns of ``rockcli spectrum overturning --csv`` (one row per cell of every map).
 MAP_COLUMNS = ("alpha_deg", "pulse", "isolation", "T_p_s", "R_m", "wp_over_p", "ap_over_g_tan_alpha", "ap_g",
@@ -106,9 +107,10 @@ def _column_text(values) -> list:
     return [str(x) for x in v.tolist()]
 
 
-def map_columns(m) -> dict:
+def map_columns(m, plinth: bool | None = None) -> dict:
     """The cells of one map (:class:`rockcli.spectra.OverturningMap`) as columns keyed by
-    :data:`MAP_COLUMNS`, row by row (a_p outer, omega_p/p inner)."""
+    :data:`MAP_COLUMNS`, row by row (a_p outer, omega_p/p inner); with ``plinth`` (None: when the map has one) also
+    ``plinth`` (its spec, empty for the block alone) and ``toppled`` (``body``, ``plinth`` or empty)."""
     import numpy as np
 
     x = np.asarray(m.wp_over_p, dtype=float)
@@ -126,18 +128,21 @@ def map_columns(m) -> dict:
             "theta_max_over_alpha": np.asarray(m.theta_max_over_alpha, dtype=float).ravel(),
             "uplift": np.asarray(m.uplifted, dtype=bool).ravel(),
             "peak_final": np.asarray(m.peak_final, dtype=bool).ravel(),
-            "proven": (np.asarray(m.settled, dtype=bool) | np.asarray(m.overturned, dtype=bool)).ravel()}
+            "proven": (np.asarray(m.settled, dtype=bool) | np.asarray(m.overturned, dtype=bool)).ravel(),
+            **(plinth_columns(m, n) if (m.plinth is not None if plinth is None else plinth) else {})}
 
 
 def write_map_csv(maps, path, extra: dict | None = None) -> Path:
     """Write every cell of ``maps`` (:class:`rockcli.spectra.OverturningMap`) as CSV, atomically
     (``extra``: constant columns appended, see :func:`constant_columns`)."""
+    maps = list(maps)
+    columns = with_plinth(MAP_COLUMNS, maps)
     fh = io.StringIO()
     w = csv.writer(fh, lineterminator="\n")
-    w.writerow(MAP_COLUMNS)
+    w.writerow(columns)
     for m in maps:
-        cols = map_columns(m)
-        w.writerows(zip(*(_column_text(cols[c]) for c in MAP_COLUMNS)))
+        cols = map_columns(m, plinth=columns != MAP_COLUMNS)
+        w.writerows(zip(*(_column_text(cols[c]) for c in columns)))
     return write_text(path, constant_columns(fh.getvalue(), extra))
 
 
@@ -211,18 +216,29 @@ def plot_maps(maps, path, *, n_cols: int | None = None, title: str | None = None
             dy = (y[-1] - y[0]) / max(1, y.size - 1) if y.size > 1 else 1.0
             ax.imshow(code, origin="lower", aspect="auto", cmap=cmap, norm=norm, interpolation="nearest",
                       extent=(x[0] - dx / 2, x[-1] + dx / 2, y[0] - dy / 2, y[-1] + dy / 2))
-            put_title(ax, f"$\\alpha$ = {m.alpha_deg:g}°, {_pulse_words(m.pulse)}\n{legend[_iso_label(m.isolation)]}",
-                      fontsize=8)
+            if m.toppled is not None and (np.asarray(m.toppled) == 2).any():  # --on: where the plinth topples
+                from matplotlib.collections import PatchCollection
+                from matplotlib.patches import Rectangle
+
+                rows, cols = np.nonzero(np.asarray(m.toppled) == 2)
+                ax.add_collection(PatchCollection(
+                    [Rectangle((x[j] - dx / 2, y[i] - dy / 2), dx, dy) for i, j in zip(rows, cols)],
+                    facecolor="none", edgecolor="white", hatch="////", linewidth=0.0))
+            put_title(ax, f"$\\alpha$ = {m.alpha_deg:g}°, {_pulse_words(m.pulse)}\n{legend[_iso_label(m.isolation)]}"
+                      + on_words(m, maps), fontsize=8)
             ax.set_xlabel(r"$\omega_p / p$", fontsize=8)
             ax.set_ylabel(r"$a_p / (g \tan\alpha)$", fontsize=8)
             ax.tick_params(labelsize=7)
             _r_axis(ax, m.pulse.T_p)
         handles = [Patch(facecolor=c, edgecolor="0.5", label=lab)
                    for c, lab in zip(MAP_COLOURS, ("no uplift", "no overturning", "overturning"))]
-        fig.legend(handles=handles, loc="outside lower center", ncol=3, fontsize=8, frameon=False)
+        if any(m.toppled is not None for m in maps):
+            handles.append(Patch(facecolor=MAP_COLOURS[2], edgecolor="white", hatch="////",
+                                 label="overturning: the plinth topples (else the body off it)"))
+        fig.legend(handles=handles, loc="outside lower center", ncol=len(handles), fontsize=8, frameon=False)
         if common and not title:
             title = f"isolation: {common}"
-        return _finish(fig, path, dpi, title)
+        return _finish(fig, path, dpi, plinth_title(title, maps))
     finally:
         plt.close(fig)
 
@@ -231,7 +247,10 @@ def plot_maps(maps, path, *, n_cols: int | None = None, title: str | None = None
 # Minimum overturning curves
 # --------------------------------------------------------------------------------------------------
 def min_rows(curves):
-    """One dict per point of every curve, keyed by :data:`MIN_COLUMNS`."""
+    """One dict per point of every curve, keyed by :data:`MIN_COLUMNS` (and ``plinth``, its spec or empty, when
+    a curve stands on a plinth)."""
+    curves = list(curves)
+    on = any(c.plinth is not None for c in curves)
     for c in curves:
         tan_a = math.tan(math.radians(c.alpha_deg))
         T_p = c.pulse.T_p
@@ -243,12 +262,14 @@ def min_rows(curves):
                    "ap_uplift_over_g_tan_alpha": float(c.ap_uplift[j]), "ap_min_g": float(c.ap_min[j]) * tan_a,
                    "scan_step": c.step, "tolerance": c.tol, "ap_max_over_g_tan_alpha": c.ap_max,
                    "refine_step": c.refine, "refine_band": c.refine_band,
-                   "stepped_over_by_scan": bool(c.refined[j]) if c.refined is not None else False}
+                   "stepped_over_by_scan": bool(c.refined[j]) if c.refined is not None else False,
+                   **({"plinth": "" if c.plinth is None else c.plinth.label} if on else {})}
 
 
 def write_min_csv(curves, path, extra: dict | None = None) -> Path:
     """Write the minimum-overturning curves as CSV (:data:`MIN_COLUMNS`; ``extra`` appended), atomically."""
-    return _write_rows(path, MIN_COLUMNS, min_rows(curves), extra)
+    curves = list(curves)
+    return _write_rows(path, with_plinth(MIN_COLUMNS, curves), min_rows(curves), extra)
 
 
 def _panels(curves) -> list:
@@ -283,9 +304,12 @@ def plot_min_curves(curves, path, *, crossings=None, title: str | None = None, y
     alphas = list(dict.fromkeys(a for a, _, _ in panels))
     shapes = list(dict.fromkeys(s for _, s, _ in panels))
     n_iso = max(sum(not c.isolation.rigid for c in mine) for _, _, mine in panels)
+    on = any(c.plinth is not None for c in curves)
+    isos = list(dict.fromkeys(_iso_label(c.isolation) for c in curves))
     legend, common = split_labels(_iso_label(c.isolation) for c in curves)
-    chars = max(len(lab.replace("$", "")) for lab in legend.values())
-    n_leg = len(legend)
+    chars = max(len(lab.replace("$", "")) + len(on_words(c, curves)) for lab, c in
+                ((legend[_iso_label(c.isolation)], c) for c in curves))
+    n_leg = len({(legend[_iso_label(c.isolation)], on_words(c, curves)) for c in curves})
     ncol = max(1, min(n_leg, int((4.6 * len(shapes) + 0.4) * 72.0 / (chars * 0.5 * 7.0 + 40.0))))
     fig, axes, under = _panel_grid(len(alphas), len(shapes), plt, width=4.6, height=3.6, extra=0.7,
                                    legend_rows=0.065 * math.ceil(n_leg / ncol) / len(alphas) ** 0.5)
@@ -300,18 +324,25 @@ def plot_min_curves(curves, path, *, crossings=None, title: str | None = None, y
                 y = np.asarray(c.ap_min, dtype=float)
                 if np.isfinite(y).any():
                     top = max(top, float(np.nanmax(y)))
-                if c.isolation.rigid:
-                    ax.plot(c.wp_over_p, y, color="k", lw=2.6, label=legend[_iso_label(c.isolation)], zorder=3)
+                label = legend[_iso_label(c.isolation)] + on_words(c, curves)
+                if on:  # --on: one colour per foundation, solid alone and dashed on the plinth
+                    j = isos.index(_iso_label(c.isolation))
+                    colour = "k" if c.isolation.rigid else f"C{j % 10}"
+                    ax.plot(c.wp_over_p, y, color=colour, ls="-" if c.plinth is None else "--",
+                            lw=2.6 if c.isolation.rigid else 1.4, label=label, zorder=3 if c.isolation.rigid else 2)
+                    k += 1
+                elif c.isolation.rigid:
+                    ax.plot(c.wp_over_p, y, color="k", lw=2.6, label=label, zorder=3)
                 else:
                     every = max(1, c.wp_over_p.size // 10)
                     ax.plot(c.wp_over_p, y, ls=styles[k % len(styles)], lw=1.3, color=f"C{k % 10}",
                             marker=markers[k % len(markers)], ms=4, mfc="none", mew=0.9,
                             markevery=(int(k * every / max(1, n_iso)) % every, every),
-                            label=legend[_iso_label(c.isolation)])
+                            label=label)
                     k += 1
                 if c.refined is not None and c.refined.any():
                     ax.plot(c.wp_over_p[c.refined], y[c.refined], "x", ms=3.5, mew=0.8,
-                            color="k" if c.isolation.rigid else f"C{(k - 1) % 10}", zorder=4)
+                            color=colour if on else "k" if c.isolation.rigid else f"C{(k - 1) % 10}", zorder=4)
                 T_p = c.pulse.T_p
             for (xc, yc, lab) in (crossings or {}).get((a, sh), []):
                 ax.plot([xc], [yc], "o", ms=5, mfc="none", mec="k")
@@ -333,7 +364,7 @@ def plot_min_curves(curves, path, *, crossings=None, title: str | None = None, y
         footnote(fig, _search_note(curves), fontsize=6.5)
         if common and not title:
             title = f"isolation: {common}"
-        return _finish(fig, path, dpi, title)
+        return _finish(fig, path, dpi, plinth_title(title, curves))
     finally:
         plt.close(fig)
 
@@ -380,7 +411,7 @@ def format_min_table(curves, n_rows: int = 12) -> str:
     for (a, sh, cs) in _panels(curves):
         x = cs[0].wp_over_p
         idx = np.unique(np.linspace(0, x.size - 1, min(n_rows, x.size)).round().astype(int))
-        head = ["wp/p"] + [c.isolation.label for c in cs]
+        head = ["wp/p"] + [c.isolation.label + ("" if c.plinth is None else f" on {c.plinth.name}") for c in cs]
         table = [head, ["uplift"] + [_range(c.ap_uplift) for c in cs]]
         for i in idx:
             table.append([f"{x[i]:.3g}"] + [_num(c.ap_min[i], c.ap_max) for c in cs])
@@ -417,17 +448,24 @@ def _num(v, ap_max=None):
 def write_critical_csv(rows, path, extra: dict | None = None) -> Path:
     """Write the critical sizes (:class:`rockcli.spectra.CriticalRow`) as CSV (:data:`CRITICAL_COLUMNS`;
     ``extra`` appended)."""
-    return _write_rows(path, CRITICAL_COLUMNS, (r.as_dict() for r in rows), extra)
+    rows = list(rows)
+    on = any(getattr(r, "plinth", "") for r in rows)  # --on: the plinth of each row (empty: the body alone)
+    return _write_rows(path, CRITICAL_COLUMNS + (("plinth",) if on else ()),
+                       ({**r.as_dict(), **({"plinth": r.plinth} if on else {})} for r in rows), extra)
 
 
 def format_critical_table(rows) -> str:
     """Table I as aligned text: one line per pulse, slenderness and T_b/T_p."""
     head = ["source", "pulse", "T_p [s]", "alpha [deg]", "Tb/Tp", "T_b [s]", "wp/p cross", "R_critical [m]"]
+    rows = list(rows)
+    on = any(getattr(r, "plinth", "") for r in rows)
+    head += ["on"] if on else []
     table = [head]
     for r in rows:
         table.append([r.source, r.pulse, f"{r.T_p_s:.3g}", f"{r.alpha_deg:g}", f"{r.Tb_over_Tp:g}", f"{r.Tb_s:.3g}",
                       "-" if math.isnan(r.wp_over_p_cross) else f"{r.wp_over_p_cross:.3f}",
-                      "-" if math.isnan(r.R_critical_m) else f"{r.R_critical_m:.3f}"])
+                      "-" if math.isnan(r.R_critical_m) else f"{r.R_critical_m:.3f}"]
+                     + ([r.plinth.partition(":")[0] if r.plinth else "alone"] if on else []))
     widths = [max(len(t[j]) for t in table) for j in range(len(head))]
     out = []
     for k, t in enumerate(table):

@@ -12,6 +12,9 @@ order:
     isolation on the reference block), whose cells differ only in ``x = omega_p/p`` and
     ``y = a_p/(g tan alpha)``. Its notes say why the maps do not depend on the block size. A
     :class:`VerticalChoice` is a vertical pulse under every cell (``a_v/g`` and ``T_v/T_p`` fixed).
+:mod:`rockcli.spectra.plinth`
+    A free plinth under every cell, in proportion to the body (:class:`PlinthRatio`, ``--on``): why ratios
+    keep a spectrum dimensionless and metres would not.
 :mod:`rockcli.spectra.runner`
     :class:`Cells` (the outcome arrays) and the :class:`Runner`: cells run in one batch on this
     machine or in chunks on a Dask cluster.
@@ -41,6 +44,7 @@ from rockcli.spectra.minimum import (DEFAULT_AP_MAX, DEFAULT_REFINE, DEFAULT_REF
                                      search_min_overturning)
 from rockcli.spectra.rocking import (RecordFamily, RockingCurve, describe_sizes, frequency_parameter,
                                      isolation_helps, rocking_spectrum, size_grid, size_ranges)
+from rockcli.spectra.plinth import PlinthRatio, parse_plinth_ratio
 from rockcli.spectra.runner import Cells, Runner, run_cells_local
 from rockcli.spectra.scenes import (REFERENCE_R, SHAPES, Family, Isolation, PulseChoice, VerticalChoice,
                                     parse_isolation, parse_pulse_choice, parse_vertical_choice, pulse_from_record)
@@ -48,9 +52,9 @@ from rockcli.spectra.scenes import (REFERENCE_R, SHAPES, Family, Isolation, Puls
 __all__ = ["CROSSING_GRID", "DEFAULT_AP_MAX", "DEFAULT_REFINE", "DEFAULT_REFINE_BAND", "DEFAULT_STEP",
            "DEFAULT_TOL", "REFERENCE_R", "SHAPES", "TABLE_I_ALPHAS_DEG", "TABLE_I_GAMMA", "TABLE_I_PULSES",
            "TABLE_I_TB_TP", "TABLE_I_XI", "Cells", "CriticalResult", "CriticalRow", "Family", "Grid",
-           "Isolation", "MinCurve", "MinSearch", "OverturningMap", "PulseChoice", "RecordFamily",
+           "Isolation", "MinCurve", "MinSearch", "OverturningMap", "PlinthRatio", "PulseChoice", "RecordFamily",
            "RockingCurve", "Runner", "VerticalChoice", "critical_R", "critical_sizes", "describe_search", "describe_sizes",
            "frequency_parameter", "isolation_helps", "min_overturning_curves", "overturning_map",
-           "overturning_maps", "parse_grid", "parse_isolation", "parse_list", "parse_pulse_choice", "parse_vertical_choice",
+           "overturning_maps", "parse_grid", "parse_isolation", "parse_list", "parse_plinth_ratio", "parse_pulse_choice", "parse_vertical_choice",
            "pulse_from_record", "rocking_spectrum", "run_cells_local", "search_min_overturning",
            "size_grid", "size_ranges", "table_i_isolations", "table_i_pulses"]

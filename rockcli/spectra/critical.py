@@ -57,6 +57,8 @@ class CriticalRow:
     isolation: str = ""
     note: str = ""
     ap_cross_over_g_tan_alpha: float = float("nan")
+    #: the plinth the body stands on, rigid and isolated alike (its spec; empty: the body alone)
+    plinth: str = ""
 
     def as_dict(self) -> dict:
         return {k: getattr(self, k) for k in ("source", "pulse", "T_p_s", "alpha_deg", "Tb_over_Tp", "Tb_s",
@@ -75,14 +77,16 @@ def critical_sizes(pulses: Sequence[PulseChoice], alphas_deg: Sequence[float], i
                    wp_grid: Grid = Grid(*CROSSING_GRID), xtol: float = 1e-3, ap_max: float = 50.0,
                    step: float = DEFAULT_STEP, tol: float = DEFAULT_TOL, refine: float = DEFAULT_REFINE,
                    refine_band: float = DEFAULT_REFINE_BAND, R: float = REFERENCE_R,
-                   runner: Optional[Runner] = None, progress=None) -> CriticalResult:
+                   runner: Optional[Runner] = None, progress=None, plinths: Sequence = (None,)) -> CriticalResult:
     """Where the rigid and isolated minimum-overturning curves cross, as a block size (Table I).
 
     For every pulse (with ``T_p``), slenderness and isolation: the curves on ``wp_grid``, the last
     change from ``y_rigid <= y_iso`` to ``y_rigid > y_iso`` beyond which the rigid curve stays above
     (no overturning up to ``ap_max`` counts as infinitely high; where neither overturns, as "rigid
     better": isolation brings nothing there), refined by bisection in ``x`` to ``xtol`` (relative).
-    Rows come in the order pulse, alpha, isolation.
+    Rows come in the order pulse, alpha, isolation, plinth. ``plinths``: None (the body alone) and/or
+    :class:`rockcli.spectra.plinth.PlinthRatio` plinths: the rigid and the isolated curves of the body on that
+    plinth are compared (the size is the body's R, the plinth in proportion to it).
     """
     from rockcli.spectra.arguments import as_alphas, as_grid, as_isolations, as_pulses
 
@@ -102,8 +106,10 @@ def critical_sizes(pulses: Sequence[PulseChoice], alphas_deg: Sequence[float], i
     shapes = list(dict.fromkeys(pc.shape for pc in pulses))
     rigid = Isolation("none")
     # the dimensionless curves depend on the shape, not on T_p: one rigid + isolated set per shape
-    fam_keys = [(a, sh, iso) for sh in shapes for a in alphas_deg for iso in [rigid, *isolations]]
-    families = [Family(math.radians(a), sh, iso, R) for a, sh, iso in fam_keys]
+    plinths = list(plinths)
+    fam_keys = [(a, sh, iso, pl) for sh in shapes for a in alphas_deg for pl in plinths
+                for iso in [rigid, *isolations]]
+    families = [Family(math.radians(a), sh, iso, R, pl) for a, sh, iso, pl in fam_keys]
     findex = {k: i for i, k in enumerate(fam_keys)}
     fam = np.repeat(np.arange(len(families)), xs.size)
     search = dict(ap_max=ap_max, step=step, tol=tol, refine=refine, refine_band=refine_band)
@@ -111,7 +117,7 @@ def critical_sizes(pulses: Sequence[PulseChoice], alphas_deg: Sequence[float], i
                                  **search)
     runs = res.runs
     grid_min = {k: res.ap_min[i * xs.size:(i + 1) * xs.size] for k, i in findex.items()}
-    curves = curves_of(res, [(a, PulseChoice(sh), iso) for a, sh, iso in fam_keys], xs, **search)
+    curves = curves_of(res, [(a, PulseChoice(sh), iso, pl) for a, sh, iso, pl in fam_keys], xs, **search)
 
     def better_rigid(yr, yi):
         # no overturning up to ap_max counts as infinitely high; when neither overturns, isolation
@@ -124,31 +130,31 @@ def critical_sizes(pulses: Sequence[PulseChoice], alphas_deg: Sequence[float], i
     # per (shape, alpha, isolation): bracket on the grid
     tasks = {}
     notes = []
-    for sh in shapes:
-        for a in alphas_deg:
-            yr = grid_min[(a, sh, rigid)]
-            for iso in isolations:
-                yi = grid_min[(a, sh, iso)]
-                both_inf = np.isnan(yr) & np.isnan(yi)
-                b = better_rigid(yr, yi)
-                key = (sh, a, iso)
-                changes = int(np.count_nonzero(b[1:] != b[:-1]))
-                if both_inf.any():
-                    top = min(ap_max, y_limit(math.radians(a)))  # the search stops at a_p = 100 g
-                    upto = f"{ap_max:g}" if top >= ap_max else f"about {top:.4g} (a_p = 100 g)"
-                    notes.append(f"{sh}, alpha = {a:g} deg, {iso.label}: neither overturns up to "
-                                 f"{upto} g tan(alpha) at omega_p/p >= {xs[both_inf][0]:.3g} "
-                                 f"({int(both_inf.sum())} grid values, counted as rigid better)")
-                if b.all():
-                    tasks[key] = ("below", xs[0], xs[0])
-                elif not b[-1]:
-                    tasks[key] = ("above", xs[-1], xs[-1])
-                else:
-                    i = int(np.flatnonzero(~b)[-1])
-                    tasks[key] = ("bracket", xs[i], xs[i + 1])
-                    if changes > 1:
-                        notes.append(f"{sh}, alpha = {a:g} deg, {iso.label}: the curves cross {changes} times on "
-                                     f"the grid; the last crossing is used (rigid better beyond it)")
+    for sh, a, pl in ((sh, a, pl) for sh in shapes for a in alphas_deg for pl in plinths):
+        yr = grid_min[(a, sh, rigid, pl)]
+        on = "" if pl is None else f" on {pl.label}"
+        for iso in isolations:
+            yi = grid_min[(a, sh, iso, pl)]
+            both_inf = np.isnan(yr) & np.isnan(yi)
+            b = better_rigid(yr, yi)
+            key = (sh, a, iso, pl)
+            changes = int(np.count_nonzero(b[1:] != b[:-1]))
+            if both_inf.any():
+                top = min(ap_max, y_limit(math.radians(a)))  # the search stops at a_p = 100 g
+                upto = f"{ap_max:g}" if top >= ap_max else f"about {top:.4g} (a_p = 100 g)"
+                notes.append(f"{sh}, alpha = {a:g} deg, {iso.label}{on}: neither overturns up to "
+                             f"{upto} g tan(alpha) at omega_p/p >= {xs[both_inf][0]:.3g} "
+                             f"({int(both_inf.sum())} grid values, counted as rigid better)")
+            if b.all():
+                tasks[key] = ("below", xs[0], xs[0])
+            elif not b[-1]:
+                tasks[key] = ("above", xs[-1], xs[-1])
+            else:
+                i = int(np.flatnonzero(~b)[-1])
+                tasks[key] = ("bracket", xs[i], xs[i + 1])
+                if changes > 1:
+                    notes.append(f"{sh}, alpha = {a:g} deg, {iso.label}{on}: the curves cross {changes} times on "
+                                 f"the grid; the last crossing is used (rigid better beyond it)")
     # bisection in x, all brackets together
     lo = {k: v[1] for k, v in tasks.items() if v[0] == "bracket"}
     hi = {k: v[2] for k, v in tasks.items() if v[0] == "bracket"}
@@ -159,9 +165,9 @@ def critical_sizes(pulses: Sequence[PulseChoice], alphas_deg: Sequence[float], i
             break
         fams, xv = [], []
         for k in act:
-            sh, a, iso = k
+            sh, a, iso, pl = k
             m = 0.5 * (lo[k] + hi[k])
-            fams += [findex[(a, sh, rigid)], findex[(a, sh, iso)]]
+            fams += [findex[(a, sh, rigid, pl)], findex[(a, sh, iso, pl)]]
             xv += [m, m]
         r = search_min_overturning(families, np.array(fams), np.array(xv), runner=runner, **search)
         runs += r.runs
@@ -174,25 +180,26 @@ def critical_sizes(pulses: Sequence[PulseChoice], alphas_deg: Sequence[float], i
             else:
                 lo[k] = m
     rows = []
-    for pc in pulses:
-        for a in alphas_deg:
-            for iso in isolations:
-                kind, x0, x1 = tasks[(pc.shape, a, iso)]
-                note = ""
-                if kind == "bracket":
-                    xc = 0.5 * (lo[(pc.shape, a, iso)] + hi[(pc.shape, a, iso)])
-                    Rc = critical_R(pc.T_p, xc)
-                    yc = y_at.get((pc.shape, a, iso), (np.nan, np.nan))[1]
-                elif kind == "below":
-                    xc, Rc, yc = np.nan, np.nan, np.nan
-                    note = (f"rigid better over the whole grid: crossing below omega_p/p = {x0:g} "
-                            f"(R < {critical_R(pc.T_p, x0):.3g} m)")
-                else:
-                    xc, Rc, yc = np.nan, np.nan, np.nan
-                    note = (f"isolation better up to omega_p/p = {x1:g}: crossing beyond the grid "
-                            f"(R > {critical_R(pc.T_p, x1):.3g} m)")
-                rows.append(CriticalRow(pc.source, pc.shape, float(pc.T_p), float(a), float(iso.ratio),
-                                        float(f"{iso.ratio * pc.T_p:.12g}"), float(xc), float(Rc), iso.label, note, float(yc)))
+    for pc, a, iso, pl in ((pc, a, iso, pl) for pc in pulses for a in alphas_deg for iso in isolations
+                           for pl in plinths):
+        key = (pc.shape, a, iso, pl)
+        kind, x0, x1 = tasks[key]
+        note = ""
+        if kind == "bracket":
+            xc = 0.5 * (lo[key] + hi[key])
+            Rc = critical_R(pc.T_p, xc)
+            yc = y_at.get(key, (np.nan, np.nan))[1]
+        elif kind == "below":
+            xc, Rc, yc = np.nan, np.nan, np.nan
+            note = (f"rigid better over the whole grid: crossing below omega_p/p = {x0:g} "
+                    f"(R < {critical_R(pc.T_p, x0):.3g} m)")
+        else:
+            xc, Rc, yc = np.nan, np.nan, np.nan
+            note = (f"isolation better up to omega_p/p = {x1:g}: crossing beyond the grid "
+                    f"(R > {critical_R(pc.T_p, x1):.3g} m)")
+        rows.append(CriticalRow(pc.source, pc.shape, float(pc.T_p), float(a), float(iso.ratio),
+                                float(f"{iso.ratio * pc.T_p:.12g}"), float(xc), float(Rc), iso.label, note, float(yc),
+                                "" if pl is None else pl.label))
     return CriticalResult(rows=rows, curves=curves, notes=notes, runs=runs)
 
 

@@ -37,6 +37,10 @@ class OverturningMap:
     settled: np.ndarray
     peak_final: np.ndarray
     nfev: int
+    #: the plinth the block stands on in every cell (:class:`rockcli.spectra.plinth.PlinthRatio`; None: alone)
+    plinth: Optional[object] = None
+    #: which block toppled, per cell, on a plinth: 0 none, 1 the body, 2 the plinth (None without a plinth)
+    toppled: Optional[np.ndarray] = None
 
     @property
     def isolation_label(self) -> str:
@@ -45,25 +49,28 @@ class OverturningMap:
 
 def overturning_maps(alphas_deg: Sequence[float], pulses: Sequence[PulseChoice], isolations: Sequence[Isolation],
                      wp_grid: Grid, ap_grid: Grid, *, R: float = REFERENCE_R, runner: Optional[Runner] = None,
-                     progress=None, early: bool = False) -> list[OverturningMap]:
-    """Overturning maps for every ``alpha x pulse x isolation`` (in that nesting order), in one batch.
+                     progress=None, early: bool = False, plinths: Sequence = (None,)) -> list[OverturningMap]:
+    """Overturning maps for every ``alpha x pulse x isolation x plinth`` (in that nesting order), in one batch.
 
     ``early``: stop each run once its verdict is proven (faster; the same verdicts and uplift flags,
-    ``theta_max_over_alpha`` then a lower bound where ``peak_final`` is False).
+    ``theta_max_over_alpha`` then a lower bound where ``peak_final`` is False). ``plinths``: None (the block
+    alone) and/or :class:`rockcli.spectra.plinth.PlinthRatio` plinths the block stands on (its maps then run on
+    the stack driver, full peaks whatever ``early`` says: :mod:`rockcli.spectra.runner`).
     """
     from rockcli.spectra.arguments import as_alphas, as_grid, as_isolations, as_pulses
 
     alphas_deg, pulses, isolations = as_alphas(alphas_deg), as_pulses(pulses), as_isolations(isolations)
     wp_grid, ap_grid = as_grid(wp_grid, "wp_grid"), as_grid(ap_grid, "ap_grid")
-    cells = len(alphas_deg) * len(pulses) * len(isolations) * wp_grid.count * ap_grid.count
+    plinths = list(plinths)
+    cells = len(alphas_deg) * len(pulses) * len(isolations) * len(plinths) * wp_grid.count * ap_grid.count
     if cells > MAX_CELLS:
         raise RockcliInputError(f"the maps have {cells:,} cells (slenderness x pulse x foundation x omega_p/p x "
                                 f"a_p); at most {MAX_CELLS:,} are run at once (about 20 minutes on 2 cores): use "
                                 "coarser grids or fewer configurations")
     runner = runner or Runner()
     xs, ys = wp_grid.values, ap_grid.values
-    families = [Family(math.radians(a), pc.shape, iso, R) for a in alphas_deg for pc in pulses for iso in isolations]
-    keys = [(a, pc, iso) for a in alphas_deg for pc in pulses for iso in isolations]
+    keys = [(a, pc, iso, pl) for a in alphas_deg for pc in pulses for iso in isolations for pl in plinths]
+    families = [Family(math.radians(a), pc.shape, iso, R, pl) for a, pc, iso, pl in keys]
     Y, X = np.meshgrid(ys, xs, indexing="ij")
     ncell = X.size
     fam = np.repeat(np.arange(len(families)), ncell)
@@ -71,14 +78,15 @@ def overturning_maps(alphas_deg: Sequence[float], pulses: Sequence[PulseChoice],
                  early=early)
     maps = []
     shape = X.shape
-    for j, (a, pc, iso) in enumerate(keys):
+    for j, (a, pc, iso, pl) in enumerate(keys):
         s = slice(j * ncell, (j + 1) * ncell)
         maps.append(OverturningMap(
             alpha_deg=float(a), pulse=pc, isolation=iso, wp_over_p=xs, ap_over_g_tan_alpha=ys,
             overturned=res.overturned[s].reshape(shape), uplifted=res.uplifted[s].reshape(shape),
             theta_max_over_alpha=res.theta_max_over_alpha[s].reshape(shape),
             settled=res.settled[s].reshape(shape), peak_final=res.peak_final[s].reshape(shape),
-            nfev=int(res.nfev[s].sum())))
+            nfev=int(res.nfev[s].sum()), plinth=pl,
+            toppled=None if pl is None else res.toppled[s].reshape(shape)))
     return maps
 
 

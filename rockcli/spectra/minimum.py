@@ -191,11 +191,18 @@ def search_min_overturning(families: Sequence[Family], fam, x, *, ap_max: float 
     limits = np.array([y_limit(f.alpha) for f in families])
     cap = np.minimum(ap_max, limits[fam]) if n else np.zeros(0)  # the 100 g limit (module notes)
 
-    def run(idx, yv, early=True):
+    def run(idx, yv, early=True, uplift_only=False):
         nonlocal runs, unproven
         runs += len(idx)
-        out = runner(families, fam[idx], x[idx], yv, early=early)
-        unproven += int(np.count_nonzero(~out.settled & ~out.overturned))
+        single = np.array([families[f].plinth is None for f in fam[idx]], bool)
+        if uplift_only and not single.all():
+            # only the uplift flags are read: the stack runs may stop once they lift (spectra.runner._run_stacks),
+            # and are no verdicts to count
+            out = runner(families, fam[idx], x[idx], yv, early=early, uplift_only=True)
+        else:
+            out = runner(families, fam[idx], x[idx], yv, early=early)
+            single[:] = True
+        unproven += int(np.count_nonzero((~out.settled & ~out.overturned)[single]))
         return out
 
     def tell(k):
@@ -247,9 +254,13 @@ def _uplift_thresholds(families, fam, n, ap_max, run, vertical: bool = False, li
     the block does not uplift up to 2 ap_max, or up to its 100 g limit ``limits`` when that is lower:
     the bracket then stops at the limit). Under a vertical pulse (rigid foundation) the block
     uplifts when ``y tan(alpha) |f(t)| > (1 + a_v(t)/g) tan(alpha)`` at some t, with ``g + a_v > 0``:
-    monotone in y too, but not at y = 1: bisection on every column."""
+    monotone in y too, but not at y = 1: bisection on every column. A body on a plinth (``--on``): on linear
+    bearings body, plinth and base move together before anything lifts, a linear oscillator, so the same
+    bisection; on the rigid foundation the static threshold, checked (:func:`_stack_thresholds`)."""
     y_u = np.ones(n)
     iso_cols = np.array([i for i in range(n) if vertical or not families[fam[i]].isolation.rigid], dtype=np.int64)
+    if not vertical:
+        iso_cols = np.union1d(iso_cols, _stack_thresholds(families, fam, n, run, y_u)).astype(np.int64)
     if iso_cols.size:
         top = np.full(iso_cols.size, 2.0 * ap_max)
         if limits is not None:
@@ -260,7 +271,7 @@ def _uplift_thresholds(families, fam, n, ap_max, run, vertical: bool = False, li
         found = np.zeros(iso_cols.size, bool)
         pending = np.arange(iso_cols.size)
         while pending.size:  # bracket: double hi until the block uplifts
-            up = run(iso_cols[pending], hi[pending], early=False).uplifted
+            up = run(iso_cols[pending], hi[pending], early=False, uplift_only=True).uplifted
             found[pending[up]] = True
             still = pending[~up]
             lo[still] = hi[still]
@@ -271,12 +282,47 @@ def _uplift_thresholds(families, fam, n, ap_max, run, vertical: bool = False, li
         act = np.flatnonzero(ok)
         while act.size:
             mid = 0.5 * (lo[act] + hi[act])
-            up = run(iso_cols[act], mid, early=False).uplifted
+            up = run(iso_cols[act], mid, early=False, uplift_only=True).uplifted
             hi[act[up]] = mid[up]
             lo[act[~up]] = mid[~up]
             act = act[(hi[act] - lo[act]) > 1e-7 * hi[act]]
         y_u[iso_cols] = np.where(ok, lo, np.nan)
     return y_u
+
+
+#: Relative gap above a plinth's static uplift threshold at which :func:`_stack_thresholds` checks that something
+#: lifts: the resolution of the bisection of an isolated base's threshold (:func:`_uplift_thresholds`).
+STACK_UPLIFT_GAP = 1e-7
+
+
+def _stack_thresholds(families, fam, n, run, y_u) -> np.ndarray:
+    """Uplift thresholds of the columns of a body on a plinth on the rigid foundation, written into ``y_u``; returns
+    the columns left to the bisection of :func:`_uplift_thresholds`.
+
+    Theorem (docs/physics-plinth.md, "From rest"): from rest, until something lifts the body and its plinth move with
+    the ground, so the body lifts off the plinth when ``|a_g|`` passes ``g tan(alpha1)`` and the two lift off the
+    ground together when it passes ``g tan(alpha_asm)``; every pulse peaks at exactly ``|a_p|``, so nothing lifts
+    for ``y <= y_s = min(1, tan(alpha_asm)/tan(alpha1))`` and something lifts above it. Uplift is monotone in ``y``:
+    the threshold is ``y_s``. Not assumed but checked, with two runs of the stack driver per column: nothing lifts
+    at ``y_s`` (the scan's first value, counted safe, is a run that did not lift) and something lifts at ``y_s (1 +
+    STACK_UPLIFT_GAP)`` (the threshold within the isolated base's bisection resolution). A column where either
+    check fails (rounding at the threshold) goes to the bisection, as an isolated base's."""
+    cols = np.array([i for i in range(n) if families[fam[i]].plinth is not None and families[fam[i]].isolation.rigid],
+                    dtype=np.int64)
+    if not cols.size:
+        return cols
+    from rockcli.io.units import G
+
+    ys = np.empty(cols.size)
+    for j, i in enumerate(cols):
+        f = families[fam[i]]
+        st = f.body
+        ys[j] = min(1.0, st.assembly_uplift_acceleration / (G * math.tan(f.alpha)))
+    below = run(cols, ys, early=False, uplift_only=True).uplifted
+    above = run(cols, ys * (1.0 + STACK_UPLIFT_GAP), early=False, uplift_only=True).uplifted
+    ok = ~below & above
+    y_u[cols[ok]] = ys[ok]
+    return cols[~ok]
 
 
 def _scan(y_u, active, ratio, cap, run) -> dict:
@@ -367,6 +413,8 @@ class MinCurve:
     refine_band: float = DEFAULT_REFINE_BAND
     refined: Optional[np.ndarray] = None
     capped: bool = False
+    #: the plinth the block stands on (:class:`rockcli.spectra.plinth.PlinthRatio`; None: alone)
+    plinth: Optional[object] = None
 
     @property
     def found_by(self) -> str:
@@ -374,14 +422,16 @@ class MinCurve:
 
 
 def curves_of(search: MinSearch, keys, xs, *, ap_max, step, tol, refine, refine_band) -> list[MinCurve]:
-    """The curves of ``search`` over columns laid out as ``keys x xs`` (``keys``: (alpha_deg, pulse, isolation))."""
+    """The curves of ``search`` over columns laid out as ``keys x xs`` (``keys``: (alpha_deg, pulse, isolation[,
+    plinth]))."""
     refined = search.refined if search.refined is not None else np.zeros(search.ap_min.size, bool)
     out = []
-    for j, (a, pc, iso) in enumerate(keys):
+    for j, (a, pc, iso, *pl) in enumerate(keys):
         s = slice(j * xs.size, (j + 1) * xs.size)
         top = min(ap_max, y_limit(math.radians(a)))  # the search's cap (MinSearch.ap_cap) for this alpha
         out.append(MinCurve(float(a), pc, iso, xs, search.ap_min[s], search.ap_safe[s], search.ap_uplift[s],
-                            top, step, tol, refine, refine_band, refined[s], capped=top < ap_max))
+                            top, step, tol, refine, refine_band, refined[s], capped=top < ap_max,
+                            plinth=pl[0] if pl else None))
     return out
 
 
@@ -400,15 +450,17 @@ def min_overturning_curves(alphas_deg: Sequence[float], pulses: Sequence[PulseCh
                            isolations: Sequence[Isolation], wp_values, *, ap_max: float = DEFAULT_AP_MAX,
                            step: float = DEFAULT_STEP, tol: float = DEFAULT_TOL, refine: float = DEFAULT_REFINE,
                            refine_band: float = DEFAULT_REFINE_BAND, R: float = REFERENCE_R,
-                           runner: Optional[Runner] = None, progress=None) -> list[MinCurve]:
-    """Minimum overturning curves for every ``alpha x pulse x isolation`` (nesting order), one search. Pulses and
-    isolations may be spec strings; a wrong type is one sentence (:mod:`rockcli.spectra.arguments`)."""
+                           runner: Optional[Runner] = None, progress=None,
+                           plinths: Sequence = (None,)) -> list[MinCurve]:
+    """Minimum overturning curves for every ``alpha x pulse x isolation x plinth`` (nesting order), one search.
+    Pulses and isolations may be spec strings; a wrong type is one sentence (:mod:`rockcli.spectra.arguments`).
+    ``plinths``: None (the block alone) and/or :class:`rockcli.spectra.plinth.PlinthRatio` plinths it stands on."""
     from rockcli.spectra.arguments import as_alphas, as_isolations, as_pulses, as_values
 
     alphas_deg, pulses, isolations = as_alphas(alphas_deg), as_pulses(pulses), as_isolations(isolations)
     xs = as_values(wp_values, "wp_values", positive=True)
-    keys = [(a, pc, iso) for a in alphas_deg for pc in pulses for iso in isolations]
-    families = [Family(math.radians(a), pc.shape, iso, R) for a, pc, iso in keys]
+    keys = [(a, pc, iso, pl) for a in alphas_deg for pc in pulses for iso in isolations for pl in plinths]
+    families = [Family(math.radians(a), pc.shape, iso, R, pl) for a, pc, iso, pl in keys]
     fam = np.repeat(np.arange(len(families)), xs.size)
     res = search_min_overturning(families, fam, np.tile(xs, len(families)), ap_max=ap_max, step=step, tol=tol,
                                  refine=refine, refine_band=refine_band, runner=runner, progress=progress)

@@ -58,11 +58,14 @@ class RecordFamily:
     alpha_deg: float
     foundation: object
     record: object
+    #: a :class:`rockcli.spectra.plinth.PlinthRatio` every block stands on (None: alone)
+    plinth: Optional[object] = None
 
     def scene(self, x: float, y: float):
-        """``(block, foundation, record)`` of the block ``R = x``; the Runner passes ``y`` to the batch as
-        the record's scale factor."""
-        return Block.from_degrees(float(x), self.alpha_deg), self.foundation, self.record
+        """``(block or stack, foundation, record)`` of the block ``R = x`` (on its plinth, scaled with it); the
+        Runner passes ``y`` to the batch as the record's scale factor."""
+        block = Block.from_degrees(float(x), self.alpha_deg)
+        return (block if self.plinth is None else self.plinth.stack(block)), self.foundation, self.record
 
 
 @dataclass(frozen=True)
@@ -81,6 +84,9 @@ class RockingCurve:
     uplifted: np.ndarray
     settled: np.ndarray
     peak_final: np.ndarray
+    #: the plinth the blocks stand on (None: alone); ``toppled`` per size: 0 none, 1 the body, 2 the plinth
+    plinth: Optional[object] = None
+    toppled: Optional[np.ndarray] = None
 
     @property
     def p(self) -> np.ndarray:
@@ -103,7 +109,8 @@ class RockingCurve:
 
 
 def rocking_spectrum(record, alphas_deg: Sequence[float], foundations: Sequence, R: Sequence[float], *,
-                     runner: Optional[Runner] = None, progress=None) -> list[RockingCurve]:
+                     runner: Optional[Runner] = None, progress=None,
+                     plinths: Sequence = (None,)) -> list[RockingCurve]:
     """The rocking spectra of ``record`` for every ``alpha x foundation`` (in that nesting order).
 
     Parameters
@@ -120,11 +127,14 @@ def rocking_spectrum(record, alphas_deg: Sequence[float], foundations: Sequence,
         Where the runs go (its horizon, restitution and cap ratio apply to every run); default this machine.
     progress : callable, optional
         ``progress(n)`` with the number of runs finished since the last call.
+    plinths : sequence, optional
+        None (the block alone) and/or :class:`rockcli.spectra.plinth.PlinthRatio` plinths in proportion to each
+        block (the stack driver: its peaks are final too).
 
     Returns
     -------
     list of RockingCurve
-        One per ``(alpha, foundation)``, peaks final (``early=False``, see the module notes).
+        One per ``(alpha, foundation, plinth)``, peaks final (``early=False``, see the module notes).
     """
     from rockcli.io.inputs import as_list, check_type
     from rockcli.records.record import Record
@@ -136,7 +146,7 @@ def rocking_spectrum(record, alphas_deg: Sequence[float], foundations: Sequence,
     foundations = [check_foundation(f, "foundations: each foundation")
                    for f in as_list(foundations, "foundations", "a list of foundations (Rigid(), ...)")]
     R = as_values(R, "R", positive=True)
-    families = [RecordFamily(float(a), f, record) for a in alphas_deg for f in foundations]
+    families = [RecordFamily(float(a), f, record, pl) for a in alphas_deg for f in foundations for pl in plinths]
     n = len(families) * R.size
     if n > MAX_CELLS:
         raise RockcliInputError(f"the spectrum has {n:,} runs (slenderness x foundation x size); at most "
@@ -151,7 +161,8 @@ def rocking_spectrum(record, alphas_deg: Sequence[float], foundations: Sequence,
     for k, fam in enumerate(families):
         s = slice(k * R.size, (k + 1) * R.size)
         curves.append(RockingCurve(fam.alpha_deg, fam.foundation, R.copy(), cells.theta_max_over_alpha[s],
-                                   cells.overturned[s], cells.uplifted[s], cells.settled[s], cells.peak_final[s]))
+                                   cells.overturned[s], cells.uplifted[s], cells.settled[s], cells.peak_final[s],
+                                   fam.plinth, None if fam.plinth is None else cells.toppled[s]))
     return curves
 
 
@@ -160,7 +171,11 @@ def isolation_helps(rigid: RockingCurve, isolated: RockingCurve) -> np.ndarray:
     block counts as the largest peak): True/False per ``R``."""
     if not np.array_equal(rigid.R, isolated.R):
         raise ValueError("the curves must share their sizes")
-    return isolated.plotted < rigid.plotted
+
+    def rank(c):  # an overturning block above every peak, also a survivor's above 1 (it passed alpha and came back)
+        return np.where(np.asarray(c.overturned, bool), np.inf, np.asarray(c.theta_max_over_alpha, float))
+
+    return rank(isolated) < rank(rigid)
 
 
 def size_ranges(R: np.ndarray, mask: np.ndarray) -> list[tuple[float, float]]:

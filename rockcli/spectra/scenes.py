@@ -236,12 +236,17 @@ def parse_isolation(text: str) -> Isolation:
 
 @dataclass(frozen=True)
 class Family:
-    """Scenes that differ only in ``x = omega_p/p`` and ``y = a_p/(g tan alpha)``: one map or one curve."""
+    """Scenes that differ only in ``x = omega_p/p`` and ``y = a_p/(g tan alpha)``: one map or one curve.
+
+    ``plinth``: a :class:`rockcli.spectra.plinth.PlinthRatio` the block stands on in every cell (None: the block
+    alone); its scene's first item is then the :class:`rockcli.models.Stack`, ``y`` still in units of the body's
+    ``g tan alpha``."""
 
     alpha: float  # [rad]
     shape: str
     isolation: Isolation
     R: float = REFERENCE_R
+    plinth: Optional[object] = None
 
     @property
     def alpha_deg(self) -> float:
@@ -255,7 +260,12 @@ class Family:
         """Pulse period [s] of column ``x`` on the reference block."""
         return 2.0 * math.pi / (x * self.block.p)
 
+    @property
+    def body(self):
+        """What every cell runs: the reference block, or the block on its plinth (a Stack)."""
+        return self.block if self.plinth is None else self.plinth.stack(self.block)
+
     def scene(self, x: float, y: float):
-        """``(block, foundation, pulse)`` of cell ``(x, y)``."""
+        """``(block or stack, foundation, pulse)`` of cell ``(x, y)``."""
         T_p = self.T_p(x)
-        return self.block, self.isolation.foundation(T_p), make_pulse(self.shape, y * (G * math.tan(self.alpha)), T_p)
+        return self.body, self.isolation.foundation(T_p), make_pulse(self.shape, y * (G * math.tan(self.alpha)), T_p)
