@@ -156,3 +156,15 @@ def test_run_tasks_runs_in_order_and_raises_and_nests():
     assert len(started) < 50  # the tasks not started were dropped
     names = run_tasks([lambda: run_tasks([lambda: threading.current_thread().name] * 3, threads=2)] * 2, threads=2)
     assert all(len(set(inner)) == 1 for inner in names)  # a task on the pool runs its own tasks in its thread
+
+
+def test_in_background_runs_tasks_on_the_pool():
+    """A caller thread (the margin search's lanes) is not one of the pool's: its tasks go to the pool's threads."""
+    from rockcli.solve.pool import in_background
+
+    def lane():
+        here = threading.current_thread().name
+        return here, run_tasks([lambda: threading.current_thread().name] * 4, threads=2)
+
+    here, names = in_background(lane).result()
+    assert here.startswith("rockcli-caller") and all(n.startswith("rockcli-kernel") for n in names)

@@ -15,6 +15,7 @@ import threading
 
 _LOCK = threading.Lock()
 _POOL = None  # (pid, workers, ThreadPoolExecutor)
+_CALLERS = None  # (pid, ThreadPoolExecutor): the threads of in_background
 _ON_POOL = threading.local()  # .yes on the pool's own threads
 
 
@@ -45,6 +46,22 @@ def _pool(workers: int):
             _POOL = (pid, workers, ThreadPoolExecutor(max_workers=workers, thread_name_prefix="rockcli-kernel",
                                                       initializer=_mark))
         return _POOL[2]
+
+
+def in_background(func, *args, **kwargs):
+    """``func(*args, **kwargs)`` on one of the process's two caller threads (not the pool's): a Future.
+
+    For a caller that prepares its next batch while the pool runs the last one (the margin search's two lanes,
+    :func:`rockcli.assess.find_overturn_scales`): ``func`` may call :func:`run_tasks`, which then uses the pool
+    (a caller thread is not one of the pool's, so nothing waits on itself).
+    """
+    global _CALLERS
+    with _LOCK:
+        if _CALLERS is None or _CALLERS[0] != os.getpid():
+            from concurrent.futures import ThreadPoolExecutor
+
+            _CALLERS = (os.getpid(), ThreadPoolExecutor(max_workers=2, thread_name_prefix="rockcli-caller"))
+        return _CALLERS[1].submit(func, *args, **kwargs)
 
 
 def run_tasks(tasks, *, done=None, threads: int | None = None) -> list:
