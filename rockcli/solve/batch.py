@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import functools
 import math
+import threading
 
 import numpy as np
 
@@ -110,6 +111,7 @@ def simulate_verdicts(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL, res
 #: end, the tail, the restitution and the solver options. :func:`_check_work` is a function of exactly these, so a
 #: key found here would pass again. (Cleared when it holds 4096 keys.)
 _WORK_PASSED: set = set()
+_PREPARE_LOCK = threading.Lock()
 
 
 def _scene_arrays(block, foundation, excitation, tail, rtol, rest_tol, horizon, max_steps, prepared, params,
@@ -326,7 +328,8 @@ def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress
                (k.simulate_batch_rigid_vertical, np.flatnonzero(shaken))]
     # loaded, or compiled (side by side on the first run on a machine) before any scene runs; the vertical
     # motion's kernel (rarely needed) compiles on its first call
-    k.prepare([batch.__name__ for batch, sel in drivers if sel.size and batch.__name__ in k.BATCH_KERNELS])
+    with _PREPARE_LOCK:  # one thread at a time (the margin search's lanes): the others then find them ready
+        k.prepare([batch.__name__ for batch, sel in drivers if sel.size and batch.__name__ in k.BATCH_KERNELS])
     for batch, sel in drivers:
         whole = sel.size == m  # every job runs on this driver: pass views, the kernel writes into outs
         for lo in range(0, sel.size, chunk):
