@@ -168,3 +168,34 @@ def test_in_background_runs_tasks_on_the_pool():
 
     here, names = in_background(lane).result()
     assert here.startswith("rockcli-caller") and all(n.startswith("rockcli-kernel") for n in names)
+
+
+@pytest.mark.parametrize("threads", ["1", "2"])
+def test_the_margin_search_lanes_keep_to_the_thread_count(monkeypatch, threads):
+    """Two lanes of rounds at once on two threads, one round at a time when one thread is allowed; the same
+    margins either way."""
+    import rockcli.solve as solve
+    from rockcli.assess import find_overturn_scales
+
+    rng = np.random.default_rng(7)
+    scenes = [(Block(float(rng.uniform(0.5, 2.0)), 0.2), Rigid(), _record(rng)) for _ in range(6)]
+    grid = np.geomspace(0.5, 4.0, 25)
+    original, now, most = solve.simulate_many, [0], [0]
+    lock = threading.Lock()
+
+    def counting(jobs, **kw):
+        with lock:
+            now[0] += 1
+            most[0] = max(most[0], now[0])
+        try:
+            return original(jobs, **kw)
+        finally:
+            with lock:
+                now[0] -= 1
+
+    want = find_overturn_scales(scenes, grid=grid)
+    monkeypatch.setenv("NUMBA_NUM_THREADS", threads)
+    monkeypatch.setattr(solve, "simulate_many", counting)
+    got = find_overturn_scales(scenes, grid=grid)
+    assert repr(got) == repr(want)
+    assert most[0] <= int(threads)

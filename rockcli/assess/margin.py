@@ -48,7 +48,8 @@ MARGIN_GRID = np.unique(np.concatenate([np.geomspace(0.1, 1.0, 233), np.geomspac
 #: main job 114 rounds instead of 226, for 18 more runs; 4: 165 rounds, 6 more runs; 16: 73 rounds, 58 more).
 FILL_JOBS_PER_THREAD = 8
 #: The search's groups run in this many lanes (group id modulo LANES), each lane's rounds one after the other:
-#: while the pool runs one lane's round, the next round of another is read and prepared (Notes).
+#: while the pool runs one lane's round, the next round of another is read and prepared (Notes). One lane when
+#: the process may use one thread only (``NUMBA_NUM_THREADS=1``): no two runs at once.
 LANES = 2
 #: Relative width of the bracket at which the bisection stops.
 MARGIN_RTOL = 0.01
@@ -238,6 +239,7 @@ def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL,
 
     advance()
     threads = _threads()
+    n_lanes = LANES if threads > 1 else 1  # one thread allowed: one round at a time
     lanes = {}  # lane -> (pairs, Future) of its round running, in the order started
     try:
         while True:
@@ -246,9 +248,9 @@ def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL,
                 if scanning(i):
                     active.setdefault(int(gid[i]), []).append(i)
             per = -(-FILL_JOBS_PER_THREAD * threads // max(1, len(active))) if fill else 1
-            for lane in range(LANES):
+            for lane in range(n_lanes):
                 if lane not in lanes:
-                    pairs = next_round({g: mem for g, mem in active.items() if g % LANES == lane}, per)
+                    pairs = next_round({g: mem for g, mem in active.items() if g % n_lanes == lane}, per)
                     if pairs:
                         lanes[lane] = start(pairs)
             if not lanes:
