@@ -146,6 +146,16 @@ def _linear_base_peak(block, foundation, motion, **solver):
     return float(m) if math.isfinite(t_proof) else None
 
 
+def load_floor_kernel() -> None:
+    """Load (or compile) the kernel of the floor on linear bearings, :func:`rockcli.kernels.linear_base.stuck_peak`,
+    with the argument types :func:`liftoff_floor` calls it with, on a record of two zero samples (its result is
+    not used). :func:`rockcli.assess.run_assessment` does it on a caller thread while the verdicts run, so that
+    loading it does not hold up the margin search that follows."""
+    from rockcli.kernels.linear_base import stuck_peak
+
+    stuck_peak(1.0, 0.1, np.zeros(2), 0.01, 1.0, 1.0, P3_SLACK, PEAK_TOL)
+
+
 def _stack_floor(stack, foundation, motion, **solver) -> float:
     """A body on a plinth: the smaller static threshold over the peak of what it stands on (module notes), on a rigid
     foundation or on linear bearings under a record; 0 on any other foundation (every factor may need a run)."""

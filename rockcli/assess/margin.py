@@ -43,6 +43,14 @@ import numpy as np
 #: Scale factors scanned for the margin: 0.1 .. 1 (233 values) and 1 .. 4 (141 values), log-spaced with a
 #: ratio just under 1 + MARGIN_RTOL (1.00997 and 1.00995).
 MARGIN_GRID = np.unique(np.concatenate([np.geomspace(0.1, 1.0, 233), np.geomspace(1.0, 4.0, 141)]))
+#: With ``fill``: the runs a round of the search should hold per thread; when fewer scenes are scanning, each runs
+#: its next few factors at once (fewer rounds, each with work enough to keep the threads busy: in the README's
+#: main job 114 rounds instead of 226, for 18 more runs; 4: 165 rounds, 6 more runs; 16: 73 rounds, 58 more).
+FILL_JOBS_PER_THREAD = 8
+#: The search's groups run in this many lanes (group id modulo LANES), each lane's rounds one after the other:
+#: while the pool runs one lane's round, the next round of another is read and prepared (Notes). One lane when
+#: the process may use one thread only (``NUMBA_NUM_THREADS=1``): no two runs at once.
+LANES = 2
 #: Relative width of the bracket at which the bisection stops.
 MARGIN_RTOL = 0.01
 #: The smallest bisection width used: below a few ulps the geometric midpoint equals an end of the
@@ -84,9 +92,11 @@ def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL,
         search they add up to ``len(scenes) * len(grid)``, less the factor 1 of each scene when
         ``known`` is given; the bisection is not counted.
     fill : bool
-        When fewer scenes are still scanning than there are threads, run the next few factors of each
-        at once (``threads / scenes`` of them, rounded up), so that no core idles; the runs past a
-        scene's first overturning factor are then wasted CPU, and change no result.
+        When fewer scenes (groups) are still scanning than :data:`FILL_JOBS_PER_THREAD` times the threads,
+        run the next few factors of each at once (that product over the scenes, rounded up), so that each
+        round has work enough for every thread and the long scans take fewer rounds; the runs past a
+        scene's first overturning factor are then wasted CPU (at most that many less one per scene; 18
+        more runs than 3,386 in the README's main job), and change no result.
     groups : sequence, optional
         One hashable key per scene: the scenes of one key are scanned together, and only the group's
         smallest margin is searched (Notes, 3; the orientations of one column, pair and configuration,
@@ -132,14 +142,20 @@ def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL,
        excitation, not of the scale), so it has the full scan's ``error`` result as soon as it runs
        once. Why this is what ``--azimuth worst`` needs: :mod:`rockcli.assess.azimuth`.
 
-    So each scene runs its factors upwards from its floor, one per round (all scenes together in
-    one parallel batch per round), and stops at the first that overturns; the factor 1 of
-    ``known`` is not run again.
+    So each scene runs its factors upwards from its floor, one per round (with ``fill``, a few), and
+    stops at the first that overturns; the factor 1 of ``known`` is not run again. The groups run in
+    :data:`LANES` lanes (group id modulo LANES): a lane's round is one parallel batch of all its scanning
+    groups, run on a caller thread (:func:`rockcli.solve.pool.in_background`) while this thread reads
+    the other lane's last round and prepares its next, so the pool's threads always have work queued.
+    Which round a run falls in changes nothing: a run depends on its scene and factor only, and each
+    group's next factors only on its own runs (and ``fill`` only on how many groups are scanning,
+    which decides how many runs past a first overturning factor are wasted, no result).
     """
     from rockcli.assess.liftoff import liftoff_floors
     from rockcli.assess.scenes import check_scale_search
     from rockcli.errors import RockcliInputError
     from rockcli.solve import VERDICT_ERROR, VERDICT_NO_UPLIFT, _threads, simulate_many
+    from rockcli.solve.pool import in_background
 
     scenes = check_scale_search(scenes, grid, known, progress)  # the types, in one sentence
     if not (isinstance(rtol, (int, float)) and rtol >= 0 and math.isfinite(rtol)):
@@ -163,10 +179,12 @@ def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL,
             return 4
         return 2 if r.overturned else (3 if r.verdict == VERDICT_NO_UPLIFT else 1)
 
-    def run(pairs):
+    def start(pairs):  # a round of one lane: its runs prepared and run on a caller thread (Notes)
         pairs = _balanced(pairs, [_cost(scenes[i][2]) for i, _ in pairs])
         jobs = [_scaled_job(*scenes[i], float(grid[j])) for i, j in pairs]
-        res = simulate_many(jobs, early=True, **solver)  # verdicts only
+        return pairs, in_background(simulate_many, jobs, early=True, **solver)  # verdicts only
+
+    def collect(pairs, res):
         for (i, j), r in zip(pairs, res):
             unproven[i, j] = is_unproven(r)
             state[i, j] = code(r)
@@ -188,6 +206,22 @@ def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL,
     def scanning(i):
         return first[i] < 0 and i not in errors and pos[i] < m and pos[i] <= cap[gid[i]]
 
+    def next_round(active, per):  # the next round of these groups (group -> its scanning scenes): (scene, factor) pairs
+        pairs = []
+        for g, members in active.items():
+            lowest = min(pos[i] for i in members)  # each scanning scene's next factor to run is its pos
+            take = [(int(pos[i]), i) for i in members if pos[i] == lowest]
+            if len(take) < per:  # fill: the next factors of the group, lowest first
+                todo = []
+                for i in members:
+                    end = cap[g] + 1
+                    over = np.flatnonzero(state[i, pos[i]:end] == 2)  # a known overturn ends the scene first
+                    end = pos[i] + over[0] if over.size else end
+                    todo += [(int(j), i) for j in (np.flatnonzero(state[i, pos[i]:end] == 0) + pos[i])[:per]]
+                take = sorted(todo)[:per]
+            pairs += [(i, j) for j, i in take]
+        return pairs
+
     def advance():  # move each scene past the factors settled; progress: every pair that may no longer run
         for i in range(n):
             while scanning(i) and state[i, pos[i]] != 0:
@@ -205,29 +239,29 @@ def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL,
 
     advance()
     threads = _threads()
-    while True:
-        active = {}
-        for i in range(n):
-            if scanning(i):
-                active.setdefault(int(gid[i]), []).append(i)
-        if not active:
-            break
-        per = -(-threads // len(active)) if fill else 1
-        pairs = []
-        for g, members in active.items():
-            lowest = min(pos[i] for i in members)  # each scanning scene's next factor to run is its pos
-            take = [(int(pos[i]), i) for i in members if pos[i] == lowest]
-            if len(take) < per:  # fill: the next factors of the group, lowest first
-                todo = []
-                for i in members:
-                    end = cap[g] + 1
-                    over = np.flatnonzero(state[i, pos[i]:end] == 2)  # a known overturn ends the scene first
-                    end = pos[i] + over[0] if over.size else end
-                    todo += [(int(j), i) for j in (np.flatnonzero(state[i, pos[i]:end] == 0) + pos[i])[:per]]
-                take = sorted(todo)[:per]
-            pairs += [(i, j) for j, i in take]
-        run(pairs)
-        advance()
+    n_lanes = LANES if threads > 1 else 1  # one thread allowed: one round at a time
+    lanes = {}  # lane -> (pairs, Future) of its round running, in the order started
+    try:
+        while True:
+            active = {}
+            for i in range(n):
+                if scanning(i):
+                    active.setdefault(int(gid[i]), []).append(i)
+            per = -(-FILL_JOBS_PER_THREAD * threads // max(1, len(active))) if fill else 1
+            for lane in range(n_lanes):
+                if lane not in lanes:
+                    pairs = next_round({g: mem for g, mem in active.items() if g % n_lanes == lane}, per)
+                    if pairs:
+                        lanes[lane] = start(pairs)
+            if not lanes:
+                break
+            pairs, future = lanes.pop(next(iter(lanes)))  # the round started first
+            collect(pairs, future.result())
+            advance()
+    except BaseException:  # an error or Ctrl-C: no round is started after this one
+        for _, future in lanes.values():
+            future.cancel()
+        raise
 
     out = [None] * n
     lo, hi, active, left_out = np.zeros(n), np.zeros(n), [], set()
@@ -319,9 +353,10 @@ def _cost(motion) -> float:
 
 
 def _balanced(items, costs):
-    """Items reordered so that the halves of the list (numba's static split over 2+ threads) cost alike."""
+    """Items reordered longest first: the threads take the next piece when free (:func:`rockcli.solve.pool.run_tasks`),
+    so the longest runs start first and the short ones fill the gaps at the end (stable for equal costs)."""
     order = sorted(range(len(items)), key=lambda k: -costs[k])
-    return [items[k] for k in order[0::2]] + [items[k] for k in order[1::2]]
+    return [items[k] for k in order]
 
 
 def run_local(func: Callable, chunks: Sequence) -> list:

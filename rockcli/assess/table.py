@@ -18,7 +18,7 @@ import numpy as np
 
 from rockcli.conditioning import ULP_DRAWS, ill_conditioned, ulp_perturbed, widest
 from rockcli.errors import RockcliInputError
-from rockcli.models import Block
+from rockcli.models import Block, LinearIsolation
 from rockcli.assess.margin import (MARGIN_GRID, NEIGHBOURHOOD, _scaled_job, map_chunks, overturn_scales_chunked,
                                    overturn_shares)
 from rockcli.assess.scenes import EXCITATION_PULSE, Configuration, Excitation, Unavailable
@@ -231,6 +231,11 @@ def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
 
     here = runner is None
     if here:
+        if margin and any(isinstance(s[1], LinearIsolation) and hasattr(s[2], "acc") for s in scenes):
+            from rockcli.assess.liftoff import load_floor_kernel
+            from rockcli.solve.pool import in_background
+
+            in_background(load_floor_kernel)  # the search's first step needs it: loaded while the verdicts run
         phase(progress, "verdicts", len(scenes), unit="runs")
         responses = simulate_many([_scaled_job(*s, 1.0) for s in scenes], progress=chunk_progress, **solver)
     else:

@@ -241,9 +241,16 @@ def assessment_table(assessment, check=None):
 
 
 def write_assessment_csv(assessment, path: str | os.PathLike, check=None) -> Path:
-    """Write the CSV report (:func:`assessment_table`), atomically."""
-    df = assessment_table(assessment, check)
-    return write_text(path, df.to_csv(index=False, float_format="%.6g", lineterminator="\n"))
+    """Write the CSV report (:func:`assessment_table`), atomically: the text pandas would write, made without
+    pandas where :func:`rockcli.report.csv_text.csv_text` knows every column's values, else by pandas."""
+    from rockcli.report.csv_text import BOOLEAN, INT64, csv_text
+
+    columns = {k: [getattr(r, k) for r in assessment.rows] for k in CSV_COLUMNS}
+    columns.update(extra_columns(assessment, check))
+    text = csv_text(columns, {"overturned": BOOLEAN, "n_impacts": INT64, "ill_conditioned": BOOLEAN})
+    if text is None:
+        text = assessment_table(assessment, check).to_csv(index=False, float_format="%.6g", lineterminator="\n")
+    return write_text(path, text)
 
 
 def _vertical_column(cols: dict, result) -> None:

@@ -12,14 +12,18 @@ the kernels are imported on the first run. Read it in this order:
                    kernel's output row read into a :class:`Response`)
 ``excitation``     a record or a pulse as the kernel reads it (``_excitation_arrays``), with the table of
                    the ground impulse still to come (:func:`record_impulse_table`,
-                   :func:`pulse_impulse_table`) that bounds the early stops
+                   :func:`pulse_impulse_table`) that bounds the early stops; ``_excitation_arrays_cached``
+                   keeps a record's arrays while its samples stay the same bit for bit
 ``parameters``     the parameter vector of a block on a foundation (``_parameters``), and
                    :func:`bearing_force_path`, the bearings alone under an imposed displacement
 ``work``           the work estimate (``_estimate_steps``, ``_check_work``): a scene that would need more
                    than a fifth of the step cap is refused up front
 ``single``         :func:`simulate`: one scene, with or without its history
+``pool``           the process's pool of threads the batch kernels run on, :func:`run_tasks` (a list of
+                   callables, longest first, on every core; one pool per process, kept between calls)
 ``batch``          :func:`simulate_many` and :func:`simulate_verdicts`: many verdict-only scenes on all
-                   cores (``_run_many`` validates each distinct scene once and packs their arrays)
+                   cores (``_run_many`` validates each distinct scene once and packs their arrays; a record's
+                   arrays and a passed work estimate are kept between calls, exactly: see ``excitation``)
 ``stack``          :func:`simulate_stack`: a body on a free plinth (docs/physics-plinth.md),
                    :class:`StackResponse`
 ``stack_many``     the stack jobs of :func:`simulate_many` (one run after the other: the stack driver holds the

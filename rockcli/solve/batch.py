@@ -1,12 +1,14 @@
 """Many verdict-only scenes in parallel: :func:`simulate_many` (a :class:`Response` or :class:`JobError`
 per job) and :func:`simulate_verdicts` (arrays), both on :func:`_run_many`, which validates each distinct
-scene once, packs the scenes' arrays and runs chunks of them on a pool of threads (the batch kernels
-release the GIL).
+scene once, packs the scenes' arrays and runs chunks of them on the process's pool of threads
+(:mod:`rockcli.solve.pool`; the batch kernels release the GIL).
 """
 
 from __future__ import annotations
 
+import functools
 import math
+import threading
 
 import numpy as np
 
@@ -14,24 +16,13 @@ from rockcli.models.colonnade import check_cap_ratio
 from rockcli.errors import RockcliInputError
 from rockcli.models.impact import check_restitution
 from rockcli.models import Block, Rigid
-from rockcli.solve.excitation import _excitation_arrays, _vertical_arrays, attached_vertical
+from rockcli.solve.excitation import _excitation_arrays_cached, _vertical_arrays, attached_vertical
 from rockcli.solve.options import (DEFAULT_HORIZON, DEFAULT_MAX_STEPS, DEFAULT_REST_TOL, DEFAULT_TAIL, TAIL_MAX,
                                    _kernel, check_foundation, validate_options)
 from rockcli.solve.parameters import _parameters
+from rockcli.solve.pool import _threads, run_tasks
 from rockcli.solve.response import JobError, Verdicts, _response
 from rockcli.solve.work import _check_work
-
-
-def _threads() -> int:
-    """Threads a sweep runs on: the cores this process may use (``NUMBA_NUM_THREADS`` caps them)."""
-    import os
-
-    try:
-        cores = len(os.sched_getaffinity(0))
-    except (AttributeError, OSError):
-        cores = os.cpu_count() or 1
-    cap = os.environ.get("NUMBA_NUM_THREADS", "")
-    return max(1, min(cores, int(cap))) if cap.isdigit() and int(cap) > 0 else max(1, cores)
 
 
 def simulate_many(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL,
@@ -115,6 +106,14 @@ def simulate_verdicts(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL, res
         nfev=outs[:, k.O_NRHS].astype(np.int64), peak_final=outs[:, k.O_PEAK_FINAL] != 0.0)
 
 
+#: The work estimates that passed in this process, by everything :func:`_check_work` reads: the block and the
+#: foundation (frozen dataclasses: equal fields, equal estimate), the excitation's kind, samples, active length and
+#: end, the tail, the restitution and the solver options. :func:`_check_work` is a function of exactly these, so a
+#: key found here would pass again. (Cleared when it holds 4096 keys.)
+_WORK_PASSED: set = set()
+_PREPARE_LOCK = threading.Lock()
+
+
 def _scene_arrays(block, foundation, excitation, tail, rtol, rest_tol, horizon, max_steps, prepared, params,
                   checked, restitution=None, cap_ratio=0.0):
     """The kernel inputs of one (block, foundation, excitation, tail) of a sweep, validated and its work
@@ -127,7 +126,7 @@ def _scene_arrays(block, foundation, excitation, tail, rtol, rest_tol, horizon, 
     key = id(excitation)
     if key not in prepared:
         try:
-            prepared[key] = _excitation_arrays(excitation)
+            prepared[key] = _excitation_arrays_cached(excitation)
         except RockcliInputError as exc:
             prepared[key] = exc
     if isinstance(prepared[key], RockcliInputError):
@@ -141,10 +140,12 @@ def _scene_arrays(block, foundation, excitation, tail, rtol, rest_tol, horizon, 
         cached = params[(block, foundation, restitution, cap_ratio)] = _parameters(
             block, foundation, rtol, float(rest_tol), restitution, cap_ratio)
     fkind, prm = cached
-    # the work estimate depends only on these (not on the amplitude): checked once per distinct set
-    wkey = (block, foundation, ekind, acc.size, epar[k.E_TE] - epar[k.E_TS], t_exc_end, tail, restitution)
+    # the work estimate depends only on these (not on the amplitude): checked once per distinct set, and a set
+    # that passed is remembered by the process (_WORK_PASSED)
+    wkey = (block, foundation, ekind, acc.size, epar[k.E_TE] - epar[k.E_TS], t_exc_end, tail, restitution,
+            rtol, float(rest_tol), float(horizon), int(max_steps))
     try:
-        known = wkey in checked
+        known = wkey in checked or wkey in _WORK_PASSED
     except TypeError:
         known = False
     if not known:
@@ -152,6 +153,9 @@ def _scene_arrays(block, foundation, excitation, tail, rtol, rest_tol, horizon, 
                     restitution=restitution)
         try:
             checked.add(wkey)
+            if len(_WORK_PASSED) >= 4096:
+                _WORK_PASSED.clear()
+            _WORK_PASSED.add(wkey)
         except TypeError:
             pass
     return fkind, prm, ekind, epar.copy(), acc, jtab, dt, t_begin, t_exc_end
@@ -324,7 +328,8 @@ def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress
                (k.simulate_batch_rigid_vertical, np.flatnonzero(shaken))]
     # loaded, or compiled (side by side on the first run on a machine) before any scene runs; the vertical
     # motion's kernel (rarely needed) compiles on its first call
-    k.prepare([batch.__name__ for batch, sel in drivers if sel.size and batch.__name__ in k.BATCH_KERNELS])
+    with _PREPARE_LOCK:  # one thread at a time (the margin search's lanes): the others then find them ready
+        k.prepare([batch.__name__ for batch, sel in drivers if sel.size and batch.__name__ in k.BATCH_KERNELS])
     for batch, sel in drivers:
         whole = sel.size == m  # every job runs on this driver: pass views, the kernel writes into outs
         for lo in range(0, sel.size, chunk):
@@ -346,24 +351,13 @@ def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress
             outs[part] = o
         return o.shape[0]
 
-    done = 0
-    if threads == 1 or len(tasks) == 1:
-        for task in tasks:
-            done += run(task)
-            if progress is not None:
-                progress(n if done == m else done)
-    else:
-        from concurrent.futures import ThreadPoolExecutor, as_completed
+    done = [0]
 
-        with ThreadPoolExecutor(max_workers=threads) as pool:  # the kernels run without the GIL
-            futures = [pool.submit(run, task) for task in tasks]
-            try:
-                for fut in as_completed(futures):
-                    done += fut.result()
-                    if progress is not None:
-                        progress(n if done == m else done)
-            except BaseException:  # an error or Ctrl-C: drop the pieces not started, then re-raise
-                for fut in futures:
-                    fut.cancel()
-                raise
+    def advance(count):
+        done[0] += count
+        if progress is not None:
+            progress(n if done[0] == m else done[0])
+
+    # the kernels run without the GIL, on the process's pool (one pool for every call: rockcli.solve.pool)
+    run_tasks([functools.partial(run, task) for task in tasks], done=advance, threads=threads)
     return outs, alphas, failed

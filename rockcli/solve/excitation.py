@@ -5,6 +5,8 @@ with the table of the ground impulse still to come (the bound behind the early s
 from __future__ import annotations
 
 import math
+import threading
+import weakref
 
 import numpy as np
 
@@ -119,6 +121,59 @@ def _excitation_arrays(excitation):
         zeros, jtab = pulse_impulse_table(shape)
         return _PULSE_CODES[shape], epar, zeros, jtab, 1.0, min(0.0, ts), te
     raise RockcliInputError(f"cannot simulate excitation of type {type(excitation).__name__}")
+
+
+#: The records' kernel arrays already prepared by :func:`_excitation_arrays_cached`: record -> (dt, private copy of
+#: the samples, the arrays); entries go when their record is garbage-collected, or the oldest first when together
+#: they hold more than :data:`RECORD_CACHE_BYTES` of samples.
+_RECORD_ARRAYS = weakref.WeakKeyDictionary()
+_RECORD_LOCK = threading.Lock()
+RECORD_CACHE_BYTES = 64 * 2**20
+
+
+def _excitation_arrays_cached(excitation):
+    """:func:`_excitation_arrays`; a record's arrays from the process's cache when its samples are, bit for bit,
+    those of the arrays cached for the same record object (the batch path's calls, :mod:`rockcli.solve.batch`).
+
+    Why it cannot return a stale array: :func:`_excitation_arrays` of a record is a function of its samples (as
+    contiguous float64) and its time step only (the name appears in error messages, and a record that raises is
+    never cached). An entry keeps a private copy of the samples it was made from, and the arrays it returns (that
+    copy, the impulse table, ``epar``) are read-only: nobody can change them. It is returned only when the
+    record's time step equals the entry's and its samples equal the copy bit for bit (compared as 64-bit
+    integers, so -0.0 is not 0.0 and a NaN never matches), i.e. when :func:`_excitation_arrays` would compute
+    the same arrays from the same inputs. Keyed on the record object (weakly: the entry goes with the record, so
+    a new record cannot inherit an old one's entry), so a record changed in place is caught by the comparison,
+    and one that is never mutated pays an equality test of its samples (memory speed) per call instead of the
+    validation and the impulse table. Pulses, and objects that cannot be weakly referenced, are prepared as before.
+    """
+    if not (hasattr(excitation, "acc") and hasattr(excitation, "dt")):
+        return _excitation_arrays(excitation)
+    try:
+        acc = np.ascontiguousarray(excitation.acc, dtype=np.float64)
+        dt = float(excitation.dt)
+        with _RECORD_LOCK:
+            entry = _RECORD_ARRAYS.get(excitation)
+    except (TypeError, ValueError):  # not a number, unhashable, no weak reference: as before
+        return _excitation_arrays(excitation)
+    if (entry is not None and entry[0] == dt and entry[1].shape == acc.shape
+            and np.array_equal(entry[1].view(np.uint64), acc.view(np.uint64))):
+        return entry[2]
+    ekind, epar, acc_k, jtab, dt_k, t_begin, t_exc_end = _excitation_arrays(excitation)  # raises as before
+    own = np.array(acc_k, dtype=np.float64, copy=True)
+    for a in (own, jtab, epar):
+        a.flags.writeable = False
+    arrays = (ekind, epar, own, jtab, dt_k, t_begin, t_exc_end)
+    with _RECORD_LOCK:
+        try:
+            _RECORD_ARRAYS[excitation] = (dt, own, arrays)
+        except TypeError:
+            return arrays
+        held = sum(e[1].nbytes for e in _RECORD_ARRAYS.values())
+        for key in list(_RECORD_ARRAYS.keys()):
+            if held <= RECORD_CACHE_BYTES or key is excitation:
+                break
+            held -= _RECORD_ARRAYS.pop(key)[1].nbytes
+    return arrays
 
 
 #: the key of a record's ``meta`` that carries its vertical component (:func:`with_vertical`)
