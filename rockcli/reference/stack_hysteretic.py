@@ -69,9 +69,22 @@ class HystRun(_Run):
         mass)."""
         return self.brg.free_bound(self._full(u, ud, xb))
 
+    def _free_disp_bound(self, y) -> float:
+        """``sqrt(2 E)/w`` bounds every later ``|u|`` of the free base: ``E = u'^2/2 + sum (k_i u_i^2 + q_i u_yi
+        z_i^2)/2`` never grows (P3s of the single block; ``k = w^2`` for one element, and for two in series
+        ``|u1 + u2|^2 <= (1/k1 + 1/k2)(k1 u1^2 + k2 u2^2)`` with ``1/k1 + 1/k2 = 1/w^2``)."""
+        b = self.brg
+        if b.dcss:
+            u, ud, u1, z1, z2 = y
+            E2 = ud * ud + b.k1 * u1 * u1 + b.k2 * (u - u1) ** 2 + b.q1 * b.uy1 * z1 * z1 + b.q2 * b.uy2 * z2 * z2
+        else:
+            u, ud, z = y
+            E2 = ud * ud + b.w2 * u * u + b.Q * b.uy * z * z
+        return math.sqrt(E2 / b.w2)
+
     def _base_tail(self):
-        """The free base's later peak ``|u|`` after the run ends at rest: its turning points over two periods of
-        the second slope (the ground still, the stack riding it)."""
+        """The free base's later peak ``|u|`` after the run ends at rest: its turning points until its energy bound
+        of every later ``|u|`` is below the peak reached (exact), at most two periods of the second slope."""
         from scipy.integrate import solve_ivp
 
         brg = self.brg
@@ -82,7 +95,15 @@ class HystRun(_Run):
         def turn(t, y):
             return y[1]
 
-        sol = solve_ivp(f, (0.0, 4 * math.pi / self.wb), self._full(self.u, self.ud, self.xb), method="Radau",
-                        rtol=1e-10, atol=1e-13, events=turn)
+        def final(t, y):
+            return self._free_disp_bound(y) - max(self.u_max, abs(y[0]))
+
+        final.terminal, final.direction = True, -1
+        y0 = self._full(self.u, self.ud, self.xb)
+        if final(0.0, y0) <= 0.0:
+            return
+        sol = solve_ivp(f, (0.0, 4 * math.pi / self.wb), y0, method="Radau", rtol=1e-10, atol=1e-13,
+                        events=[turn, final])
         for yy in sol.y_events[0]:
             self.u_max = max(self.u_max, abs(float(yy[0])))
+        self.u_max = max(self.u_max, abs(float(sol.y[0, -1])))
