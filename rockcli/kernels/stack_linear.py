@@ -1,5 +1,6 @@
-"""The stack driver on linear bearings: :func:`simulate_stack_linear` runs a body on its plinth on an isolated
-base (docs/physics-plinth.md, "On linear bearings"), event-driven, one pattern at a time.
+"""The stack driver on bearings: :func:`simulate_stack_linear` runs a body on its plinth on an isolated base on
+linear, sliding or lead-rubber bearings (docs/physics-plinth.md, "On linear bearings", "On sliding and lead-rubber
+bearings"), event-driven, one pattern at a time.
 
 States ``y = (psi, psi', theta2, theta2', u, u')`` in every pattern (the angles of a face stay 0), integrated by
 Dormand-Prince 5(4) with its continuous extension (the coefficients of SciPy's ``RK45``), the error of each state
@@ -10,9 +11,13 @@ plinth's base; P: the joint), and the step is taken again to the first of them (
 While a face is watched the steps stay below ``0.32/p`` and ``1.6/omega_b`` (16 samples each ``0.02/p`` and
 ``0.1/omega_b`` apart, the reference's resolution). Impacts, the pattern after them and the rest rules are those of
 the reference (:mod:`rockcli.kernels.stack_linear_physics`). The run ends at rest once the free base provably
-cannot lift the stack again (after the excitation, its energy bound below the lower threshold; the base then
-followed two periods for its later peak), when a block topples, or at the horizon. No early stop during the
-excitation: verdict-only and history runs take the same steps.
+cannot lift the stack again (after the excitation; linear bearings: P3, the free oscillator's energy bounds ``|F|``;
+hysteretic bearings: P3s, ``sqrt(F^2 + K u'^2)`` bounds every later ``|F|``, both stated in
+:func:`rockcli.kernels.driver.simulate_core`: the stack at rest on the base is one rigid mass on the bearings,
+exactly the single block's stuck base; the base then followed for its later peak, two periods, on hysteretic
+bearings only until its energy bound of ``|u|`` is below the peak), when a block topples, or at the horizon. No
+early stop during the excitation: verdict-only and history runs take the same steps. On hysteretic bearings the
+steps follow the single block's rules for its Bouc-Wen elements (:func:`simulate_stack_linear`).
 """
 
 from __future__ import annotations
