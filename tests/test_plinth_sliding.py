@@ -114,17 +114,17 @@ def test_the_compiled_driver_with_a_plinth_that_cannot_lift_is_the_single_block_
 
 
 def test_the_compiled_driver_agrees_with_the_reference_where_both_blocks_rock():
-    """The coupled scene of the impact test (both blocks rock, 21 impacts on single concave bearings): verdict,
-    impacts, peaks within 1e-5 of each slenderness, the base's peak within 1e-5."""
+    """The coupled scene of the impact test (both blocks rock, 18 impacts while the ground moves, on single concave
+    bearings): verdict, impacts, peaks within 1e-7 of each slenderness, the base's peak within 1e-7 (measured
+    6e-9, 3e-9, 6e-10; at the kernel's rtol 1e-11 and the reference's 1e-10 all within 3e-10)."""
     r = _coupled_reference()
     a = simulate_stack(COUPLED, COUPLED_PULSE, isolation=COUPLED_ISO, horizon=0.3, tail=0.0)
     assert r.n_impacts[0] > 0 and r.n_impacts[1] > 0
     assert a.verdict == r.verdict and a.toppled == {-1: None, 0: "plinth", 1: "body"}[r.toppled]
     assert [a.plinth.n_impacts, a.body.n_impacts] == r.n_impacts
-    assert abs(a.body.theta_max - r.peak[1]) / BODY.alpha < 1e-5
-    assert abs(a.plinth.theta_max - r.peak[0]) / COUPLED.alpha_asm < 1e-5
-    if a.toppled is None:
-        assert a.base_disp_max == pytest.approx(r.base_disp_max, rel=1e-5)
+    assert abs(a.body.theta_max - r.peak[1]) / BODY.alpha < 1e-7
+    assert abs(a.plinth.theta_max - r.peak[0]) / COUPLED.alpha_asm < 1e-7
+    assert a.toppled is None and a.base_disp_max == pytest.approx(r.base_disp_max, rel=1e-7)
 
 
 def _random_sliding(rng):
