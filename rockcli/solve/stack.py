@@ -1,8 +1,9 @@
-""":func:`simulate_stack`: a body on a free plinth on a rigid foundation (docs/physics-plinth.md), one run on the
-compiled stack driver (:mod:`rockcli.kernels.stack`), read back into a :class:`StackResponse`.
+""":func:`simulate_stack`: a body on a free plinth (docs/physics-plinth.md), one run on the compiled stack driver
+(:mod:`rockcli.kernels.stack` on a rigid foundation, :mod:`rockcli.kernels.stack_linear` on linear, sliding and
+lead-rubber bearings), read back into a :class:`StackResponse`.
 
-The body's parameters are those :func:`rockcli.solve.simulate` gives it on the ground (the same vector), so a plinth
-that never moves leaves the body's answer the single block's, bit for bit.
+On the rigid foundation the body's parameters are those :func:`rockcli.solve.simulate` gives it on the ground (the
+same vector), so a plinth that never moves leaves the body's answer the single block's, bit for bit.
 """
 
 from __future__ import annotations
@@ -147,7 +148,7 @@ def simulate_stack(stack: Stack, excitation, *, rtol: float | None = None, histo
                    tail: float = DEFAULT_TAIL, rest_tol: float = DEFAULT_REST_TOL, horizon: float = DEFAULT_HORIZON,
                    max_steps: int = DEFAULT_MAX_STEPS, restitution: float | None = None,
                    isolation=None) -> StackResponse:
-    """The body of ``stack`` on its plinth under ``excitation`` (a record or a pulse) on a rigid foundation.
+    """The body of ``stack`` on its plinth under ``excitation`` (a record or a pulse) on ``isolation``.
 
     Parameters
     ----------
