@@ -7,7 +7,9 @@
     python benchmarks/bench_plinth.py --p2s 5000                # the end-of-run proof P2S against the runs
                                                                 # followed 30 s on (kernel only)
     python benchmarks/bench_plinth.py --linear 100              # on linear bearings, reference only: its limits
-                                                                # on random scenes (no compiled driver yet)
+                                                                # on random scenes
+    python benchmarks/bench_plinth.py --kernel-sliding --scenes 200  # sliding/lead-rubber bearings, kernel vs
+                                                                # the reference (Radau)
 
 Random scenes (fixed seed): a body 0.4-2.5 m tall, 0.15-0.8 m wide, on a plinth 0.1-1.5 m tall, 1-3 times as
 wide, mass ratio 0.2-5, under a symmetric or antisymmetric Ricker or a one-sine pulse (0.1-0.6 g, 0.3-1.5 s, either
@@ -24,6 +26,10 @@ never rises at an impact and the total horizontal momentum is kept; the scenes w
 the single block on the bearings with ``gamma/(1 + m2)``, those where the body never left its plinth against
 ``as_block()`` with ``gamma R_asm/R_e`` and ``E = eta_asm`` (both plastic; the single block's reference at the
 same rtol and horizon): verdicts, peaks and impact counts; with ``--mirror`` also the flipped pulse.
+
+``--kernel-sliding``: random scenes on single concave, lead-rubber or double concave bearings (``T_b`` 1-4 s,
+friction 0.03-0.12, lead-rubber ``Q`` 0.03-0.1 and ``u_y`` 5-25 mm, ``gamma`` 0.05-0.7, pulses 0.3-1.5 g), the kernel
+against the reference (Radau at ``--ref-rtol``), as ``--kernel-linear``.
 
 ``--timing``: the statue (1.79 m x 0.5 m) on its own and on two plinths under the catalogue's Table II records
 found in ROCKCLI_RECORDS, at scale 1, CPU per run (median of 5 rounds), verdict-only.
@@ -51,7 +57,7 @@ def random_scene(rng):
     return stack, pulse
 
 
-def differential(n, seed, with_restitution, ref_rtol=1e-9, rest_tol=1e-5, linear=False):
+def differential(n, seed, with_restitution, ref_rtol=1e-9, rest_tol=1e-5, linear=False, sliding=False):
     from rockcli.reference.stack import reference_plinth
     from rockcli.solve import simulate_stack
 
@@ -65,7 +71,9 @@ def differential(n, seed, with_restitution, ref_rtol=1e-9, rest_tol=1e-5, linear
     worst["base"] = 0.0
     for i in range(n):
         iso = None
-        if linear:
+        if sliding:
+            stack, iso, pulse = random_sliding_scene(rng)
+        elif linear:
             stack, iso, pulse = random_linear_scene(rng)
         else:
             stack, pulse = random_scene(rng)
@@ -95,7 +103,7 @@ def differential(n, seed, with_restitution, ref_rtol=1e-9, rest_tol=1e-5, linear
             where["plinth"] = (i, a.plinth.theta_max / stack.alpha_asm, r.peak[0] / stack.alpha_asm)
         worst["body"] = max(worst["body"], db)
         worst["plinth"] = max(worst["plinth"], dp)
-        if linear and a.verdict != "overturned":  # the base's peak (after a fall, it rides on without the block)
+        if (linear or sliding) and a.verdict != "overturned":  # the base's peak (after a fall, it rides on without the block)
             du = abs(a.base_disp_max / r.base_disp_max - 1)
             if du > worst["base"]:
                 where["base"] = (i, a.base_disp_max, r.base_disp_max)
@@ -117,14 +125,14 @@ def differential(n, seed, with_restitution, ref_rtol=1e-9, rest_tol=1e-5, linear
         if (i + 1) % 25 == 0:
             print(f"  {i + 1} scenes: {agree} verdicts agree; worst peak differences body {worst['body']:.2e}, "
                   f"plinth {worst['plinth']:.2e} alpha", flush=True)
-    print(f"{n} random scenes{' on linear bearings' if linear else ''}{' with restitution' if with_restitution else ''}"
+    print(f"{n} random scenes{' on linear bearings' if linear else ''}{' on sliding bearings' if sliding else ''}{' with restitution' if with_restitution else ''}"
           f" (seed {seed}): {agree} verdicts agree "
           f"({rocked} rock, {toppled} topple in the kernel, the rest do not lift)")
     print(f"largest peak differences: body {worst['body']:.3e} alpha1, plinth {worst['plinth']:.3e} alpha_asm; "
           f"impact counts differ in {imp_mismatch}; friction demand below 2: largest relative difference "
           f"{worst['demand']:.2e}, {demand_mismatch} disagreeing above 2 (the runs where a block topples left out)"
           + (f"; base peak: largest relative difference {worst['base']:.2e} (runs that topple left out)"
-             if linear else ""))
+             if linear or sliding else ""))
     print(f"CPU: kernel {cpu_k:.1f} s ({1e3 * cpu_k / n:.2f} ms a scene), reference {cpu_r:.1f} s")
     print(f"where (scene, kernel, reference): {where}")
     for b in bad:
@@ -136,6 +144,26 @@ def random_linear_scene(rng):
 
     stack, _ = random_scene(rng)
     iso = LinearIsolation(float(rng.uniform(0.5, 3.0)), float(rng.uniform(0.02, 0.3)), float(rng.uniform(0.05, 0.7)))
+    shape = (RickerSymmetric, RickerAntisymmetric, OneSine)[int(rng.integers(3))]
+    pulse = shape(float(rng.uniform(0.3, 1.5)) * G * rng.choice([-1, 1]), float(rng.uniform(0.3, 1.5)))
+    return stack, iso, pulse
+
+
+def random_sliding_scene(rng):
+    """A random stack on single concave, lead-rubber or double concave bearings (``T_b`` 1-4 s, friction 0.03-0.12,
+    ``Q`` 0.03-0.1 with ``u_y`` 5-25 mm, ``gamma`` 0.05-0.7) under a pulse of 0.3-1.5 g, 0.3-1.5 s."""
+    from rockcli.models import DoubleConcaveSliding, LeadRubber, SingleConcaveSliding
+
+    stack, _ = random_scene(rng)
+    kind = int(rng.integers(3))
+    Tb, gamma = float(rng.uniform(1.0, 4.0)), float(rng.uniform(0.05, 0.7))
+    if kind == 0:
+        iso = SingleConcaveSliding(Tb, float(rng.uniform(0.03, 0.12)), gamma=gamma)
+    elif kind == 1:
+        iso = LeadRubber(Tb, float(rng.uniform(0.03, 0.1)), float(rng.uniform(0.005, 0.025)), gamma=gamma)
+    else:
+        iso = DoubleConcaveSliding.from_period(Tb, float(rng.uniform(0.03, 0.12)), float(rng.uniform(0.03, 0.12)),
+                                               ratio=float(rng.uniform(0.5, 2.0)), gamma=gamma)
     shape = (RickerSymmetric, RickerAntisymmetric, OneSine)[int(rng.integers(3))]
     pulse = shape(float(rng.uniform(0.3, 1.5)) * G * rng.choice([-1, 1]), float(rng.uniform(0.3, 1.5)))
     return stack, iso, pulse
@@ -261,6 +289,8 @@ def main(argv=None):
     ap.add_argument("--linear", type=int, default=0)
     ap.add_argument("--mirror", action="store_true")
     ap.add_argument("--kernel-linear", action="store_true", help="--scenes on linear bearings, kernel vs reference")
+    ap.add_argument("--kernel-sliding", action="store_true",
+                    help="--scenes on sliding and lead-rubber bearings, kernel vs reference (Radau)")
     ap.add_argument("--isolation", default=None, help="--timing on these bearings, e.g. linear:Tb=2,xi=0.1,gamma=0.5")
     args = ap.parse_args(argv)
     if args.linear:
@@ -285,7 +315,8 @@ def main(argv=None):
     if args.drums:
         drums()
         return 0
-    differential(args.scenes, args.seed, args.restitution, args.ref_rtol, args.rest_tol, args.kernel_linear)
+    differential(args.scenes, args.seed, args.restitution, args.ref_rtol, args.rest_tol, args.kernel_linear,
+                 args.kernel_sliding)
     return 0
 
 

@@ -101,7 +101,7 @@ def test_the_history_of_a_stack(tmp_path):
     (("--on", "plinth:height=1"), "needs width"),
     (("--on", "plinth:height=1,width=1,mass_ratio=1e6"), "mass_ratio"),
     (("--on", "plinth:height=1,width=1,depth=2"), "is not one of height"),
-    (("--on", "plinth:height=1,width=1", "--isolation", "scss:Tb=3,mu=0.05"), "sliding and lead-rubber bearings"),
+    (("--on", "plinth:height=1,width=1", "--isolation", "scss:Tb=3,mu=0.05,gamma=0"), "gamma = 0"),
     (("--on", "plinth:height=1,width=1", "--cap-ratio", "0.2"), "--cap-ratio"),
     (("--on", "plinth:height=1,width=1", "--vertical-pulse", "sine:ap=0.1,Tp=0.3"), "--vertical"),
     (("--friction", "0"), "--friction must be a friction coefficient"),
@@ -196,8 +196,12 @@ def test_simulate_many_runs_stacks_and_blocks_in_order():
     on, ref = simulate_many([(jobs[0][0], bearings, jobs[0][2])])[0], simulate_stack(jobs[0][0], jobs[0][2],
                                                                                     isolation=bearings)
     assert on.verdict == ref.verdict and on.base_disp_max_m == ref.base_disp_max > 0.0
-    bad = simulate_many([(jobs[0][0], SingleConcaveSliding(3.0, 0.05), jobs[0][2])])[0]
-    assert bad.verdict == "error" and "sliding and lead-rubber bearings" in bad.error
+    sliding = SingleConcaveSliding(3.0, 0.05)
+    on, ref = simulate_many([(jobs[0][0], sliding, jobs[0][2])])[0], simulate_stack(jobs[0][0], jobs[0][2],
+                                                                                   isolation=sliding)
+    assert on.verdict == ref.verdict and on.base_disp_max_m == ref.base_disp_max > 0.0
+    bad = simulate_many([(jobs[0][0], SingleConcaveSliding(3.0, 0.05, gamma=0.0), jobs[0][2])])[0]
+    assert bad.verdict == "error" and "gamma = 0" in bad.error
 
 
 def test_the_stack_s_liftoff_floor_is_exact_on_random_scenes():
@@ -263,10 +267,10 @@ def test_assess_column_on_a_plinth_compares_with_the_statue_alone():
         assert mine[key] == alone[key]
 
 
-def test_assess_refuses_named_sliding_bearings_with_a_plinth():
+def test_assess_refuses_named_bearings_under_an_infinitely_heavy_base_with_a_plinth():
     code, out = _run("assess", "column", STATUE, "--on", "plinth:height=1.0,width=0.6", "--records", KOBE,
-                     "--isolation", "none", "--isolation", "scss:Tb=3,mu=0.05")
-    assert code == 2 and "sliding and lead-rubber bearings" in out and "--isolation none or linear" in out
+                     "--isolation", "none", "--isolation", "scss:Tb=3,mu=0.05,gamma=0")
+    assert code == 2 and "gamma = 0" in out and "--isolation none or bearings with gamma > 0" in out
     code, out = _run("assess", "column", STATUE, "--on", "plinth:height=1.0,width=0.3", "--records", KOBE)
     assert code == 2 and "no wider than its plinth" in out
 

@@ -4,10 +4,10 @@ Each body named is assessed twice, alone and standing on the plinth (a :class:`r
 its own named ``statue on plinth``), on the same configurations and records, so that the answer can say whether the
 plinth helps or hurts (:func:`rockcli.assess.verdicts.plinth_summary`).
 
-Foundations (the choice, docs/plinth.md): a body on a plinth is modelled on the rigid foundation and on linear
-bearings (:func:`rockcli.solve.stack_many.plinth_foundation_supported`). A configuration of another kind in a
-default set is left out with a note; one the user names with ``--on`` is refused in one sentence (a cell that
-cannot be computed is not an answer to what was asked).
+Foundations (the choice, docs/plinth.md): a body on a plinth is modelled on the rigid foundation and on linear,
+sliding and lead-rubber bearings with gamma > 0 (:func:`rockcli.solve.stack_many.plinth_foundation_supported`). A
+configuration of another kind in a default set is left out with a note; one the user names with ``--on`` is
+refused in one sentence (a cell that cannot be computed is not an answer to what was asked).
 """
 
 from __future__ import annotations
@@ -42,7 +42,7 @@ def with_plinth(columns, configurations, plinth_spec, *, isolation_given: bool, 
     left = [c for c in configurations if c not in kept]
     if left and isolation_given:
         raise RockcliInputError(f"--on: {PLINTH_RIGID_ONLY} ({', '.join(c.spec for c in left)}); give "
-                                f"--isolation none or linear:...")
+                                f"--isolation none or bearings with gamma > 0")
     note = ""
     if left:
         note = (f"Plinth: {PLINTH_RIGID_ONLY}, so every body, alone and on its plinth, is assessed without them "

@@ -37,7 +37,7 @@ def refuse_with_plinth(foundation, *, cap_ratio, moving, check, history_dt, vert
     from rockcli.solve.stack_many import PLINTH_RIGID_ONLY, plinth_foundation_supported
 
     if not plinth_foundation_supported(foundation):
-        raise RockcliInputError(f"--on: {PLINTH_RIGID_ONLY}; give --isolation none or linear:...")
+        raise RockcliInputError(f"--on: {PLINTH_RIGID_ONLY}; give --isolation none or bearings with gamma > 0")
     refused = [name for name, given in (("--cap-ratio", cap_ratio), ("--theta0/--theta-dot0", moving),
                                         ("--check-tolerance", check),
                                         ("--history-dt", history_dt is not None),

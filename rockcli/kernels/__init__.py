@@ -27,11 +27,12 @@ Files (data flows down this list):
 ``stack_physics``         a body on a free plinth: the equations of both rocking, contact forces, impacts
 ``stack``                 :func:`simulate_stack`: the body on its plinth on a rigid foundation (the
                           rigid driver's code for one rocking body, the 2x2 system for both)
-``stack_linear_physics``  the body on its plinth on linear bearings: every pattern's equations with
-                          the base, impacts in maximal coordinates with the base (a small KKT system)
+``stack_linear_physics``  the body on its plinth on bearings (linear, sliding, lead-rubber): every
+                          pattern's equations with the base, impacts in maximal coordinates with the
+                          base (a small KKT system)
 ``stack_linear``          :func:`rockcli.kernels.stack_linear.simulate_stack_linear`: the body on its
-                          plinth on linear bearings (Dormand-Prince on six states, events on the
-                          continuous extension)
+                          plinth on bearings (Dormand-Prince on six states, the hysteretic elements
+                          along the path of u, events on the continuous extension)
 ``batch``                 :func:`simulate_batch_rigid`, :func:`simulate_batch`,
                           :func:`simulate_batch_rigid_vertical`: many verdict-only scenes in
                           parallel, one entry per driver (and one for a vertical motion);

@@ -1,5 +1,6 @@
-"""The stack driver on linear bearings: :func:`simulate_stack_linear` runs a body on its plinth on an isolated
-base (docs/physics-plinth.md, "On linear bearings"), event-driven, one pattern at a time.
+"""The stack driver on bearings: :func:`simulate_stack_linear` runs a body on its plinth on an isolated base on
+linear, sliding or lead-rubber bearings (docs/physics-plinth.md, "On linear bearings", "On sliding and lead-rubber
+bearings"), event-driven, one pattern at a time.
 
 States ``y = (psi, psi', theta2, theta2', u, u')`` in every pattern (the angles of a face stay 0), integrated by
 Dormand-Prince 5(4) with its continuous extension (the coefficients of SciPy's ``RK45``), the error of each state
@@ -10,9 +11,13 @@ plinth's base; P: the joint), and the step is taken again to the first of them (
 While a face is watched the steps stay below ``0.32/p`` and ``1.6/omega_b`` (16 samples each ``0.02/p`` and
 ``0.1/omega_b`` apart, the reference's resolution). Impacts, the pattern after them and the rest rules are those of
 the reference (:mod:`rockcli.kernels.stack_linear_physics`). The run ends at rest once the free base provably
-cannot lift the stack again (after the excitation, its energy bound below the lower threshold; the base then
-followed two periods for its later peak), when a block topples, or at the horizon. No early stop during the
-excitation: verdict-only and history runs take the same steps.
+cannot lift the stack again (after the excitation; linear bearings: P3, the free oscillator's energy bounds ``|F|``;
+hysteretic bearings: P3s, ``sqrt(F^2 + K u'^2)`` bounds every later ``|F|``, both stated in
+:func:`rockcli.kernels.driver.simulate_core`: the stack at rest on the base is one rigid mass on the bearings,
+exactly the single block's stuck base; the base then followed for its later peak, two periods, on hysteretic
+bearings only until its energy bound of ``|u|`` is below the peak), when a block topples, or at the horizon. No
+early stop during the excitation: verdict-only and history runs take the same steps. On hysteretic bearings the
+steps follow the single block's rules for its Bouc-Wen elements (:func:`simulate_stack_linear`).
 """
 
 from __future__ import annotations
@@ -22,11 +27,14 @@ import math
 import numpy as np
 from numba import njit
 
+from rockcli.kernels.bearings import (free_disp_bound, free_force_bound, initial_anchor, knee_ratio, knee_step,
+                                      reanchor, z_sensitivity)
 from rockcli.kernels.ground import ground_at
-from rockcli.kernels.layout import N_OUT
+from rockcli.kernels.layout import FOUNDATION_LINEAR, N_OUT
+from rockcli.kernels.polynomials import _first_down, _poly
 from rockcli.kernels.stack_linear_physics import (L_AASM, L_PMAX, L_RTOL, L_SC, L_THR1, L_THRA, L_WB, L_XI, accel,
-                                                  bearing, choose_post, impact_into, kinetic_relative, mass_diag,
-                                                  rel_rates, rest_moments, restoring, rhs, velocities)
+                                                  bearing, choose_post, force, impact_into, kinetic_relative,
+                                                  mass_diag, rel_rates, rest_moments, restoring, rhs, velocities)
 from rockcli.kernels.stack_physics import S_A1, S_E, S_G, S_M2, S_REST, S_TOL, forces
 from rockcli.kernels.steps import _advance_segment, _seg, _start
 from rockcli.kernels.layout import RS_SEG_END, RS_T
@@ -63,7 +71,7 @@ _P = ((1.0, -8048581381.0 / 2820520608.0, 8663915743.0 / 2820520608.0, -12715105
 
 
 @njit(cache=True)
-def _dp5(s, k, sp, lp, seg, epar, t, h, y, K, ynew):
+def _dp5(s, k, sp, lp, bb, seg, epar, t, h, y, K, ynew):
     """One Dormand-Prince step from ``y`` (``K[0] = f(t, y)`` given) into ``ynew``, ``K[6] = f(t + h, ynew)``:
     the error norm (<= 1: accepted)."""
     yt = np.empty(6)
@@ -73,20 +81,26 @@ def _dp5(s, k, sp, lp, seg, epar, t, h, y, K, ynew):
             for j in range(st):
                 acc += _A[st][j] * K[j, i]
             yt[i] = y[i] + h * acc
-        rhs(s, k, sp, lp, yt, ground_at(t + _C[st] * h, seg, epar), K[st])
+        rhs(s, k, sp, lp, bb, yt, ground_at(t + _C[st] * h, seg, epar), K[st])
     for i in range(6):
         acc = 0.0
         for j in range(6):
             acc += _B[j] * K[j, i]
         ynew[i] = y[i] + h * acc
-    rhs(s, k, sp, lp, ynew, ground_at(t + h, seg, epar), K[6])
+    rhs(s, k, sp, lp, bb, ynew, ground_at(t + h, seg, epar), K[6])
     err = 0.0
     rtol = lp[L_RTOL]
+    # on a hysteretic bearing the error of u passes to its Bouc-Wen elements, |dz/du| <= gz: the tolerance of u is
+    # rtol / (1/max(|u|, scale) + gz), as for the single block (rockcli.kernels.dopri)
+    gz = 0.0 if bb[0] == FOUNDATION_LINEAR else z_sensitivity(bb[0], bb[1], bb[2])
     for i in range(6):
         e = 0.0
         for j in range(7):
             e += _E[j] * K[j, i]
-        sc = rtol * max(lp[L_SC + i], abs(y[i]), abs(ynew[i]))
+        if i == 4 and gz > 0.0:
+            sc = rtol / (1.0 / max(lp[L_SC + i], abs(y[i]), abs(ynew[i])) + gz)
+        else:
+            sc = rtol * max(lp[L_SC + i], abs(y[i]), abs(ynew[i]))
         err = max(err, abs(h * e) / sc)
     return err
 
@@ -105,7 +119,7 @@ def _dense(y, K, h, sig, out):
 
 
 @njit(cache=True)
-def _value(kind, c, sgn, s, k, sp, lp, seg, epar, t, h, y, K, sg, yy):
+def _value(kind, c, sgn, s, k, sp, lp, bb, seg, epar, t, h, y, K, sg, yy):
     """The value whose first fall to 0 is the event, at fraction ``sg`` of the step: ``kind`` 0 an impact of the
     pivot in column ``c`` on corner ``sgn``, 1 its block's overturn, 2 the watched face (:func:`_face_value`)."""
     _dense(y, K, h, sg, yy)
@@ -113,24 +127,24 @@ def _value(kind, c, sgn, s, k, sp, lp, seg, epar, t, h, y, K, sg, yy):
         return sgn * yy[c]
     if kind == 1:
         return HALF_PI - sgn * yy[c]
-    return _face_value(s, k, sp, lp, yy, ground_at(t + sg * h, seg, epar))
+    return _face_value(s, k, sp, lp, bb, yy, ground_at(t + sg * h, seg, epar))
 
 
 @njit(cache=True)
-def _first_fall(kind, c, sgn, s, k, sp, lp, seg, epar, t, h, y, K, sig_lim):
+def _first_fall(kind, c, sgn, s, k, sp, lp, bb, seg, epar, t, h, y, K, sig_lim):
     """First fraction in ``(0, sig_lim]`` of the step where the event value is <= 0 (16 samples, bisection;
     the start counts as above 0), else 2."""
     yy = np.empty(6)
     lo = 0.0
     for m in range(1, 17):
         sg = sig_lim * m / 16.0
-        if _value(kind, c, sgn, s, k, sp, lp, seg, epar, t, h, y, K, sg, yy) <= 0.0:
+        if _value(kind, c, sgn, s, k, sp, lp, bb, seg, epar, t, h, y, K, sg, yy) <= 0.0:
             hi = sg
             for _ in range(60):
                 mid = 0.5 * (lo + hi)
                 if mid <= lo or mid >= hi:
                     break
-                if _value(kind, c, sgn, s, k, sp, lp, seg, epar, t, h, y, K, mid, yy) <= 0.0:
+                if _value(kind, c, sgn, s, k, sp, lp, bb, seg, epar, t, h, y, K, mid, yy) <= 0.0:
                     hi = mid
                 else:
                     lo = mid
@@ -140,12 +154,12 @@ def _first_fall(kind, c, sgn, s, k, sp, lp, seg, epar, t, h, y, K, sig_lim):
 
 
 @njit(cache=True)
-def _face_value(s, k, sp, lp, yy, ag):
+def _face_value(s, k, sp, lp, bb, yy, ag):
     """R: the lower uplift threshold less the bearing's force; B: the plinth's smaller base corner force over its
     load; P: the joint's over the body's weight."""
     if s == 0.0 and k == 0.0:
-        return min(lp[L_THR1], lp[L_THRA]) - abs(bearing(lp, yy[4], yy[5]))
-    pdd, tdd, ab = accel(s, k, sp, lp, yy, ag)
+        return min(lp[L_THR1], lp[L_THRA]) - abs(force(lp, bb, yy[4], yy[5]))
+    pdd, tdd, ab = accel(s, k, sp, lp, bb, yy, ag)
     f = forces(s, k, sp, yy[2], yy[0], yy[3], yy[1], tdd, pdd, ab)
     if s == 0.0:
         return min(f[2], f[3]) / ((1.0 + sp[S_M2]) * sp[S_G])
@@ -171,6 +185,63 @@ def _rest_bounds(lp, y, K, h):
     return fb, ub
 
 
+@njit(cache=True)
+def _coeffs(y, K, h, i):
+    """The quartic ``sum_m c_m sigma^m`` of state ``i`` over the step (the continuous extension)."""
+    c = [y[i], 0.0, 0.0, 0.0, 0.0]
+    for m in range(4):
+        acc = 0.0
+        for j in range(7):
+            acc += _P[j][m] * K[j, i]
+        c[m + 1] = h * acc
+    return (c[0], c[1], c[2], c[3], c[4])
+
+
+@njit(cache=True)
+def _rest_bounds_hysteretic(lp, bb, y, K, h):
+    """:func:`_rest_bounds` on a hysteretic bearing: ``|u(sigma) - u(0)| <= span = sum_m>0 |c_m|``, and on the
+    step's branch (the step ends at a reversal of u) ``F`` is a decreasing function of ``u`` alone, so ``|F| <=
+    max(|F(u0 - span)|, |F(u0 + span)|)`` over the step (the single block's quick test,
+    :func:`rockcli.kernels.events.hysteretic_uplift`)."""
+    c = _coeffs(y, K, h, 4)
+    span = abs(c[1]) + abs(c[2]) + abs(c[3]) + abs(c[4])
+    fb = max(abs(force(lp, bb, y[4] - span, 0.0)), abs(force(lp, bb, y[4] + span, 0.0)))
+    return fb, abs(y[4]) + span
+
+
+@njit(cache=True)
+def _reversal(y, K, h, d, tol):
+    """Did the base keep moving in direction ``d`` through the step (a hysteretic bearing's elements follow ``u``
+    exactly only while it moves one way)? ``(code, sigma)``, as the single block's
+    :func:`rockcli.kernels.events.reversal_check`: 1 ``d u'`` falls to 0 at ``sigma`` after the base moved forward by
+    more than ``tol`` (the step is cut there); 2 the base moved back by more than ``tol`` before moving forward (a
+    start at ``u' = 0`` whose direction was guessed wrong: retake the step on the other branch); else 0."""
+    cv = _coeffs(y, K, h, 5)
+    cu = _coeffs(y, K, h, 4)
+    cv = (d * cv[0], d * cv[1], d * cv[2], d * cv[3], d * cv[4])
+    cu = (d * cu[0], d * cu[1], d * cu[2], d * cu[3], d * cu[4])
+    sr = _first_down(cv, 0.0, 0.0, 1.0)
+    if sr >= 0.0 and _poly(cu, sr) - cu[0] > tol:
+        return 1, sr
+    for m in range(1, 17):
+        D = _poly(cu, m / 16.0) - cu[0]
+        if D < -tol:
+            return 2, 0.0
+        if D > tol:
+            break
+    return 0, 1.0
+
+
+@njit(cache=True, inline='always')
+def _direction(ud, d):
+    """The direction of the base's motion for the next step: the sign of ``u'`` (``d`` if it is 0)."""
+    if ud > 0.0:
+        return 1.0
+    if ud < 0.0:
+        return -1.0
+    return d
+
+
 @njit(cache=True, inline='always')
 def _may_cross(c, a0, r0, a1, r1, kind):
     """Whether a pivot's angle (corner ``c``, from ``a0``, rate ``r0`` to ``a1``, ``r1`` over the step) may reach
@@ -182,7 +253,7 @@ def _may_cross(c, a0, r0, a1, r1, kind):
 
 
 @njit(cache=True)
-def _scan(s, k, sp, lp, seg, epar, t, h, y, K, sig_end, z):
+def _scan(s, k, sp, lp, bb, seg, epar, t, h, y, K, sig_end, z):
     """Peaks, first exceedances and the friction demand over ``[0, sig_end]`` of the step (17 samples, the
     largest of each peak refined by golden section); counts a step where a pivot's normal force is below 0."""
     yy = np.empty(6)
@@ -198,12 +269,12 @@ def _scan(s, k, sp, lp, seg, epar, t, h, y, K, sig_end, z):
                 best[q] = vals[q]
                 arg[q] = m
         if s == 0.0 and k == 0.0:  # at rest: both interfaces carry the weight and |a_b| of it sideways
-            fr = abs(bearing(lp, yy[4], yy[5])) / sp[S_G]
+            fr = abs(force(lp, bb, yy[4], yy[5])) / sp[S_G]
             z[Z_FR0] = max(z[Z_FR0], fr)
             z[Z_FR1] = max(z[Z_FR1], fr)
             continue
         ag = ground_at(t + sg * h, seg, epar)
-        pdd, tdd, ab = accel(s, k, sp, lp, yy, ag)
+        pdd, tdd, ab = accel(s, k, sp, lp, bb, yy, ag)
         f = forces(s, k, sp, yy[2], yy[0], yy[3], yy[1], tdd, pdd, ab)
         if f[0] > 0.0 and (s != 0.0 or min(f[2], f[3]) > 0.0):
             z[Z_FR0] = max(z[Z_FR0], abs(f[1]) / f[0])
@@ -247,7 +318,7 @@ def _scan(s, k, sp, lp, seg, epar, t, h, y, K, sig_end, z):
 
 
 @njit(cache=True)
-def _after_impact(j, s, k, sp, lp, Md, y, t, t_exc_end, z, ag):
+def _after_impact(j, s, k, sp, lp, bb, Md, y, t, t_exc_end, z, ag):
     """The impact at interface ``j`` (its angle set to 0): the pattern after it, the rest rules. Returns the new
     ``(s, k)``; ``y`` is updated."""
     q0 = y[2] if j == 1 else 0.0
@@ -278,7 +349,7 @@ def _after_impact(j, s, k, sp, lp, Md, y, t, t_exc_end, z, ag):
     if (c0 != 0.0 or c1 != 0.0) and q0 == 0.0 and q1 == 0.0:
         # the whole stack's rest rule: nothing could lift it at rest, its energy below rest_tol min(alpha_j M_j)
         vs, _ = impact_into(0.0, 0.0, sp, Md, q0, q1, v, 0, 0.0, False)
-        m1, m0 = rest_moments(sp, lp, bearing(lp, y[4], vs[6]))
+        m1, m0 = rest_moments(sp, lp, force(lp, bb, y[4], vs[6]))
         if m1 > 0.0 and m0 > 0.0 and kinetic_relative(Md, v) < rest * min(sp[S_A1] * m1, lp[L_AASM] * m0):
             y[1] = 0.0
             y[3] = 0.0
@@ -293,7 +364,7 @@ def _after_impact(j, s, k, sp, lp, Md, y, t, t_exc_end, z, ag):
         d0, d1 = rel_rates(v0)
         d0 = d0 if s0 != 0.0 else 0.0
         d1 = d1 if k0 != 0.0 else 0.0
-        R = restoring(j, s0, k0, sp, lp, q0, q1, d0, d1, bearing(lp, y[4], v0[6]))
+        R = restoring(j, s0, k0, sp, lp, q0, q1, d0, d1, force(lp, bb, y[4], v0[6]))
         rate = r1 if j else r0
         if R > 0.0 and rate * rate / (2.0 * R) < rest * (sp[S_A1] if j else lp[L_AASM]):
             y[3] = d0
@@ -308,12 +379,12 @@ def _after_impact(j, s, k, sp, lp, Md, y, t, t_exc_end, z, ag):
                 y[1] = 0.0
             else:
                 y[3] = 0.0
-            pdd, tdd, _ = accel(c0, c1, sp, lp, y, ag)
+            pdd, tdd, _ = accel(c0, c1, sp, lp, bb, y, ag)
             if cj * (pdd if j else tdd) > 0.0:
                 return c0, c1
             f0 = -c0 if j == 0 else c0
             f1 = -c1 if j == 1 else c1
-            pdd, tdd, _ = accel(f0, f1, sp, lp, y, ag)
+            pdd, tdd, _ = accel(f0, f1, sp, lp, bb, y, ag)
             if -cj * (pdd if j else tdd) > 0.0:
                 return f0, f1
             v0, _ = impact_into(s0, k0, sp, Md, q0, q1,
@@ -349,11 +420,19 @@ def _uplift(z, j, t):
 
 
 @njit(cache=True)
-def simulate_stack_linear(sp, lp, ekind, epar, acc, dt, t_begin, t_exc_end, tail, horizon, max_steps, want_history,
-                          z):
-    """Integrate a body on its plinth on linear bearings under one excitation (``sp`` the stack tuple of
-    :func:`rockcli.solve.stack.stack_parameters`, ``lp`` the bearings' tuple ``L_*``). ``z`` gets the outputs
-    (``Z_*``); returns the history rows (``t, ag, psi, psi', theta2, theta2', u, u', pattern, event``)."""
+def simulate_stack_linear(sp, lp, fk, bp, ekind, epar, acc, dt, t_begin, t_exc_end, tail, horizon, max_steps,
+                          want_history, z):
+    """Integrate a body on its plinth on an isolated base under one excitation (``sp`` the stack tuple of
+    :func:`rockcli.solve.stack.stack_parameters`, ``lp`` the base's tuple ``L_*``, ``fk`` the bearings' code
+    ``FOUNDATION_*`` and ``bp`` the single block's parameter tuple of a hysteretic bearing, whose bearing entries
+    are read; anything on linear bearings). ``z`` gets the outputs (``Z_*``); returns the history rows (``t, ag,
+    psi, psi', theta2, theta2', u, u', pattern, event``).
+
+    On a hysteretic bearing (the module notes of :mod:`rockcli.kernels.bearings`) the Bouc-Wen elements follow
+    ``u`` exactly on the branch of their anchor ``hy``, so, as for the single block, a step ends where ``u``
+    reverses (an event, :func:`_reversal`), a step that starts the wrong way is retaken on the other branch, the
+    knees of the loop bound the step (:func:`rockcli.kernels.bearings.knee_step`, ``knee_ratio``), the error
+    of ``u`` is weighed by ``|dz/du|`` (:func:`_dp5`), and the anchor moves on after every step and event."""
     out = np.zeros(N_OUT)
     _W, rs, _H = _start(ekind, epar, acc, dt, t_begin, False, out)
     for i in range(N_Z):
@@ -380,6 +459,10 @@ def simulate_stack_linear(sp, lp, ekind, epar, acc, dt, t_begin, t_exc_end, tail
     t_horizon = t_exc_end + max(horizon, tail)
     t_show = t_exc_end + tail
     bound = wb * math.sqrt(1.0 + 4.0 * lp[L_XI] ** 2)
+    hyst = fk != FOUNDATION_LINEAR
+    hy = initial_anchor(fk, bp) if hyst else (0.0, 1.0, 0.0, 0.0, 0.0, 0.0)
+    bb = (fk, bp, hy)
+    reversed_ = False
     steps = 0
     rej = 0
     nrhs = 0
@@ -390,7 +473,13 @@ def simulate_stack_linear(sp, lp, ekind, epar, acc, dt, t_begin, t_exc_end, tail
         _advance_segment(rs, ekind, epar, acc, dt, t_begin)
         seg = _seg(rs)
         if s == 0.0 and k == 0.0 and not settled and t >= t_exc_end:
-            if bound * math.hypot(y[5], wb * y[4]) < thr:
+            # the stack at rest rides the free base: P3 (linear) or P3s (hysteretic, rockcli.kernels.driver) bounds
+            # every later |F| of the base; below the lower uplift threshold nothing lifts again
+            if hyst:
+                fbound = free_force_bound(fk, bp, hy, y[4], y[5])
+            else:
+                fbound = bound * math.hypot(y[5], wb * y[4])
+            if fbound < thr:
                 settled = True
                 z[Z_T_SETTLED] = t
                 t_tail = t + 4.0 * math.pi / wb
@@ -398,6 +487,9 @@ def simulate_stack_linear(sp, lp, ekind, epar, acc, dt, t_begin, t_exc_end, tail
                     t_tail = max(t_tail, t_show)
         if settled and t >= t_tail - 1e-12:
             break
+        if (settled and hyst and (not want_history or t >= t_show)
+                and free_disp_bound(fk, bp, hy, y[4], y[5]) <= z[Z_UMAX] * (1.0 + 1e-9)):
+            break  # P3s: the free base's energy bounds every later |u| by the peak already reached
         if t >= t_horizon - 1e-12:
             break
         if steps + rej >= max_steps:
@@ -405,13 +497,17 @@ def simulate_stack_linear(sp, lp, ekind, epar, acc, dt, t_begin, t_exc_end, tail
             break
         t_stop = min(rs[RS_SEG_END], t_horizon, t_tail)
         if fresh:
+            if hyst and not reversed_:  # after an event: the elements anchored where u is, for its direction now
+                hy = reanchor(fk, bp, hy, y[4], _direction(y[5], hy[1]))
+                bb = (fk, bp, hy)
+            reversed_ = False
             ag0 = ground_at(t, seg, epar)
-            rhs(s, k, sp, lp, y, ag0, K[0])
+            rhs(s, k, sp, lp, bb, y, ag0, K[0])
             nrhs += 1
             fresh = False
             if s == 0.0 or k == 0.0:  # a face that cannot hold at the start opens now
-                if _face_value(s, k, sp, lp, y, ag0) < -sp[S_TOL]:
-                    s, k = _open(s, k, sp, lp, y, ag0, body_first, z, t)
+                if _face_value(s, k, sp, lp, bb, y, ag0) < -sp[S_TOL]:
+                    s, k = _open(s, k, sp, lp, bb, y, ag0, body_first, z, t)
                     fresh = True
                     if want_history:
                         H, nh = _hist(H, nh, t, ag0, y, s, k, EVH_UPLIFT)
@@ -421,12 +517,45 @@ def simulate_stack_linear(sp, lp, ekind, epar, acc, dt, t_begin, t_exc_end, tail
         if h <= 0.0:
             h = min(0.02 / lp[L_PMAX], 0.1 / wb)
         h = min(h, cap)
+        sig_rev = 2.0
+        tol_u = 0.0
+        flips = 0
+        if hyst:  # the knees of the bearing's loop (the single block's rule)
+            h = min(h, knee_step(fk, bp, hy, y[5], K[0, 5]))
+            tol_u = lp[L_RTOL] / (1.0 / max(abs(y[4]), lp[L_SC + 4]) + z_sensitivity(fk, bp, hy))
         # ---- one accepted step ----
         while True:
             last = h >= t_stop - t
             hs = t_stop - t if last else h
-            err = _dp5(s, k, sp, lp, seg, epar, t, hs, y, K, ynew)
+            err = _dp5(s, k, sp, lp, bb, seg, epar, t, hs, y, K, ynew)
             nrhs += 6
+            if err <= 1.0 and hyst:
+                code, sr = _reversal(y, K, hs, hy[1], tol_u)
+                if code == 2:  # the base left the anchor the other way: the other branch (f(t, y) is the same)
+                    rej += 1
+                    flips += 1
+                    if flips > 1:
+                        h = 0.5 * hs
+                        flips = 0
+                    hy = reanchor(fk, bp, hy, y[4], -hy[1])
+                    bb = (fk, bp, hy)
+                    tol_u = lp[L_RTOL] / (1.0 / max(abs(y[4]), lp[L_SC + 4]) + z_sensitivity(fk, bp, hy))
+                    if steps + rej >= max_steps:
+                        err = 2.0
+                        break
+                    continue
+                sig_rev = sr if code == 1 else 2.0
+                yy = np.empty(6)
+                _dense(y, K, hs, min(sig_rev, 1.0), yy)
+                kr = knee_ratio(fk, bp, hy, yy[4], hs, y[5])
+                if kr > 1.0:  # the step ran through a knee of the loop unresolved: retake it shorter
+                    rej += 1
+                    h = hs * max(0.2, 0.9 / kr)
+                    sig_rev = 2.0
+                    if steps + rej >= max_steps:
+                        err = 2.0
+                        break
+                    continue
             if err <= 1.0:
                 fac = 5.0 if err == 0.0 else min(5.0, max(0.2, 0.9 * err ** -0.2))
                 h = max(h, hs * fac) if last else hs * fac
@@ -442,36 +571,41 @@ def simulate_stack_linear(sp, lp, ekind, epar, acc, dt, t_begin, t_exc_end, tail
         # ---- events ----
         sig = 1.0
         ev = -1
+        if sig_rev <= 1.0:
+            sig, ev = sig_rev, 5  # the base reverses: the step ends there (the elements change branch)
         if k != 0.0:
             if _may_cross(k, y[0], y[1], ynew[0], ynew[1], 0):
-                sg = _first_fall(0, 0, k, s, k, sp, lp, seg, epar, t, hs, y, K, 1.0)
+                sg = _first_fall(0, 0, k, s, k, sp, lp, bb, seg, epar, t, hs, y, K, 1.0)
                 if sg <= sig:
                     sig, ev = sg, 1  # the joint's impact
             if _may_cross(k, y[0], y[1], ynew[0], ynew[1], 1):
-                sg = _first_fall(1, 0, k, s, k, sp, lp, seg, epar, t, hs, y, K, 1.0)
+                sg = _first_fall(1, 0, k, s, k, sp, lp, bb, seg, epar, t, hs, y, K, 1.0)
                 if sg <= sig:
                     sig, ev = sg, 3  # the body topples
         if s != 0.0:
             if _may_cross(s, y[2], y[3], ynew[2], ynew[3], 0):
-                sg = _first_fall(0, 2, s, s, k, sp, lp, seg, epar, t, hs, y, K, 1.0)
+                sg = _first_fall(0, 2, s, s, k, sp, lp, bb, seg, epar, t, hs, y, K, 1.0)
                 if sg < sig or (sg <= sig and ev < 0):
                     sig, ev = sg, 0  # the base's impact
             if _may_cross(s, y[2], y[3], ynew[2], ynew[3], 1):
-                sg = _first_fall(1, 2, s, s, k, sp, lp, seg, epar, t, hs, y, K, 1.0)
+                sg = _first_fall(1, 2, s, s, k, sp, lp, bb, seg, epar, t, hs, y, K, 1.0)
                 if sg <= sig:
                     sig, ev = sg, 2  # the plinth topples
         rest = s == 0.0 and k == 0.0
         fb = ub = np.inf
         if rest:  # at rest: the bearing's force and the base's displacement bounded over the step
-            fb, ub = _rest_bounds(lp, y, K, hs)
+            if hyst:
+                fb, ub = _rest_bounds_hysteretic(lp, bb, y, K, hs)
+            else:
+                fb, ub = _rest_bounds(lp, y, K, hs)
         if watched and not (rest and fb < thr):
-            sg = _first_fall(2, 0, 0.0, s, k, sp, lp, seg, epar, t, hs, y, K, min(sig, 1.0))
+            sg = _first_fall(2, 0, 0.0, s, k, sp, lp, bb, seg, epar, t, hs, y, K, min(sig, 1.0))
             if sg <= sig:
                 sig, ev = sg, 4  # the watched face opens
         if not rest or ev >= 0 or ub > z[Z_UMAX] or fb > min(z[Z_FR0], z[Z_FR1]) * sp[S_G]:
-            _scan(s, k, sp, lp, seg, epar, t, hs, y, K, sig, z)
+            _scan(s, k, sp, lp, bb, seg, epar, t, hs, y, K, sig, z)
         if ev >= 0 and sig < 1.0:  # retake the step to the event
-            _dp5(s, k, sp, lp, seg, epar, t, sig * hs, y, K, ynew)
+            _dp5(s, k, sp, lp, bb, seg, epar, t, sig * hs, y, K, ynew)
             nrhs += 6
         t = t + sig * hs if sig < 1.0 else (t_stop if last else t + hs)
         for i in range(6):
@@ -479,10 +613,20 @@ def simulate_stack_linear(sp, lp, ekind, epar, acc, dt, t_begin, t_exc_end, tail
         if ev < 0:
             for i in range(6):
                 K[0, i] = K[6, i]
+            if hyst:  # the anchor moves on along the branch
+                hy = reanchor(fk, bp, hy, y[4], _direction(y[5], hy[1]))
+                bb = (fk, bp, hy)
             if want_history:
                 H, nh = _hist(H, nh, t, ground_at(t, seg, epar), y, s, k, EVH_STATE)
             continue
         fresh = True
+        if ev == 5:  # the base reversed: the elements take the other branch from here
+            hy = reanchor(fk, bp, hy, y[4], -hy[1])
+            bb = (fk, bp, hy)
+            reversed_ = True
+            if want_history:
+                H, nh = _hist(H, nh, t, ground_at(t, seg, epar), y, s, k, EVH_STATE)
+            continue
         ag = ground_at(t, seg, epar)
         if ev == 2 or ev == 3:
             z[Z_TOPPLED] = 0.0 if ev == 2 else 1.0
@@ -498,12 +642,12 @@ def simulate_stack_linear(sp, lp, ekind, epar, acc, dt, t_begin, t_exc_end, tail
                 yy = y.copy()
                 yy[2 * (1 - j)] = 0.0
                 H, nh = _hist(H, nh, t, ag, yy, s, k, EVH_IMPACT)
-            s, k = _after_impact(j, s, k, sp, lp, Md, y, t, t_exc_end, z, ag)
+            s, k = _after_impact(j, s, k, sp, lp, bb, Md, y, t, t_exc_end, z, ag)
             if want_history:
                 H, nh = _hist(H, nh, t, ag, y, s, k, EVH_REST if (s == 0.0 and k == 0.0) else EVH_IMPACT)
             continue
         # the watched face opens
-        s, k = _open(s, k, sp, lp, y, ag, body_first, z, t)
+        s, k = _open(s, k, sp, lp, bb, y, ag, body_first, z, t)
         if want_history:
             H, nh = _hist(H, nh, t, ag, y, s, k, EVH_UPLIFT)
     z[Z_SETTLED] = 1.0 if (settled or z[Z_TOPPLED] >= 0.0) else 0.0
@@ -515,11 +659,11 @@ def simulate_stack_linear(sp, lp, ekind, epar, acc, dt, t_begin, t_exc_end, tail
 
 
 @njit(cache=True)
-def _open(s, k, sp, lp, y, ag, body_first, z, t):
+def _open(s, k, sp, lp, bb, y, ag, body_first, z, t):
     """The watched face opens about the corner that keeps pressing: R -> B or P (the lower threshold), B -> BP
     (the plinth lifts), P -> BP (the body lifts off it). Returns the new ``(s, k)``."""
     if s == 0.0 and k == 0.0:
-        side = -1.0 if bearing(lp, y[4], y[5]) > 0.0 else 1.0
+        side = -1.0 if force(lp, bb, y[4], y[5]) > 0.0 else 1.0
         if body_first:
             _uplift(z, 1, t)
             y[0] = 0.0
@@ -529,7 +673,7 @@ def _open(s, k, sp, lp, y, ag, body_first, z, t):
         y[2] = 0.0
         y[3] = 0.0
         return side, 0.0
-    pdd, tdd, ab = accel(s, k, sp, lp, y, ag)
+    pdd, tdd, ab = accel(s, k, sp, lp, bb, y, ag)
     f = forces(s, k, sp, y[2], y[0], y[3], y[1], tdd, pdd, ab)
     if s == 0.0:
         _uplift(z, 0, t)

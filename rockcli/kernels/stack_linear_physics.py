@@ -1,5 +1,12 @@
-"""The mechanics of a body on its plinth on linear bearings (docs/physics-plinth.md, "On linear bearings"), for
-:mod:`rockcli.kernels.stack_linear`: the right-hand side of every pattern and the impacts with the base.
+"""The mechanics of a body on its plinth on an isolated base (docs/physics-plinth.md, "On linear bearings" and "On
+sliding and lead-rubber bearings"), for :mod:`rockcli.kernels.stack_linear`: the right-hand side of every pattern and
+the impacts with the base.
+
+The bearings' force per unit moving mass is :func:`force`: the linear ``F(u, u')`` of :func:`bearing`, or a
+hysteretic bearing's ``F(u)`` on the branch of its anchor (the single block's functions,
+:func:`rockcli.kernels.bearings.hysteretic_force`). A bearing travels as ``bb = (fkind, prm, hy)``: its
+:mod:`rockcli.kernels.layout` code, the single block's parameter vector (only the bearing's entries are read) and the
+anchor of its Bouc-Wen elements (:mod:`rockcli.kernels.bearings`); on linear bearings only ``fkind`` is read.
 
 States ``y = (psi, psi', theta2, theta2', u, u')``; a pattern is ``(s, k)``, the base and joint corners (0: a face).
 Every pattern is the rigid foundation's with the base's absolute acceleration ``a_b`` for ``ag``, closed by the
@@ -21,6 +28,8 @@ import math
 import numpy as np
 from numba import njit
 
+from rockcli.kernels.bearings import hysteretic_force
+from rockcli.kernels.layout import FOUNDATION_LINEAR
 from rockcli.kernels.stack_physics import (S_A1, S_A2, S_B1, S_B2, S_G, S_H1, S_H2, S_I1, S_I2, S_M2, S_R1, S_R2,
                                            bp_acc)
 
@@ -37,6 +46,14 @@ def bearing(lp, u, ud):
     """The bearings' force per unit moving mass, ``F = -omega_b^2 u - 2 xi omega_b u'``."""
     w = lp[L_WB]
     return -w * w * u - 2.0 * lp[L_XI] * w * ud
+
+
+@njit(cache=True, inline='always')
+def force(lp, bb, u, ud):
+    """The bearings' force per unit moving mass: linear (:func:`bearing`) or hysteretic (``bb``, the module notes)."""
+    if bb[0] == FOUNDATION_LINEAR:
+        return bearing(lp, u, ud)
+    return hysteretic_force(bb[0], bb[1], u, bb[2])
 
 
 @njit(cache=True, inline='always')
@@ -83,9 +100,9 @@ def bp_base(s, k, sp, lp, th2, psi, thd2, psid, F):
 
 
 @njit(cache=True)
-def accel(s, k, sp, lp, y, ag):
+def accel(s, k, sp, lp, bb, y, ag):
     """``(psi'', theta2'', a_b)`` of the pattern ``(s, k)`` at the state ``y`` (``u'' = a_b - ag``)."""
-    F = bearing(lp, y[4], y[5])
+    F = force(lp, bb, y[4], y[5])
     g = sp[S_G]
     if s == 0.0 and k == 0.0:
         return 0.0, 0.0, F
@@ -99,8 +116,8 @@ def accel(s, k, sp, lp, y, ag):
 
 
 @njit(cache=True)
-def rhs(s, k, sp, lp, y, ag, dy):
-    pdd, tdd, ab = accel(s, k, sp, lp, y, ag)
+def rhs(s, k, sp, lp, bb, y, ag, dy):
+    pdd, tdd, ab = accel(s, k, sp, lp, bb, y, ag)
     dy[0] = y[1]
     dy[1] = pdd
     dy[2] = y[3]

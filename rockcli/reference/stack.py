@@ -105,24 +105,39 @@ def stack_base(stack, isolation):
 
 def reference_plinth(stack, excitation, isolation=None, **kw) -> StackRefResult:
     """:func:`reference_stack` of a body on its plinth (``stack``: a :class:`rockcli.models.Stack`) on a rigid
-    foundation or on linear bearings (``isolation``: a :class:`rockcli.models.LinearIsolation`)."""
+    foundation, on linear bearings (``isolation``: a :class:`rockcli.models.LinearIsolation`) or on hysteretic ones
+    (:class:`rockcli.models.SingleConcaveSliding`, :class:`~rockcli.models.LeadRubber`,
+    :class:`~rockcli.models.DoubleConcaveSliding`: :mod:`rockcli.reference.stack_hysteretic`, ``Radau`` unless a
+    ``method`` is given)."""
+    if hasattr(isolation, "u_y"):
+        from rockcli.reference.stack_hysteretic import hysteretic_base
+
+        base, bearing = hysteretic_base(stack, isolation)
+        kw.setdefault("method", "Radau")
+        return reference_stack(stack_blocks(stack), excitation, base=base, bearing=bearing, **kw)
     return reference_stack(stack_blocks(stack), excitation, base=stack_base(stack, isolation), **kw)
 
 
 def reference_stack(blocks, excitation, *, rtol=1e-10, atol=None, horizon=600.0, rest_tol=1e-8, restitution=None,
                     method="DOP853", align=True, max_phases=200000, demand_points=8, record_impacts=False,
-                    deadline_s=None, tol=1e-9, base=None) -> StackRefResult:
+                    deadline_s=None, tol=1e-9, base=None, bearing=None) -> StackRefResult:
     """Run the stack ``blocks`` (``[(b, h, m), ...]`` bottom to top) under ``excitation`` (a record or a pulse).
 
     ``atol`` None: ``rtol`` times the state scales (each interface's slenderness and ``p alpha``); ``align``: a
     record's sample intervals integrated one by one (no step across a kink); ``record_impacts``: keep every
     impact's states and energies in ``impacts`` (the tests' conservation checks); ``tol``: the relative slack of
     the impact consistency tests; ``base``: ``(m_b, k_b, c_b)`` of an isolated base on linear bearings
-    (:func:`stack_base`), None the rigid ground.
+    (:func:`stack_base`), None the rigid ground; ``bearing``: a hysteretic bearing
+    (:class:`rockcli.reference.hysteretic.Bearing`) under a base ``(m_b, 0, 0)``, in place of the linear one.
     """
     t_wall = time.perf_counter()
-    run = _Run(StackModel(blocks, base), excitation, rtol, atol, horizon, rest_tol, restitution, method, align,
-               demand_points, record_impacts, deadline_s, tol)
+    cls = _Run
+    if bearing is not None:
+        from rockcli.reference.stack_hysteretic import HystRun
+
+        cls = type("HystRunOf", (HystRun,), {"brg": bearing})
+    run = cls(StackModel(blocks, base), excitation, rtol, atol, horizon, rest_tol, restitution, method, align,
+              demand_points, record_impacts, deadline_s, tol)
     for _ in range(max_phases):
         if not run.phase():
             break
@@ -211,13 +226,12 @@ class _Run:
         self.pmax = float(np.max(p))
         self.scale = np.concatenate([[model.alpha[i], p[i] * model.alpha[i]] for i in range(n)])
         self.wb = 0.0
+        self.xb, self.xscale = np.zeros(0), np.zeros(0)  # the bearings' own states (hysteretic ones) and scales
         if model.nb:  # the base's scales as the single block's: g tan(alpha)/w^2, g tan(alpha)/w, w = max(w_b, p)
-            mb, kb, cb = model.base
-            total = mb + float(np.sum(model.m))
-            self.wb, self.zeta = math.sqrt(kb / total), cb / (2.0 * math.sqrt(kb * total))
+            self._init_base()
             w = max(self.wb, self.pmax)
             thr = G * math.tan(float(np.min(model.alpha)))
-            self.scale = np.concatenate([self.scale, [thr / w ** 2, thr / w]])
+            self.scale = np.concatenate([self.scale, [thr / w ** 2, thr / w], self.xscale])
         self.work = Work(method, rtol, atol, lambda k: self.scale[self.cols], deadline_s)
         if align and hasattr(excitation, "acc"):
             self.work.breaks = float(excitation.dt) * np.arange(1, np.asarray(excitation.acc).size)
@@ -267,10 +281,29 @@ class _Run:
             return self._rest()
         return self._rock()
 
-    # ---- the isolated base ----------------------------------------------------------------------------------
+    # ---- the isolated base (linear bearings; rockcli.reference.stack_hysteretic overrides these for the others) --
+    def _init_base(self):
+        """``wb``, ``zeta`` of the linear bearings (the base's parameters ``(m_b, k_b, c_b)``)."""
+        mb, kb, cb = self.M.base
+        total = mb + float(np.sum(self.M.m))
+        self.wb, self.zeta = math.sqrt(kb / total), cb / (2.0 * math.sqrt(kb * total))
+
+    def _Fb(self, u, ud, xb):
+        """The bearings' force on the base, or None: the linear ``-k_b u - c_b u'`` of the model."""
+        return None
+
+    def _xrates(self, u, ud, xb):
+        """The rates of the bearings' own states (none on linear bearings)."""
+        return []
+
     def _bearing(self, u, ud) -> float:
         """The bearing's force per unit moving mass [m/s^2]: the absolute acceleration of a stack at rest on it."""
         return -self.wb * self.wb * u - 2.0 * self.zeta * self.wb * ud
+
+    def _free_bound(self, u, ud, xb) -> float:
+        """A bound of every later ``|F|`` of the free base (the stack at rest on it, the ground still): its energy
+        ``(u'^2 + w^2 u^2)/2`` never grows and bounds ``|F|`` by ``w sqrt(1 + 4 xi^2)`` times its square root."""
+        return self.wb * math.hypot(1.0, 2.0 * self.zeta) * math.hypot(ud, self.wb * u)
 
     def _rest_thresholds(self):
         """The absolute accelerations ``(lo < 0 < up)`` of its support that lift the stack at rest (the face
@@ -293,7 +326,7 @@ class _Run:
         ``(u'^2 + w^2 u^2)/2`` never grows and bounds its acceleration by ``w sqrt(1 + 4 xi^2)`` times its square
         root (the single block's rule), which stays inside both rest thresholds."""
         lo, up = self._rest_thresholds()
-        return self.wb * math.hypot(1.0, 2.0 * self.zeta) * math.hypot(ud, self.wb * u) < min(up, -lo)
+        return self._free_bound(u, ud, self.xb) < min(up, -lo)
 
     def _base_tail(self):
         """The free base's later peak ``|u|`` after the run ends at rest (two periods of the free oscillator)."""
@@ -368,7 +401,8 @@ class _Run:
                 cache.clear()
                 q, qd = unpack(y)
                 if M.nb:
-                    cache[key] = M.accelerations(st, q, qd, ag(t), y[npv], y[npv + 1])
+                    u, ud, xb = y[npv], y[npv + 1], y[npv + 2:]
+                    cache[key] = M.accelerations(st, q, qd, ag(t), u, ud, Fb=self._Fb(u, ud, xb))
                 else:
                     cache[key] = M.dynamics(st, q, qd, ag(t))
             return cache[key]
@@ -379,6 +413,7 @@ class _Run:
             out[0:npv:2], out[1:npv:2] = y[1:npv:2], d[0][piv]
             if M.nb:
                 out[npv], out[npv + 1] = y[npv + 1], d[2]
+                out[npv + 2:] = self._xrates(y[npv], y[npv + 1], y[npv + 2:])
             return out
 
         return rhs, dyn, unpack
@@ -389,10 +424,12 @@ class _Run:
         faces = [i for i in range(M.n) if st[i] == 0]
         rhs, dyn, unpack = self._rhs_factory(piv)
         nb, npv = M.nb, 2 * len(piv)
-        self.cols = np.concatenate([[2 * i, 2 * i + 1] for i in piv] + [[2 * M.n, 2 * M.n + 1]] * nb).astype(int)
+        nx = self.xb.size
+        self.cols = np.concatenate([[2 * i, 2 * i + 1] for i in piv]
+                                   + [list(range(2 * M.n, 2 * M.n + 2 + nx))] * nb).astype(int)
         y0 = np.ravel(np.column_stack([self.q[piv], self.qd[piv]]))
         if nb:
-            y0 = np.concatenate([y0, [self.u, self.ud]])
+            y0 = np.concatenate([y0, [self.u, self.ud], self.xb])
         # a face that cannot hold at the start opens now (its corner force is already negative)
         forces = dyn(t0, y0)[1]
         for f in faces:
@@ -429,8 +466,7 @@ class _Run:
             if not piv and t0 >= self.t_exc_end:  # at rest on the free base: settled for ever (_base_settled)
                 lo, up = self._rest_thresholds()
                 lim = min(up, -lo)
-                ev = (lambda tt, yy: self.wb * math.hypot(1.0, 2.0 * self.zeta) * math.hypot(yy[1], self.wb * yy[0])
-                      - lim)
+                ev = (lambda tt, yy: self._free_bound(yy[0], yy[1], yy[2:]) - lim)
                 ev.terminal, ev.direction = True, -1
                 events.append(ev), kinds.append(("settled", -1))
         t_end = self.t_exc_end if t0 < self.t_exc_end else self.t_max_end
@@ -467,6 +503,7 @@ class _Run:
         self.q, self.qd = unpack(sol.y[:, -1])
         if nb:
             self.u, self.ud = float(sol.y[npv, -1]), float(sol.y[npv + 1, -1])
+            self.xb = np.array(sol.y[npv + 2:, -1], float)
         if sol.status != 1:
             return True
         for k, (kind, i) in enumerate(kinds):
@@ -528,12 +565,13 @@ class _Run:
         ag = self.ag(self.t)
         qd = self.qd.copy()
         qd[j] = 0.0
-        if st[j] * M.accelerations(st, self.q, qd, ag, self.u, self.ud)[0][j] > 0:
+        Fb = self._Fb(self.u, self.ud, self.xb)
+        if st[j] * M.accelerations(st, self.q, qd, ag, self.u, self.ud, Fb=Fb)[0][j] > 0:
             self.qd = qd
             return
         flipped = list(st)
         flipped[j] = -st[j]
-        if flipped[j] * M.accelerations(flipped, self.q, qd, ag, self.u, self.ud)[0][j] > 0:
+        if flipped[j] * M.accelerations(flipped, self.q, qd, ag, self.u, self.ud, Fb=Fb)[0][j] > 0:
             self._set(flipped)
             self.qd = qd
             return

@@ -23,7 +23,9 @@ height and angle are fixed), mass ``m_b``, under the bearing force ``-k_b u - c_
 ``-m_b ag``. Interface 0's constraints tie the bottom block's contact points to the base's top (``x = u``). The
 minimal coordinates are then the pivots' angles and ``u``; everything else (the KKT system, impacts, forces) is
 unchanged: the impulses between the blocks and the base are internal, so an impact keeps the total horizontal
-momentum (the base is free horizontally at the instant of an impact, the bearings' forces being finite).
+momentum (the base is free horizontally at the instant of an impact, the bearings' forces being finite). On
+hysteretic bearings (sliding, lead-rubber) the bearings' force, which depends on their own states, is given to
+:meth:`StackModel.accelerations` (``Fb``); nothing else changes.
 """
 
 from __future__ import annotations
@@ -188,16 +190,18 @@ class StackModel:
         bearings the base at rest (``u = u' = 0``): see :meth:`accelerations`."""
         return self.accelerations(st, q, qd, ag, g=g)[:2]
 
-    def accelerations(self, st, q, qd, ag: float, u: float = 0.0, ud: float = 0.0, g: float = G):
+    def accelerations(self, st, q, qd, ag: float, u: float = 0.0, ud: float = 0.0, g: float = G, Fb=None):
         """``(psi_dd (n,), contact forces per interface, u_dd)``: :meth:`dynamics` with the base at ``u``,
-        ``u'`` (its acceleration relative to the ground ``u_dd``; 0 on the rigid ground)."""
+        ``u'`` (its acceleration relative to the ground ``u_dd``; 0 on the rigid ground). ``Fb``, when given, is
+        the bearings' force on the base (a hysteretic bearing's, which depends on its own states) in place of
+        ``-k_b u - c_b u'``."""
         v = self.velocities(st, q, qd, ud)
         J, gam, rows = self.constraints(st, q, v)
         F = np.zeros(self.N)
         F[0:3 * self.n:3], F[1:3 * self.n:3] = -self.m * ag, -self.m * g
         if self.nb:
             mb, kb, cb = self.base
-            F[3 * self.n] = -mb * ag - kb * u - cb * ud
+            F[3 * self.n] = -mb * ag - kb * u - cb * ud if Fb is None else -mb * ag + Fb
         a, lam = self._kkt(J, F, -gam)
         return self.rel_rates(a), self.contact(st, q, lam, rows), (float(a[3 * self.n]) if self.nb else 0.0)
 

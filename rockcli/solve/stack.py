@@ -1,8 +1,9 @@
-""":func:`simulate_stack`: a body on a free plinth on a rigid foundation (docs/physics-plinth.md), one run on the
-compiled stack driver (:mod:`rockcli.kernels.stack`), read back into a :class:`StackResponse`.
+""":func:`simulate_stack`: a body on a free plinth (docs/physics-plinth.md), one run on the compiled stack driver
+(:mod:`rockcli.kernels.stack` on a rigid foundation, :mod:`rockcli.kernels.stack_linear` on linear, sliding and
+lead-rubber bearings), read back into a :class:`StackResponse`.
 
-The body's parameters are those :func:`rockcli.solve.simulate` gives it on the ground (the same vector), so a plinth
-that never moves leaves the body's answer the single block's, bit for bit.
+On the rigid foundation the body's parameters are those :func:`rockcli.solve.simulate` gives it on the ground (the
+same vector), so a plinth that never moves leaves the body's answer the single block's, bit for bit.
 """
 
 from __future__ import annotations
@@ -15,6 +16,7 @@ import numpy as np
 
 from rockcli.errors import RockcliInputError
 from rockcli.models import LinearIsolation, Rigid, Stack
+from rockcli.models.foundations import HYSTERETIC
 from rockcli.models.impact import check_restitution
 from rockcli.solve.excitation import _excitation_arrays, attached_vertical
 from rockcli.solve.options import (DEFAULT_HORIZON, DEFAULT_MAX_STEPS, DEFAULT_REST_TOL, DEFAULT_TAIL, _kernel, _rtol,
@@ -146,7 +148,7 @@ def simulate_stack(stack: Stack, excitation, *, rtol: float | None = None, histo
                    tail: float = DEFAULT_TAIL, rest_tol: float = DEFAULT_REST_TOL, horizon: float = DEFAULT_HORIZON,
                    max_steps: int = DEFAULT_MAX_STEPS, restitution: float | None = None,
                    isolation=None) -> StackResponse:
-    """The body of ``stack`` on its plinth under ``excitation`` (a record or a pulse) on a rigid foundation.
+    """The body of ``stack`` on its plinth under ``excitation`` (a record or a pulse) on ``isolation``.
 
     Parameters
     ----------
@@ -161,11 +163,12 @@ def simulate_stack(stack: Stack, excitation, *, rtol: float | None = None, histo
     restitution : float, optional
         Coefficient of restitution ``E`` (``0 < E <= 1``) of every impact, read as the energetic rule of the note
         (``theta_dot+ = E theta_dot-`` for one block on the ground); None: the plastic (Housner-type) law.
-    isolation : Rigid or LinearIsolation, optional
-        What the plinth stands on, as the ``foundation`` of :func:`rockcli.solve.simulate`; None or
-        :class:`rockcli.models.Rigid`: the rigid foundation. Linear bearings are derived and checked in the slow
-        reference (:mod:`rockcli.reference.stack`, docs/physics-plinth.md "On linear bearings") but not yet in the
-        compiled driver, so they are refused here with one sentence, as are sliding and lead-rubber bearings.
+    isolation : optional
+        What the plinth stands on, as the ``foundation`` of :func:`rockcli.solve.simulate`: None or
+        :class:`rockcli.models.Rigid` the rigid foundation; :class:`rockcli.models.LinearIsolation`, or sliding and
+        lead-rubber bearings (:class:`~rockcli.models.SingleConcaveSliding`, :class:`~rockcli.models.LeadRubber`,
+        :class:`~rockcli.models.DoubleConcaveSliding`), with ``gamma > 0`` (docs/physics-plinth.md, "On linear
+        bearings" and "On sliding and lead-rubber bearings").
 
     Returns
     -------
@@ -179,7 +182,7 @@ def simulate_stack(stack: Stack, excitation, *, rtol: float | None = None, histo
         raise RockcliInputError("a body on a plinth runs under the horizontal ground motion only: the record "
                                 "carries a vertical component")
     check_stack_isolation(isolation)
-    if isinstance(isolation, LinearIsolation):
+    if isinstance(isolation, (LinearIsolation, *HYSTERETIC)):
         return _simulate_stack_linear(stack, excitation, isolation, rtol=rtol, history=history, tail=tail,
                                       rest_tol=rest_tol, horizon=horizon, max_steps=max_steps, restitution=restitution)
     validate_options(rtol, tail, rest_tol, horizon, max_steps)
@@ -197,13 +200,14 @@ def simulate_stack(stack: Stack, excitation, *, rtol: float | None = None, histo
     return _stack_response(out, xo, H if history else None, stack, k, kst)
 
 
-def linear_parameters(stack: Stack, isolation: LinearIsolation, rtol) -> np.ndarray:
-    """The bearings' tuple ``lp`` of :mod:`rockcli.kernels.stack_linear_physics` (docs/physics-plinth.md, "On
-    linear bearings": ``gamma`` reads ``m`` as body and plinth)."""
+def linear_parameters(stack: Stack, isolation, rtol) -> np.ndarray:
+    """The base's tuple ``lp`` of :mod:`rockcli.kernels.stack_linear_physics` (docs/physics-plinth.md, "On
+    linear bearings": ``gamma`` reads ``m`` as body and plinth; on hysteretic bearings ``omega_b`` of the second
+    slope and no viscous damping)."""
     from rockcli.kernels import stack_linear_physics as lph
 
     if not isolation.gamma > 0:
-        raise RockcliInputError("a body on a plinth on linear bearings needs a base of finite mass: give gamma > 0 "
+        raise RockcliInputError("a body on a plinth on bearings needs a base of finite mass: give gamma > 0 "
                                 "(gamma = 0, an infinitely heavy base, is modelled for the single block only)")
     lp = np.zeros(lph.N_LP)
     body, eff = stack.body, stack.as_block()
@@ -213,7 +217,7 @@ def linear_parameters(stack: Stack, isolation: LinearIsolation, rtol) -> np.ndar
     lp[lph.L_P1SQ], lp[lph.L_PASQ], lp[lph.L_AASM] = body.p ** 2, stack.p_asm ** 2, stack.alpha_asm
     lp[lph.L_RE], lp[lph.L_ETA] = eff.R, stack.eta_asm
     lp[lph.L_G1], lp[lph.L_GE] = isolation.gamma / m, isolation.gamma * stack.R_asm / eff.R
-    lp[lph.L_MT], lp[lph.L_WB], lp[lph.L_XI], lp[lph.L_MB] = total, w, isolation.xi, total - m
+    lp[lph.L_MT], lp[lph.L_WB], lp[lph.L_XI], lp[lph.L_MB] = total, w, getattr(isolation, "xi", 0.0), total - m
     lp[lph.L_RTOL] = _rtol(isolation, rtol)
     pmax = max(body.p, stack.p_asm)
     thr = G * math.tan(min(body.alpha, stack.alpha_asm))
@@ -225,11 +229,26 @@ def linear_parameters(stack: Stack, isolation: LinearIsolation, rtol) -> np.ndar
     return lp
 
 
-def _simulate_stack_linear(stack: Stack, excitation, isolation: LinearIsolation, *, rtol=None, history=False,
+def bearing_parameters(stack: Stack, isolation, rtol, lp) -> tuple:
+    """``(fkind, bp)``: the bearings' code and, on hysteretic bearings, the single block's parameter tuple whose
+    bearing entries the stack driver reads (:func:`rockcli.kernels.stack_linear_physics.force`), with the stack's
+    tolerance and base scales; on linear bearings a tuple of zeros (not read)."""
+    from rockcli.kernels import stack_linear_physics as lph
+
+    k = _kernel()
+    if isinstance(isolation, LinearIsolation):
+        return k.FOUNDATION_LINEAR, (0.0,) * k.N_PRM
+    fkind, prm = _parameters(stack.body, isolation, rtol, DEFAULT_REST_TOL)
+    prm[k.P_RTOL] = lp[lph.L_RTOL]
+    prm[k.P_SC0 + 2], prm[k.P_SC0 + 3] = lp[lph.L_SC + 4], lp[lph.L_SC + 5]
+    return int(fkind), tuple(float(v) for v in prm)
+
+
+def _simulate_stack_linear(stack: Stack, excitation, isolation, *, rtol=None, history=False,
                            tail=DEFAULT_TAIL, rest_tol=DEFAULT_REST_TOL, horizon=DEFAULT_HORIZON,
                            max_steps=DEFAULT_MAX_STEPS, restitution=None) -> StackResponse:
-    """The compiled driver on linear bearings (:mod:`rockcli.kernels.stack_linear`), read into a
-    :class:`StackResponse`. Not reachable from :func:`simulate_stack` until checked against the reference."""
+    """The compiled driver on bearings, linear or hysteretic (:mod:`rockcli.kernels.stack_linear`), read into a
+    :class:`StackResponse`."""
     from rockcli.kernels import stack_linear as ksl
 
     validate_options(rtol, tail, rest_tol, horizon, max_steps)
@@ -237,8 +256,9 @@ def _simulate_stack_linear(stack: Stack, excitation, isolation: LinearIsolation,
     ekind, epar, acc, jtab, dt, t_begin, t_exc_end = _excitation_arrays(excitation)
     _, _, sp = stack_parameters(stack, rtol, float(rest_tol), restitution)
     lp = linear_parameters(stack, isolation, rtol)
+    fk, bp = bearing_parameters(stack, isolation, rtol, lp)
     z = np.zeros(ksl.N_Z)
-    H = ksl.simulate_stack_linear(tuple(float(v) for v in sp), tuple(float(v) for v in lp), ekind,
+    H = ksl.simulate_stack_linear(tuple(float(v) for v in sp), tuple(float(v) for v in lp), fk, bp, ekind,
                                   tuple(float(v) for v in epar), acc, dt, t_begin, t_exc_end, float(tail),
                                   float(horizon), int(max_steps), bool(history), z)
     toppled = {0: "plinth", 1: "body"}.get(int(z[ksl.Z_TOPPLED]))
@@ -279,14 +299,12 @@ def _message(status: int, toppled, verdict: str, settled: bool, t_overturn: floa
 
 
 def check_stack_isolation(isolation) -> None:
-    """Refuse, with one sentence, what a body on a plinth cannot stand on yet (anything but a rigid foundation)."""
-    if isolation is None or isinstance(isolation, Rigid):
+    """Refuse, with one sentence, what a body on a plinth cannot stand on (anything but a rigid foundation, linear
+    bearings and the hysteretic ones of :data:`rockcli.models.foundations.HYSTERETIC`)."""
+    if isolation is None or isinstance(isolation, (Rigid, LinearIsolation, *HYSTERETIC)):
         return
-    if isinstance(isolation, LinearIsolation):
-        return
-    label = getattr(isolation, "label", type(isolation).__name__)
-    raise RockcliInputError(f"a body on a plinth is modelled on a rigid foundation and on linear bearings; sliding "
-                            f"and lead-rubber bearings ({label.split(':')[0]}) under a plinth are not yet")
+    raise RockcliInputError(f"a body on a plinth stands on a rigid foundation or on bearings, not on "
+                            f"{type(isolation).__name__}")
 
 
 def _stack_response(out, xo, H, stack: Stack, k, kst) -> StackResponse:

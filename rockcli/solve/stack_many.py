@@ -6,8 +6,9 @@ search, the assessment table and the fragility read those).
 A plain loop, not the thread pool of the single block: the stack's compiled driver holds the GIL (it is not
 compiled ``nogil``), so threads would only take turns. Measured in docs/plinth.md.
 
-Foundations: :func:`plinth_foundation_supported` says which ones a stack runs on: the rigid foundation and linear
-bearings (passed to :func:`rockcli.solve.simulate_stack` as ``isolation=``).
+Foundations: :func:`plinth_foundation_supported` says which ones a stack runs on: the rigid foundation, linear
+bearings and sliding and lead-rubber bearings, on a base of finite mass (passed to
+:func:`rockcli.solve.simulate_stack` as ``isolation=``).
 """
 
 from __future__ import annotations
@@ -17,17 +18,20 @@ from dataclasses import dataclass
 from typing import Any
 
 from rockcli.errors import RockcliInputError
-from rockcli.models import LinearIsolation, Rigid, Stack
+from rockcli.models import HYSTERETIC, LinearIsolation, Rigid, Stack
 from rockcli.solve.response import JobError
 
 #: Why a stack on another foundation is refused (one sentence, the option to give named by the caller).
-PLINTH_RIGID_ONLY = ("a body on a free plinth is modelled on a rigid foundation and on linear bearings: sliding and "
-                     "lead-rubber bearings under a plinth are not modelled yet")
+PLINTH_RIGID_ONLY = ("a body on a free plinth is modelled on a rigid foundation and on bearings under a base of "
+                     "finite mass: an infinitely heavy base (gamma = 0) under a plinth is not modelled")
 
 
 def plinth_foundation_supported(foundation) -> bool:
-    """A body on a plinth can run on ``foundation``: the rigid foundation and linear bearings."""
-    return foundation is None or isinstance(foundation, (Rigid, LinearIsolation))
+    """A body on a plinth can run on ``foundation``: the rigid foundation, and linear, sliding or lead-rubber
+    bearings with ``gamma > 0``."""
+    if foundation is None or isinstance(foundation, Rigid):
+        return True
+    return isinstance(foundation, (LinearIsolation, *HYSTERETIC)) and foundation.gamma > 0
 
 
 @dataclass(frozen=True)
