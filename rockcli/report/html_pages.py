@@ -44,6 +44,15 @@ def _title(blocks) -> str:
     return f"Will {body_noun(blocks[0])} topple?" if len(blocks) == 1 else "Will these bodies topple?"
 
 
+def stroke_facts(disp_m: float, word: str) -> str:
+    """The base's stroke of a run on bearings as a key figure read by its ``word`` (SURVIVES: the stroke the
+    bearings must allow; TOPPLES: how far it had moved, not a stroke to design for; else: at least that)."""
+    d = f"{disp_m:.2f} m"
+    return _facts([("the bearings must allow", d)] if word == SURVIVES else
+                  [("the base had moved", d, "until it toppled: not a stroke to design for")]
+                  if word == TOPPLES else [("the base moved", d, "so far: the stroke needed is at least that")])
+
+
 def _facts(facts) -> str:
     """Key figures: ``(name, value)`` or ``(name, value, note)``."""
     return ('<div class="keyfacts">' + "".join(f'<div class="fact">{esc(f[0])}<br><b>{esc(f[1])}</b>'
@@ -378,11 +387,7 @@ def simulate_report(block, foundation, excitation, response, *, label: str, chec
     first = [f"<p class='question'>Does {esc(body_noun(block))} topple under {esc(label)}, {esc(where)}?</p>",
              f"<h3>{esc(body_words(block))}</h3>", card(word, where, scene_sentence(row, isolated=conf.isolated))]
     if conf.isolated:
-        d = f"{response.base_disp_max_m:.2f} m"
-        first.append(_facts([("the bearings must allow", d)] if word == SURVIVES else
-                            [("the base had moved", d, "until it toppled: not a stroke to design for")]
-                            if word == TOPPLES else [("the base moved", d, "so far: the stroke needed is at least "
-                                                                           "that")]))
+        first.append(stroke_facts(response.base_disp_max_m, word))
     t = lambda v: num(v, ".3f", "s")  # noqa: E731
     result = [("verdict", esc(word)), ("lifts off at", t(response.t_uplift_s)),
               ("tilts beyond alpha at", t(response.t_exceed_alpha_s)), ("topples at", t(response.t_overturn_s)),

@@ -28,7 +28,7 @@ def stack_report(stack, foundation, excitation, run, alone, *, label: str, comma
     from rockcli.assess.scenes import parse_configurations
     from rockcli.io.units import G
     from rockcli.report.html_figures import DPI, png_of
-    from rockcli.report.html_pages import _facts, _list
+    from rockcli.report.html_pages import _list, stroke_facts
     from rockcli.report.stack import plot_stack_response
 
     conf = parse_configurations([foundation.label])[0]
@@ -45,11 +45,7 @@ def stack_report(stack, foundation, excitation, run, alone, *, label: str, comma
         first.append(card(a_word, f"{noun} alone, {where}", f"{a_word}: {a_text}"))
     isolated = math.isfinite(getattr(run, "base_disp_max", math.nan))
     if isolated:
-        d = f"{run.base_disp_max:.2f} m"
-        first.append(_facts([("the bearings must allow", d)] if word == SURVIVES else
-                            [("the base had moved", d, "until it toppled: not a stroke to design for")]
-                            if word == TOPPLES else [("the base moved", d, "so far: the stroke needed is at least "
-                                                                           "that")]))
+        first.append(stroke_facts(run.base_disp_max, word))
     t = lambda v: num(v, ".3f", "s")  # noqa: E731
     pl = run.plinth
     which = {"body": f"{noun} topples off its {name}", "plinth": f"the {name} topples, {noun} with it"}
