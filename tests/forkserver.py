@@ -675,6 +675,14 @@ class ForkServers:
             return None
         return proc, path
 
+    def log(self, env: dict) -> str:
+        """What the server for ``env`` has logged so far ("" without one)."""
+        path = self.socket(env) if enabled() else None
+        try:
+            return (Path(path).parent / "log").read_text(errors="replace") if path else ""
+        except OSError:
+            return ""
+
     @staticmethod
     def _end(proc) -> None:
         try:
