@@ -366,7 +366,7 @@ class Server:
     def reap(self) -> None:
         while self.running:
             try:
-                pid, status = os.waitpid(-1, os.WNOHANG)
+                pid, status, usage = os.wait4(-1, os.WNOHANG)
             except ChildProcessError:
                 return
             if pid == 0:
@@ -375,7 +375,9 @@ class Server:
             if conn is None:
                 continue
             code = os.waitstatus_to_exitcode(status)
-            log(f"{'exit' if code >= 0 else 'signal'} {abs(code)}: rockcli {' '.join(self.args.pop(pid, []))}")
+            cpu = usage.ru_utime + usage.ru_stime
+            log(f"{cpu:.2f} s CPU, {'exit' if code >= 0 else 'signal'} {abs(code)}: "
+                f"rockcli {' '.join(self.args.pop(pid, []))}")
             msg = b"exit %d\n" % code if code >= 0 else b"signal %d\n" % -code
             if conn in self.waiting:
                 self.waiting.pop(conn)
