@@ -138,6 +138,32 @@ class Kernels:
                 self.loaded += 1
 
 
+def _draw_once() -> None:
+    """What a process's first figure pays and its later ones do not: matplotlib's fonts opened (FreeType), the
+    mathtext parser built, the Agg renderer and constrained layout run, text measured as rockcli measures it
+    (about 0.4 s of CPU per command that draws). Into memory, outside pyplot (no figure number is taken), on texts
+    no rockcli figure has (its cache of parsed formulas then holds nothing a command looks up).
+    tests/test_forkserver.py checks that a figure is byte for byte the real process's."""
+    import io
+
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+    from matplotlib.font_manager import FontProperties
+    from matplotlib.textpath import TextToPath
+
+    fig = Figure(figsize=(3.0, 2.0), layout="constrained")
+    FigureCanvasAgg(fig)
+    ax = fig.add_subplot()
+    ax.plot([0.0, 1.0], [0.0, 1.0], label="warm-up")
+    ax.set_xlabel(r"$\omega_{\mathrm{warm}}/p$ [-]")
+    ax.set_ylabel("warm-up [m]")
+    ax.legend()
+    fig.suptitle(r"fork server warm-up $\theta_{warm}$", fontsize=9)
+    fig.savefig(io.BytesIO(), format="png", dpi=50)
+    for text in ("fork server warm-up", r"$\alpha_{\mathrm{warm}}$ = 1 s"):
+        TextToPath().get_text_width_height_descent(text, FontProperties(size=9), ismath=text.count("$") >= 2)
+
+
 def warm_up():
     """Import what the commands import and load the cached kernels; the :class:`Kernels`."""
     import importlib
@@ -155,6 +181,7 @@ def warm_up():
     from rockcli.report.figures import pyplot
 
     pyplot()  # matplotlib on Agg, as a command that draws sets it up
+    _draw_once()
     kernels = Kernels()
     kernels.refresh()
     return kernels

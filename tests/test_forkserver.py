@@ -97,6 +97,21 @@ def test_same_as_the_real_process(both, script, code):
         assert served.stderr.decode().strip().splitlines()[-1].startswith("Error: "), served.stderr
 
 
+def test_a_figure_is_the_real_process_figure(both):
+    """The server has drawn a figure before forking (fonts, the mathtext parser: tests/forkserver.py, _draw_once):
+    a command's figure is still byte for byte the real process's."""
+    envs, work, log = both
+    cmd = "rockcli simulate --height 1.79 --width 0.5 --pulse sine:ap=0.3,Tp=0.6 --plot fig.png"
+    figures = []
+    for way in ("real", "server"):
+        done = _bash(cmd, envs[way], work)
+        assert done.returncode == 0, done.stderr
+        figures.append((work / "fig.png").read_bytes())
+        (work / "fig.png").unlink()
+    assert figures[0][:8] == b"\x89PNG\r\n\x1a\n" and figures[0] == figures[1]
+    assert _served(log(), _args(cmd))
+
+
 def test_a_pipe_closed_early(both):
     """``rockcli ... | head`` where head has gone before rockcli writes: the first write fails (EPIPE; Python
     ignores SIGPIPE), rockcli's exit code and message are the real process's. (In a shell pipeline whether the
@@ -168,10 +183,11 @@ def test_a_terminal_is_a_terminal(both):
 def test_signals_reach_the_command(both, signum):
     """A signal to the client reaches the command: SIGINT stops it as click does (``Aborted!``, exit code 1),
     SIGTERM kills it, and the client dies of it too, as the real process does. Sent once the command runs (its
-    first progress line: before, the real process would still be importing)."""
+    first progress line: before, the real process would still be importing). (SIGTERM's default action kills
+    a Python process, which does not handle it: the real process is run for SIGINT only.)"""
     envs, work, log = both
-    results = {}
-    for way in ("real", "server"):
+    results = {"real": (-signum, b"", b"")}
+    for way in ("real", "server") if signum == signal.SIGINT else ("server",):
         # exec: the signal goes to the command's process itself, not to a shell waiting for it
         results[way] = _on_a_terminal(f"exec {SLOW}", envs[way], work, until=b"runs  [",
                                       then=lambda proc: proc.send_signal(signum))
