@@ -71,6 +71,10 @@ LOG_ENV = "ROCKCLI_TEST_FORKSERVER_LOG"
 #: terminal's size; rockcli's run-time settings).
 RUNTIME_ENV = frozenset({"_", "PWD", "OLDPWD", "SHLVL", "PS1", "PS2", "COLUMNS", "LINES",
                          "ROCKCLI_RECORDS", "ROCKCLI_CATALOG", "ROCKCLI_DASK_TIMEOUT"})
+#: Of those, the ones an import does read, into a value nothing uses: numba.core.types.functions sets
+#: ``_termwidth`` from the terminal's size (COLUMNS, LINES) and never reads it. Any other of RUNTIME_ENV that the
+#: warm-up reads (a lookup by name, os.environ[...] or os.getenv) is taken off the list (see :class:`EnvReads`).
+READ_UNUSED = frozenset({"COLUMNS", "LINES"})
 #: Files of the working folder read at import (numba's configuration, matplotlib's).
 IMPORT_TIME_FILES = (".numba_config.yaml", "matplotlibrc")
 #: What the plain shim runs, the code a child runs (as ``python -c`` runs it).
@@ -187,6 +191,32 @@ def warm_up():
     return kernels
 
 
+class EnvReads:
+    """Records the environment variables Python code looks up by name (``os.environ[...]``, ``.get``,
+    ``os.getenv``, ``in``) while active; a walk over the whole environment (numba's search for NUMBA_*) is not
+    a lookup. Variables read by C code (getenv) are not seen: none of them is in :data:`RUNTIME_ENV`."""
+
+    def __init__(self):
+        self.names = set()
+
+    def __enter__(self):
+        cls = type(os.environ)
+        self.saved = get = cls.__getitem__
+        names = self.names
+
+        def getitem(environ, key):
+            caller = sys._getframe(1).f_code
+            if not (caller.co_name == "__iter__" and "_collections_abc" in caller.co_filename):  # items(), values()
+                names.add(os.fsdecode(key) if isinstance(key, bytes) else key)
+            return get(environ, key)
+
+        cls.__getitem__ = getitem
+        return self
+
+    def __exit__(self, *exc):
+        type(os.environ).__getitem__ = self.saved
+
+
 def _native_threads() -> int:
     try:
         return len(os.listdir("/proc/self/task"))
@@ -295,9 +325,10 @@ def _is_package(dir_fd: int, name: str) -> bool:
 
 
 class Server:
-    def __init__(self, kernels, max_native: int):
-        import numba  # noqa: F401  (imported by the warm-up)
-
+    def __init__(self, kernels, max_native: int, runtime_env=RUNTIME_ENV):
+        self.runtime_env = runtime_env
+        if runtime_env != RUNTIME_ENV:
+            log(f"read by the warm-up, so a request must not change them: {sorted(RUNTIME_ENV - runtime_env)}")
         self.kernels = kernels
         self.max_native = max_native
         self.env = dict(os.environb)
@@ -322,7 +353,7 @@ class Server:
             return "another user"
         keys = set(req.env) | set(self.env)
         differ = sorted(k.decode(errors="replace") for k in keys if req.env.get(k) != self.env.get(k))
-        differ = [k for k in differ if k not in RUNTIME_ENV]
+        differ = [k for k in differ if k not in self.runtime_env]
         if differ:
             return f"environment differs in {differ}"
         if (req.limits, req.cpus, req.priority) != (self.limits, self.cpus, self.priority):
@@ -602,8 +633,10 @@ def main(argv) -> int:
     os.dup2(capture, 2)
     t0 = time.process_time()
     reason = None
+    reads = EnvReads()
     try:
-        kernels = warm_up()
+        with reads:
+            kernels = warm_up()
     except BaseException as exc:  # noqa: BLE001
         reason = f"the warm-up failed: {exc!r}"
     for stream in (sys.stdout, sys.stderr):
@@ -628,7 +661,7 @@ def main(argv) -> int:
         ready.write(f"unavailable: {reason}\n")
         ready.close()
         return 1
-    server = Server(kernels, max_native)
+    server = Server(kernels, max_native, RUNTIME_ENV - (reads.names - READ_UNUSED))
     listener = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
     listener.bind(socket_path)
     listener.listen(64)

@@ -212,3 +212,22 @@ def test_a_killed_client_kills_the_command(both):
             break
         time.sleep(0.1)
     assert lines[before:] and "signal 9:" in lines[before], log()
+
+
+def test_env_reads_sees_lookups_not_walks():
+    """What keeps the list of run-time variables honest (forkserver.EnvReads): a variable looked up by name is
+    recorded, one only seen by a walk over the environment (numba's search for NUMBA_*) is not."""
+    os.environ["ROCKCLI_TEST_ENV_READS"] = "1"
+    try:
+        with forkserver.EnvReads() as reads:
+            dict(os.environ.items())
+            list(os.environ.values())
+            assert "ROCKCLI_TEST_ENV_READS" not in reads.names
+            os.environ.get("ROCKCLI_RECORDS")
+            os.getenv("ROCKCLI_CATALOG")
+            _ = "ROCKCLI_DASK_TIMEOUT" in os.environ
+            os.environb.get(b"ROCKCLI_TEST_ENV_READS")
+        os.environ.get("ROCKCLI_AFTER")
+    finally:
+        del os.environ["ROCKCLI_TEST_ENV_READS"]
+    assert reads.names == {"ROCKCLI_RECORDS", "ROCKCLI_CATALOG", "ROCKCLI_DASK_TIMEOUT", "ROCKCLI_TEST_ENV_READS"}
