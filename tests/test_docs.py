@@ -11,9 +11,9 @@ row, a JSON output that parses), and it must write nothing outside ``out/``: nei
 (the clone's files are compared before and after) nor in the repository itself (``git status``).
 The commands run this repository's code (``rockcli`` and ``python`` on PATH are shims with
 PYTHONPATH set to it), so the install of the machine does not matter. ``rockcli`` runs through a
-pre-warmed fork server of the pytest worker (tests/forkserver.py: each command is a child forked from a
-process that has imported rockcli and loaded the kernels, set up as the real process would be; about a
-second of CPU less per command); ``ROCKCLI_TEST_FORKSERVER=0`` runs every command as a real process.
+pre-warmed fork server of the pytest worker (tests/forkserver*.py: each command is a child forked from a
+process that has imported rockcli and loaded the kernels, set up as the real process would be; about
+0.8 s of CPU less per command); ``ROCKCLI_TEST_FORKSERVER=0`` runs every command as a real process.
 
 A page steers the test with an HTML comment just before a block (the reader does not see it; a page
 that shrinks a command says so in its text):

@@ -24,6 +24,7 @@ from pathlib import Path
 import pytest
 
 import forkserver
+import forkserver_warmup
 
 ROOT = Path(__file__).resolve().parents[1]
 SLOW = "rockcli assess column bassae nemea"  # the main job: seconds of margin search after the first progress line
@@ -98,7 +99,7 @@ def test_same_as_the_real_process(both, script, code):
 
 
 def test_a_figure_is_the_real_process_figure(both):
-    """The server has drawn a figure before forking (fonts, the mathtext parser: tests/forkserver.py, _draw_once):
+    """The server has drawn a figure before forking (fonts, the mathtext parser: forkserver_warmup._draw_once):
     a command's figure is still byte for byte the real process's."""
     envs, work, log = both
     cmd = "rockcli simulate --height 1.79 --width 0.5 --pulse sine:ap=0.3,Tp=0.6 --plot fig.png"
@@ -215,11 +216,11 @@ def test_a_killed_client_kills_the_command(both):
 
 
 def test_env_reads_sees_lookups_not_walks():
-    """What keeps the list of run-time variables honest (forkserver.EnvReads): a variable looked up by name is
+    """What keeps the list of run-time variables honest (forkserver_warmup.EnvReads): a variable looked up by name is
     recorded, one only seen by a walk over the environment (numba's search for NUMBA_*) is not."""
     os.environ["ROCKCLI_TEST_ENV_READS"] = "1"
     try:
-        with forkserver.EnvReads() as reads:
+        with forkserver_warmup.EnvReads() as reads:
             dict(os.environ.items())
             list(os.environ.values())
             assert "ROCKCLI_TEST_ENV_READS" not in reads.names
