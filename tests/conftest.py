@@ -1,5 +1,8 @@
 """Shared fixtures.
 
+``fork_servers``: this pytest process's pre-warmed fork servers for ``rockcli`` commands
+(tests/forkserver.py; ``ROCKCLI_TEST_FORKSERVER=0`` turns them off).
+
 ``records_dir``: the folders of real records named by ROCKCLI_RECORDS (os.pathsep-separated);
 tests that need them skip cleanly when the variable is unset or names no existing folder.
 """
@@ -38,6 +41,17 @@ _absolute_record_folders()
 
 def _record_folders() -> list[Path]:
     return [Path(p) for p in os.environ.get("ROCKCLI_RECORDS", "").split(os.pathsep) if p and Path(p).is_dir()]
+
+
+@pytest.fixture(scope="session")
+def fork_servers():
+    """:class:`forkserver.ForkServers`: ``.shim(env)`` and ``.command(env)`` run ``rockcli`` through a fork server
+    warmed up for ``env`` (started on first use, stopped at the end of the session), or as a real process."""
+    from forkserver import ForkServers
+
+    servers = ForkServers()
+    yield servers
+    servers.close()
 
 
 @pytest.fixture(scope="session")

@@ -10,7 +10,10 @@ every file or folder under ``out/`` that it names must exist and be non-empty (a
 row, a JSON output that parses), and it must write nothing outside ``out/``: neither in the copy
 (the clone's files are compared before and after) nor in the repository itself (``git status``).
 The commands run this repository's code (``rockcli`` and ``python`` on PATH are shims with
-PYTHONPATH set to it), so the install of the machine does not matter.
+PYTHONPATH set to it), so the install of the machine does not matter. ``rockcli`` runs through a
+pre-warmed fork server of the pytest worker (tests/forkserver*.py: each command is a child forked from a
+process that has imported rockcli and loaded the kernels, set up as the real process would be; about
+0.8 s of CPU less per command); ``ROCKCLI_TEST_FORKSERVER=0`` runs every command as a real process.
 
 A page steers the test with an HTML comment just before a block (the reader does not see it; a page
 that shrinks a command says so in its text):
@@ -40,6 +43,7 @@ import sys
 from pathlib import Path
 
 import pytest
+from forkserver import ForkServers
 
 ROOT = Path(__file__).resolve().parents[1]
 PAGES = [ROOT / "README.md"] + sorted((ROOT / "docs").glob("*.md"))
@@ -136,8 +140,9 @@ def _git_status() -> str | None:
         return None
 
 
-def _make_clone(base: Path, records: Path) -> tuple[Path, dict]:
-    """Lay out *base* like a clone next to ``shared/records`` (a link to *records*); ``(cwd, env)``."""
+def _make_clone(base: Path, records: Path, servers: ForkServers | None = None) -> tuple[Path, dict]:
+    """Lay out *base* like a clone next to ``shared/records`` (a link to *records*); ``(cwd, env)``. The
+    ``rockcli`` on PATH runs through one of *servers* (a pre-warmed fork server) when there is one."""
     (base / "shared").mkdir()
     (base / "shared" / "records").symlink_to(records.resolve(), target_is_directory=True)
     cwd = base / "rockcli"
@@ -155,13 +160,6 @@ def _make_clone(base: Path, records: Path) -> tuple[Path, dict]:
     python = bin_dir / "python"
     python.write_text(f'#!/bin/sh\nexec "{sys.executable}" "$@"\n')
     python.chmod(0o755)
-    shim = bin_dir / "rockcli"
-    shim.write_text(
-        "#!/bin/sh\n"
-        f'exec "{sys.executable}" -c "import sys; sys.argv[0] = \'rockcli\'; '
-        'from rockcli.cli import run; run()" "$@"\n'
-    )
-    shim.chmod(0o755)
     env = {k: v for k, v in os.environ.items() if not k.startswith("ROCKCLI_")}
     env.update(
         PATH=f"{bin_dir}{os.pathsep}{env.get('PATH', '')}",
@@ -169,11 +167,15 @@ def _make_clone(base: Path, records: Path) -> tuple[Path, dict]:
         ROCKCLI_RECORDS=os.pathsep.join(["../shared/records", "../shared/records/extra"]),
         MPLBACKEND="Agg",
     )
+    # the real process, or a client of a fork server warmed up for this environment (tests/forkserver.py)
+    shim = bin_dir / "rockcli"
+    shim.write_text(servers.shim(env) if servers is not None else ForkServers.real_shim())
+    shim.chmod(0o755)
     return cwd, env
 
 
 @pytest.fixture(scope="module")
-def clone(tmp_path_factory):
+def clone(tmp_path_factory, fork_servers):
     """``(cwd, env)``: a copy of the repository next to ``shared/records``, and the environment."""
     folders = [p for p in os.environ.get("ROCKCLI_RECORDS", "").split(os.pathsep) if p and Path(p).is_dir()]
     if not folders:
@@ -182,7 +184,7 @@ def clone(tmp_path_factory):
     # (some CI machines set it) each of the ~90 processes would otherwise compile rockcli from source again
     # (about 0.2 s of CPU each); __pycache__ is ignored by git, like numba's cache of the kernels beside it
     compileall.compile_dir(str(ROOT / "rockcli"), quiet=1)
-    return _make_clone(tmp_path_factory.mktemp("docs"), Path(folders[0]))
+    return _make_clone(tmp_path_factory.mktemp("docs"), Path(folders[0]), fork_servers)
 
 
 # ---------------------------------------------------------------------------------------------------
