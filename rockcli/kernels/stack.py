@@ -474,7 +474,7 @@ def _p2s(prm, sp, rs, W, out, xo):
     return True
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def simulate_stack(prm, prm_asm, sp, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, tail, horizon, max_steps,
                    want_history, out, xo):
     """Integrate a body on its plinth under one excitation (arguments as :func:`rockcli.kernels.simulate_rigid`;

@@ -3,8 +3,10 @@
 read back as a :class:`StackRun` that answers to the names of a :class:`rockcli.solve.Response` (the margin
 search, the assessment table and the fragility read those).
 
-A plain loop, not the thread pool of the single block: the stack's compiled driver holds the GIL (it is not
-compiled ``nogil``), so threads would only take turns. Measured in docs/plinth.md.
+The runs go on a pool of threads, as the single block's batches do (:mod:`rockcli.solve.batch`, its thread count
+:func:`rockcli.solve.batch._threads`): both stack drivers are compiled ``nogil``, and each run is independent (its
+own arrays in, its own out), so a run on a thread gives the bits it gives in a plain loop; the results are put
+back in job order. Measured in docs/plinth.md.
 
 Foundations: :func:`plinth_foundation_supported` says which ones a stack runs on: the rigid foundation and linear
 bearings (passed to :func:`rockcli.solve.simulate_stack` as ``isolation=``).
@@ -110,25 +112,51 @@ def run_stack(stack: Stack, foundation, motion, scale: float = 1.0, **solver):
 
 
 def simulate_stacks(jobs, *, early: bool = False, progress=None, done: int = 0, **solver) -> list:
-    """The ``(stack, foundation, motion[, scale])`` jobs one after the other: a :class:`StackRun` each, or a
-    :class:`rockcli.solve.JobError` for a scene refused (the others still run). ``early`` is not taken (the stack
-    driver makes the same steps either way); ``progress(n_done)`` after each run, counting from ``done``.
-    ``solver``: :func:`rockcli.solve.simulate_stack`'s keywords, and ``cap_ratio``/``vertical`` (refused when
-    given)."""
-    out = []
-    for i, job in enumerate(jobs):
+    """The ``(stack, foundation, motion[, scale])`` jobs on a pool of threads (module notes): a :class:`StackRun`
+    each, in job order, or a :class:`rockcli.solve.JobError` for a scene refused (the others still run).
+    ``early`` is not taken (the stack driver makes the same steps either way); ``progress(n_done)`` after each run,
+    counting from ``done`` (called from this thread, n_done rising by one each time). ``solver``:
+    :func:`rockcli.solve.simulate_stack`'s keywords, and ``cap_ratio``/``vertical`` (refused when given)."""
+    from rockcli.solve.batch import _threads
+    from rockcli.solve.options import _kernel
+
+    _kernel()  # the kernels imported here, not first on a worker thread
+
+    jobs = list(jobs)
+
+    def one(job):
         stack, foundation, motion = job[:3]
         scale = float(job[3]) if len(job) > 3 else 1.0
         try:
             res = run_stack(stack, foundation, motion, scale, **solver)
         except RockcliInputError as exc:
-            out.append(JobError(str(exc)))
-        else:
-            disp = 0.0 if math.isnan(res.base_disp_max) else res.base_disp_max  # 0 on a rigid foundation, as
-            # a single block's Response
-            out.append(StackRun(res, base_disp_max_m=disp))
-        if progress is not None:
-            progress(done + i + 1)
+            return JobError(str(exc))
+        disp = 0.0 if math.isnan(res.base_disp_max) else res.base_disp_max  # 0 on a rigid foundation, as a
+        # single block's Response
+        return StackRun(res, base_disp_max_m=disp)
+
+    threads = min(_threads(), len(jobs))
+    if threads <= 1:
+        out = []
+        for i, job in enumerate(jobs):
+            out.append(one(job))
+            if progress is not None:
+                progress(done + i + 1)
+        return out
+    from concurrent.futures import ThreadPoolExecutor, as_completed
+
+    out = [None] * len(jobs)
+    with ThreadPoolExecutor(max_workers=threads) as pool:  # the stack drivers run without the GIL
+        futures = {pool.submit(one, job): i for i, job in enumerate(jobs)}
+        try:
+            for n, fut in enumerate(as_completed(futures), 1):
+                out[futures[fut]] = fut.result()
+                if progress is not None:
+                    progress(done + n)
+        except BaseException:  # an error or Ctrl-C: drop the runs not started, then re-raise
+            for fut in futures:
+                fut.cancel()
+            raise
     return out
 
 
@@ -138,7 +166,8 @@ def is_stack_job(job) -> bool:
 
 def mixed(jobs, single, *, progress=None, **options) -> list:
     """:func:`rockcli.solve.simulate_many` over jobs some of which are stacks: the single blocks through
-    ``single`` (the batch path, all cores), then the stacks (:func:`simulate_stacks`); results in job order."""
+    ``single`` (the batch path, all cores), then the stacks (:func:`simulate_stacks`, all cores); results in job
+    order."""
     jobs = list(jobs)
     flat = [i for i, j in enumerate(jobs) if not is_stack_job(j)]
     stacked = [i for i, j in enumerate(jobs) if is_stack_job(j)]
