@@ -70,6 +70,9 @@ X_N_PLASTIC = 21  # impacts where a given restitution could not be carried: the 
 N_XO = 22
 
 HALF_PI = 0.5 * math.pi
+# the impacting interface ``j`` of the impact code: 0 the base, 1 the joint. Passed as these int64 values, never as
+# the literals 0 and 1, which numba would type as two literal types and compile the whole impact code twice
+J_BASE, J_JOINT = np.int64(0), np.int64(1)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -606,10 +609,10 @@ def simulate_stack(prm, prm_asm, sp, ekind, epar, acc, jtab, dt, t_begin, t_exc_
                 ag = ground_at(t, _seg(rs), epar)
                 if pat == PAT_B:
                     V = max_velocities(0.0, k, sp, 0.0, 0.0, 0.0, thd1)
-                    s1, k1, V1, margin, jump, db, dj, plastic = choose_after_impact(0.0, k, 1, sp, 0.0, 0.0, V)
+                    s1, k1, V1, margin, jump, db, dj, plastic = choose_after_impact(0.0, k, J_JOINT, sp, 0.0, 0.0, V)
                 else:
                     V = max_velocities(s, 0.0, sp, 0.0, 0.0, thd1, 0.0)
-                    s1, k1, V1, margin, jump, db, dj, plastic = choose_after_impact(s, 0.0, 0, sp, 0.0, 0.0, V)
+                    s1, k1, V1, margin, jump, db, dj, plastic = choose_after_impact(s, 0.0, J_BASE, sp, 0.0, 0.0, V)
                 if ((pat == PAT_B and s1 == 0.0) or (pat == PAT_P and k1 == 0.0)) and not plastic:
                     # the plinth stays (B), the body stays on it (P): the single block's impact map and rest rule
                     xo[X_FRI_B] = max(xo[X_FRI_B], db)
@@ -637,12 +640,12 @@ def simulate_stack(prm, prm_asm, sp, ekind, epar, acc, jtab, dt, t_begin, t_exc_
                         out[O_N_IMPACTS_ALL] += 1.0
                         if t <= t_exc_end:
                             out[O_N_IMPACTS] += 1.0
-                        _after_impact(1, 0.0, k, sp, prm, prm_asm, 0.0, 0.0, V, rs, W, out, xo, t, ag)
+                        _after_impact(J_JOINT, 0.0, k, sp, prm, prm_asm, 0.0, 0.0, V, rs, W, out, xo, t, ag)
                     else:
                         xo[X_PL_N_IMP_ALL] += 1.0
                         if t <= t_exc_end:
                             xo[X_PL_N_IMP] += 1.0
-                        _after_impact(0, s, 0.0, sp, prm, prm_asm, 0.0, 0.0, V, rs, W, out, xo, t, ag)
+                        _after_impact(J_BASE, s, 0.0, sp, prm, prm_asm, 0.0, 0.0, V, rs, W, out, xo, t, ag)
                 if want_history:
                     H, nh = _hist(H, nh, rs, epar, W, xo, HK_REST if xo[X_PAT] == PAT_R else HK_IMPACT_AFTER)
                 continue
@@ -740,12 +743,12 @@ def simulate_stack(prm, prm_asm, sp, ekind, epar, acc, jtab, dt, t_begin, t_exc_
                 xo[X_PL_N_IMP_ALL] += 1.0
                 if t <= t_exc_end:
                     xo[X_PL_N_IMP] += 1.0
-                _after_impact(0, s, k, sp, prm, prm_asm, th2, psi, V, rs, W, out, xo, t, ag)
+                _after_impact(J_BASE, s, k, sp, prm, prm_asm, th2, psi, V, rs, W, out, xo, t, ag)
             else:
                 out[O_N_IMPACTS_ALL] += 1.0
                 if t <= t_exc_end:
                     out[O_N_IMPACTS] += 1.0
-                _after_impact(1, s, k, sp, prm, prm_asm, th2, psi, V, rs, W, out, xo, t, ag)
+                _after_impact(J_JOINT, s, k, sp, prm, prm_asm, th2, psi, V, rs, W, out, xo, t, ag)
             if want_history:
                 H, nh = _hist(H, nh, rs, epar, W, xo, HK_IMPACT_AFTER)
             continue
