@@ -206,7 +206,11 @@ def compare(a: Path, b: Path, skip_friction: bool) -> int:
         down = sum(1 for _, _, o, n in moved if n < o)
         print(f"friction demands left out: {len(moved)} values, {up} higher, {down} lower, largest relative change "
               f"{max(rel) if rel else 0.0:.3g}")
-        worst = sorted(moved, key=lambda m: -abs(m[3] - m[2]))[:5]
+        low = [(r, nm, o, n) for r, nm, o, n in moved if n < 2.0]  # below 2: a contact that holds (above, a normal
+        # force tending to 0, a block leaving its contact)
+        print(f"  of those below 2 after: {sum(1 for _, _, o, n in low if n != o)} of {len(low)} moved, largest "
+              f"change {max((n - o for _, _, o, n in low), default=0.0):.4g}")
+        worst = sorted(low, key=lambda m: -abs(m[3] - m[2]))[:5]
         for run, name, o, n in worst:
             print(f"   run {run} {name}: {o:.6g} -> {n:.6g}")
     return 1 if bad else 0

@@ -12,7 +12,9 @@ plinth cannot move the run is the single block's, bit for bit; P is the same cod
 (the plinth lifts when one reaches 0), in P the joint's (the body lifts off the plinth), each located on the step's
 dense output by sampling 16 sub-intervals and bisection; at every impact the pattern after it is chosen by
 :func:`rockcli.kernels.stack_physics.choose_after_impact`, and where the plinth (or the body on it) stays, the
-single block's map is used.
+single block's map is used. The friction demand is read where the contact forces are: in B and P at the samples of
+the face check, in BP at 17 points of every step and the vertex of the parabola through the largest
+(:func:`_bp_demand`), at rest ``|ag|/g`` (its largest on the interval).
 
 End of the run: P1 (at rest once the ground is still) and P2S, the single block's P2 for the body on the still
 plinth when the plinth provably cannot lift again: the ground still, ``|psi| < alpha1``, the body's energy ``En``
@@ -70,6 +72,7 @@ X_N_PLASTIC = 21  # impacts where a given restitution could not be carried: the 
 N_XO = 22
 
 HALF_PI = 0.5 * math.pi
+N_DEMAND = 16  # sub-intervals of a BP step at which the friction demand is read (as the faces of B and P are watched)
 # the impacting interface ``j`` of the impact code: 0 the base, 1 the joint. Passed as these int64 values, never as
 # the literals 0 and 1, which numba would type as two literal types and compile the whole impact code twice
 J_BASE, J_JOINT = np.int64(0), np.int64(1)
@@ -101,8 +104,8 @@ def _demand(xo, NB, TB, NJ, TJ):
 
 @njit(cache=True)
 def _bp_forces(s, k, sp, W, hs, sig, t, seg, epar, xo):
-    """Contact forces of pattern BP at fraction ``sig`` of the last step (its dense output): the friction demand
-    is noted; returns True when a pivot pulls."""
+    """Contact forces of pattern BP at fraction ``sig`` of the last step (its dense output): True when a pivot
+    pulls (the friction demand noted here is also among the samples of :func:`_bp_demand`)."""
     psi = _poly(_dense(W, hs, np.int64(0), 1.0), sig)
     psid = _poly(_dense(W, hs, np.int64(1), 1.0), sig)
     th2 = _poly(_dense(W, hs, np.int64(2), 1.0), sig)
@@ -112,6 +115,68 @@ def _bp_forces(s, k, sp, W, hs, sig, t, seg, epar, xo):
     NB, TB, PRB, PLB, NJ, TJ, PRJ, PLJ = forces(s, k, sp, th2, psi, thd2, psid, tdd, pdd, ag)
     _demand(xo, NB, TB, NJ, TJ)
     return NB < 0.0 or NJ < 0.0
+
+
+@njit(cache=True)
+def _bp_demand_at(s, k, sp, q0, q1, q2, q3, sig, tt, seg, epar):
+    """``|T|/N`` at the base and at the joint at fraction ``sig`` of the last BP step (``q0..q3`` its quartics of
+    ``psi, psi', theta2, theta2'``, ``tt`` the time there); -1 where the normal force is not positive."""
+    psi = _poly(q0, sig)
+    psid = _poly(q1, sig)
+    th2 = _poly(q2, sig)
+    thd2 = _poly(q3, sig)
+    ag = ground_at(tt, seg, epar)
+    pdd, tdd = bp_acc(s, k, sp, th2, psi, thd2, psid, ag)
+    NB, TB, _, _, NJ, TJ, _, _ = forces(s, k, sp, th2, psi, thd2, psid, tdd, pdd, ag)
+    return (abs(TB) / NB if NB > 0.0 else -1.0), (abs(TJ) / NJ if NJ > 0.0 else -1.0)
+
+
+@njit(cache=True, inline='always')
+def _vertex(left, best, right, i):
+    """Where the parabola through ``(i - 1, left), (i, best), (i + 1, right)`` peaks (in sample units), or -1 when
+    the largest sample ``best`` is not interior or a neighbour has no demand (a normal force not positive)."""
+    curv = left - 2.0 * best + right
+    if left < 0.0 or right < 0.0 or not curv < 0.0:
+        return -1.0
+    return i + 0.5 * (left - right) / curv
+
+
+@njit(cache=True)
+def _bp_demand(s, k, sp, W, hs, sig_end, t, seg, epar, xo):
+    """The peak friction demand of the last BP step over ``[0, sig_end]`` (its dense output), at both interfaces:
+    read at ``N_DEMAND + 1`` equally spaced fractions (both ends included), then at the vertex of the parabola
+    through each interface's largest sample and the two beside it (the peak of a smooth demand between samples;
+    the larger reading is kept, so the refinement never lowers the sampled peak)."""
+    q0 = _dense(W, hs, np.int64(0), 1.0)
+    q1 = _dense(W, hs, np.int64(1), 1.0)
+    q2 = _dense(W, hs, np.int64(2), 1.0)
+    q3 = _dense(W, hs, np.int64(3), 1.0)
+    bb = bj = lb = lj = rb = rj = pb = pj = -1.0  # largest samples, their neighbours, the previous samples
+    ib = ij = -2
+    for m in range(N_DEMAND + 1):
+        sg = sig_end * m / N_DEMAND
+        db, dj = _bp_demand_at(s, k, sp, q0, q1, q2, q3, sg, t + sg * hs, seg, epar)
+        if db > bb:
+            bb, ib, lb, rb = db, m, pb, -1.0
+        elif m == ib + 1:
+            rb = db
+        if dj > bj:
+            bj, ij, lj, rj = dj, m, pj, -1.0
+        elif m == ij + 1:
+            rj = dj
+        pb, pj = db, dj
+    vb = _vertex(lb, bb, rb, ib)
+    vj = _vertex(lj, bj, rj, ij)
+    for v, which in ((vb, 0), (vj, 1)):
+        if v >= 0.0:
+            sg = sig_end * v / N_DEMAND
+            db, dj = _bp_demand_at(s, k, sp, q0, q1, q2, q3, sg, t + sg * hs, seg, epar)
+            if which == 0:
+                bb = max(bb, db)
+            else:
+                bj = max(bj, dj)
+    xo[X_FR_B] = max(xo[X_FR_B], bb)
+    xo[X_FR_J] = max(xo[X_FR_J], bj)
 
 
 @njit(cache=True, inline='always')
@@ -700,6 +765,7 @@ def simulate_stack(prm, prm_asm, sp, ekind, epar, acc, jtab, dt, t_begin, t_exc_
         elif sig_j < 1.0 and sig_j <= sig:
             ev = 4
         _bp_peaks(rs, out, xo, sp, W, hs, sig)
+        _bp_demand(s, k, sp, W, hs, sig, rs[RS_T], seg, epar, xo)
         for m in (0.5, 1.0):
             pull = _bp_forces(s, k, sp, W, hs, m * sig, rs[RS_T], seg, epar, xo)
             if pull:
