@@ -44,7 +44,7 @@ from rockcli.kernels.layout import (E_T0, E_TP, EXC_RECORD, HK_IMPACT, HK_IMPACT
                                     O_N_IMPACTS, O_N_IMPACTS_ALL, O_N_RESTS, O_T_EXCEED, O_T_OVERTURN, O_UPLIFTED,
                                     O_T_SETTLED, O_T_THETA_MAX, P_ALPHA, P_COSA, P_ETA, P_G, P_P2, P_THR, PHASE_ROCKING,
                                     PHASE_STUCK, RS_FRESH, RS_H, RS_NRHS, RS_PHASE,
-                                    RS_REJ, RS_S, RS_SEG_END, RS_SETTLED, RS_STATUS, RS_STEPS, RS_T, RS_THMAX,
+                                    RS_S, RS_SEG_END, RS_SETTLED, RS_STATUS, RS_T, RS_THMAX,
                                     SEG_LINEAR, STATUS_MAX_STEPS, STATUS_OVERTURNED, W_EV, W_FEV, W_RE, W_TMP, W_Y,
                                     W_YNEW)
 from rockcli.kernels.polynomials import _first_down, _golden_max, _poly
@@ -52,9 +52,9 @@ from rockcli.kernels.rigid import _NO_HY, _restep_rigid, _stuck_rigid, _substep_
 from rockcli.kernels.stack_physics import (S_A1REST, S_AAREST, S_B1, S_B2, S_G, S_H1, S_H2, S_M2, S_R1,
                                            S_REST, _dot, _rhs_bp_into, bp_acc, choose_after_impact, fields, forces,
                                            forces_b, forces_p, max_velocities, project)
-from rockcli.kernels.steps import (EV_FAILED, EV_IMPACT, EV_OVERTURN, _advance_segment, _bounce, _close_step, _finish,
-                                   _grown, _out_of_time, _rocking_events, _seg, _shrink, _start, _to_impact,
-                                   _to_overturn, _to_step_end)
+from rockcli.kernels.steps import (EV_FAILED, EV_IMPACT, EV_OVERTURN, _accept_step, _advance_segment, _bounce,
+                                   _finish, _out_of_time, _rocking_events, _seg, _start, _to_impact, _to_overturn,
+                                   _to_step_end)
 
 PAT_R, PAT_B, PAT_P, PAT_BP = 0.0, 1.0, 2.0, 3.0
 
@@ -103,24 +103,9 @@ def _demand(xo, NB, TB, NJ, TJ):
 
 
 @njit(cache=True)
-def _bp_forces(s, k, sp, W, hs, sig, t, seg, epar, xo):
-    """Contact forces of pattern BP at fraction ``sig`` of the last step (its dense output): True when a pivot
-    pulls (the friction demand noted here is also among the samples of :func:`_bp_demand`)."""
-    psi = _poly(_dense(W, hs, np.int64(0), 1.0), sig)
-    psid = _poly(_dense(W, hs, np.int64(1), 1.0), sig)
-    th2 = _poly(_dense(W, hs, np.int64(2), 1.0), sig)
-    thd2 = _poly(_dense(W, hs, np.int64(3), 1.0), sig)
-    ag = ground_at(t + sig * hs, seg, epar)
-    pdd, tdd = bp_acc(s, k, sp, th2, psi, thd2, psid, ag)
-    NB, TB, PRB, PLB, NJ, TJ, PRJ, PLJ = forces(s, k, sp, th2, psi, thd2, psid, tdd, pdd, ag)
-    _demand(xo, NB, TB, NJ, TJ)
-    return NB < 0.0 or NJ < 0.0
-
-
-@njit(cache=True)
-def _bp_demand_at(s, k, sp, q0, q1, q2, q3, sig, tt, seg, epar):
-    """``|T|/N`` at the base and at the joint at fraction ``sig`` of the last BP step (``q0..q3`` its quartics of
-    ``psi, psi', theta2, theta2'``, ``tt`` the time there); -1 where the normal force is not positive."""
+def _bp_forces(s, k, sp, q0, q1, q2, q3, sig, tt, seg, epar):
+    """Normal and tangential forces ``(NB, TB, NJ, TJ)`` of pattern BP at the base and at the joint at fraction
+    ``sig`` of the last step (``q0..q3`` its quartics of ``psi, psi', theta2, theta2'``, ``tt`` the time there)."""
     psi = _poly(q0, sig)
     psid = _poly(q1, sig)
     th2 = _poly(q2, sig)
@@ -128,7 +113,13 @@ def _bp_demand_at(s, k, sp, q0, q1, q2, q3, sig, tt, seg, epar):
     ag = ground_at(tt, seg, epar)
     pdd, tdd = bp_acc(s, k, sp, th2, psi, thd2, psid, ag)
     NB, TB, _, _, NJ, TJ, _, _ = forces(s, k, sp, th2, psi, thd2, psid, tdd, pdd, ag)
-    return (abs(TB) / NB if NB > 0.0 else -1.0), (abs(TJ) / NJ if NJ > 0.0 else -1.0)
+    return NB, TB, NJ, TJ
+
+
+@njit(cache=True, inline='always')
+def _ratio(T, N):
+    """The friction demand ``|T|/N``, or -1 where the normal force ``N`` is not positive."""
+    return abs(T) / N if N > 0.0 else -1.0
 
 
 @njit(cache=True, inline='always')
@@ -146,16 +137,22 @@ def _bp_demand(s, k, sp, W, hs, sig_end, t, seg, epar, xo):
     """The peak friction demand of the last BP step over ``[0, sig_end]`` (its dense output), at both interfaces:
     read at ``N_DEMAND + 1`` equally spaced fractions (both ends included), then at the vertex of the parabola
     through each interface's largest sample and the two beside it (the peak of a smooth demand between samples;
-    the larger reading is kept, so the refinement never lowers the sampled peak)."""
+    the larger reading is kept, so the refinement never lowers the sampled peak). Returns True when a pivot pulls
+    (a normal force below 0) at the middle or the end of the step (samples ``N_DEMAND/2`` and ``N_DEMAND``)."""
     q0 = _dense(W, hs, np.int64(0), 1.0)
     q1 = _dense(W, hs, np.int64(1), 1.0)
     q2 = _dense(W, hs, np.int64(2), 1.0)
     q3 = _dense(W, hs, np.int64(3), 1.0)
     bb = bj = lb = lj = rb = rj = pb = pj = -1.0  # largest samples, their neighbours, the previous samples
     ib = ij = -2
+    pull = False
     for m in range(N_DEMAND + 1):
         sg = sig_end * m / N_DEMAND
-        db, dj = _bp_demand_at(s, k, sp, q0, q1, q2, q3, sg, t + sg * hs, seg, epar)
+        NB, TB, NJ, TJ = _bp_forces(s, k, sp, q0, q1, q2, q3, sg, t + sg * hs, seg, epar)
+        db = _ratio(TB, NB)
+        dj = _ratio(TJ, NJ)
+        if (m == N_DEMAND // 2 or m == N_DEMAND) and (NB < 0.0 or NJ < 0.0):
+            pull = True
         if db > bb:
             bb, ib, lb, rb = db, m, pb, -1.0
         elif m == ib + 1:
@@ -170,16 +167,17 @@ def _bp_demand(s, k, sp, W, hs, sig_end, t, seg, epar, xo):
     for v, which in ((vb, 0), (vj, 1)):
         if v >= 0.0:
             sg = sig_end * v / N_DEMAND
-            db, dj = _bp_demand_at(s, k, sp, q0, q1, q2, q3, sg, t + sg * hs, seg, epar)
+            NB, TB, NJ, TJ = _bp_forces(s, k, sp, q0, q1, q2, q3, sg, t + sg * hs, seg, epar)
             if which == 0:
-                bb = max(bb, db)
+                bb = max(bb, _ratio(TB, NB))
             else:
-                bj = max(bj, dj)
+                bj = max(bj, _ratio(TJ, NJ))
     xo[X_FR_B] = max(xo[X_FR_B], bb)
     xo[X_FR_J] = max(xo[X_FR_J], bj)
+    return pull
 
 
-@njit(cache=True, inline='always')
+@njit(cache=True)
 def _one_forces(pat, s, k, sp, prm, c0, c1, sig, tt, seg, epar, xo):
     """B or P at fraction ``sig`` of the step (``c0``, ``c1`` its quartics of the angle and rate): the smaller corner
     force of the watched face (the base in B, the joint in P), the corner that keeps pressing, whether the pivot
@@ -279,25 +277,7 @@ def _take_step_bp(sp, ekind, epar, max_steps, rs, W, t_stop):
                 back = -c * W[0, col + 1]
                 if vel > 0.0 and back > 0.0:
                     h = min(h, 0.5 * vel / back)
-    last = False
-    hs = h
-    err = 2.0
-    steps = rs[RS_STEPS]
-    rej = rs[RS_REJ]
-    nrhs = rs[RS_NRHS]
-    while steps + rej < max_steps:
-        hs = h
-        last = hs >= t_stop - t
-        if last:
-            hs = t_stop - t
-        err = _dp5_bp(code, sp, seg, epar, t, hs, W, np.int64(0))
-        nrhs += 6
-        if err <= 1.0:
-            h = _grown(h, hs, err, last)
-            break
-        rej += 1
-        h = hs * _shrink(err)
-    return _close_step(rs, h, rej, nrhs, steps, err), hs, last
+    return _accept_step(_dp5_bp, code, sp, seg, epar, t, h, W, rs, max_steps, t_stop)
 
 
 @njit(cache=True)
@@ -765,12 +745,8 @@ def simulate_stack(prm, prm_asm, sp, ekind, epar, acc, jtab, dt, t_begin, t_exc_
         elif sig_j < 1.0 and sig_j <= sig:
             ev = 4
         _bp_peaks(rs, out, xo, sp, W, hs, sig)
-        _bp_demand(s, k, sp, W, hs, sig, rs[RS_T], seg, epar, xo)
-        for m in (0.5, 1.0):
-            pull = _bp_forces(s, k, sp, W, hs, m * sig, rs[RS_T], seg, epar, xo)
-            if pull:
-                xo[X_N_JUMP] += 1.0
-                break
+        if _bp_demand(s, k, sp, W, hs, sig, rs[RS_T], seg, epar, xo):
+            xo[X_N_JUMP] += 1.0
         if ev == 1 or ev == 2:
             _state_at(W, hs, sig, 4)
             rs[RS_T] = rs[RS_T] + sig * hs
