@@ -102,7 +102,7 @@ def _demand(xo, NB, TB, NJ, TJ):
         xo[X_FR_J] = max(xo[X_FR_J], abs(TJ) / NJ)
 
 
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def _bp_forces(s, k, sp, q0, q1, q2, q3, sig, tt, seg, epar):
     """Normal and tangential forces ``(NB, TB, NJ, TJ)`` of pattern BP at the base and at the joint at fraction
     ``sig`` of the last step (``q0..q3`` its quartics of ``psi, psi', theta2, theta2'``, ``tt`` the time there)."""
@@ -177,7 +177,7 @@ def _bp_demand(s, k, sp, W, hs, sig_end, t, seg, epar, xo):
     return pull
 
 
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def _one_forces(pat, s, k, sp, prm, c0, c1, sig, tt, seg, epar, xo):
     """B or P at fraction ``sig`` of the step (``c0``, ``c1`` its quartics of the angle and rate): the smaller corner
     force of the watched face (the base in B, the joint in P), the corner that keeps pressing, whether the pivot
