@@ -204,6 +204,32 @@ def test_simulate_many_runs_stacks_and_blocks_in_order():
     assert bad.verdict == "error" and "gamma = 0" in bad.error
 
 
+def test_stacks_on_threads_are_the_serial_loop_bit_for_bit(monkeypatch):
+    """The stack jobs of a batch run on a pool of threads (the drivers are compiled nogil): every result, in job
+    order, is the one the plain loop gives, bit for bit (repr of a float is exact), a refused job keeps its place,
+    and progress rises by one from ``done`` to ``done + n``."""
+    import rockcli.solve.pool as pool
+    from rockcli.models import LinearIsolation, SingleConcaveSliding
+    from rockcli.solve.stack_many import simulate_stacks
+
+    rng = np.random.default_rng(36)
+    jobs = []
+    for i in range(24):
+        st, pulse = _random_stack(rng), _random_pulse(rng)
+        base = LinearIsolation(float(rng.uniform(1.0, 3.0)), 0.1, 0.3) if i % 3 == 0 else Rigid()
+        jobs.append((st, base, pulse, float(rng.uniform(0.8, 2.0))))
+    jobs.insert(7, (jobs[0][0], SingleConcaveSliding(3.0, 0.05, gamma=0.0), jobs[0][2]))  # refused: gamma = 0
+    runs = {}
+    for threads in (1, 3):
+        monkeypatch.setattr(pool, "_threads", lambda: threads)
+        seen = []
+        runs[threads] = simulate_stacks(jobs, progress=seen.append, done=5)
+        assert seen == list(range(6, 6 + len(jobs)))
+    assert runs[3][7].error and "gamma = 0" in runs[3][7].error
+    assert [repr(r) for r in runs[3]] == [repr(r) for r in runs[1]]
+    assert sum(r.verdict == "overturned" for r in runs[1] if not getattr(r, "error", "")) >= 3
+
+
 def test_the_stack_s_liftoff_floor_is_exact_on_random_scenes():
     """The floor (the smaller static threshold over the motion's peak, docs/plinth.md): at the floor nothing lifts
     and the run is proven (2,000 random stacks and pulses); just above it something lifts (the floor is tight: a

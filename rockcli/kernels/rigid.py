@@ -97,15 +97,14 @@ from rockcli.kernels.ground import (_impulse_left, _rigid_uplift, _rigid_uplift_
 from rockcli.kernels.layout import (EXC_RECORD, HK_IMPACT, HK_STATE, HK_UPLIFT, O_T_SETTLED, O_T_THETA_MAX, O_UPLIFTED,
                                     P_ALPHA, P_COSA, P_ETA, P_G, P_HDT, P_P2, P_SINA, P_TH0, P_THD0, P_THR,
                                     PHASE_ROCKING, PHASE_STUCK,
-                                    RIGID_RECORD_SUBSTEPS, RS_FRESH, RS_NRHS, RS_PK_ON, RS_PK_SIG, RS_PK_T,
-                                    RS_PEAK_FINAL, RS_PHASE, RS_REJ, RS_S, RS_SEG_END, RS_SETTLED, RS_STATUS,
-                                    RS_STEPS, RS_T, RS_THMAX, RS_VEND, STATUS_MAX_STEPS, STATUS_OVERTURNED, W_RE, W_TMP,
+                                    RIGID_RECORD_SUBSTEPS, RS_FRESH, RS_PK_ON, RS_PK_SIG, RS_PK_T,
+                                    RS_PEAK_FINAL, RS_PHASE, RS_S, RS_SEG_END, RS_SETTLED, RS_STATUS,
+                                    RS_T, RS_THMAX, RS_VEND, STATUS_MAX_STEPS, STATUS_OVERTURNED, W_RE, W_TMP,
                                     W_Y)
 from rockcli.kernels.rhs import _rhs_rigid_into
-from rockcli.kernels.steps import (EV_FAILED, EV_IMPACT, EV_OVERTURN, _advance_segment, _bounce, _close_step,
-                                   _finish, _grown, _initial_state, _out_of_time, _rocking_events, _row_kind, _seg,
-                                   _shrink, _start, _step_start, _to_impact, _to_overturn, _to_step_end,
-                                   _vertical_piece)
+from rockcli.kernels.steps import (EV_FAILED, EV_IMPACT, EV_OVERTURN, _accept_step, _advance_segment, _bounce,
+                                   _finish, _initial_state, _out_of_time, _rocking_events, _row_kind, _seg, _start,
+                                   _step_start, _to_impact, _to_overturn, _to_step_end, _vertical_piece)
 
 _NO_HY = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)  # no hysteretic elements
 
@@ -193,28 +192,7 @@ def _take_step_rigid(prm, ekind, epar, max_steps, rs, W, t_stop):
     """One accepted Dormand-Prince step of theta, theta_dot inside ``[t, t_stop]``:
     ``(ok, hs, last)`` (``ok`` False when the step cap is reached first)."""
     h = _step_start(_rhs_rigid_once, 0, prm, ekind, epar, rs, W, _NO_HY)
-    t = rs[RS_T]
-    s = rs[RS_S]
-    seg = _seg(rs)
-    last = False
-    hs = h
-    err = 2.0
-    steps = rs[RS_STEPS]
-    rej = rs[RS_REJ]
-    nrhs = rs[RS_NRHS]
-    while steps + rej < max_steps:
-        hs = h
-        last = hs >= t_stop - t
-        if last:
-            hs = t_stop - t
-        err = _dp5_rigid(s, prm, seg, epar, t, hs, W, np.int64(0))
-        nrhs += 6
-        if err <= 1.0:
-            h = _grown(h, hs, err, last)
-            break
-        rej += 1
-        h = hs * _shrink(err)
-    return _close_step(rs, h, rej, nrhs, steps, err), hs, last
+    return _accept_step(_dp5_rigid, rs[RS_S], prm, _seg(rs), epar, rs[RS_T], h, W, rs, max_steps, t_stop)
 
 
 @njit(cache=True)

@@ -12,7 +12,9 @@ plinth cannot move the run is the single block's, bit for bit; P is the same cod
 (the plinth lifts when one reaches 0), in P the joint's (the body lifts off the plinth), each located on the step's
 dense output by sampling 16 sub-intervals and bisection; at every impact the pattern after it is chosen by
 :func:`rockcli.kernels.stack_physics.choose_after_impact`, and where the plinth (or the body on it) stays, the
-single block's map is used.
+single block's map is used. The friction demand is read where the contact forces are: in B and P at the samples of
+the face check, in BP at 17 points of every step and the vertex of the parabola through the largest
+(:func:`_bp_demand`), at rest ``|ag|/g`` (its largest on the interval).
 
 End of the run: P1 (at rest once the ground is still) and P2S, the single block's P2 for the body on the still
 plinth when the plinth provably cannot lift again: the ground still, ``|psi| < alpha1``, the body's energy ``En``
@@ -42,7 +44,7 @@ from rockcli.kernels.layout import (E_T0, E_TP, EXC_RECORD, HK_IMPACT, HK_IMPACT
                                     O_N_IMPACTS, O_N_IMPACTS_ALL, O_N_RESTS, O_T_EXCEED, O_T_OVERTURN, O_UPLIFTED,
                                     O_T_SETTLED, O_T_THETA_MAX, P_ALPHA, P_COSA, P_ETA, P_G, P_P2, P_THR, PHASE_ROCKING,
                                     PHASE_STUCK, RS_FRESH, RS_H, RS_NRHS, RS_PHASE,
-                                    RS_REJ, RS_S, RS_SEG_END, RS_SETTLED, RS_STATUS, RS_STEPS, RS_T, RS_THMAX,
+                                    RS_S, RS_SEG_END, RS_SETTLED, RS_STATUS, RS_T, RS_THMAX,
                                     SEG_LINEAR, STATUS_MAX_STEPS, STATUS_OVERTURNED, W_EV, W_FEV, W_RE, W_TMP, W_Y,
                                     W_YNEW)
 from rockcli.kernels.polynomials import _first_down, _golden_max, _poly
@@ -50,9 +52,9 @@ from rockcli.kernels.rigid import _NO_HY, _restep_rigid, _stuck_rigid, _substep_
 from rockcli.kernels.stack_physics import (S_A1REST, S_AAREST, S_B1, S_B2, S_G, S_H1, S_H2, S_M2, S_R1,
                                            S_REST, _dot, _rhs_bp_into, bp_acc, choose_after_impact, fields, forces,
                                            forces_b, forces_p, max_velocities, project)
-from rockcli.kernels.steps import (EV_FAILED, EV_IMPACT, EV_OVERTURN, _advance_segment, _bounce, _close_step, _finish,
-                                   _grown, _out_of_time, _rocking_events, _seg, _shrink, _start, _to_impact,
-                                   _to_overturn, _to_step_end)
+from rockcli.kernels.steps import (EV_FAILED, EV_IMPACT, EV_OVERTURN, _accept_step, _advance_segment, _bounce,
+                                   _finish, _out_of_time, _rocking_events, _seg, _start, _to_impact, _to_overturn,
+                                   _to_step_end)
 
 PAT_R, PAT_B, PAT_P, PAT_BP = 0.0, 1.0, 2.0, 3.0
 
@@ -70,6 +72,10 @@ X_N_PLASTIC = 21  # impacts where a given restitution could not be carried: the 
 N_XO = 22
 
 HALF_PI = 0.5 * math.pi
+N_DEMAND = 16  # sub-intervals of a BP step at which the friction demand is read (as the faces of B and P are watched)
+# the impacting interface ``j`` of the impact code: 0 the base, 1 the joint. Passed as these int64 values, never as
+# the literals 0 and 1, which numba would type as two literal types and compile the whole impact code twice
+J_BASE, J_JOINT = np.int64(0), np.int64(1)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -96,19 +102,79 @@ def _demand(xo, NB, TB, NJ, TJ):
         xo[X_FR_J] = max(xo[X_FR_J], abs(TJ) / NJ)
 
 
-@njit(cache=True)
-def _bp_forces(s, k, sp, W, hs, sig, t, seg, epar, xo):
-    """Contact forces of pattern BP at fraction ``sig`` of the last step (its dense output): the friction demand
-    is noted; returns True when a pivot pulls."""
-    psi = _poly(_dense(W, hs, np.int64(0), 1.0), sig)
-    psid = _poly(_dense(W, hs, np.int64(1), 1.0), sig)
-    th2 = _poly(_dense(W, hs, np.int64(2), 1.0), sig)
-    thd2 = _poly(_dense(W, hs, np.int64(3), 1.0), sig)
-    ag = ground_at(t + sig * hs, seg, epar)
+@njit(cache=True, inline='always')
+def _bp_forces(s, k, sp, q0, q1, q2, q3, sig, tt, seg, epar):
+    """Normal and tangential forces ``(NB, TB, NJ, TJ)`` of pattern BP at the base and at the joint at fraction
+    ``sig`` of the last step (``q0..q3`` its quartics of ``psi, psi', theta2, theta2'``, ``tt`` the time there)."""
+    psi = _poly(q0, sig)
+    psid = _poly(q1, sig)
+    th2 = _poly(q2, sig)
+    thd2 = _poly(q3, sig)
+    ag = ground_at(tt, seg, epar)
     pdd, tdd = bp_acc(s, k, sp, th2, psi, thd2, psid, ag)
-    NB, TB, PRB, PLB, NJ, TJ, PRJ, PLJ = forces(s, k, sp, th2, psi, thd2, psid, tdd, pdd, ag)
-    _demand(xo, NB, TB, NJ, TJ)
-    return NB < 0.0 or NJ < 0.0
+    NB, TB, _, _, NJ, TJ, _, _ = forces(s, k, sp, th2, psi, thd2, psid, tdd, pdd, ag)
+    return NB, TB, NJ, TJ
+
+
+@njit(cache=True, inline='always')
+def _ratio(T, N):
+    """The friction demand ``|T|/N``, or -1 where the normal force ``N`` is not positive."""
+    return abs(T) / N if N > 0.0 else -1.0
+
+
+@njit(cache=True, inline='always')
+def _vertex(left, best, right, i):
+    """Where the parabola through ``(i - 1, left), (i, best), (i + 1, right)`` peaks (in sample units), or -1 when
+    the largest sample ``best`` is not interior or a neighbour has no demand (a normal force not positive)."""
+    curv = left - 2.0 * best + right
+    if left < 0.0 or right < 0.0 or not curv < 0.0:
+        return -1.0
+    return i + 0.5 * (left - right) / curv
+
+
+@njit(cache=True)
+def _bp_demand(s, k, sp, W, hs, sig_end, t, seg, epar, xo):
+    """The peak friction demand of the last BP step over ``[0, sig_end]`` (its dense output), at both interfaces:
+    read at ``N_DEMAND + 1`` equally spaced fractions (both ends included), then at the vertex of the parabola
+    through each interface's largest sample and the two beside it (the peak of a smooth demand between samples;
+    the larger reading is kept, so the refinement never lowers the sampled peak). Returns True when a pivot pulls
+    (a normal force below 0) at the middle or the end of the step (samples ``N_DEMAND/2`` and ``N_DEMAND``)."""
+    q0 = _dense(W, hs, np.int64(0), 1.0)
+    q1 = _dense(W, hs, np.int64(1), 1.0)
+    q2 = _dense(W, hs, np.int64(2), 1.0)
+    q3 = _dense(W, hs, np.int64(3), 1.0)
+    bb = bj = lb = lj = rb = rj = pb = pj = -1.0  # largest samples, their neighbours, the previous samples
+    ib = ij = -2
+    pull = False
+    for m in range(N_DEMAND + 1):
+        sg = sig_end * m / N_DEMAND
+        NB, TB, NJ, TJ = _bp_forces(s, k, sp, q0, q1, q2, q3, sg, t + sg * hs, seg, epar)
+        db = _ratio(TB, NB)
+        dj = _ratio(TJ, NJ)
+        if (m == N_DEMAND // 2 or m == N_DEMAND) and (NB < 0.0 or NJ < 0.0):
+            pull = True
+        if db > bb:
+            bb, ib, lb, rb = db, m, pb, -1.0
+        elif m == ib + 1:
+            rb = db
+        if dj > bj:
+            bj, ij, lj, rj = dj, m, pj, -1.0
+        elif m == ij + 1:
+            rj = dj
+        pb, pj = db, dj
+    vb = _vertex(lb, bb, rb, ib)
+    vj = _vertex(lj, bj, rj, ij)
+    for v, which in ((vb, 0), (vj, 1)):
+        if v >= 0.0:
+            sg = sig_end * v / N_DEMAND
+            NB, TB, NJ, TJ = _bp_forces(s, k, sp, q0, q1, q2, q3, sg, t + sg * hs, seg, epar)
+            if which == 0:
+                bb = max(bb, _ratio(TB, NB))
+            else:
+                bj = max(bj, _ratio(TJ, NJ))
+    xo[X_FR_B] = max(xo[X_FR_B], bb)
+    xo[X_FR_J] = max(xo[X_FR_J], bj)
+    return pull
 
 
 @njit(cache=True, inline='always')
@@ -211,25 +277,7 @@ def _take_step_bp(sp, ekind, epar, max_steps, rs, W, t_stop):
                 back = -c * W[0, col + 1]
                 if vel > 0.0 and back > 0.0:
                     h = min(h, 0.5 * vel / back)
-    last = False
-    hs = h
-    err = 2.0
-    steps = rs[RS_STEPS]
-    rej = rs[RS_REJ]
-    nrhs = rs[RS_NRHS]
-    while steps + rej < max_steps:
-        hs = h
-        last = hs >= t_stop - t
-        if last:
-            hs = t_stop - t
-        err = _dp5_bp(code, sp, seg, epar, t, hs, W, np.int64(0))
-        nrhs += 6
-        if err <= 1.0:
-            h = _grown(h, hs, err, last)
-            break
-        rej += 1
-        h = hs * _shrink(err)
-    return _close_step(rs, h, rej, nrhs, steps, err), hs, last
+    return _accept_step(_dp5_bp, code, sp, seg, epar, t, h, W, rs, max_steps, t_stop)
 
 
 @njit(cache=True)
@@ -474,7 +522,7 @@ def _p2s(prm, sp, rs, W, out, xo):
     return True
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def simulate_stack(prm, prm_asm, sp, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, tail, horizon, max_steps,
                    want_history, out, xo):
     """Integrate a body on its plinth under one excitation (arguments as :func:`rockcli.kernels.simulate_rigid`;
@@ -606,10 +654,10 @@ def simulate_stack(prm, prm_asm, sp, ekind, epar, acc, jtab, dt, t_begin, t_exc_
                 ag = ground_at(t, _seg(rs), epar)
                 if pat == PAT_B:
                     V = max_velocities(0.0, k, sp, 0.0, 0.0, 0.0, thd1)
-                    s1, k1, V1, margin, jump, db, dj, plastic = choose_after_impact(0.0, k, 1, sp, 0.0, 0.0, V)
+                    s1, k1, V1, margin, jump, db, dj, plastic = choose_after_impact(0.0, k, J_JOINT, sp, 0.0, 0.0, V)
                 else:
                     V = max_velocities(s, 0.0, sp, 0.0, 0.0, thd1, 0.0)
-                    s1, k1, V1, margin, jump, db, dj, plastic = choose_after_impact(s, 0.0, 0, sp, 0.0, 0.0, V)
+                    s1, k1, V1, margin, jump, db, dj, plastic = choose_after_impact(s, 0.0, J_BASE, sp, 0.0, 0.0, V)
                 if ((pat == PAT_B and s1 == 0.0) or (pat == PAT_P and k1 == 0.0)) and not plastic:
                     # the plinth stays (B), the body stays on it (P): the single block's impact map and rest rule
                     xo[X_FRI_B] = max(xo[X_FRI_B], db)
@@ -637,12 +685,12 @@ def simulate_stack(prm, prm_asm, sp, ekind, epar, acc, jtab, dt, t_begin, t_exc_
                         out[O_N_IMPACTS_ALL] += 1.0
                         if t <= t_exc_end:
                             out[O_N_IMPACTS] += 1.0
-                        _after_impact(1, 0.0, k, sp, prm, prm_asm, 0.0, 0.0, V, rs, W, out, xo, t, ag)
+                        _after_impact(J_JOINT, 0.0, k, sp, prm, prm_asm, 0.0, 0.0, V, rs, W, out, xo, t, ag)
                     else:
                         xo[X_PL_N_IMP_ALL] += 1.0
                         if t <= t_exc_end:
                             xo[X_PL_N_IMP] += 1.0
-                        _after_impact(0, s, 0.0, sp, prm, prm_asm, 0.0, 0.0, V, rs, W, out, xo, t, ag)
+                        _after_impact(J_BASE, s, 0.0, sp, prm, prm_asm, 0.0, 0.0, V, rs, W, out, xo, t, ag)
                 if want_history:
                     H, nh = _hist(H, nh, rs, epar, W, xo, HK_REST if xo[X_PAT] == PAT_R else HK_IMPACT_AFTER)
                 continue
@@ -697,11 +745,8 @@ def simulate_stack(prm, prm_asm, sp, ekind, epar, acc, jtab, dt, t_begin, t_exc_
         elif sig_j < 1.0 and sig_j <= sig:
             ev = 4
         _bp_peaks(rs, out, xo, sp, W, hs, sig)
-        for m in (0.5, 1.0):
-            pull = _bp_forces(s, k, sp, W, hs, m * sig, rs[RS_T], seg, epar, xo)
-            if pull:
-                xo[X_N_JUMP] += 1.0
-                break
+        if _bp_demand(s, k, sp, W, hs, sig, rs[RS_T], seg, epar, xo):
+            xo[X_N_JUMP] += 1.0
         if ev == 1 or ev == 2:
             _state_at(W, hs, sig, 4)
             rs[RS_T] = rs[RS_T] + sig * hs
@@ -740,12 +785,12 @@ def simulate_stack(prm, prm_asm, sp, ekind, epar, acc, jtab, dt, t_begin, t_exc_
                 xo[X_PL_N_IMP_ALL] += 1.0
                 if t <= t_exc_end:
                     xo[X_PL_N_IMP] += 1.0
-                _after_impact(0, s, k, sp, prm, prm_asm, th2, psi, V, rs, W, out, xo, t, ag)
+                _after_impact(J_BASE, s, k, sp, prm, prm_asm, th2, psi, V, rs, W, out, xo, t, ag)
             else:
                 out[O_N_IMPACTS_ALL] += 1.0
                 if t <= t_exc_end:
                     out[O_N_IMPACTS] += 1.0
-                _after_impact(1, s, k, sp, prm, prm_asm, th2, psi, V, rs, W, out, xo, t, ag)
+                _after_impact(J_JOINT, s, k, sp, prm, prm_asm, th2, psi, V, rs, W, out, xo, t, ag)
             if want_history:
                 H, nh = _hist(H, nh, rs, epar, W, xo, HK_IMPACT_AFTER)
             continue

@@ -419,7 +419,7 @@ def _uplift(z, j, t):
         z[Z_TUP0 + j] = t
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def simulate_stack_linear(sp, lp, fk, bp, ekind, epar, acc, dt, t_begin, t_exc_end, tail, horizon, max_steps,
                           want_history, z):
     """Integrate a body on its plinth on an isolated base under one excitation (``sp`` the stack tuple of

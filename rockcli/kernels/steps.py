@@ -227,6 +227,32 @@ def _step_start(rhs_into, fkind, prm, ekind, epar, rs, W, hy):
 
 
 @njit(cache=True, inline='always')
+def _accept_step(dp5, s, prm, seg, epar, t, h, W, rs, max_steps, t_stop):
+    """The step-size loop of a driver with a single Dormand-Prince step ``dp5(s, prm, seg, epar, t, h, W, r0)`` (the
+    rigid block's, the stack's pattern BP): from ``t`` with the proposal ``h``, clipped to ``t_stop``, retried smaller
+    until accepted or the step cap; the bookkeeping written back (:func:`_close_step`). Returns ``(ok, hs, last)``."""
+    last = False
+    hs = h
+    err = 2.0
+    steps = rs[RS_STEPS]
+    rej = rs[RS_REJ]
+    nrhs = rs[RS_NRHS]
+    while steps + rej < max_steps:
+        hs = h
+        last = hs >= t_stop - t
+        if last:
+            hs = t_stop - t
+        err = dp5(s, prm, seg, epar, t, hs, W, np.int64(0))
+        nrhs += 6
+        if err <= 1.0:
+            h = _grown(h, hs, err, last)
+            break
+        rej += 1
+        h = hs * _shrink(err)
+    return _close_step(rs, h, rej, nrhs, steps, err), hs, last
+
+
+@njit(cache=True, inline='always')
 def _grown(h, hs, err, last):
     """Step size to try after an accepted step of size ``hs`` with scaled error ``err <= 1``: grown
     by the controller, unless the step was cut short to land on ``t_stop`` and would grow (then the

@@ -26,7 +26,7 @@ the kernels are imported on the first run. Read it in this order:
                    arrays and a passed work estimate are kept between calls, exactly: see ``excitation``)
 ``stack``          :func:`simulate_stack`: a body on a free plinth (docs/physics-plinth.md),
                    :class:`StackResponse`
-``stack_many``     the stack jobs of :func:`simulate_many` (one run after the other: the stack driver holds the
+``stack_many``     the stack jobs of :func:`simulate_many` (on a pool of threads: the stack drivers release the
                    GIL), read back as a ``StackRun`` that answers to a :class:`Response`'s names
 ``friction``       the friction check of a run (``simulate --friction``): the single block's peak demand from
                    its history and the judgement "exceeds MU" (docs/plinth.md)

@@ -59,7 +59,7 @@ def simulate_many(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL,
         rigid driver's vertical entry.
 
     A job whose block is a :class:`rockcli.models.Stack` (a body on a free plinth) runs on the stack driver
-    (:mod:`rockcli.solve.stack_many`: one run after the other) and returns a ``StackRun``, which reads like a
+    (:mod:`rockcli.solve.stack_many`, on a pool of threads) and returns a ``StackRun``, which reads like a
     :class:`Response` (the body's peak on its plinth; either block toppling overturns the scene).
 
     Returns

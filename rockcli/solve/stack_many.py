@@ -3,8 +3,10 @@
 read back as a :class:`StackRun` that answers to the names of a :class:`rockcli.solve.Response` (the margin
 search, the assessment table and the fragility read those).
 
-A plain loop, not the thread pool of the single block: the stack's compiled driver holds the GIL (it is not
-compiled ``nogil``), so threads would only take turns. Measured in docs/plinth.md.
+The runs go on the process's pool of threads, as the single block's batches do (:func:`rockcli.solve.pool.run_tasks`,
+the results in job order): both stack drivers are compiled ``nogil``, and each run is independent (its
+own arrays in, its own out), so a run on a thread gives the bits it gives in a plain loop; the results are put
+back in job order. Measured in docs/plinth.md.
 
 Foundations: :func:`plinth_foundation_supported` says which ones a stack runs on: the rigid foundation, linear
 bearings and sliding and lead-rubber bearings, on a base of finite mass (passed to
@@ -114,26 +116,38 @@ def run_stack(stack: Stack, foundation, motion, scale: float = 1.0, **solver):
 
 
 def simulate_stacks(jobs, *, early: bool = False, progress=None, done: int = 0, **solver) -> list:
-    """The ``(stack, foundation, motion[, scale])`` jobs one after the other: a :class:`StackRun` each, or a
-    :class:`rockcli.solve.JobError` for a scene refused (the others still run). ``early`` is not taken (the stack
-    driver makes the same steps either way); ``progress(n_done)`` after each run, counting from ``done``.
-    ``solver``: :func:`rockcli.solve.simulate_stack`'s keywords, and ``cap_ratio``/``vertical`` (refused when
-    given)."""
-    out = []
-    for i, job in enumerate(jobs):
+    """The ``(stack, foundation, motion[, scale])`` jobs on a pool of threads (module notes): a :class:`StackRun`
+    each, in job order, or a :class:`rockcli.solve.JobError` for a scene refused (the others still run).
+    ``early`` is not taken (the stack driver makes the same steps either way); ``progress(n_done)`` after each run,
+    counting from ``done`` (called from this thread, n_done rising by one each time). ``solver``:
+    :func:`rockcli.solve.simulate_stack`'s keywords, and ``cap_ratio``/``vertical`` (refused when given)."""
+    from rockcli.solve.options import _kernel
+    from rockcli.solve.pool import run_tasks
+
+    _kernel()  # the kernels imported here, not first on a worker thread
+
+    jobs = list(jobs)
+
+    def one(job):
         stack, foundation, motion = job[:3]
         scale = float(job[3]) if len(job) > 3 else 1.0
         try:
             res = run_stack(stack, foundation, motion, scale, **solver)
         except RockcliInputError as exc:
-            out.append(JobError(str(exc)))
-        else:
-            disp = 0.0 if math.isnan(res.base_disp_max) else res.base_disp_max  # 0 on a rigid foundation, as
-            # a single block's Response
-            out.append(StackRun(res, base_disp_max_m=disp))
+            return JobError(str(exc))
+        disp = 0.0 if math.isnan(res.base_disp_max) else res.base_disp_max  # 0 on a rigid foundation, as a
+        # single block's Response
+        return StackRun(res, base_disp_max_m=disp)
+
+    count = [done]
+
+    def finished(_):
+        count[0] += 1
         if progress is not None:
-            progress(done + i + 1)
-    return out
+            progress(count[0])
+
+    # the process's pool (rockcli.solve.pool): the stack drivers run without the GIL
+    return run_tasks([lambda job=job: one(job) for job in jobs], done=finished)
 
 
 def is_stack_job(job) -> bool:
@@ -142,7 +156,8 @@ def is_stack_job(job) -> bool:
 
 def mixed(jobs, single, *, progress=None, **options) -> list:
     """:func:`rockcli.solve.simulate_many` over jobs some of which are stacks: the single blocks through
-    ``single`` (the batch path, all cores), then the stacks (:func:`simulate_stacks`); results in job order."""
+    ``single`` (the batch path, all cores), then the stacks (:func:`simulate_stacks`, all cores); results in job
+    order."""
     jobs = list(jobs)
     flat = [i for i, j in enumerate(jobs) if not is_stack_job(j)]
     stacked = [i for i, j in enumerate(jobs) if is_stack_job(j)]
