@@ -211,7 +211,7 @@ ASSUMPTIONS = (
     "real base (mortar, a soft floor) may dissipate more or less energy. A body stands on the ground itself unless "
     "it is assessed on a free plinth (--on): then body and plinth are two rigid blocks that rock without sliding, "
     "each impact losing what the plastic impact of the two blocks loses (docs/physics-plinth.md); on linear "
-    "bearings the base carries both; a plinth on sliding bearings is not modelled yet.",
+    "bearings (linear, sliding or lead-rubber) the base carries both, a base of finite mass (gamma > 0).",
     "Only the horizontal ground motion in the plane of rocking is applied, as given in its file: the vertical "
     "motion and the other horizontal direction are ignored.",
     "A record is one sample of what an earthquake can do: another station, another event or the other "
