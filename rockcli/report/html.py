@@ -210,7 +210,7 @@ ASSUMPTIONS = (
     "At each impact it keeps a share e of its rocking velocity given by Housner's rule from its slenderness; a "
     "real base (mortar, a soft floor) may dissipate more or less energy. A body stands on the ground itself unless "
     "it is assessed on a free plinth (--on): then body and plinth are two rigid blocks that rock without sliding, "
-    "each impact losing what the plastic impact of the two blocks loses (docs/physics-plinth.md); on linear "
+    "each impact losing what the plastic impact of the two blocks loses (docs/physics-plinth.md); on "
     "bearings (linear, sliding or lead-rubber) the base carries both, a base of finite mass (gamma > 0).",
     "Only the horizontal ground motion in the plane of rocking is applied, as given in its file: the vertical "
     "motion and the other horizontal direction are ignored.",
