@@ -18,6 +18,17 @@ exactly the single block's stuck base; the base then followed for its later peak
 bearings only until its energy bound of ``|u|`` is below the peak), when a block topples, or at the horizon. No
 early stop during the excitation: verdict-only and history runs take the same steps. On hysteretic bearings the
 steps follow the single block's rules for its Bouc-Wen elements (:func:`simulate_stack_linear`).
+
+A lift below the tolerance (docs/physics-plinth.md, "A lift below the tolerance"): just above a threshold a pivot may
+lift by less than its error floor ``rtol scale`` (2.6e-13 rad on the issue-36 scene, floor ~1e-9), where the sign of
+its angle is the integration's noise; the driver then found it "back at 0" at once, applied impacts of no rate whose
+pattern choice was noise, and cycled at one instant until its step cap. Rule (:func:`_unresolved_fall`): a pivot that
+started the step at angle and rate exactly 0 and is found back at 0 before its angle passed its floor, its rate below
+its floor, lands with no impulse and its face is held shut (not watched, not opened), while the lift it suppresses is
+bounded by the double integral of the opening acceleration it would have (:func:`_held_push`, 17 samples per step):
+the hold ends when the face holds again or when that bound (angle or rate) would pass its floor, and the face then
+opens from rest. Exact to the tolerance: the held run differs from the resolved one by less than one accepted
+step's error; a lift that passes its floor never triggers it (300 random scenes bit-identical).
 """
 
 from __future__ import annotations
@@ -121,13 +132,14 @@ def _dense(y, K, h, sig, out):
 @njit(cache=True)
 def _value(kind, c, sgn, s, k, sp, lp, bb, seg, epar, t, h, y, K, sg, yy):
     """The value whose first fall to 0 is the event, at fraction ``sg`` of the step: ``kind`` 0 an impact of the
-    pivot in column ``c`` on corner ``sgn``, 1 its block's overturn, 2 the watched face (:func:`_face_value`)."""
+    pivot in column ``c`` on corner ``sgn``, 1 its block's overturn, 2 the watched face (:func:`_face_value`; 3 and
+    4: at rest with the joint, the base held, :func:`_face_kind`)."""
     _dense(y, K, h, sg, yy)
     if kind == 0:
         return sgn * yy[c]
     if kind == 1:
         return HALF_PI - sgn * yy[c]
-    return _face_value(s, k, sp, lp, bb, yy, ground_at(t + sg * h, seg, epar))
+    return _face_value(s, k, sp, lp, bb, yy, ground_at(t + sg * h, seg, epar), kind)
 
 
 @njit(cache=True)
@@ -154,16 +166,65 @@ def _first_fall(kind, c, sgn, s, k, sp, lp, bb, seg, epar, t, h, y, K, sig_lim):
 
 
 @njit(cache=True)
-def _face_value(s, k, sp, lp, bb, yy, ag):
-    """R: the lower uplift threshold less the bearing's force; B: the plinth's smaller base corner force over its
-    load; P: the joint's over the body's weight."""
+def _face_value(s, k, sp, lp, bb, yy, ag, kind):
+    """R: the lower uplift threshold less the bearing's force (``kind`` 3: the joint held, the plinth's threshold;
+    4: the base held, the body's); B: the plinth's smaller base corner force over its load; P: the joint's over the
+    body's weight."""
     if s == 0.0 and k == 0.0:
-        return min(lp[L_THR1], lp[L_THRA]) - abs(force(lp, bb, yy[4], yy[5]))
+        thr = lp[L_THRA] if kind == 3 else (lp[L_THR1] if kind == 4 else min(lp[L_THR1], lp[L_THRA]))
+        return thr - abs(force(lp, bb, yy[4], yy[5]))
     pdd, tdd, ab = accel(s, k, sp, lp, bb, yy, ag)
     f = forces(s, k, sp, yy[2], yy[0], yy[3], yy[1], tdd, pdd, ab)
     if s == 0.0:
         return min(f[2], f[3]) / ((1.0 + sp[S_M2]) * sp[S_G])
     return min(f[6], f[7]) / sp[S_G]
+
+
+@njit(cache=True, inline='always')
+def _face_kind(s, k, held):
+    """The face the driver watches in pattern ``(s, k)`` with interface ``held`` held shut (-1: none): -1 none, 2 the
+    pattern's own (R: the lower threshold), 3 at rest with the joint held (the plinth's threshold), 4 with the base
+    held (the body's)."""
+    if s != 0.0 and k != 0.0:
+        return -1
+    if held < 0:
+        return 2
+    if s == 0.0 and k == 0.0:
+        return 3 if held == 1 else 4
+    return -1  # P or B: its only face is the held one
+
+
+@njit(cache=True)
+def _unresolved_fall(c, sgn, lp, y, K, h, sig):
+    """The hair-lift test (docs/physics-plinth.md, "A lift below the tolerance"): the pivot in column ``c`` (corner
+    ``sgn``) started the step just opened (angle and rate exactly 0), and its angle, back at 0 at fraction ``sig``,
+    never rose above its error floor ``rtol scale`` on ``[0, sig]`` (17 samples of the continuous extension), its
+    rate there below its own floor: the lift is below what the integration resolves."""
+    if y[c] != 0.0 or y[c + 1] != 0.0:
+        return False
+    eps = lp[L_RTOL] * lp[L_SC + c]
+    yy = np.empty(6)
+    for m in range(17):
+        _dense(y, K, h, sig * m / 16.0, yy)
+        if sgn * yy[c] > eps:
+            return False
+    return abs(yy[c + 1]) <= lp[L_RTOL] * lp[L_SC + c + 1]
+
+
+@njit(cache=True)
+def _held_push(held, hc, s, k, sp, lp, bb, seg, epar, t, h, y, K):
+    """The largest opening acceleration the held interface would have over the step (17 samples): its pivot on
+    corner ``hc`` at angle 0 with no rate, the rest of the stack as it is."""
+    yy = np.empty(6)
+    amax = 0.0
+    s1 = hc if held == 0 else s
+    k1 = hc if held == 1 else k
+    for m in range(17):
+        sg = m / 16.0
+        _dense(y, K, h, sg, yy)
+        pdd, tdd, _ = accel(s1, k1, sp, lp, bb, yy, ground_at(t + sg * h, seg, epar))
+        amax = max(amax, hc * (pdd if held == 1 else tdd))
+    return amax
 
 
 @njit(cache=True)
@@ -456,6 +517,10 @@ def simulate_stack_linear(sp, lp, fk, bp, ekind, epar, acc, dt, t_begin, t_exc_e
     wb = lp[L_WB]
     thr = min(lp[L_THR1], lp[L_THRA])
     body_first = lp[L_THR1] <= lp[L_THRA]
+    held = -1  # an interface held shut after a lift below the tolerance (_unresolved_fall), its corner, bounds
+    hc = 0.0
+    reach = 0.0
+    rate_b = 0.0
     t_horizon = t_exc_end + max(horizon, tail)
     t_show = t_exc_end + tail
     bound = wb * math.sqrt(1.0 + 4.0 * lp[L_XI] ** 2)
@@ -496,6 +561,8 @@ def simulate_stack_linear(sp, lp, fk, bp, ekind, epar, acc, dt, t_begin, t_exc_e
             z[Z_STATUS] = -1.0
             break
         t_stop = min(rs[RS_SEG_END], t_horizon, t_tail)
+        if (held == 0 and s != 0.0) or (held == 1 and k != 0.0):
+            held = -1  # an impact opened the held interface: it pivots on its own again
         if fresh:
             if hyst and not reversed_:  # after an event: the elements anchored where u is, for its direction now
                 hy = reanchor(fk, bp, hy, y[4], _direction(y[5], hy[1]))
@@ -505,14 +572,16 @@ def simulate_stack_linear(sp, lp, fk, bp, ekind, epar, acc, dt, t_begin, t_exc_e
             rhs(s, k, sp, lp, bb, y, ag0, K[0])
             nrhs += 1
             fresh = False
-            if s == 0.0 or k == 0.0:  # a face that cannot hold at the start opens now
-                if _face_value(s, k, sp, lp, bb, y, ag0) < -sp[S_TOL]:
-                    s, k = _open(s, k, sp, lp, bb, y, ag0, body_first, z, t)
+            fkind = _face_kind(s, k, held)
+            if fkind >= 0:  # a face that cannot hold at the start opens now
+                if _face_value(s, k, sp, lp, bb, y, ag0, fkind) < -sp[S_TOL]:
+                    s, k = _open(s, k, sp, lp, bb, y, ag0, body_first if held < 0 else held == 0, z, t)
                     fresh = True
                     if want_history:
                         H, nh = _hist(H, nh, t, ag0, y, s, k, EVH_UPLIFT)
                     continue
-        watched = s == 0.0 or k == 0.0
+        fkind = _face_kind(s, k, held)
+        watched = fkind >= 0
         cap = min(0.32 / lp[L_PMAX], 1.6 / wb) if watched else np.inf
         if h <= 0.0:
             h = min(0.02 / lp[L_PMAX], 0.1 / wb)
@@ -571,6 +640,8 @@ def simulate_stack_linear(sp, lp, fk, bp, ekind, epar, acc, dt, t_begin, t_exc_e
         # ---- events ----
         sig = 1.0
         ev = -1
+        reopen = False
+        hair_j = -1
         if sig_rev <= 1.0:
             sig, ev = sig_rev, 5  # the base reverses: the step ends there (the elements change branch)
         if k != 0.0:
@@ -591,6 +662,11 @@ def simulate_stack_linear(sp, lp, fk, bp, ekind, epar, acc, dt, t_begin, t_exc_e
                 sg = _first_fall(1, 2, s, s, k, sp, lp, bb, seg, epar, t, hs, y, K, 1.0)
                 if sg <= sig:
                     sig, ev = sg, 2  # the plinth topples
+        if ev == 0 or ev == 1:  # a pivot that opened at the start and fell back unresolved: held (a hair-lift)
+            c = 2 if ev == 0 else 0
+            if _unresolved_fall(c, s if ev == 0 else k, lp, y, K, hs, sig):
+                hair_j = ev
+                ev = 6
         rest = s == 0.0 and k == 0.0
         fb = ub = np.inf
         if rest:  # at rest: the bearing's force and the base's displacement bounded over the step
@@ -599,7 +675,7 @@ def simulate_stack_linear(sp, lp, fk, bp, ekind, epar, acc, dt, t_begin, t_exc_e
             else:
                 fb, ub = _rest_bounds(lp, y, K, hs)
         if watched and not (rest and fb < thr):
-            sg = _first_fall(2, 0, 0.0, s, k, sp, lp, bb, seg, epar, t, hs, y, K, min(sig, 1.0))
+            sg = _first_fall(fkind, 0, 0.0, s, k, sp, lp, bb, seg, epar, t, hs, y, K, min(sig, 1.0))
             if sg <= sig:
                 sig, ev = sg, 4  # the watched face opens
         if not rest or ev >= 0 or ub > z[Z_UMAX] or fb > min(z[Z_FR0], z[Z_FR1]) * sp[S_G]:
@@ -607,6 +683,18 @@ def simulate_stack_linear(sp, lp, fk, bp, ekind, epar, acc, dt, t_begin, t_exc_e
         if ev >= 0 and sig < 1.0:  # retake the step to the event
             _dp5(s, k, sp, lp, bb, seg, epar, t, sig * hs, y, K, ynew)
             nrhs += 6
+        if held >= 0:  # the held lift's reach over the step; released past its error floor or once the face holds
+            dt_ = sig * hs if (ev >= 0 and sig < 1.0) else hs
+            amax = _held_push(held, hc, s, k, sp, lp, bb, seg, epar, t, dt_, y, K)
+            reach += rate_b * dt_ + 0.5 * amax * dt_ * dt_
+            rate_b += amax * dt_
+            c = 0 if held == 1 else 2
+            t_e = t + dt_
+            if _face_value(s, k, sp, lp, bb, ynew, ground_at(t_e, seg, epar), 4 if held == 1 else 3) >= 0.0:
+                held = -1  # the face holds again: the lift is over
+            elif reach > lp[L_RTOL] * lp[L_SC + c] or rate_b > lp[L_RTOL] * lp[L_SC + c + 1]:
+                held = -1  # the lift would pass the floor: it opens at the next step's start
+                reopen = True
         t = t + sig * hs if sig < 1.0 else (t_stop if last else t + hs)
         for i in range(6):
             y[i] = ynew[i]
@@ -618,8 +706,27 @@ def simulate_stack_linear(sp, lp, fk, bp, ekind, epar, acc, dt, t_begin, t_exc_e
                 bb = (fk, bp, hy)
             if want_history:
                 H, nh = _hist(H, nh, t, ground_at(t, seg, epar), y, s, k, EVH_STATE)
+            fresh = reopen
             continue
         fresh = True
+        if ev == 6:  # a lift below the tolerance lands: the pivot sticks, its face held (no impulse above the floor)
+            j = hair_j
+            if t <= t_exc_end:
+                z[Z_NIMP0 + j] += 1.0
+            z[Z_NIMPALL0 + j] += 1.0
+            c = 2 if j == 0 else 0
+            y[c] = 0.0
+            y[c + 1] = 0.0
+            if j == 0:
+                hc, s = s, 0.0
+            else:
+                hc, k = k, 0.0
+            held = j
+            reach = 0.0
+            rate_b = 0.0
+            if want_history:
+                H, nh = _hist(H, nh, t, ground_at(t, seg, epar), y, s, k, EVH_IMPACT)
+            continue
         if ev == 5:  # the base reversed: the elements take the other branch from here
             hy = reanchor(fk, bp, hy, y[4], -hy[1])
             bb = (fk, bp, hy)
