@@ -50,7 +50,7 @@ def spectrum_plinths(plinth_spec, alphas_deg, isolations, *, cap_ratio=0.0, size
             if not plinth_foundation_supported(iso.foundation(1.0) if hasattr(iso, "foundation") else iso)]
     if left:
         raise RockcliInputError(f"--on: {PLINTH_RIGID_ONLY} ({', '.join(left)}); give --isolation none or "
-                                f"linear:...")
+                                f"bearings with gamma > 0")
     check_plinth_ratio(plinth, [Block(R, math.radians(a), "reference") for a in alphas_deg
                                 for R in ([REFERENCE_R] if sizes is None else sorted({min(sizes), max(sizes)}))])
     return [None, plinth]
