@@ -42,6 +42,17 @@ def _default_signals():
     signal.pthread_sigmask(signal.SIG_UNBLOCK, stops)
 
 
+def _signal_state(pid: int) -> str:
+    """The signal lines of a live process's /proc status (pending, blocked, ignored, caught masks) and its threads."""
+    try:
+        lines = Path(f"/proc/{pid}/status").read_text().splitlines()
+        threads = len(os.listdir(f"/proc/{pid}/task"))
+    except OSError as exc:
+        return f"(status unreadable: {exc})"
+    keep = [ln for ln in lines if ln.startswith(("State", "ShdPnd", "SigPnd", "SigBlk", "SigIgn", "SigCgt"))]
+    return "; ".join(keep) + f"; threads {threads}"
+
+
 def listing(folder: Path) -> dict:
     return {str(p.relative_to(folder)): (p.read_bytes() if p.is_file() else "folder")
             for p in sorted(folder.rglob("*"))}
@@ -78,7 +89,10 @@ def test_signal_during_a_run_leaves_nothing(tmp_path, sig, code):
         assert proc.stdout.readline().strip() == "staged"
         assert len(list(tmp_path.rglob(".*.tmp"))) == 4  # the staged files exist, hidden, next to their targets
         os.kill(proc.pid, sig)
-        proc.wait(timeout=30)
+        try:
+            proc.wait(timeout=30)
+        except subprocess.TimeoutExpired:  # say what the child's signal state was (it slept through the signal)
+            pytest.fail(f"the child lived on 30 s after signal {sig}: {_signal_state(proc.pid)}")
     finally:
         proc.kill()
         proc.wait()
