@@ -11,6 +11,7 @@ import sys
 import time
 
 from forkserver import IMPORT_TIME_FILES, MAGIC, READ_UNUSED, REAL, RUNTIME_ENV
+from forkserver_client import _limits  # the client's fingerprint of the process limits, compared with this one's
 from forkserver_warmup import EnvReads, _native_threads, fork_unsafe, warm_up
 
 
@@ -21,19 +22,6 @@ def _unpack(payload: bytes) -> list[bytes]:
         items.append(payload[at + 4:at + 4 + n])
         at += 4 + n
     return items
-
-
-def _limits() -> bytes:
-    import resource
-
-    out = []
-    for name in sorted(n for n in dir(resource) if n.startswith("RLIMIT_")):
-        try:
-            soft, hard = resource.getrlimit(getattr(resource, name))
-        except (ValueError, OSError):
-            continue
-        out.append(f"{name}={soft},{hard}")
-    return ";".join(out).encode()
 
 
 class Request:
