@@ -92,7 +92,9 @@ def test_signal_during_a_run_leaves_nothing(tmp_path, sig, code):
         try:
             proc.wait(timeout=30)
         except subprocess.TimeoutExpired:  # say what the child's signal state was (it slept through the signal)
-            pytest.fail(f"the child lived on 30 s after signal {sig}: {_signal_state(proc.pid)}")
+            staged = len(list(tmp_path.rglob(".*.tmp")))  # 4: its handler never discarded them; 0: it did
+            pytest.fail(f"the child lived on 30 s after signal {sig}: {_signal_state(proc.pid)}; {staged} staged "
+                        f"files left")
     finally:
         proc.kill()
         proc.wait()
