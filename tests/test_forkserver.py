@@ -193,7 +193,7 @@ def test_signals_reach_the_command(both, signum):
         results[way] = _on_a_terminal(f"exec {SLOW}", envs[way], work, until=b"runs  [",
                                       then=lambda proc: proc.send_signal(signum))
     (rc_real, out_real, tty_real), (rc, out, tty) = results["real"], results["server"]
-    assert rc == rc_real == (1 if signum == signal.SIGINT else -signum), (rc, rc_real)
+    assert rc == rc_real == (1 if signum == signal.SIGINT else -signum), (rc, rc_real, tty_real[-400:], tty[-400:])
     if signum == signal.SIGINT:
         assert b"Aborted!" in tty and b"Aborted!" in tty_real
     assert out == out_real
