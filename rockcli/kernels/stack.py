@@ -39,8 +39,8 @@ from numba import njit
 from rockcli.kernels.dopri import _dense, _dp5_step, _restep_rows, _shift_event, _state_at
 from rockcli.kernels.events import _count_uplift, _hist_push, comes_to_rest, impact_map
 from rockcli.kernels.ground import _pulse_turns, _rigid_uplift, ground_at
-from rockcli.kernels.layout import (E_T0, E_TP, EXC_RECORD, HK_IMPACT, HK_IMPACT_AFTER, HK_OVERTURN, HK_REST,
-                                    HK_STATE, HK_UPLIFT,
+from rockcli.kernels.layout import (E_T0, E_TP, EXC_RECORD, FK_RIGID, HK_IMPACT, HK_IMPACT_AFTER, HK_OVERTURN, HK_REST,
+                                    HK_STATE, HK_UPLIFT, J_BASE, J_JOINT,
                                     O_N_IMPACTS, O_N_IMPACTS_ALL, O_N_RESTS, O_T_EXCEED, O_T_OVERTURN, O_UPLIFTED,
                                     O_T_SETTLED, O_T_THETA_MAX, P_ALPHA, P_COSA, P_ETA, P_G, P_P2, P_THR, PHASE_ROCKING,
                                     PHASE_STUCK, RS_FRESH, RS_H, RS_NRHS, RS_PHASE,
@@ -73,9 +73,6 @@ N_XO = 22
 
 HALF_PI = 0.5 * math.pi
 N_DEMAND = 16  # sub-intervals of a BP step at which the friction demand is read (as the faces of B and P are watched)
-# the impacting interface ``j`` of the impact code: 0 the base, 1 the joint. Passed as these int64 values, never as
-# the literals 0 and 1, which numba would type as two literal types and compile the whole impact code twice
-J_BASE, J_JOINT = np.int64(0), np.int64(1)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -250,7 +247,7 @@ def _impact_ahead(W, hs, col, c):
 # ---------------------------------------------------------------------------------------------
 @njit(cache=True)
 def _dp5_bp(code, sp, seg, epar, t, h, W, r0):
-    return _dp5_step(_rhs_bp_into, 0, PHASE_ROCKING, code, sp, seg, epar, _NO_HY, 0.0, t, h, W, 0, 4, r0)
+    return _dp5_step(_rhs_bp_into, FK_RIGID, PHASE_ROCKING, code, sp, seg, epar, _NO_HY, 0.0, t, h, W, 0, 4, r0)
 
 
 @njit(cache=True)
@@ -265,7 +262,7 @@ def _take_step_bp(sp, ekind, epar, max_steps, rs, W, t_stop):
         if ekind != EXC_RECORD:
             h = min(h, epar[E_TP] / 50.0)
     if rs[RS_FRESH] != 0.0:
-        _rhs_bp_into(0, PHASE_ROCKING, code, sp, seg, epar, _NO_HY, t, W, W_Y, 0)
+        _rhs_bp_into(FK_RIGID, PHASE_ROCKING, code, sp, seg, epar, _NO_HY, t, W, W_Y, 0)
         rs[RS_NRHS] += 1
         rs[RS_FRESH] = 0.0
         # a pivot just back at 0 (an impact, an uplift): do not step over a short flight
@@ -566,7 +563,7 @@ def simulate_stack(prm, prm_asm, sp, ekind, epar, acc, jtab, dt, t_begin, t_exc_
         if pat == PAT_R:
             t0 = rs[RS_T]
             if body_first:
-                _stuck_rigid(prm, rs, epar, t_stop, out, False)
+                _stuck_rigid(prm, rs, epar, t_stop, out, np.bool_(False))
                 if rs[RS_PHASE] == PHASE_ROCKING:
                     _set_pattern(rs, W, xo, 0.0, rs[RS_S], 0.0, 0.0, 0.0, 0.0)
             else:
@@ -610,7 +607,8 @@ def simulate_stack(prm, prm_asm, sp, ekind, epar, acc, jtab, dt, t_begin, t_exc_
                     s_ev = min(s_ev, so if so >= 0.0 else 1.0)
                 s_open, side = _face_opens(pat, s, k, sp, pb, W, hs, rs[RS_T], seg, epar, xo, s_ev)
                 if s_open >= 0.0:  # the step stands up to the face opening: retake it there
-                    _restep_rigid(0, PHASE_ROCKING, c, pb, seg, epar, _NO_HY, rs[RS_T], s_open * hs, W, 0, 2)
+                    _restep_rigid(FK_RIGID, PHASE_ROCKING, c, pb, seg, epar, _NO_HY, rs[RS_T], s_open * hs, W,
+                                  np.int64(0), np.int64(2))
                     rs[RS_NRHS] += 6
                     W[W_YNEW, 0] = W[W_EV, 0]
                     W[W_YNEW, 1] = W[W_EV, 1]
@@ -646,7 +644,7 @@ def simulate_stack(prm, prm_asm, sp, ekind, epar, acc, jtab, dt, t_begin, t_exc_
                 rs[RS_T] = t_new
                 _set_pattern(rs, W, xo, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
             elif code == EV_IMPACT:
-                _to_impact(_restep_rigid, 0, pb, rs, W, epar, _NO_HY, hs, sig, 2)
+                _to_impact(_restep_rigid, FK_RIGID, pb, rs, W, epar, _NO_HY, hs, sig, np.int64(2))
                 if want_history:
                     H, nh = _hist(H, nh, rs, epar, W, xo, HK_IMPACT)
                 thd1 = W[W_Y, 1]

@@ -285,9 +285,9 @@ def post_velocities(c0, c1, j, sp, Md, q0, q1, vm, E):
     """The plastic impact into ``(c0, c1)``, or with ``E >= 0`` the energetic rule of the note."""
     cj = c1 if j else c0
     if E < 0.0 or cj == 0.0:
-        return impact_into(c0, c1, sp, Md, q0, q1, vm, j, 0.0, False)
-    v0, _ = impact_into(0.0 if j == 0 else c0, 0.0 if j == 1 else c1, sp, Md, q0, q1, vm, j, 0.0, False)
-    w, _ = impact_into(c0, c1, sp, Md, q0, q1, np.zeros(7), j, 1.0, True)
+        return impact_into(c0, c1, sp, Md, q0, q1, vm, j, 0.0, np.bool_(False))
+    v0, _ = impact_into(0.0 if j == 0 else c0, 0.0 if j == 1 else c1, sp, Md, q0, q1, vm, j, 0.0, np.bool_(False))
+    w, _ = impact_into(c0, c1, sp, Md, q0, q1, np.zeros(7), j, 1.0, np.bool_(True))
     a = 0.0
     bnorm = 0.0
     for i in range(7):
@@ -296,7 +296,7 @@ def post_velocities(c0, c1, j, sp, Md, q0, q1, vm, E):
     W = math.sqrt(max(0.0, a / bnorm))
     r = rel_rates(vm)
     rj = r[1] if j else r[0]
-    return impact_into(c0, c1, sp, Md, q0, q1, vm, j, E * W * math.copysign(1.0, rj), True)
+    return impact_into(c0, c1, sp, Md, q0, q1, vm, j, E * W * math.copysign(1.0, rj), np.bool_(True))
 
 
 @njit(cache=True)

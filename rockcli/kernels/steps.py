@@ -215,7 +215,7 @@ def _step_start(rhs_into, fkind, prm, ekind, epar, rs, W, hy):
     if rs[RS_FRESH] != 0.0:
         s = rs[RS_S]
         phase = rs[RS_PHASE]
-        rhs_into(fkind, phase, s, prm, _seg(rs), epar, hy, rs[RS_T], W, W_Y, 0)
+        rhs_into(fkind, phase, s, prm, _seg(rs), epar, hy, rs[RS_T], W, W_Y, np.int64(0))
         rs[RS_NRHS] += 1
         rs[RS_FRESH] = 0.0
         if phase == PHASE_ROCKING and W[W_Y, 0] == 0.0:
@@ -369,7 +369,7 @@ def _to_impact(restep, fkind, prm, rs, W, epar, hy, hs, sig, nst):
     rs[RS_NRHS] += 6
     dt_e = -W[W_EV, 0] / W[W_FEV, 0] if W[W_FEV, 0] != 0.0 else 0.0
     dt_e = min(max(dt_e, -sig * hs), (1.0 - sig) * hs)
-    _shift_event(W, dt_e, 0, nst)
+    _shift_event(W, dt_e, np.int64(0), nst)
     for i in range(nst):
         W[W_Y, i] = W[W_EV, i]
     rs[RS_T] = t + sig * hs + dt_e
