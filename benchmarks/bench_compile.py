@@ -2,11 +2,12 @@
 
 One child process (``NUMBA_CACHE_DIR`` pointed at a new, empty folder) makes the first call of each driver in a
 fixed order, with the argument types :mod:`rockcli.solve` passes: the rigid foundation, the rigid foundation under
-a vertical motion, the isolated base, the body on its plinth (rigid foundation, then bearings), and the three
-batch kernels. It prints the CPU time of each outermost compile (a driver compiles the callees that an earlier
-driver has not compiled already, so the order matters and is fixed), their total, and each kernel function
-numba compiled for more than one set of argument types (a literal int argument, or a different array layout,
-is a type of its own: one more copy of the function to compile and optimise).
+a vertical motion, the isolated base, the body on its plinth (rigid foundation, then bearings), the three batch
+kernels, and the two kernels called from Python elsewhere (the lift-off floor, a bearing's loop). It prints the
+CPU time of each outermost compile (a driver compiles the callees that an earlier driver has not compiled already,
+so the order matters and is fixed), their total, and each kernel function numba compiled for more than one set of
+argument types (a literal int argument, or a different array layout, is a type of its own: one more copy of the
+function to compile and optimise).
 
 With ``--callees`` it also prints the CPU of every compile nested inside the drivers (exclusive of the callees
 it compiled itself), the largest first: where a driver's compile time goes.
@@ -66,6 +67,9 @@ from rockcli.solve import simulate, simulate_stack
 from rockcli.io.units import G
 from rockcli.kernels import batch as kb
 from rockcli.kernels.layout import N_EPAR, N_OUT, N_PRM
+from rockcli.assess.liftoff import load_floor_kernel
+from rockcli.models import SingleConcaveSliding
+from rockcli.solve import bearing_force_path
 
 block = Block(1.0, 0.2)
 pulse = make_pulse("sine", 2.0 * G * math.tan(0.2), 0.5)
@@ -87,6 +91,8 @@ steps = [
     ("batch.simulate_batch_rigid", lambda: kb._empty_call(kb.simulate_batch_rigid)),
     ("batch.simulate_batch", lambda: kb._empty_call(kb.simulate_batch)),
     ("batch.simulate_batch_rigid_vertical", lambda: vertical_batch(kb.simulate_batch_rigid_vertical)),
+    ("linear_base.stuck_peak", lambda: load_floor_kernel()),
+    ("bearings.force_along_path", lambda: bearing_force_path(block, SingleConcaveSliding(2.0, 0.05), np.zeros(3))),
 ]
 rows = []
 for name, call in steps:
