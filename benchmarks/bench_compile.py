@@ -92,7 +92,7 @@ steps = [
     ("batch.simulate_batch", lambda: kb._empty_call(kb.simulate_batch)),
     ("batch.simulate_batch_rigid_vertical", lambda: vertical_batch(kb.simulate_batch_rigid_vertical)),
     ("linear_base.stuck_peak", lambda: load_floor_kernel()),
-    ("bearings.force_along_path", lambda: bearing_force_path(block, SingleConcaveSliding(2.0, 0.05), np.zeros(3))),
+    ("bearings.force_along_path", lambda: bearing_force_path(SingleConcaveSliding(2.0, 0.05), np.zeros(3))),
 ]
 rows = []
 for name, call in steps:
@@ -122,8 +122,10 @@ def main() -> None:
         try:
             env = dict(os.environ, NUMBA_CACHE_DIR=cache,
                        PYTHONPATH=os.pathsep.join(filter(None, [str(ROOT), os.environ.get("PYTHONPATH")])))
-            out = subprocess.run([sys.executable, "-c", CHILD], env=env, cwd=ROOT, check=True, capture_output=True,
-                                 text=True).stdout
+            child = subprocess.run([sys.executable, "-c", CHILD], env=env, cwd=ROOT, capture_output=True, text=True)
+            if child.returncode != 0:
+                sys.exit(f"the child process failed:\n{child.stderr}")
+            out = child.stdout
         finally:
             shutil.rmtree(cache, ignore_errors=True)
         runs.append(json.loads(out.strip().splitlines()[-1]))

@@ -1,4 +1,4 @@
-"""Codes and array layouts shared by the kernels and :mod:`rockcli.solve` (plain Python constants).
+"""Codes and array layouts shared by the kernels and :mod:`rockcli.solve` (constants only: no numba here).
 
 numba compiles these module-level integers into the kernels as constants; they are codes and
 indices, never physical constants (those travel in the parameter tuple ``prm``).
