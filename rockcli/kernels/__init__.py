@@ -42,6 +42,14 @@ Files (data flows down this list):
 
 Every physical constant reaches the kernels as an argument (the ``prm`` tuple); module-level
 names are codes, indices and the fixed coefficients of the integration method.
+
+Compile time (a cold cache compiles every kernel: about two minutes of CPU). Every function is
+``@njit(cache=True, no_cfunc_wrapper=True, ...)``: numba otherwise also builds, optimises and emits a
+C-ABI wrapper of each compiled function, for its use as a first-class function value, which the kernels
+never need (a function passed as an argument, such as a driver's right-hand side, is typed as its own
+dispatcher; calls from Python go through the CPython wrapper, which is kept). Integers passed to compiled
+functions are int64 values, never literals (:mod:`rockcli.kernels.layout`). ``benchmarks/bench_compile.py``
+measures the cold compile of each driver.
 """
 
 from rockcli.kernels import cache as _cache

@@ -1,8 +1,16 @@
-"""Codes and array layouts shared by the kernels and :mod:`rockcli.solve` (plain Python constants).
+"""Codes and array layouts shared by the kernels and :mod:`rockcli.solve` (constants only: no numba here).
 
-numba compiles these module-level integers into the kernels as literals; they are codes and
+numba compiles these module-level integers into the kernels as constants; they are codes and
 indices, never physical constants (those travel in the parameter tuple ``prm``).
+
+The codes and rows that the kernels pass as arguments of compiled calls (the rows of ``W``, the phases,
+:data:`FK_RIGID`, :data:`J_BASE` and :data:`J_JOINT`) are ``np.int64`` values: numba types a plain
+module-level int, like a literal ``0``, as ``Literal[int](0)``, a type of its own, and compiles the callee
+once more for each value it is called with (its frontend, and one more copy in the caller's LLVM module;
+:mod:`rockcli.kernels.steps` has the measurements). An int64 value gives one compiled callee for all.
 """
+
+import numpy as _np
 
 # ---------------------------------------------------------------------------------------------
 # Foundation families (one right-hand side each, rockcli.kernels.rhs)
@@ -11,6 +19,7 @@ FOUNDATION_RIGID = 0  # block on the ground: states theta, theta_dot
 FOUNDATION_LINEAR = 1  # linear viscoelastic bearings (Eqs 7-11): + u, u_dot
 FOUNDATION_BILINEAR = 2  # one Bouc-Wen element (SCSS, lead-rubber; Eqs 33-36): + u, u_dot, z
 FOUNDATION_DCSS = 3  # two Bouc-Wen elements in series, massless slider: + u, u_dot, z1, z2
+FK_RIGID = _np.int64(FOUNDATION_RIGID)  # the code the rigid-foundation drivers pass to the shared functions
 
 # ---------------------------------------------------------------------------------------------
 # Excitations
@@ -78,18 +87,22 @@ HK_STATE, HK_PEAK, HK_GRID, HK_UPLIFT, HK_IMPACT, HK_IMPACT_AFTER, HK_REST, HK_O
     0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0)
 N_HIST = 10
 
-PHASE_STUCK = 0
-PHASE_ROCKING = 1
+PHASE_STUCK = _np.int64(0)
+PHASE_ROCKING = _np.int64(1)
+
+# the interfaces of a body on its plinth (rockcli.kernels.stack, stack_linear): the plinth on the base, the body on
+# the plinth (the impacting interface ``j`` of the impact code, the uplift outputs)
+J_BASE, J_JOINT = _np.int64(0), _np.int64(1)
 
 # ---------------------------------------------------------------------------------------------
 # The work array ``W`` of a step (rows) x the integrated states (columns theta, theta_dot, u, u_dot)
 # ---------------------------------------------------------------------------------------------
-W_Y = 7  # state at the start of the step (rows 0..6: stage derivatives, row 6 = f(t + h, ynew))
-W_YNEW = 8  # state at the end of the step
-W_TMP = 9  # stage state / dense-output state
+W_Y = _np.int64(7)  # state at the start of the step (rows 0..6: stage derivatives, row 6 = f(t + h, ynew))
+W_YNEW = _np.int64(8)  # state at the end of the step
+W_TMP = _np.int64(9)  # stage state / dense-output state
 # a step retaken to an event inside the last one (rockcli.kernels.dopri._restep_rows) uses rows
 # W_RE + 0..9 the way a step uses rows 0..9, leaving the last step (and its dense output) intact
-W_RE = 10
+W_RE = _np.int64(10)
 W_EV = W_RE + W_YNEW  # the state at the event
 W_FEV = W_RE + 6  # f there
 N_W = 20

@@ -94,8 +94,8 @@ from rockcli.kernels.dopri import _dp5_step, _restep_rows, _state_at
 from rockcli.kernels.events import _count_uplift, _hist_grid, _hist_grid_cut, _hist_peak, _hist_push, impact_map
 from rockcli.kernels.ground import (_impulse_left, _rigid_uplift, _rigid_uplift_vertical, _vertical, _vertical_left,
                                    ground_at)
-from rockcli.kernels.layout import (EXC_RECORD, HK_IMPACT, HK_STATE, HK_UPLIFT, O_T_SETTLED, O_T_THETA_MAX, O_UPLIFTED,
-                                    P_ALPHA, P_COSA, P_ETA, P_G, P_HDT, P_P2, P_SINA, P_TH0, P_THD0, P_THR,
+from rockcli.kernels.layout import (EXC_RECORD, FK_RIGID, HK_IMPACT, HK_STATE, HK_UPLIFT, O_T_SETTLED, O_T_THETA_MAX,
+                                    O_UPLIFTED, P_ALPHA, P_COSA, P_ETA, P_G, P_HDT, P_P2, P_SINA, P_TH0, P_THD0, P_THR,
                                     PHASE_ROCKING, PHASE_STUCK,
                                     RIGID_RECORD_SUBSTEPS, RS_FRESH, RS_PK_ON, RS_PK_SIG, RS_PK_T,
                                     RS_PEAK_FINAL, RS_PHASE, RS_S, RS_SEG_END, RS_SETTLED, RS_STATUS,
@@ -109,7 +109,7 @@ from rockcli.kernels.steps import (EV_FAILED, EV_IMPACT, EV_OVERTURN, _accept_st
 _NO_HY = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)  # no hysteretic elements
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def _end_of_run_rigid(prm, ekind, epar, jtab, dt, t_exc_end, early, want_history, t_show_end, t_horizon,
                       max_steps, rs, W, out, vjtab, vdt):
     """The end-of-run rule on the ground (P1, P2, P4, P6, P7 in the module notes): True when the run ends now."""
@@ -170,7 +170,7 @@ def _end_of_run_rigid(prm, ekind, epar, jtab, dt, t_exc_end, early, want_history
     return _out_of_time(rs, t_horizon, max_steps)
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def _stuck_rigid(prm, rs, epar, t_stop, out, vertical):
     """Stuck on a rigid foundation: scan the ground motion up to ``t_stop``, integrate nothing."""
     if vertical:
@@ -187,41 +187,41 @@ def _stuck_rigid(prm, rs, epar, t_stop, out, vertical):
         rs[RS_FRESH] = 1.0
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def _take_step_rigid(prm, ekind, epar, max_steps, rs, W, t_stop):
     """One accepted Dormand-Prince step of theta, theta_dot inside ``[t, t_stop]``:
     ``(ok, hs, last)`` (``ok`` False when the step cap is reached first)."""
-    h = _step_start(_rhs_rigid_once, 0, prm, ekind, epar, rs, W, _NO_HY)
+    h = _step_start(_rhs_rigid_once, FK_RIGID, prm, ekind, epar, rs, W, _NO_HY)
     return _accept_step(_dp5_rigid, rs[RS_S], prm, _seg(rs), epar, rs[RS_T], h, W, rs, max_steps, t_stop)
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def _rhs_rigid_once(fkind, phase, s, prm, seg, epar, hy, t, W, src, dst):
     """:func:`rockcli.kernels.rhs._rhs_rigid_into` as a call: for the derivative at a step's start
     after an event (rare), so that the step's own copy is the only inlined one."""
     _rhs_rigid_into(fkind, phase, s, prm, seg, epar, hy, t, W, src, dst)
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def _dp5_rigid(s, prm, seg, epar, t, h, W, r0):
     """The Dormand-Prince step of theta, theta_dot (compiled once for this driver)."""
-    return _dp5_step(_rhs_rigid_into, 0, PHASE_ROCKING, s, prm, seg, epar, _NO_HY, 0.0, t, h, W, 0, 2, r0)
+    return _dp5_step(_rhs_rigid_into, FK_RIGID, PHASE_ROCKING, s, prm, seg, epar, _NO_HY, 0.0, t, h, W, 0, 2, r0)
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def _restep_rigid(fkind, phase, s, prm, seg, epar, hy, t, h, W, i0, i1):
     """The last step retaken to an event at ``t + h`` (:func:`rockcli.kernels.dopri._restep_rows`)."""
     _restep_rows(W)
     _dp5_rigid(s, prm, seg, epar, t, h, W, np.int64(W_RE))
 
 
-@njit(cache=True, inline='always')
+@njit(cache=True, no_cfunc_wrapper=True, inline='always')
 def _history_rigid(H, nh, rs, epar, W, kind):
     t = rs[RS_T]
     return _hist_push(H, nh, t, ground_at(t, _seg(rs), epar), W, W_Y, 0.0, 0.0, 0.0, kind)
 
 
-@njit(cache=True, inline='always')
+@njit(cache=True, no_cfunc_wrapper=True, inline='always')
 def _substep_stop(t, seg_end, dt, t_stop):
     """``t_stop``, or the next of the ``RIGID_RECORD_SUBSTEPS - 1`` points that divide the sample
     interval ending at ``seg_end`` evenly, if one lies ahead of ``t`` and before it."""
@@ -234,7 +234,7 @@ def _substep_stop(t, seg_end, dt, t_stop):
     return t_stop
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def simulate_rigid(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, tail, horizon, max_steps,
                    want_history, early, out):
     """Integrate one scene on a rigid foundation; the arguments, outputs and the general end-of-run
@@ -244,7 +244,7 @@ def simulate_rigid(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, t
                                    max_steps, want_history, early, none, none, 1.0, out)
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def simulate_rigid_vertical(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, tail, horizon, max_steps,
                             want_history, early, vacc, vjtab, vdt, out):
     """:func:`simulate_rigid` under a vertical ground acceleration as well: ``vacc`` [m/s^2, upward
@@ -263,7 +263,8 @@ def simulate_rigid_vertical(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_e
     if want_history:
         H, nh = _history_rigid(H, nh, rs, epar, W, HK_STATE)
         if grid:
-            H, nh, kg = _hist_grid(H, nh, kg, hdt, rs[RS_T], 0.0, rs[RS_T], 0, prm, _NO_HY, _seg(rs), epar, W, 0, 2)
+            H, nh, kg = _hist_grid(H, nh, kg, hdt, rs[RS_T], 0.0, rs[RS_T], FK_RIGID, prm, _NO_HY, _seg(rs), epar, W,
+                                   np.int64(0), np.int64(2))
         if prm[P_TH0] != 0.0 and prm[P_THD0] == 0.0:  # released from rest at a tilt: its first peak
             H, nh = _hist_peak(H, nh, rs[RS_T], ground_at(rs[RS_T], _seg(rs), epar), W, W_Y)
 
@@ -287,8 +288,8 @@ def simulate_rigid_vertical(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_e
             _stuck_rigid(prm, rs, epar, t_stop, out, vertical)
             if grid:  # at rest on the ground: theta = theta_dot = 0 up to the end (or the uplift); no grid row
                 # after t_show_end (the grid follows the tail: its rows are counted before the run)
-                H, nh, kg = _hist_grid(H, nh, kg, hdt, t0, 0.0, min(rs[RS_T], t_show_end), 0, prm, _NO_HY, _seg(rs),
-                                       epar, W, 0, 2)
+                H, nh, kg = _hist_grid(H, nh, kg, hdt, t0, 0.0, min(rs[RS_T], t_show_end), FK_RIGID, prm, _NO_HY,
+                                       _seg(rs), epar, W, np.int64(0), np.int64(2))
             if want_history:
                 H, nh = _history_rigid(H, nh, rs, epar, W, HK_UPLIFT if rs[RS_PHASE] == PHASE_ROCKING else HK_STATE)
             continue
@@ -307,8 +308,8 @@ def simulate_rigid_vertical(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_e
             H, nh = _hist_peak(H, nh, rs[RS_PK_T], ground_at(rs[RS_PK_T], _seg(rs), epar), W, W_TMP)
         n0 = nh
         if grid:  # the step's grid rows up to t_show_end (those past an event inside it are dropped below)
-            H, nh, kg = _hist_grid(H, nh, kg, hdt, rs[RS_T], hs, min(t_new, t_show_end), 0, prm, _NO_HY, _seg(rs),
-                                   epar, W, 0, 2)
+            H, nh, kg = _hist_grid(H, nh, kg, hdt, rs[RS_T], hs, min(t_new, t_show_end), FK_RIGID, prm, _NO_HY,
+                                   _seg(rs), epar, W, np.int64(0), np.int64(2))
         if code == EV_OVERTURN:
             _to_overturn(rs, W, out, hs, sig, 2)
         elif code == EV_FAILED:
@@ -321,7 +322,7 @@ def simulate_rigid_vertical(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_e
             rs[RS_S] = 0.0
             rs[RS_FRESH] = 1.0
         elif code == EV_IMPACT:
-            _to_impact(_restep_rigid, 0, prm, rs, W, epar, _NO_HY, hs, sig, 2)
+            _to_impact(_restep_rigid, FK_RIGID, prm, rs, W, epar, _NO_HY, hs, sig, np.int64(2))
             if grid:
                 nh, kg = _hist_grid_cut(H, n0, nh, kg, rs[RS_T])
             if want_history:  # the state just before the impact, then (below) just after

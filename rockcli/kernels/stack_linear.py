@@ -41,7 +41,7 @@ from numba import njit
 from rockcli.kernels.bearings import (free_disp_bound, free_force_bound, initial_anchor, knee_ratio, knee_step,
                                       reanchor, z_sensitivity)
 from rockcli.kernels.ground import ground_at
-from rockcli.kernels.layout import FOUNDATION_LINEAR, N_OUT
+from rockcli.kernels.layout import FOUNDATION_LINEAR, J_BASE, J_JOINT, N_OUT
 from rockcli.kernels.polynomials import _first_down, _poly
 from rockcli.kernels.stack_linear_physics import (L_AASM, L_PMAX, L_RTOL, L_SC, L_THR1, L_THRA, L_WB, L_XI, accel,
                                                   bearing, choose_post, force, impact_into, kinetic_relative,
@@ -62,6 +62,10 @@ ZH_N = 10
 EVH_STATE, EVH_UPLIFT, EVH_IMPACT, EVH_REST, EVH_OVERTURN = 0.0, 1.0, 2.0, 3.0, 4.0
 
 HALF_PI = 0.5 * math.pi
+# the events of :func:`_value` (2 and above: a face, :func:`_face_kind`, which reads no column) and the pivots' angle
+# columns of ``y`` (the body's psi, the plinth's theta2): int64 values, as the codes of rockcli.kernels.layout
+V_IMPACT, V_OVERTURN = np.int64(0), np.int64(1)
+C_BODY, C_PLINTH = np.int64(0), np.int64(2)
 
 _C = (0.0, 0.2, 0.3, 0.8, 8.0 / 9.0, 1.0)
 _A = ((0.0, 0.0, 0.0, 0.0, 0.0),
@@ -81,7 +85,7 @@ _P = ((1.0, -8048581381.0 / 2820520608.0, 8663915743.0 / 2820520608.0, -12715105
       (0.0, 40617522.0 / 29380423.0, -110615467.0 / 29380423.0, 69997945.0 / 29380423.0))
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def _dp5(s, k, sp, lp, bb, seg, epar, t, h, y, K, ynew):
     """One Dormand-Prince step from ``y`` (``K[0] = f(t, y)`` given) into ``ynew``, ``K[6] = f(t + h, ynew)``:
     the error norm (<= 1: accepted)."""
@@ -116,7 +120,7 @@ def _dp5(s, k, sp, lp, bb, seg, epar, t, h, y, K, ynew):
     return err
 
 
-@njit(cache=True, inline='always')
+@njit(cache=True, no_cfunc_wrapper=True, inline='always')
 def _dense(y, K, h, sig, out):
     s2 = sig * sig
     w = np.empty(7)
@@ -129,7 +133,7 @@ def _dense(y, K, h, sig, out):
         out[i] = y[i] + h * acc
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def _value(kind, c, sgn, s, k, sp, lp, bb, seg, epar, t, h, y, K, sg, yy):
     """The value whose first fall to 0 is the event, at fraction ``sg`` of the step: ``kind`` 0 an impact of the
     pivot in column ``c`` on corner ``sgn``, 1 its block's overturn, 2 the watched face (:func:`_face_value`; 3 and
@@ -142,7 +146,7 @@ def _value(kind, c, sgn, s, k, sp, lp, bb, seg, epar, t, h, y, K, sg, yy):
     return _face_value(s, k, sp, lp, bb, yy, ground_at(t + sg * h, seg, epar), kind)
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def _first_fall(kind, c, sgn, s, k, sp, lp, bb, seg, epar, t, h, y, K, sig_lim):
     """First fraction in ``(0, sig_lim]`` of the step where the event value is <= 0 (16 samples, bisection;
     the start counts as above 0), else 2."""
@@ -165,7 +169,7 @@ def _first_fall(kind, c, sgn, s, k, sp, lp, bb, seg, epar, t, h, y, K, sig_lim):
     return 2.0
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def _face_value(s, k, sp, lp, bb, yy, ag, kind):
     """R: the lower uplift threshold less the bearing's force (``kind`` 3: the joint held, the plinth's threshold;
     4: the base held, the body's); B: the plinth's smaller base corner force over its load; P: the joint's over the
@@ -180,7 +184,7 @@ def _face_value(s, k, sp, lp, bb, yy, ag, kind):
     return min(f[6], f[7]) / sp[S_G]
 
 
-@njit(cache=True, inline='always')
+@njit(cache=True, no_cfunc_wrapper=True, inline='always')
 def _face_kind(s, k, held):
     """The face the driver watches in pattern ``(s, k)`` with interface ``held`` held shut (-1: none): -1 none, 2 the
     pattern's own (R: the lower threshold), 3 at rest with the joint held (the plinth's threshold), 4 with the base
@@ -194,7 +198,7 @@ def _face_kind(s, k, held):
     return -1  # P or B: its only face is the held one
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def _unresolved_fall(c, sgn, lp, y, K, h, sig):
     """The hair-lift test (docs/physics-plinth.md, "A lift below the tolerance"): the pivot in column ``c`` (corner
     ``sgn``) started the step just opened (angle and rate exactly 0), and its angle, back at 0 at fraction ``sig``,
@@ -211,7 +215,7 @@ def _unresolved_fall(c, sgn, lp, y, K, h, sig):
     return abs(yy[c + 1]) <= lp[L_RTOL] * lp[L_SC + c + 1]
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def _held_push(held, hc, s, k, sp, lp, bb, seg, epar, t, h, y, K):
     """The largest opening acceleration the held interface would have over the step (17 samples): its pivot on
     corner ``hc`` at angle 0 with no rate, the rest of the stack as it is."""
@@ -227,7 +231,7 @@ def _held_push(held, hc, s, k, sp, lp, bb, seg, epar, t, h, y, K):
     return amax
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def _rest_bounds(lp, y, K, h):
     """At rest (pattern R): bounds over the step of ``|F|`` (the bearing's force) and of ``|u|``, from the
     continuous extension's quartics ``sum_m c_m sigma^m`` (``|p(sigma)| <= sum |c_m|`` on ``[0, 1]``)."""
@@ -246,7 +250,7 @@ def _rest_bounds(lp, y, K, h):
     return fb, ub
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def _coeffs(y, K, h, i):
     """The quartic ``sum_m c_m sigma^m`` of state ``i`` over the step (the continuous extension)."""
     c = [y[i], 0.0, 0.0, 0.0, 0.0]
@@ -258,27 +262,27 @@ def _coeffs(y, K, h, i):
     return (c[0], c[1], c[2], c[3], c[4])
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def _rest_bounds_hysteretic(lp, bb, y, K, h):
     """:func:`_rest_bounds` on a hysteretic bearing: ``|u(sigma) - u(0)| <= span = sum_m>0 |c_m|``, and on the
     step's branch (the step ends at a reversal of u) ``F`` is a decreasing function of ``u`` alone, so ``|F| <=
     max(|F(u0 - span)|, |F(u0 + span)|)`` over the step (the single block's quick test,
     :func:`rockcli.kernels.events.hysteretic_uplift`)."""
-    c = _coeffs(y, K, h, 4)
+    c = _coeffs(y, K, h, np.int64(4))
     span = abs(c[1]) + abs(c[2]) + abs(c[3]) + abs(c[4])
     fb = max(abs(force(lp, bb, y[4] - span, 0.0)), abs(force(lp, bb, y[4] + span, 0.0)))
     return fb, abs(y[4]) + span
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def _reversal(y, K, h, d, tol):
     """Did the base keep moving in direction ``d`` through the step (a hysteretic bearing's elements follow ``u``
     exactly only while it moves one way)? ``(code, sigma)``, as the single block's
     :func:`rockcli.kernels.events.reversal_check`: 1 ``d u'`` falls to 0 at ``sigma`` after the base moved forward by
     more than ``tol`` (the step is cut there); 2 the base moved back by more than ``tol`` before moving forward (a
     start at ``u' = 0`` whose direction was guessed wrong: retake the step on the other branch); else 0."""
-    cv = _coeffs(y, K, h, 5)
-    cu = _coeffs(y, K, h, 4)
+    cv = _coeffs(y, K, h, np.int64(5))
+    cu = _coeffs(y, K, h, np.int64(4))
     cv = (d * cv[0], d * cv[1], d * cv[2], d * cv[3], d * cv[4])
     cu = (d * cu[0], d * cu[1], d * cu[2], d * cu[3], d * cu[4])
     sr = _first_down(cv, 0.0, 0.0, 1.0)
@@ -293,7 +297,7 @@ def _reversal(y, K, h, d, tol):
     return 0, 1.0
 
 
-@njit(cache=True, inline='always')
+@njit(cache=True, no_cfunc_wrapper=True, inline='always')
 def _direction(ud, d):
     """The direction of the base's motion for the next step: the sign of ``u'`` (``d`` if it is 0)."""
     if ud > 0.0:
@@ -303,7 +307,7 @@ def _direction(ud, d):
     return d
 
 
-@njit(cache=True, inline='always')
+@njit(cache=True, no_cfunc_wrapper=True, inline='always')
 def _may_cross(c, a0, r0, a1, r1, kind):
     """Whether a pivot's angle (corner ``c``, from ``a0``, rate ``r0`` to ``a1``, ``r1`` over the step) may reach
     0 (``kind`` 0) or pi/2 (1) inside the step: its end is there, or the angle turned inside it (a minimum, or a
@@ -313,7 +317,7 @@ def _may_cross(c, a0, r0, a1, r1, kind):
     return c * a1 >= HALF_PI or (c * r0 > 0.0 and c * r1 < 0.0 and max(c * a0, c * a1) > 1.0)
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def _scan(s, k, sp, lp, bb, seg, epar, t, h, y, K, sig_end, z):
     """Peaks, first exceedances and the friction demand over ``[0, sig_end]`` of the step (17 samples, the
     largest of each peak refined by golden section); counts a step where a pivot's normal force is below 0."""
@@ -378,7 +382,7 @@ def _scan(s, k, sp, lp, bb, seg, epar, t, h, y, K, sig_end, z):
         z[Z_JUMPS] += 1.0
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def _after_impact(j, s, k, sp, lp, bb, Md, y, t, t_exc_end, z, ag):
     """The impact at interface ``j`` (its angle set to 0): the pattern after it, the rest rules. Returns the new
     ``(s, k)``; ``y`` is updated."""
@@ -409,7 +413,7 @@ def _after_impact(j, s, k, sp, lp, bb, Md, y, t, t_exc_end, z, ag):
     rest = sp[S_REST]
     if (c0 != 0.0 or c1 != 0.0) and q0 == 0.0 and q1 == 0.0:
         # the whole stack's rest rule: nothing could lift it at rest, its energy below rest_tol min(alpha_j M_j)
-        vs, _ = impact_into(0.0, 0.0, sp, Md, q0, q1, v, 0, 0.0, False)
+        vs, _ = impact_into(0.0, 0.0, sp, Md, q0, q1, v, np.int64(0), 0.0, np.bool_(False))
         m1, m0 = rest_moments(sp, lp, force(lp, bb, y[4], vs[6]))
         if m1 > 0.0 and m0 > 0.0 and kinetic_relative(Md, v) < rest * min(sp[S_A1] * m1, lp[L_AASM] * m0):
             y[1] = 0.0
@@ -421,7 +425,7 @@ def _after_impact(j, s, k, sp, lp, bb, Md, y, t, t_exc_end, z, ag):
     if cj != 0.0:
         s0 = 0.0 if j == 0 else c0
         k0 = 0.0 if j == 1 else c1
-        v0, _ = impact_into(s0, k0, sp, Md, q0, q1, v, 0, 0.0, False)
+        v0, _ = impact_into(s0, k0, sp, Md, q0, q1, v, np.int64(0), 0.0, np.bool_(False))
         d0, d1 = rel_rates(v0)
         d0 = d0 if s0 != 0.0 else 0.0
         d1 = d1 if k0 != 0.0 else 0.0
@@ -450,7 +454,7 @@ def _after_impact(j, s, k, sp, lp, bb, Md, y, t, t_exc_end, z, ag):
                 return f0, f1
             v0, _ = impact_into(s0, k0, sp, Md, q0, q1,
                                 velocities(c0, c1, sp, q0, q1, y[3] if c0 != 0.0 else 0.0,
-                                           y[1] if c1 != 0.0 else 0.0, y[5]), 0, 0.0, False)
+                                           y[1] if c1 != 0.0 else 0.0, y[5]), np.int64(0), 0.0, np.bool_(False))
             d0, d1 = rel_rates(v0)
             y[3] = d0 if s0 != 0.0 else 0.0
             y[1] = d1 if k0 != 0.0 else 0.0
@@ -459,11 +463,13 @@ def _after_impact(j, s, k, sp, lp, bb, Md, y, t, t_exc_end, z, ag):
     return c0, c1
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def _hist(H, nh, t, ag, y, s, k, kind):
     if nh >= H.shape[0]:
         H2 = np.empty((2 * H.shape[0], ZH_N))
-        H2[:nh] = H[:nh]
+        for i in range(nh):  # an explicit copy: a slice assignment compiles numba's generic broadcasting
+            for j in range(ZH_N):
+                H2[i, j] = H[i, j]
         H = H2
     H[nh, 0] = t
     H[nh, 1] = ag
@@ -474,13 +480,13 @@ def _hist(H, nh, t, ag, y, s, k, kind):
     return H, nh + 1
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def _uplift(z, j, t):
     if math.isnan(z[Z_TUP0 + j]):
         z[Z_TUP0 + j] = t
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, no_cfunc_wrapper=True, nogil=True)
 def simulate_stack_linear(sp, lp, fk, bp, ekind, epar, acc, dt, t_begin, t_exc_end, tail, horizon, max_steps,
                           want_history, z):
     """Integrate a body on its plinth on an isolated base under one excitation (``sp`` the stack tuple of
@@ -495,14 +501,14 @@ def simulate_stack_linear(sp, lp, fk, bp, ekind, epar, acc, dt, t_begin, t_exc_e
     knees of the loop bound the step (:func:`rockcli.kernels.bearings.knee_step`, ``knee_ratio``), the error
     of ``u`` is weighed by ``|dz/du|`` (:func:`_dp5`), and the anchor moves on after every step and event."""
     out = np.zeros(N_OUT)
-    _W, rs, _H = _start(ekind, epar, acc, dt, t_begin, False, out)
+    _W, rs, _H = _start(ekind, epar, acc, dt, t_begin, np.bool_(False), out)
     for i in range(N_Z):
         z[i] = 0.0
     z[Z_TOPPLED] = -1.0
     for i in (Z_T_OVER, Z_TUP0, Z_TUP1, Z_TEX0, Z_TEX1, Z_T_SETTLED):
         z[i] = np.nan
     H = np.empty((1024 if want_history else 1, ZH_N))
-    nh = 0
+    nh = np.int64(0)
     Md = mass_diag(sp, lp)
     y = np.zeros(6)
     ynew = np.zeros(6)
@@ -517,7 +523,8 @@ def simulate_stack_linear(sp, lp, fk, bp, ekind, epar, acc, dt, t_begin, t_exc_e
     wb = lp[L_WB]
     thr = min(lp[L_THR1], lp[L_THRA])
     body_first = lp[L_THR1] <= lp[L_THRA]
-    held = -1  # an interface held shut after a lift below the tolerance (_unresolved_fall), its corner, bounds
+    # an interface held shut after a lift below the tolerance (_unresolved_fall), its corner, bounds
+    held = np.int64(-1)
     hc = 0.0
     reach = 0.0
     rate_b = 0.0
@@ -646,20 +653,20 @@ def simulate_stack_linear(sp, lp, fk, bp, ekind, epar, acc, dt, t_begin, t_exc_e
             sig, ev = sig_rev, 5  # the base reverses: the step ends there (the elements change branch)
         if k != 0.0:
             if _may_cross(k, y[0], y[1], ynew[0], ynew[1], 0):
-                sg = _first_fall(0, 0, k, s, k, sp, lp, bb, seg, epar, t, hs, y, K, 1.0)
+                sg = _first_fall(V_IMPACT, C_BODY, k, s, k, sp, lp, bb, seg, epar, t, hs, y, K, 1.0)
                 if sg <= sig:
                     sig, ev = sg, 1  # the joint's impact
             if _may_cross(k, y[0], y[1], ynew[0], ynew[1], 1):
-                sg = _first_fall(1, 0, k, s, k, sp, lp, bb, seg, epar, t, hs, y, K, 1.0)
+                sg = _first_fall(V_OVERTURN, C_BODY, k, s, k, sp, lp, bb, seg, epar, t, hs, y, K, 1.0)
                 if sg <= sig:
                     sig, ev = sg, 3  # the body topples
         if s != 0.0:
             if _may_cross(s, y[2], y[3], ynew[2], ynew[3], 0):
-                sg = _first_fall(0, 2, s, s, k, sp, lp, bb, seg, epar, t, hs, y, K, 1.0)
+                sg = _first_fall(V_IMPACT, C_PLINTH, s, s, k, sp, lp, bb, seg, epar, t, hs, y, K, 1.0)
                 if sg < sig or (sg <= sig and ev < 0):
                     sig, ev = sg, 0  # the base's impact
             if _may_cross(s, y[2], y[3], ynew[2], ynew[3], 1):
-                sg = _first_fall(1, 2, s, s, k, sp, lp, bb, seg, epar, t, hs, y, K, 1.0)
+                sg = _first_fall(V_OVERTURN, C_PLINTH, s, s, k, sp, lp, bb, seg, epar, t, hs, y, K, 1.0)
                 if sg <= sig:
                     sig, ev = sg, 2  # the plinth topples
         if ev == 0 or ev == 1:  # a pivot that opened at the start and fell back unresolved: held (a hair-lift)
@@ -675,7 +682,7 @@ def simulate_stack_linear(sp, lp, fk, bp, ekind, epar, acc, dt, t_begin, t_exc_e
             else:
                 fb, ub = _rest_bounds(lp, y, K, hs)
         if watched and not (rest and fb < thr):
-            sg = _first_fall(fkind, 0, 0.0, s, k, sp, lp, bb, seg, epar, t, hs, y, K, min(sig, 1.0))
+            sg = _first_fall(fkind, C_BODY, 0.0, s, k, sp, lp, bb, seg, epar, t, hs, y, K, min(sig, 1.0))
             if sg <= sig:
                 sig, ev = sg, 4  # the watched face opens
         if not rest or ev >= 0 or ub > z[Z_UMAX] or fb > min(z[Z_FR0], z[Z_FR1]) * sp[S_G]:
@@ -765,29 +772,29 @@ def simulate_stack_linear(sp, lp, fk, bp, ekind, epar, acc, dt, t_begin, t_exc_e
     return H[:nh]
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def _open(s, k, sp, lp, bb, y, ag, body_first, z, t):
     """The watched face opens about the corner that keeps pressing: R -> B or P (the lower threshold), B -> BP
     (the plinth lifts), P -> BP (the body lifts off it). Returns the new ``(s, k)``."""
     if s == 0.0 and k == 0.0:
         side = -1.0 if force(lp, bb, y[4], y[5]) > 0.0 else 1.0
         if body_first:
-            _uplift(z, 1, t)
+            _uplift(z, J_JOINT, t)
             y[0] = 0.0
             y[1] = 0.0
             return 0.0, side
-        _uplift(z, 0, t)
+        _uplift(z, J_BASE, t)
         y[2] = 0.0
         y[3] = 0.0
         return side, 0.0
     pdd, tdd, ab = accel(s, k, sp, lp, bb, y, ag)
     f = forces(s, k, sp, y[2], y[0], y[3], y[1], tdd, pdd, ab)
     if s == 0.0:
-        _uplift(z, 0, t)
+        _uplift(z, J_BASE, t)
         y[2] = 0.0
         y[3] = 0.0
         return (1.0 if f[2] > f[3] else -1.0), k
-    _uplift(z, 1, t)
+    _uplift(z, J_JOINT, t)
     y[0] = 0.0
     y[1] = 0.0
     return s, (1.0 if f[6] > f[7] else -1.0)
