@@ -154,6 +154,49 @@ def test_the_kernel_agrees_with_the_slow_reference_on_random_scenes():
     assert compared >= 3
 
 
+def test_the_references_windows_find_the_lift_offs_of_one_span(monkeypatch):
+    """The reference integrates a stuck block's free base a window at a time (rockcli.reference.linear.WINDOW_S)
+    instead of to the end of the record. Aligned runs with windows of 5 samples and of a second give the
+    lift-offs, verdicts, impacts and peaks of one span to the end of the excitation on 8 random scenes (the
+    same solve_ivp pieces: only the sampled search can differ, by the root-finder's 1e-15 s and in the
+    sampled base peak), and on a scene built so that the base's peak acceleration crosses the lift-off
+    threshold 5 us after a window's edge, by 1e-10 of it, between two points of the search's grid: the
+    window's end and the next one's start must both be searched (without that the lift-off is missed by
+    a whole period)."""
+    import rockcli.reference.linear as ref_linear
+
+    rng = np.random.default_rng(3306)
+    jobs = []
+    for _ in range(8):
+        block = Block(float(rng.uniform(0.5, 3.0)), float(np.radians(rng.uniform(5.0, 10.0))))
+        f = LinearIsolation(float(rng.uniform(0.8, 3.0)), float(rng.choice([0.0, 0.05, 0.2])),
+                            float(rng.choice([0.0, 0.01, 0.3])))
+        jobs.append((block, f, _record(rng, int(rng.integers(150, 300)), pga=float(rng.uniform(0.3, 1.0)))))
+    # the edge scene: a constant ground acceleration a0 from t = 0 swings the free undamped base to
+    # |F| = a0 (1 - cos w t), peaking at 2 a0 at t = pi / w = 0.5 s + 5 us; a window ends at 0.5 s
+    dt, a0, t_peak = 0.01, 0.2 * G, 0.5 + 5e-6
+    edge = (Block(1.0, math.atan(2.0 * a0 * (1.0 - 1e-10) / G)), LinearIsolation(2.0 * t_peak, 0.0, 0.1),
+            Record(np.full(200, a0), dt, "constant"))
+    monkeypatch.setattr(ref_linear, "WINDOW_S", 1e9)
+    whole = [reference_simulate(*job, horizon=5.0, align=True) for job in jobs]
+    edge_whole = reference_simulate(*edge, horizon=1.0, align=True, rtol=1e-13, atol=None)
+    assert edge_whole.t_uplift == pytest.approx(t_peak, abs=1e-5)
+    monkeypatch.setattr(ref_linear, "WINDOW_S", 0.495)  # ends at the 50th sample, 0.5 s
+    edge_win = reference_simulate(*edge, horizon=1.0, align=True, rtol=1e-13, atol=None)
+    assert edge_win.t_uplift == pytest.approx(edge_whole.t_uplift, abs=1e-10)  # a flat crossing: 1e-12 s apart
+    lifted = 0
+    for window_s in (0.05, 1.0):
+        monkeypatch.setattr(ref_linear, "WINDOW_S", window_s)
+        for job, one in zip(jobs, whole):
+            win = reference_simulate(*job, horizon=5.0, align=True)
+            assert (win.verdict, win.n_impacts, win.n_rests) == (one.verdict, one.n_impacts, one.n_rests)
+            assert win.t_uplift == pytest.approx(one.t_uplift, abs=1e-13, nan_ok=True)
+            assert win.theta_max == pytest.approx(one.theta_max, rel=1e-9, abs=1e-15)
+            assert win.u_max == pytest.approx(one.u_max, rel=1e-6)
+            lifted += one.verdict != "no_uplift"
+    assert 4 <= lifted < 2 * len(jobs)
+
+
 def test_a_history_in_the_stuck_phase_is_the_closed_form_solution():
     """A base that never lifts its block (a tiny record on a stiff column): the history's grid rows and step
     rows are the solution of the oscillator (SciPy at rtol 1e-12, aligned to the samples); a verdict-only

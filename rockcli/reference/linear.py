@@ -2,8 +2,9 @@
 
 On a rigid foundation the block lifts when ``|a_g| = g tan(alpha)``: the ground motion is scanned on a
 fine grid and the crossing solved by ``brentq``; after the excitation it rests for good. On linear
-bearings a stuck block rides the base oscillator: the free base is integrated and its acceleration
-``|F(u, u')|`` searched for the first crossing of ``g tan(alpha)`` on the dense output; after the
+bearings a stuck block rides the base oscillator: the free base is integrated (during a record one
+window of about a second at a time) and its acceleration ``|F(u, u')|`` searched for the first crossing
+of ``g tan(alpha)`` on the dense output; after the
 excitation the run ends once the oscillator's energy bounds ``|F|`` below the threshold. The rocking
 phases, impacts and rests are those of :class:`rockcli.reference.phases.Phases`.
 """
@@ -20,6 +21,10 @@ from rockcli.reference.phases import Phases
 from rockcli.reference.result import RefResult
 from rockcli.io.units import G
 
+#: Length of the free base's windows during a record [s] (rounded up to a sample): the search for the next
+#: lift-off integrates one window at a time, not the rest of the record.
+WINDOW_S = 1.0
+
 
 def reference_linear(block, foundation, excitation, work, *, horizon, rest_tol, max_phases,
                      vertical=None, restitution=None, cap_ratio=0.0) -> RefResult:
@@ -29,6 +34,7 @@ def reference_linear(block, foundation, excitation, work, *, horizon, rest_tol, 
     from scipy.optimize import brentq, minimize_scalar
 
     ag, t_exc_end, scan_step, max_step = ground_function(excitation)
+    record_dt = float(excitation.dt) if hasattr(excitation, "acc") else None
     g = G
     if vertical is None:
         def gv(t):
@@ -100,12 +106,24 @@ def reference_linear(block, foundation, excitation, work, *, horizon, rest_tol, 
         if abs(a_now) > thr:
             ph.lift(-math.copysign(1.0, a_now))
             return True
-        # integrate the free base, then look for the first |a| > thr on the dense output:
-        # a fine grid, every sampled local maximum near thr refined by a bounded search
+        if t >= t_exc_end:
+            return free_base(ph, t_max_end, after=True)
+        # during the excitation a window of about a second at a time (the chain calls this again from its end):
+        # a record's windows end on its samples, where the solve_ivp calls of an aligned run are split anyway
+        if record_dt is None:
+            return free_base(ph, t_exc_end, after=False)
+        return free_base(ph, min(t_exc_end, record_dt * math.ceil((t + WINDOW_S) / record_dt)), after=False)
+
+    def free_base(ph: Phases, t_end: float, *, after: bool) -> bool:
+        """Integrate the free base from ``ph.t`` to ``t_end`` (after the excitation: to where the oscillator
+        can no longer lift the block, the horizon at most), then look for the first |a| > thr on the
+        dense output: a fine grid, every sampled local maximum near thr refined by a bounded search (an end
+        of the span by a one-sided one, so that a peak at a window's edge is seen). On a lift-off, or at
+        the end of the span, returns True; False when the run is over (settled after the excitation, or
+        at the horizon)."""
+        t, y = ph.t, ph.y
         ev_settle = lambda tt, yy: free_bound(yy[0], yy[1]) - thr  # noqa: E731
         ev_settle.terminal, ev_settle.direction = True, -1
-        after = t >= t_exc_end
-        t_end = t_max_end if after else t_exc_end
         sol = work.ivp(stuck_rhs, (t, t_end), y[2:4], max_step=max_step, events=(ev_settle,) if after else None,
                        dense_output=True)
         T = sol.t[-1]
@@ -118,15 +136,21 @@ def reference_linear(block, foundation, excitation, work, *, horizon, rest_tol, 
         hit = None
         over = np.nonzero(absa[1:] > thr)[0]
         k_over = int(over[0]) + 1 if over.size else grid.size
-        inner = absa[1:-1]
-        cand = np.nonzero((inner >= absa[:-2]) & (inner >= absa[2:]) & (inner > 0.99 * thr))[0] + 1
-        for k in cand[cand < k_over]:
+        near = absa > 0.99 * thr
+        peak = np.zeros(grid.size, bool)
+        peak[1:-1] = (absa[1:-1] >= absa[:-2]) & (absa[1:-1] >= absa[2:])
+        peak[0], peak[-1] = absa[0] >= absa[1], absa[-1] >= absa[-2]
+        for k in np.nonzero(peak & near)[0]:
+            if k >= k_over:
+                break
+
             def neg(x):
                 z = sol.sol(x)
                 return -abs(F(z[0], z[1]))
-            m = minimize_scalar(neg, bounds=(grid[k - 1], grid[k + 1]), method="bounded", options={"xatol": 1e-14})
+            lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)]
+            m = minimize_scalar(neg, bounds=(lo, hi), method="bounded", options={"xatol": 1e-14})
             if -m.fun > thr:
-                hit = (grid[k - 1], m.x)
+                hit = (lo, m.x)
                 break
         if hit is None and k_over < grid.size:
             hit = (grid[k_over - 1], grid[k_over])
