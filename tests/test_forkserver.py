@@ -168,6 +168,15 @@ def _on_a_terminal(cmd: str, env: dict, cwd: Path, until: bytes | None = None, t
     return proc.returncode, out, shown
 
 
+def _signal_masks(pid: int) -> str:
+    """The SigBlk, SigIgn and SigCgt lines of ``/proc/<pid>/status`` (hex masks; bit n-1 is signal n)."""
+    try:
+        with open(f"/proc/{pid}/status") as f:
+            return " ".join(line.strip() for line in f if line.startswith(("SigBlk", "SigIgn", "SigCgt")))
+    except OSError as exc:
+        return f"({exc})"
+
+
 def test_a_terminal_is_a_terminal(both):
     """On a terminal rockcli draws progress lines on stderr (``isatty``), through the server as well."""
     envs, work, log = both
@@ -188,12 +197,21 @@ def test_signals_reach_the_command(both, signum):
     a Python process, which does not handle it: the real process is run for SIGINT only.)"""
     envs, work, log = both
     results = {"real": (-signum, b"", b"")}
+    # what a failure shows: the signal masks of the process signalled (/proc: blocked, ignored, caught) and
+    # this worker's own handler of the signal (an ignored one would be inherited by the command)
+    masks = {"worker": signal.getsignal(signum)}
+
+    def send(proc, way):
+        masks[way] = _signal_masks(proc.pid)
+        proc.send_signal(signum)
+
     for way in ("real", "server") if signum == signal.SIGINT else ("server",):
         # exec: the signal goes to the command's process itself, not to a shell waiting for it
         results[way] = _on_a_terminal(f"exec {SLOW}", envs[way], work, until=b"runs  [",
-                                      then=lambda proc: proc.send_signal(signum))
+                                      then=lambda proc, way=way: send(proc, way))
     (rc_real, out_real, tty_real), (rc, out, tty) = results["real"], results["server"]
-    assert rc == rc_real == (1 if signum == signal.SIGINT else -signum), (rc, rc_real, tty_real[-400:], tty[-400:])
+    assert rc == rc_real == (1 if signum == signal.SIGINT else -signum), (rc, rc_real, masks, tty_real[-400:],
+                                                                          tty[-400:])
     if signum == signal.SIGINT:
         assert b"Aborted!" in tty and b"Aborted!" in tty_real
     assert out == out_real
