@@ -32,28 +32,17 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
 
 from bench_plinth import random_scene  # noqa: E402
+from synthetic import random_record  # noqa: E402
 
 from rockcli.io.units import G  # noqa: E402
-from rockcli.models import Block, LinearIsolation, Plinth, Stack  # noqa: E402
+from rockcli.models import LinearIsolation  # noqa: E402
 from rockcli.pulses import OneSine, RickerAntisymmetric, RickerSymmetric  # noqa: E402
-from rockcli.records import Record  # noqa: E402
 
 FRICTION_XO = (11, 12)  # X_FR_B, X_FR_J of rockcli.kernels.stack
 FRICTION_FIELDS = ("friction_base", "friction_joint")
-
-
-def _record(rng):
-    n = int(rng.integers(150, 400))
-    dt = 0.01
-    t = np.arange(n) * dt
-    acc = np.zeros(n)
-    for f in rng.uniform(0.4, 5.0, 5):
-        acc += rng.normal() * np.sin(2 * np.pi * f * t + rng.uniform(0, 2 * np.pi))
-    acc *= np.sin(np.pi * t / t[-1]) ** 2
-    acc *= rng.uniform(0.1, 1.0) * G / np.max(np.abs(acc))
-    return Record(acc, dt, "synthetic")
 
 
 def scenes(n, seed=36):
@@ -67,7 +56,7 @@ def scenes(n, seed=36):
             iso = LinearIsolation(float(rng.uniform(0.5, 3.0)), float(rng.uniform(0.02, 0.3)),
                                   float(rng.uniform(0.05, 0.7)))
         if rng.random() < 0.3:
-            motion = _record(rng)
+            motion = random_record(rng, pga_g=(0.1, 1.0))
         else:
             shape = (RickerSymmetric, RickerAntisymmetric, OneSine)[int(rng.integers(3))]
             motion = shape(float(rng.uniform(0.05, 1.5)) * G * rng.choice([-1, 1]), float(rng.uniform(0.2, 1.5)))

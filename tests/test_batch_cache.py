@@ -17,22 +17,17 @@ import numpy as np
 import pytest
 
 from rockcli.errors import RockcliInputError
-from rockcli.io.units import G
 from rockcli.models import Block, LinearIsolation, Rigid
-from rockcli.records import Record
 from rockcli.solve import JobError, simulate_many
 from rockcli.solve import batch, excitation
 from rockcli.solve.excitation import _excitation_arrays, _excitation_arrays_cached
 from rockcli.solve.pool import run_tasks
+from synthetic import random_record
 
 
-def _record(rng, n=None, dt=0.01):
+def _record(rng, n=None):
     """A short random accelerogram, PGA 0.1 .. 0.6 g."""
-    n = n or int(rng.integers(100, 250))
-    t = np.arange(n) * dt
-    acc = sum(rng.normal() * np.sin(2 * np.pi * f * t + rng.uniform(0, 6.3)) for f in rng.uniform(0.5, 5.0, 4))
-    acc = acc * np.sin(np.pi * t / t[-1]) ** 2
-    return Record(acc * rng.uniform(0.1, 0.6) * G / np.max(np.abs(acc)), dt, "synthetic")
+    return random_record(rng, n, n_range=(100, 250), pga_g=(0.1, 0.6), n_sines=4, f_range=(0.5, 5.0))
 
 
 def _same(a, b):

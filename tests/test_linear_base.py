@@ -15,12 +15,13 @@ import numpy as np
 import pytest
 
 from naive import reference_simulate
-from rockcli.kernels.linear_base import (advance, base_acceleration, coefficients, first_exceed, free_part,
+from rockcli.kernels.linear_base import (advance, coefficients, first_exceed, free_part,
                                          step_clear, stuck_peak)
 from rockcli.models import Block, LinearIsolation
 from rockcli.records import Record
 from rockcli.solve import simulate, simulate_many
 from rockcli.io.units import G
+from synthetic import random_record
 
 
 def _augmented(w, xi, tau):
@@ -126,12 +127,7 @@ def test_stuck_peak_bounds_the_base_acceleration_tightly():
 
 
 def _record(rng, n, dt=0.01, pga=1.0):
-    t = np.arange(n) * dt
-    acc = np.zeros(n)
-    for f in rng.uniform(0.4, 5.0, 5):
-        acc += rng.normal() * np.sin(2 * np.pi * f * t + rng.uniform(0, 2 * np.pi))
-    acc *= np.sin(np.pi * t / t[-1]) ** 2
-    return Record(acc * pga * G / np.max(np.abs(acc)), dt, "synthetic")
+    return random_record(rng, n, dt=dt, pga_g=pga)
 
 
 def test_the_kernel_agrees_with_the_slow_reference_on_random_scenes():

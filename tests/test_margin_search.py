@@ -23,21 +23,10 @@ from rockcli.pulses import make_pulse
 from rockcli.records import Record
 from rockcli.solve import simulate_many, with_vertical
 from rockcli.io.units import G
+from synthetic import random_record
 
 #: 31 factors 0.1 .. 4 with 1 among them (ratio ~1.13): the search's logic, not its resolution, is tested
 GRID = np.unique(np.concatenate([np.geomspace(0.1, 1.0, 19), np.geomspace(1.0, 4.0, 13)]))
-
-
-def _record(rng, n=None, dt=0.01):
-    """A short random accelerogram: a few enveloped sines, PGA 0.15 .. 0.8 g."""
-    n = n or int(rng.integers(150, 400))
-    t = np.arange(n) * dt
-    acc = np.zeros(n)
-    for f in rng.uniform(0.4, 5.0, 5):
-        acc += rng.normal() * np.sin(2 * np.pi * f * t + rng.uniform(0, 2 * np.pi))
-    acc *= np.sin(np.pi * t / t[-1]) ** 2
-    acc *= rng.uniform(0.15, 0.8) * G / np.max(np.abs(acc))
-    return Record(acc, dt, "synthetic")
 
 
 def _foundation(rng, kind):
@@ -64,7 +53,7 @@ def _scenes(seed, n):
             motion = make_pulse(str(rng.choice(["ricker-sym", "sine"])), float(rng.uniform(0.1, 0.6)) * G,
                                 float(rng.uniform(0.3, 1.5)))
         else:
-            motion = _record(rng)
+            motion = random_record(rng)
         out.append((block, _foundation(rng, kind), motion))
     return out
 
@@ -171,7 +160,7 @@ def test_the_liftoff_floor_is_a_proof_and_tight():
     scenes = []
     for _ in range(60):
         block = Block(float(rng.uniform(0.3, 2.5)), float(np.radians(rng.uniform(5.0, 16.0))))
-        scenes.append((block, _foundation(rng, "rigid" if rng.random() < 0.3 else "linear"), _record(rng)))
+        scenes.append((block, _foundation(rng, "rigid" if rng.random() < 0.3 else "linear"), random_record(rng)))
     floors = liftoff_floors(scenes)
     below = simulate_many([_scaled_job(*s, f * (1 - 1e-7)) for s, f in zip(scenes, floors)], early=True)
     assert all(r.verdict == "no_uplift" and r.settled for r in below)
