@@ -330,6 +330,17 @@ def knee_ratio(fkind, prm, hy, u, h, ud):
     return r
 
 
+@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+def motion_direction(ud, d):
+    """The direction of the base's motion for the next step: the sign of ``u'`` (``d``, the current one, if
+    ``u'`` is 0), the ``d_new`` of :func:`reanchor`."""
+    if ud > 0.0:
+        return 1.0
+    if ud < 0.0:
+        return -1.0
+    return d
+
+
 @njit(cache=True, no_cfunc_wrapper=True)
 def reanchor(fkind, prm, hy, u, d_new):
     """The anchor at displacement ``u`` reached on the branch of ``hy``, for motion in ``d_new``.

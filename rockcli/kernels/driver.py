@@ -25,7 +25,8 @@ import numpy as np
 from numba import njit
 
 from rockcli.kernels.bearings import (base_force, bearing_energy, free_disp_bound, free_force_bound,
-                                      force_rate, initial_anchor, knee_ratio, knee_step, reanchor, z_sensitivity)
+                                      force_rate, initial_anchor, knee_ratio, knee_step, motion_direction, reanchor,
+                                      z_sensitivity)
 from rockcli.kernels.dopri import _dense, _dp5_step, _restep_rows, _shift_event, _state_at
 from rockcli.kernels.events import (REV_AT, REV_WRONG_START, _count_uplift, _hist_grid, _hist_grid_cut, _hist_peak,
                                     _hist_state, _u_extremum, hysteretic_uplift, impact_map, reversal_check)
@@ -72,16 +73,6 @@ def _reanchor(fkind, prm, rs, u, d_new):
     """Anchor the hysteretic elements at ``u`` (reached on the current branch) for motion in ``d_new``."""
     if fkind >= FOUNDATION_BILINEAR:
         _set_hy(rs, reanchor(fkind, prm, _hy(rs), u, d_new))
-
-
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
-def _direction(rs, ud):
-    """Direction of motion for the next step: the sign of u_dot (the current one if it is 0)."""
-    if ud > 0.0:
-        return 1.0
-    if ud < 0.0:
-        return -1.0
-    return rs[RS_DIR]
 
 
 @njit(cache=True, no_cfunc_wrapper=True)
@@ -382,7 +373,7 @@ def _after_stuck_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, epar):
         rs[RS_PHASE] = PHASE_ROCKING
         _count_uplift(out, rs[RS_T])
         rs[RS_FRESH] = 1.0
-        _reanchor(fkind, prm, rs, W[W_Y, 2], _direction(rs, W[W_Y, 3]))
+        _reanchor(fkind, prm, rs, W[W_Y, 2], motion_direction(W[W_Y, 3], rs[RS_DIR]))
     else:
         rs[RS_T] = t_new
         for i in range(2, 4):
@@ -392,7 +383,7 @@ def _after_stuck_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, epar):
             rs[RS_FRESH] = 1.0  # W[6] is f at the end of the whole step, not at the reversal
             _reanchor(fkind, prm, rs, W[W_Y, 2], -rs[RS_DIR])
         else:
-            _reanchor(fkind, prm, rs, W[W_Y, 2], _direction(rs, W[W_Y, 3]))
+            _reanchor(fkind, prm, rs, W[W_Y, 2], motion_direction(W[W_Y, 3], rs[RS_DIR]))
     rs[RS_UMAX] = max(rs[RS_UMAX], abs(W[W_Y, 2]))
 
 
@@ -482,7 +473,7 @@ def _after_rocking_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, nst, epar):
         rs[RS_UMAX] = max(rs[RS_UMAX], _u_extremum(W, hs, sig))
     if code == EV_OVERTURN:
         _to_overturn(rs, W, out, hs, sig, nst)
-        _reanchor(fkind, prm, rs, W[W_Y, 2], _direction(rs, W[W_Y, 3]))
+        _reanchor(fkind, prm, rs, W[W_Y, 2], motion_direction(W[W_Y, 3], rs[RS_DIR]))
     elif code == EV_FAILED:
         # the block never left theta = 0: back to the stuck phase at the end of the step,
         # keeping the total horizontal momentum (u_dot + gamma h theta_dot per unit mass); the
@@ -496,7 +487,7 @@ def _after_rocking_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, nst, epar):
         rs[RS_S] = 0.0
         rs[RS_FRESH] = 1.0
         rs[RS_UMAX] = max(rs[RS_UMAX], abs(W[W_Y, 2]))
-        _reanchor(fkind, prm, rs, W[W_Y, 2], _direction(rs, W[W_Y, 3]))
+        _reanchor(fkind, prm, rs, W[W_Y, 2], motion_direction(W[W_Y, 3], rs[RS_DIR]))
     elif code == EV_IMPACT:
         _to_impact(_restep_iso, fkind, prm, rs, W, epar, _hy(rs), hs, sig, nst)
         # the bearings reach the impact point on the step's branch (u does not jump)
@@ -508,7 +499,7 @@ def _after_rocking_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, nst, epar):
             rs[RS_FRESH] = 1.0
             _reanchor(fkind, prm, rs, W[W_Y, 2], -rs[RS_DIR])
         else:
-            _reanchor(fkind, prm, rs, W[W_Y, 2], _direction(rs, W[W_Y, 3]))
+            _reanchor(fkind, prm, rs, W[W_Y, 2], motion_direction(W[W_Y, 3], rs[RS_DIR]))
     return code
 
 
@@ -525,7 +516,7 @@ def _impact(fkind, prm, rs, W, out, t_exc_end):
     if _bounce(prm, rs, W, out, thd1, t_exc_end, a_rest, thd2, prm[P_THR]):
         W[W_Y, 3] += prm[P_GAMMA] * prm[P_H] * thd2
     rs[RS_UMAX] = max(rs[RS_UMAX], abs(W[W_Y, 2]))
-    _reanchor(fkind, prm, rs, W[W_Y, 2], _direction(rs, W[W_Y, 3]))
+    _reanchor(fkind, prm, rs, W[W_Y, 2], motion_direction(W[W_Y, 3], rs[RS_DIR]))
 
 
 # ---------------------------------------------------------------------------------------------

@@ -39,7 +39,7 @@ import numpy as np
 from numba import njit
 
 from rockcli.kernels.bearings import (free_disp_bound, free_force_bound, initial_anchor, knee_ratio, knee_step,
-                                      reanchor, z_sensitivity)
+                                      motion_direction, reanchor, z_sensitivity)
 from rockcli.kernels.ground import ground_at
 from rockcli.kernels.layout import FOUNDATION_LINEAR, J_BASE, J_JOINT, N_OUT
 from rockcli.kernels.polynomials import _first_down, _poly
@@ -295,16 +295,6 @@ def _reversal(y, K, h, d, tol):
         if D > tol:
             break
     return 0, 1.0
-
-
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
-def _direction(ud, d):
-    """The direction of the base's motion for the next step: the sign of ``u'`` (``d`` if it is 0)."""
-    if ud > 0.0:
-        return 1.0
-    if ud < 0.0:
-        return -1.0
-    return d
 
 
 @njit(cache=True, no_cfunc_wrapper=True, inline='always')
@@ -572,7 +562,7 @@ def simulate_stack_linear(sp, lp, fk, bp, ekind, epar, acc, dt, t_begin, t_exc_e
             held = -1  # an impact opened the held interface: it pivots on its own again
         if fresh:
             if hyst and not reversed_:  # after an event: the elements anchored where u is, for its direction now
-                hy = reanchor(fk, bp, hy, y[4], _direction(y[5], hy[1]))
+                hy = reanchor(fk, bp, hy, y[4], motion_direction(y[5], hy[1]))
                 bb = (fk, bp, hy)
             reversed_ = False
             ag0 = ground_at(t, seg, epar)
@@ -709,7 +699,7 @@ def simulate_stack_linear(sp, lp, fk, bp, ekind, epar, acc, dt, t_begin, t_exc_e
             for i in range(6):
                 K[0, i] = K[6, i]
             if hyst:  # the anchor moves on along the branch
-                hy = reanchor(fk, bp, hy, y[4], _direction(y[5], hy[1]))
+                hy = reanchor(fk, bp, hy, y[4], motion_direction(y[5], hy[1]))
                 bb = (fk, bp, hy)
             if want_history:
                 H, nh = _hist(H, nh, t, ground_at(t, seg, epar), y, s, k, EVH_STATE)
