@@ -48,18 +48,10 @@ def parse_column_spec(text: str) -> Block:
         return column(name)
     if not name:
         raise RockcliInputError(f"column {raw!r} needs a name before ':' (e.g. statue:R=1.2,alpha=14)")
-    from rockcli.io.inputs import parse_number, spec_items
+    from rockcli.io.inputs import spec_numbers
 
-    values = {}
-    keys = {"r": "R", "alpha": "alpha", "height": "height", "width": "width"}
-    for key, val, eq in spec_items(rest, f"column {raw!r}"):
-        k = key.lower()
-        if not eq or k not in keys:
-            item = f"{key}={val}" if eq else key
-            raise RockcliInputError(f"column {raw!r}: {item!r} is not one of R=<m>, alpha=<deg>, "
-                                    f"height=<m>, width=<m>")
-        values[keys[k]] = parse_number(val, f"column {raw!r}: {key}",
-                                       bad=f"column {raw!r}: {key} must be a number, got {val!r}")
+    values = spec_numbers(rest, f"column {raw!r}", {"r": "R", "alpha": "alpha", "height": "height", "width": "width"},
+                          "R=<m>, alpha=<deg>, height=<m>, width=<m>")
     return custom_column(name, **values)
 
 

@@ -280,3 +280,26 @@ def spec_items(rest: str, what: str) -> list[tuple[str, str, bool]]:
             seen[k] = key
         out.append((key, val, bool(eq)))
     return out
+
+
+def spec_numbers(rest: str, what: str, keys: dict, listing: str, *, limits: dict | None = None,
+                 refuse: dict | None = None) -> dict:
+    """The ``key=number`` items of a spec (the part after ``NAME:``) as ``{keys[key]: value}``.
+
+    ``keys`` maps each key as written (lower case; its aliases too) to its name; ``listing`` is how the
+    keys are shown in the sentence for an unknown one (``"height=..., width=..."``); ``limits`` maps a
+    name to :func:`parse_number`'s range keywords; ``refuse`` maps a key (lower case) to the sentence
+    that refuses it as ``key=...`` (``{key}`` in it: the key as written), for a key that belongs to
+    another spec. Anything wrong is one sentence beginning with ``what``.
+    """
+    values = {}
+    for key, val, eq in spec_items(rest, what):
+        k = key.lower()
+        if eq and refuse and k in refuse:
+            raise RockcliInputError(f"{what}: {refuse[k].format(key=key)}")
+        if not eq or k not in keys:
+            item = f"{key}={val}" if eq else key
+            raise RockcliInputError(f"{what}: {item!r} is not one of {listing}")
+        values[keys[k]] = parse_number(val, f"{what}: {key}", bad=f"{what}: {key} must be a number, got {val!r}",
+                                       **(limits or {}).get(keys[k], {}))
+    return values

@@ -42,18 +42,10 @@ def parse_isolation_spec(text: str):
         return Rigid()
     if kind not in _SPEC_KEYS:
         raise RockcliInputError(f"unknown isolation {kind!r} in {raw!r} (use {_SPEC_EXAMPLES})")
-    from rockcli.io.inputs import parse_number, spec_items
+    from rockcli.io.inputs import spec_numbers
 
     keys = _SPEC_KEYS[kind]
-    values = {}
-    for key, val, eq in spec_items(rest, f"isolation {raw!r}"):
-        k = key.lower()
-        if not eq or k not in keys:
-            item = f"{key}={val}" if eq else key
-            raise RockcliInputError(
-                f"isolation {raw!r}: {item!r} is not one of {', '.join(k + '=...' for k in keys)}")
-        values[keys[k]] = parse_number(val, f"isolation {raw!r}: {key}",
-                                       bad=f"isolation {raw!r}: {key} must be a number, got {val!r}")
+    values = spec_numbers(rest, f"isolation {raw!r}", keys, ", ".join(k + "=..." for k in keys))
     if "beta" in values and "gamma_bw" not in values:  # A = 1: one of them fixes the other
         values["gamma_bw"] = 1.0 - values["beta"]
     elif "gamma_bw" in values and "beta" not in values:

@@ -222,7 +222,7 @@ _KEYS = {"height": "height", "width": "width", "mass_ratio": "mass_ratio", "mass
 def parse_plinth_spec(text: str) -> Plinth:
     """``"plinth:height=1.0,width=0.6[,mass_ratio=2]"`` -> :class:`Plinth` (lengths in m; the name before the
     colon labels it). Any bad spec raises :class:`RockcliInputError` with one sentence."""
-    from rockcli.io.inputs import parse_number, spec_items
+    from rockcli.io.inputs import spec_numbers
 
     raw = str(text).strip()
     name, colon, rest = raw.partition(":")
@@ -230,14 +230,7 @@ def parse_plinth_spec(text: str) -> Plinth:
     if not colon:
         raise RockcliInputError(f"plinth {raw!r} must be written NAME:height=<m>,width=<m>[,mass_ratio=<plinth mass "
                                 f"over the body's>], e.g. plinth:height=1.0,width=0.6")
-    values = {}
-    for key, val, eq in spec_items(rest, f"plinth {raw!r}"):
-        k = key.lower()
-        if not eq or k not in _KEYS:
-            item = f"{key}={val}" if eq else key
-            raise RockcliInputError(f"plinth {raw!r}: {item!r} is not one of height=..., width=..., mass_ratio=...")
-        values[_KEYS[k]] = parse_number(val, f"plinth {raw!r}: {key}",
-                                        bad=f"plinth {raw!r}: {key} must be a number, got {val!r}")
+    values = spec_numbers(rest, f"plinth {raw!r}", _KEYS, "height=..., width=..., mass_ratio=...")
     for need in ("height", "width"):
         if need not in values:
             raise RockcliInputError(f"plinth {raw!r} needs {need}=<m>")

@@ -71,7 +71,7 @@ class PlinthRatio:
 def parse_plinth_ratio(text: str, option: str = "--on") -> PlinthRatio:
     """``"plinth:height_ratio=0.5,width_ratio=1.5[,mass_ratio=2]"`` -> :class:`PlinthRatio`; anything else (a plinth
     in metres among them) is one sentence naming ``option``."""
-    from rockcli.io.inputs import parse_number, spec_items
+    from rockcli.io.inputs import spec_numbers
 
     raw = str(text).strip()
     what = f"{option} {raw!r}"
@@ -80,21 +80,13 @@ def parse_plinth_ratio(text: str, option: str = "--on") -> PlinthRatio:
     if not colon:
         raise RockcliInputError(f"{what} must be written {PLINTH_RATIO_FORM}, e.g. "
                                 f"plinth:height_ratio=0.5,width_ratio=1.5")
-    values = {}
-    for key, val, eq in spec_items(rest, what):
-        k = key.lower()
-        if eq and k in ("height", "width"):
-            raise RockcliInputError(f"{what}: a spectrum is dimensionless (it holds for a body of any size), so "
-                                    f"give the plinth in proportion to the body, height_ratio=<H2/H1> and "
-                                    f"width_ratio=<B2/B1>, not {key}= in metres (docs/spectra.md)")
-        if not eq or k not in _KEYS:
-            item = f"{key}={val}" if eq else key
-            raise RockcliInputError(f"{what}: {item!r} is not one of height_ratio=..., width_ratio=..., "
-                                    f"mass_ratio=...")
-        lo = 1.0 if _KEYS[k] == "width_ratio" else 0.0
-        values[_KEYS[k]] = parse_number(
-            val, f"{what}: {key}", lo=lo, lo_open=lo == 0.0,
-            bad=f"{what}: {key} must be a number, got {val!r}")
+    values = spec_numbers(
+        rest, what, _KEYS, "height_ratio=..., width_ratio=..., mass_ratio=...",
+        limits={"height_ratio": {"lo": 0.0, "lo_open": True}, "width_ratio": {"lo": 1.0},
+                "mass_ratio": {"lo": 0.0, "lo_open": True}},
+        refuse=dict.fromkeys(("height", "width"), "a spectrum is dimensionless (it holds for a body of any size), so "
+                             "give the plinth in proportion to the body, height_ratio=<H2/H1> and width_ratio=<B2/B1>, "
+                             "not {key}= in metres (docs/spectra.md)"))
     for need in ("height_ratio", "width_ratio"):
         if need not in values:
             raise RockcliInputError(f"{what} needs {need}=<{'H2/H1' if need == 'height_ratio' else 'B2/B1'}>")
