@@ -56,6 +56,21 @@ def test_survivor_sentence_states_peak_and_margin(peak, scale):
     assert f"a record {scale:.2f} times stronger would topple it" in s
 
 
+@pytest.mark.parametrize("peak, past", [(0.994, False), (0.996, True), (1.03, True), (1.8, True)])
+def test_a_survivor_past_its_overturning_angle_is_said_to_have_been_brought_back(peak, past):
+    """A block that rocked past its overturning angle (alpha: where it falls if all stands still) and survived: the
+    sentence says why that is no contradiction, from where the percentage shows 100 % on; a body on its plinth too."""
+    from rockcli.assess.plinth_words import peak_words
+    from rockcli.assess.verdicts import PAST_WORDS
+
+    s = scene_sentence(_row(theta_max_over_alpha=peak, overturn_scale=1.2, overturn_scale_survives=1.19))
+    assert f"{100 * peak:.0f} % of its overturning angle" in s
+    assert (PAST_WORDS in s) == past and ("brought it back" in s) == past
+    w = peak_words(peak, 0.42, body="the statue")
+    assert w.count("brought it back") == past and f"{100 * peak:.0f} % of its overturning angle" in w
+    assert peak_words(0.42, peak, body="the statue").count("brought it back") == past
+
+
 def test_topples_sentence_states_the_fraction_of_the_record():
     s = scene_sentence(_row(verdict="overturned", overturned=True, theta_max_over_alpha=math.pi / 2 / 0.27,
                             t_overturn_s=6.76, overturn_scale=0.73, overturn_scale_survives=0.72))
@@ -239,6 +254,43 @@ def test_simulate_report_with_pulse(tmp_path):
     # simulate searches no margin: the page does not speak of margins or toppling factors
     for sid, text in page.text.items():
         assert "margin" not in text.lower() and "toppling factor" not in text.lower(), sid
+
+
+def _e_cells(html: str) -> list:
+    """The last cell (e) of each row of the body table (the first table of the page)."""
+    table = re.search(r"<table.*?</table>", html, re.S).group(0)
+    return [re.findall(r"<td[^>]*>(.*?)</td>", row)[-1] for row in re.findall(r"<tr>(.*?)</tr>", table, re.S)
+            if "<td" in row]
+
+
+def test_the_body_table_gives_the_impact_rule_the_runs_use():
+    """e in the body table is what the runs' impacts keep on the ground: Housner's 1 - 1.5 sin^2(alpha) by default,
+    a given --restitution, a capped colonnade's ratio, and for a body on its plinth the two-block law (no single e)
+    unless E is given; the note under the table says which."""
+    from rockcli.models import Plinth, Stack
+    from rockcli.models.colonnade import impact_ratio_on_base
+    from rockcli.report.html import body_section
+
+    statue = Block.from_dimensions(1.79, 0.5, "statue")
+    stack = Stack(statue, Plinth(1.0, 0.6))
+    housner = 1.0 - 1.5 * math.sin(statue.alpha) ** 2
+    html = body_section([statue, stack])
+    assert _e_cells(html) == [f"{housner:.3f}", "two-block law"]
+    assert "Housner's rule" in html and "the two-block law" in html
+    html = body_section([statue, stack], restitution=0.8)
+    assert _e_cells(html) == ["0.800", "0.800"]
+    assert "--restitution 0.8" in html and "two-block law" not in html
+    html = body_section([statue], cap_ratio=0.5)
+    assert _e_cells(html) == [f"{impact_ratio_on_base(statue.alpha, 0.0, 0.5, None):.3f}"]
+    assert float(_e_cells(html)[0]) < housner and "capped colonnade" in html
+
+
+def test_a_report_with_a_given_restitution_shows_it(tmp_path):
+    html_path = tmp_path / "e.html"
+    res = CliRunner().invoke(main, ["simulate", "--height", "2", "--width", "0.5", "--pulse", "sine:ap=0.5,Tp=1",
+                                    "--restitution", "0.85", "--report", str(html_path)])
+    assert res.exit_code == 0, res.output
+    assert _e_cells(html_path.read_text(encoding="utf-8")) == ["0.850"]
 
 
 def test_fragility_report(tmp_path):

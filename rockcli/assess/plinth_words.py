@@ -40,9 +40,12 @@ def peak_words(body_peak: float, plinth_peak: float, *, body: str = "the body", 
     record that gave it). E.g. ``nothing lifts: the statue stays put on its plinth and the plinth does not rock``,
     ``the plinth does not rock; the statue rocks on it to 40 % of its overturning angle``.
     """
+    from rockcli.assess.verdicts import past_words
+
     at = "at most " if most else ""
-    b = f"{at}{_share(body_peak)} of its overturning angle{body_where}"
-    p = f"{at}{_share(plinth_peak)} of the overturning angle of the two as one block{plinth_where}"
+    b = f"{at}{_share(body_peak)} of its overturning angle{body_where}{past_words(body_peak)}"
+    p = (f"{at}{_share(plinth_peak)} of the overturning angle of the two as one block{plinth_where}"
+         f"{past_words(plinth_peak)}")
     up_b, up_p = body_peak > 0, plinth_peak > 0
     if not up_b and not up_p:
         return f"nothing lifts: {body} stays put on its {plinth} and the {plinth} does not rock"
@@ -168,9 +171,11 @@ def _margin_words(alone, onp, on: str, body: str = "the body") -> str:
                        f"over the records is {_x(sa)} alone and {_x(sp)} on {on}")
     survived = [(a, p) for a, p in zip(alone, onp) if outcome(a) == SURVIVES and outcome(p) == SURVIVES]
     if survived:
+        from rockcli.assess.verdicts import past_words
+
         pa = max(a.theta_max_over_alpha for a, _ in survived)
         alone_words = ("it does not lift off its base" if pa == 0 else
-                       f"it rocks to at most {_share(pa)} of its overturning angle")
+                       f"it rocks to at most {_share(pa)} of its overturning angle{past_words(pa)}")
         words = survivors_peak_words([p for _, p in survived], body=body, named=False)
         out.append(f"where it survives both ways, alone {alone_words}; "
                    + (f"on {on}, {words}" if words.startswith("nothing") else words))

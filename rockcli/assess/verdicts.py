@@ -87,6 +87,16 @@ def _pct(r: float) -> str:
     return f"{100 * r:.0f} %"
 
 
+#: Said after a survivor's peak shown as 100 % of its overturning angle or more: a block past that tilt falls only
+#: if nothing pushes it back, and the shaking did.
+PAST_WORDS = " (past the tilt at which it would fall if everything stood still; the shaking brought it back)"
+
+
+def past_words(r: float) -> str:
+    """:data:`PAST_WORDS` after a survivor's peak ``r`` (over its overturning angle) shown as 100 % or more, else ''."""
+    return PAST_WORDS if math.isfinite(r) and round(100 * r) >= 100 else ""
+
+
 def _share_words(share: float, n_factors: int = 21) -> str:
     k = int(round(share * n_factors))
     text = f"scaled by 0.90 to 1.10 it topples in {k} of {n_factors} cases"
@@ -142,7 +152,7 @@ def scene_sentence(row, *, isolated: bool = False, stroke: bool = True) -> str:
         elif r < 0.005:
             head = "survives: it barely lifts off its base (it rocks to under 1 % of its overturning angle)"
         else:
-            head = f"survives: it rocks to {_pct(r)} of its overturning angle"
+            head = f"survives: it rocks to {_pct(r)} of its overturning angle{past_words(r)}"
         parts.append(head)
         if math.isfinite(s) and s > 1:
             parts.append(f"a record {_x(s)} times stronger would topple it")
@@ -240,7 +250,7 @@ def configuration_sentence(rows, *, isolated: bool = False) -> str:
             parts.append("it does not even lift off its base")
         else:
             parts.append(f"at most it rocks to {_pct(peak.theta_max_over_alpha)} of its overturning angle "
-                         f"({peak.record})")
+                         f"({peak.record}){past_words(peak.theta_max_over_alpha)}")
     if survived:
         weakest = min(survived, key=lambda r: _key(r.overturn_scale))
         s = weakest.overturn_scale

@@ -227,7 +227,8 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
         from rockcli.report.html_pages import simulate_report
 
         write_report(report_path, simulate_report(block, foundation, excitation, shown, label=label, checked=checked,
-                                                  command=command_line()))
+                                                  command=command_line(), restitution=restitution,
+                                                  cap_ratio=cap_ratio))
 
     if as_json:
         out = {"block": block.name, "R_m": block.R, "alpha_deg": block.alpha_deg, "p_radps": block.p,

@@ -161,7 +161,7 @@ def run_plinth(stack, foundation, excitation, label: str, *, restitution, rtol, 
         from rockcli.report.html_stack import stack_report
 
         write_report(report_path, stack_report(stack, foundation, excitation, res, alone, label=label,
-                                               command=command_line()))
+                                               command=command_line(), restitution=restitution))
     checked = stack_friction(res, friction) if friction is not None else None
     body = stack.body
     if as_json:

@@ -161,14 +161,24 @@ def plural(n: int, word: str) -> str:
     return f"{n} {word}" + ("" if n == 1 else "s")
 
 
-def body_section(blocks) -> str:
-    """Dimensions, R, alpha and p of every body, with what they mean."""
+def body_section(blocks, *, restitution: float | None = None, cap_ratio: float = 0.0) -> str:
+    """Dimensions, R, alpha and p of every body, with what they mean; ``e`` as the run's impacts use it: Housner's
+    rule, a given coefficient of restitution, a capped colonnade's ratio, or a body on a plinth's two-block law."""
     from rockcli.assess.verdicts import body_noun
     from rockcli.io.units import G
+    from rockcli.models.colonnade import impact_ratio_on_base
+    from rockcli.models.impact import impact_ratio
+
+    def e_cell(b):
+        if getattr(b, "plinth", None) is not None:
+            return num(restitution, ".3f") if restitution is not None else "two-block law"
+        if cap_ratio > 0.0:
+            return num(impact_ratio_on_base(b.alpha, 0.0, cap_ratio, restitution), ".3f")
+        return num(impact_ratio(b.alpha, 0.0, restitution), ".3f")
 
     rows = [(esc(b.name), esc(body_noun(b)), num(b.height, ".3f", "m"), num(b.width, ".3f", "m"),
              num(b.h / b.b, ".2f"), num(b.R, ".3f", "m"), num(b.alpha_deg, ".2f", "deg"), num(b.p, ".3f", "rad/s"),
-             num(b.uplift_acceleration / G, ".3f", "g"), num(getattr(b, "body", b).housner_restitution, ".3f"))
+             num(b.uplift_acceleration / G, ".3f", "g"), e_cell(b))
             for b in blocks]
     head = ("name", "called", "height", "width", "height / width", "R", "alpha", "p", "lifts off at", "e")
     stacks = [b for b in blocks if getattr(b, "plinth", None) is not None]
@@ -178,12 +188,22 @@ def body_section(blocks) -> str:
         f"{s.body_uplift_acceleration / G:.3f} g and body and plinth lift together at "
         f"{s.assembly_uplift_acceleration / G:.3f} g (the smaller is in the table); they rock as two rigid blocks, "
         f"without sliding (docs/plinth.md)." for s in stacks)
+    if restitution is not None:
+        rule = f"the coefficient of restitution given (--restitution {restitution:g}), not Housner's rule"
+    elif cap_ratio > 0.0:
+        rule = (f"in a capped colonnade (beam/columns mass {cap_ratio:g}), the columns and the beam's momenta "
+                f"together (Makris &amp; Vassiliou 2013)")
+    else:
+        rule = "Housner's rule"
+    if stacks and restitution is None:
+        rule += ("; a body on a plinth has no single e: its impacts keep both blocks' momenta (the two-block law, "
+                 "docs/plinth.md)")
     return (table(head, rows, numeric=range(2, 10)) + (f"<p class='note'>{plinths.strip()}</p>" if stacks else "") +
             "<p class='note'>The body is taken as a rigid block. R: distance from its centre of mass to a corner "
             "of its base; alpha: its slenderness, atan(width/height) (the angle it must tilt to fall); p = "
             "sqrt(3g/4R): its frequency parameter (larger bodies rock more slowly and are harder to topple); "
             "it lifts off when the ground acceleration exceeds g tan(alpha); e: the share of rocking velocity "
-            "kept at each impact (Housner's rule).</p>")
+            f"kept at each impact on the ground ({rule}).</p>")
 
 
 def configurations_section(configurations) -> str:

@@ -255,7 +255,8 @@ def assessment_report(assessment, *, check=None, command: str = "") -> str:
                               if any(r.azimuths_run for r in rows) else "")))
     sections = {
         "answer": "\n".join(first),
-        "body": body_section(blocks),
+        "body": body_section(blocks, restitution=assessment.solver.get("restitution"),
+                             cap_ratio=assessment.solver.get("cap_ratio") or 0.0),
         "configurations": configurations_section(assessment.configurations),
         "records": records_section(assessment.excitations, assessment.unavailable),
         "verdicts": (MARGIN_WORDS if assessment.margin else NO_MARGIN_WORDS)
@@ -296,7 +297,7 @@ def _fragility_sentence(fr, curve, rows, rigid) -> tuple[str, str]:
     return word, "; ".join(parts)
 
 
-def fragility_report(fr, *, command: str = "") -> str:
+def fragility_report(fr, *, command: str = "", restitution: float | None = None) -> str:
     """The HTML report of ``rockcli assess fragility``."""
     from rockcli.report.fragility import plot_fragility
 
@@ -354,7 +355,7 @@ def fragility_report(fr, *, command: str = "") -> str:
                  "Every scaled run reached a proven verdict.")
     items += [f"Not used: {esc(x.label)}: {esc(x.error)}" for x in fr.failed]
     sections = {
-        "answer": "\n".join(first), "body": body_section(blocks),
+        "answer": "\n".join(first), "body": body_section(blocks, restitution=restitution),
         "configurations": configurations_section(fr.configurations),
         "records": records_section(fr.excitations, fr.unavailable),
         "verdicts": verdicts, "figures": "\n".join(f for f in figs if f), "certainty": _list(items),
@@ -370,7 +371,7 @@ def fragility_report(fr, *, command: str = "") -> str:
 # --------------------------------------------------------------------------------------------------
 
 def simulate_report(block, foundation, excitation, response, *, label: str, checked: dict | None = None,
-                    command: str = "") -> str:
+                    command: str = "", restitution: float | None = None, cap_ratio: float = 0.0) -> str:
     """The HTML report of ``rockcli simulate`` (``response`` with its history; ``checked``: the
     ``check_*`` results of ``--check-tolerance``)."""
     from rockcli.assess.scenes import parse_configurations
@@ -418,7 +419,8 @@ def simulate_report(block, foundation, excitation, response, *, label: str, chec
                  "be to change the verdict is not computed here (<code>rockcli assess column</code> finds the "
                  "smallest scale factor of a record that topples the body).")
     sections = {
-        "answer": "\n".join(first), "body": body_section([block]), "configurations": configurations_section([conf]),
+        "answer": "\n".join(first), "body": body_section([block], restitution=restitution, cap_ratio=cap_ratio),
+        "configurations": configurations_section([conf]),
         "records": records_section([excitation]), "verdicts": table(None, [(esc(k), v) for k, v in result]),
         "figures": figure(png, caption.strip()), "certainty": _list(items),
         "assumptions": assumptions_section(margins=False), "reproduce": reproduce_section(command),

@@ -11,7 +11,8 @@ from __future__ import annotations
 import math
 
 from rockcli.assess.plinth_words import plinth_name, run_sentence
-from rockcli.assess.verdicts import SURVIVES, TOPPLES, UNDECIDED, body_noun, body_words, configuration_words
+from rockcli.assess.verdicts import (SURVIVES, TOPPLES, UNDECIDED, body_noun, body_words, configuration_words,
+                                     past_words)
 from rockcli.report.html import (assumptions_section, body_section, card, configurations_section, esc, figure, num,
                                  page, reproduce_section, table)
 from rockcli.report.html_records import records_section
@@ -21,7 +22,8 @@ def _demand(x: float) -> str:
     return f"{x:.3f}" if math.isfinite(x) else "unbounded"
 
 
-def stack_report(stack, foundation, excitation, run, alone, *, label: str, command: str = "") -> str:
+def stack_report(stack, foundation, excitation, run, alone, *, label: str, command: str = "",
+                 restitution: float | None = None) -> str:
     """The HTML report of ``rockcli simulate --on``: ``run`` a :class:`rockcli.solve.StackResponse` with its
     history, ``alone`` a :class:`rockcli.solve.Response` with history of ``stack.body`` on ``foundation`` (or
     None)."""
@@ -41,7 +43,8 @@ def stack_report(stack, foundation, excitation, run, alone, *, label: str, comma
         a_word = TOPPLES if alone.overturned else SURVIVES if alone.settled else UNDECIDED
         a_text = (f"it topples at {alone.t_overturn_s:.2f} s" if alone.overturned else
                   "it does not lift off its base" if alone.verdict == "no_uplift" else
-                  f"it rocks to {100 * alone.theta_max_over_alpha:.0f} % of its overturning angle")
+                  f"it rocks to {100 * alone.theta_max_over_alpha:.0f} % of its overturning angle"
+                  f"{past_words(alone.theta_max_over_alpha)}")
         first.append(card(a_word, f"{noun} alone, {where}", f"{a_word}: {a_text}"))
     isolated = math.isfinite(getattr(run, "base_disp_max", math.nan))
     if isolated:
@@ -90,7 +93,7 @@ def stack_report(stack, foundation, excitation, run, alone, *, label: str, comma
         items.append(f"{run.n_jumps} steps or impacts where a pivot would pull: the rocking-only model does not "
                      "describe the motion there.")
     sections = {
-        "answer": "\n".join(first), "body": body_section([stack.body, stack]),
+        "answer": "\n".join(first), "body": body_section([stack.body, stack], restitution=restitution),
         "configurations": configurations_section([conf]), "records": records_section([excitation]),
         "verdicts": table(None, [(k, v) for k, v in result]), "figures": figure(png, caption.strip()),
         "certainty": _list(items), "assumptions": assumptions_section(margins=False),
