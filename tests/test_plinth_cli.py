@@ -340,6 +340,25 @@ def test_the_plinth_sentence():
     assert "by the margin its plinth makes it worse" in less
 
 
+def test_does_the_plinth_help_is_a_list_of_one_sentence_per_configuration(tmp_path):
+    """The printout and the report give "Does the plinth help?" as one item per configuration (four sentences in
+    one paragraph were hard to read), each naming its configuration, in the order of the table's columns."""
+    import re
+
+    report = tmp_path / "r.html"
+    code, out = _run("assess", "column", STATUE, "--on", "plinth:height=1.0,width=0.6", "--records", KOBE,
+                     "--no-margin", "--isolation", "none", "--isolation", "linear:Tb=2.5", "--report", str(report))
+    assert code == 0, out
+    lines = out.splitlines()
+    k = lines.index("  Does the plinth help?")
+    items = [line for line in lines[k + 1:] if line.startswith("  - ")]
+    assert [i.split(",")[0] for i in items] == ["  - Standing on the ground", "  - On linear (rubber) bearings"]
+    html = report.read_text(encoding="utf-8")
+    listed = re.search(r"Does the plinth help\?</p><ul class='short'>(.*?)</ul>", html, re.S).group(1)
+    assert [li.split(",")[0] for li in re.findall(r"<li>(.*?)</li>", listed)] == [
+        "Standing on the ground", "On linear (rubber) bearings"]
+
+
 def test_assess_fragility_on_a_plinth_fits_the_body_alone_and_on_it():
     import re
 

@@ -100,6 +100,12 @@ def run_sentence(stack, res) -> str:
 
 
 def plinth_summary(assessment, stack) -> str:
+    """"Does the plinth help?" and :func:`plinth_help_parts` as one paragraph ('' when there is nothing to compare)."""
+    parts = plinth_help_parts(assessment, stack)
+    return ("Does the plinth help? " + " ".join(parts)) if parts else ""
+
+
+def plinth_help_parts(assessment, stack) -> list:
     """Does the plinth help the body? One sentence per configuration on which both ran, comparing the body on the
     plinth (``stack``, a :class:`rockcli.models.Stack` column) with the same body alone (the column
     ``stack.body``), record by record (:func:`rockcli.assess.verdicts.compare_foundations`): the records whose
@@ -112,7 +118,7 @@ def plinth_summary(assessment, stack) -> str:
 
     names = {b.name for b in assessment.columns}
     if stack.body.name not in names:
-        return ""
+        return []
     body, on = body_noun(stack.body), f"its {plinth_name(stack)}"
     ran = [x for x in assessment.excitations if x.motion is not None]
     parts = []
@@ -149,9 +155,7 @@ def plinth_summary(assessment, stack) -> str:
         if cmp["open"]:
             text += f" ({_names(cmp['open'])} not compared: undecided or not computed on one of the two)"
         parts.append(f"{where}, {text}")
-    if not parts:
-        return ""
-    return "Does the plinth help? " + ". ".join(p[:1].upper() + p[1:] for p in parts) + "."
+    return [p[:1].upper() + p[1:] + "." for p in parts]
 
 
 def _margin_words(alone, onp, on: str, body: str = "the body") -> str:

@@ -469,10 +469,11 @@ def format_verdicts(assessment, width: int = 100) -> str:
         short = isolation_summary(assessment, b)
         if short:
             lines.append(textwrap.fill(short, width, initial_indent="  ", subsequent_indent="      "))
-        short = plinth_summary(assessment, b) if getattr(b, "plinth", None) is not None else ""
-        if short:
-            lines.append(textwrap.fill(short, width, initial_indent="  ", subsequent_indent="      "))
+        helps = plinth_help_parts(assessment, b) if getattr(b, "plinth", None) is not None else []
+        if helps:
+            lines.append("  Does the plinth help?")
+            lines += [textwrap.fill(h, width, initial_indent="  - ", subsequent_indent="    ") for h in helps]
     return "\n".join(lines)
 
 
-from rockcli.assess.plinth_words import plinth_summary  # noqa: E402  (the plinth's words, re-exported)
+from rockcli.assess.plinth_words import plinth_help_parts, plinth_summary  # noqa: E402,F401  (re-exported)

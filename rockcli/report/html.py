@@ -43,6 +43,7 @@ h2{font-size:1.25em;border-bottom:2px solid #ddd;padding-bottom:.2em;margin-top:
 h3{font-size:1.05em;margin:1.2em 0 .3em}
 .question{font-size:1.2em;margin:.4em 0 .8em}
 .short{font-size:1.1em;font-weight:600;margin:.5em 0}
+ul.short{font-weight:400;margin-top:0}ul.short li{margin:.25em 0}
 .subtitle{color:#555;margin:0 0 .6em}
 .card{border-left:8px solid #777;background:#f4f4f4;padding:.55em .9em;margin:.45em 0;font-size:1.08em}
 .card .word{font-weight:700;text-transform:uppercase;letter-spacing:.03em}

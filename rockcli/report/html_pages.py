@@ -13,7 +13,7 @@ import math
 from types import SimpleNamespace
 
 from rockcli.assess.verdicts import (SURVIVES, TOPPLES, body_noun, body_words, configuration_words,
-                                     isolation_summary, outcome, plinth_summary, question, scene_sentence, stroke_m,
+                                     isolation_summary, outcome, plinth_help_parts, question, scene_sentence, stroke_m,
                                      survivor_stroke, verdict_lines)
 from rockcli.report.html import (assumptions_section, body_section, card, configurations_section, esc, figure,
                                  num, page, plural, reproduce_section, table)
@@ -216,9 +216,10 @@ def assessment_report(assessment, *, check=None, command: str = "") -> str:
         short = isolation_summary(assessment, b)
         if short:
             first.append(f"<p class='short'>{esc(short)}</p>")
-        short = plinth_summary(assessment, b) if getattr(b, "plinth", None) is not None else ""
-        if short:
-            first.append(f"<p class='short'>{esc(short)}</p>")
+        helps = plinth_help_parts(assessment, b) if getattr(b, "plinth", None) is not None else []
+        if helps:
+            first.append("<p class='short'>Does the plinth help?</p><ul class='short'>"
+                         + "".join(f"<li>{esc(h)}</li>" for h in helps) + "</ul>")
     facts = []
     for b in blocks:
         for c in assessment.configurations:
