@@ -1,4 +1,5 @@
-"""Short random accelerograms for the tests and benchmarks that need many records of their own."""
+"""Random accelerograms for the tests and benchmarks that need records of their own (no file): :func:`random_record`
+(short, a few sines under a sin^2 envelope) and :func:`synthetic_record` (band-limited, rising and decaying)."""
 
 from __future__ import annotations
 
@@ -23,3 +24,15 @@ def random_record(rng, n: int | None = None, *, dt: float = 0.01, n_range=(150, 
     acc *= np.sin(math.pi * t / t[-1]) ** 2
     pga = float(pga_g) if np.isscalar(pga_g) else float(rng.uniform(*pga_g))
     return Record(acc * (pga * G / np.max(np.abs(acc))), dt, "synthetic")
+
+
+def synthetic_record(seed=0, duration=12.0, dt=0.01, pga=0.45 * G):
+    """A band-limited random accelerogram with an envelope (no file needed)."""
+    rng = np.random.default_rng(seed)
+    t = np.arange(0.0, duration, dt)
+    acc = np.zeros_like(t)
+    for f in rng.uniform(0.3, 4.0, 12):
+        acc += rng.normal() * np.sin(2 * np.pi * f * t + rng.uniform(0, 2 * np.pi))
+    acc *= (t / 2.0) ** 2 * np.exp(-t / 2.0 + 2.0) / 4.0
+    acc *= pga / np.max(np.abs(acc))
+    return Record(acc, dt, f"synthetic-{seed}")

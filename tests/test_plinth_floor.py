@@ -16,7 +16,8 @@ import pytest
 from rockcli.assess.liftoff import STACK_LINEAR_MARGIN, liftoff_floors
 from rockcli.assess.margin import MARGIN_RTOL, find_overturn_scales
 from rockcli.models import Block, LinearIsolation, Plinth, Stack
-from test_margin_search import _full_scan, _record
+from synthetic import random_record
+from test_margin_search import _full_scan
 from rockcli.solve.stack import simulate_stack
 
 
@@ -27,7 +28,7 @@ def _scene(rng):
     plinth = Plinth(rng.uniform(0.2, 1.5), b1 * rng.uniform(1.0, 3.0),
                     None if rng.random() < 0.5 else rng.uniform(0.3, 3.0))
     bearings = LinearIsolation(rng.uniform(1.0, 4.0), xi=rng.uniform(0.03, 0.3), gamma=rng.uniform(0.01, 0.5))
-    return Stack(body, plinth), bearings, _record(rng)
+    return Stack(body, plinth), bearings, random_record(rng)
 
 
 def test_nothing_lifts_at_the_floor_on_linear_bearings():

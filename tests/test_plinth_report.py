@@ -104,8 +104,17 @@ def test_does_the_plinth_help_says_when_nothing_lifts():
     mixed = _summary([_alone("a", 0.5, scale=2.0)], [_row("a", plinth=0.2, scale=1.8)])
     assert ("alone it rocks to at most 50 % of its overturning angle; the statue stays put on its plinth, which "
             "rocks with it to at most 20 % of the overturning angle of the two as one block") in mixed
+    # a save on a 'safe island' only (a weaker record topples it on the plinth too) is no help: said so first
     island = _summary([_alone("a", 5.8, toppled="body", scale=0.7)], [_row("a", 1.03, 0.4, scale=0.6)])
-    assert "makes it better" in island and "only by the luck of the timing: under a it survives" in island
+    assert "makes it better" not in island
+    assert "its plinth saves it only by the luck of the timing: the statue survives on it under a, which topples" \
+        in island and "the record topples it alone, not on its plinth" in island
+    # one save with a margin and one on an island: better, the island said apart
+    both = _summary([_alone("a", 5.8, toppled="body", scale=0.7), _alone("b", 5.8, toppled="body", scale=0.8)],
+                    [_row("a", 1.03, 0.4, scale=0.6), _row("b", 0.5, 0.3, scale=1.3)])
+    assert "its plinth makes it better: the statue survives on it under a and b, which topple it" in both
+    assert "(but only by the luck of the timing: under a it survives on its plinth on a 'safe island'" in both
+    assert "0 of 2 records topple it on its plinth against 2 of 2 alone" in both
 
 
 # --------------------------------------------------------------------------------------------------

@@ -71,6 +71,20 @@ def test_a_survivor_past_its_overturning_angle_is_said_to_have_been_brought_back
     assert peak_words(0.42, peak, body="the statue").count("brought it back") == past
 
 
+@pytest.mark.parametrize("width", range(30, 61))
+def test_the_printout_never_breaks_a_number_from_its_unit(width):
+    """The plain-words lines are wrapped at spaces, but never between a number and its unit (``62 %``)."""
+    from rockcli.assess.verdicts import _fill
+
+    text = ("the statue rocks on its plinth to at most 62 % of its overturning angle; the base moves up to 0.34 m; "
+            "it falls after 6.8 s; it lifts off at 0.28 g; 3 stones, 5 mm and 7 sec stay as written; ") * 2
+    out = _fill(text, width, initial_indent="  ", subsequent_indent="    ")
+    assert out.split() == text.split()
+    assert all(len(line) <= width for line in out.splitlines())
+    for line in out.splitlines():
+        assert not re.match(r"\s*(%|m|s|g)(\W|$)", line), line
+
+
 def test_topples_sentence_states_the_fraction_of_the_record():
     s = scene_sentence(_row(verdict="overturned", overturned=True, theta_max_over_alpha=math.pi / 2 / 0.27,
                             t_overturn_s=6.76, overturn_scale=0.73, overturn_scale_survives=0.72))

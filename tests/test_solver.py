@@ -16,20 +16,9 @@ from rockcli.pulses import make_pulse
 from rockcli.records import Record
 from rockcli.solve import simulate, simulate_many
 from rockcli.io.units import G
+from synthetic import synthetic_record
 
 FIG1 = Block.from_dimensions(2.0, 0.5, "refrigerator")  # the paper's Figure 1 block
-
-
-def synthetic_record(seed=0, duration=12.0, dt=0.01, pga=0.45 * G):
-    """A band-limited random accelerogram with an envelope (no file needed)."""
-    rng = np.random.default_rng(seed)
-    t = np.arange(0.0, duration, dt)
-    acc = np.zeros_like(t)
-    for f in rng.uniform(0.3, 4.0, 12):
-        acc += rng.normal() * np.sin(2 * np.pi * f * t + rng.uniform(0, 2 * np.pi))
-    acc *= (t / 2.0) ** 2 * np.exp(-t / 2.0 + 2.0) / 4.0
-    acc *= pga / np.max(np.abs(acc))
-    return Record(acc, dt, f"synthetic-{seed}")
 
 
 # ------------------------------------------------------------------------------------------

@@ -483,7 +483,7 @@ def test_record_impulse_table_is_exact():
 
 
 def test_early_stop_on_records_gives_the_same_verdicts():
-    from test_solver import synthetic_record
+    from synthetic import synthetic_record
 
     rng = np.random.default_rng(8)
     jobs = []
@@ -502,7 +502,7 @@ def test_early_stop_on_records_gives_the_same_verdicts():
 def test_rigid_record_runs_agree_in_all_three_modes_on_2000_random_scenes():
     # records on a rigid foundation: steps of half a sample (RIGID_RECORD_SUBSTEPS), the early stops
     # P4, P6, P7 and the end-of-run proofs; early, verdict-only and history runs of each scene
-    from test_solver import synthetic_record
+    from synthetic import synthetic_record
 
     rng = np.random.default_rng(31)
     jobs = []
@@ -529,7 +529,7 @@ def test_overturns_proven_during_the_excitation_are_real():
     regime where blocks are thrown over the barrier (a_p up to 12 g tan alpha). The proofs must
     fire on a good share of them (else this test checks nothing), and a sample is confirmed by
     the slow SciPy reference."""
-    from test_solver import synthetic_record
+    from synthetic import synthetic_record
 
     jobs = random_scenes(3000, 77, ap_range=(1.5, 12.0), gamma_max=0.0)
     jobs = [j for j in jobs if isinstance(j[1], Rigid)]

@@ -22,7 +22,7 @@ from rockcli.pulses import make_pulse
 from rockcli.records import Record
 from rockcli.solve import simulate, simulate_many
 from rockcli.io.units import G
-from test_solver import synthetic_record
+from synthetic import synthetic_record
 
 SHAPES = ("ricker-sym", "ricker-anti", "sine", "cosine")
 

@@ -21,7 +21,7 @@ from rockcli.pulses import make_pulse
 from rockcli.records import Record
 from rockcli.solve import attached_vertical, simulate, simulate_many, with_vertical
 from rockcli.io.units import G
-from test_solver import synthetic_record
+from synthetic import synthetic_record
 
 
 def _cli(args):

@@ -131,24 +131,30 @@ def plinth_help_parts(assessment, stack) -> list:
         if not n:
             parts.append(f"{where}: not compared (undecided or not computed)")
             continue
-        counts = (f"{kp} of {n} records topple it on {on} against {ka} of {n} alone" if kp != ka else
-                  f"{kp} of {n} records topple it either way")
+        counts = _topple_counts(kp, ka, n, on)
         effect = cmp["effect"]
+        # a save by the luck of the timing is no margin (docs/assess.md, safe islands)
+        islands = [p.record for p in onp if p.record in cmp["saved"]
+                   and math.isfinite(getattr(p, "overturn_scale", math.nan)) and p.overturn_scale <= 1]
+        topple = f"topple{'s' if len(cmp['saved']) == 1 else ''}"
         if effect == "worse":
             text = (f"{on} makes it worse: {body} topples on it under {_names(cmp['harmed'])}, which it survives "
                     f"standing alone; {counts}")
+        elif effect == "better" and set(islands) == set(cmp["saved"]):  # every save a safe island: no real help
+            text = (f"{on} saves it only by the luck of the timing: {body} survives on it under "
+                    f"{_names(cmp['saved'])}, which {topple} it standing alone, but on a 'safe island' (a weaker "
+                    f"version of the record topples it on {on} too); {counts}")
+            islands = []
         elif effect == "better":
-            text = (f"{on} makes it better: {body} survives on it under {_names(cmp['saved'])}, which topple"
-                    f"{'s' if len(cmp['saved']) == 1 else ''} it standing alone; {counts}")
+            text = (f"{on} makes it better: {body} survives on it under {_names(cmp['saved'])}, which {topple} it "
+                    f"standing alone; {counts}")
         elif effect == "mixed":
             text = (f"{on} helps under some records and hurts under others: {body} survives on it under "
                     f"{_names(cmp['saved'])} (which topple it alone) but topples under {_names(cmp['harmed'])} (which "
                     f"it survives alone); {counts}")
         else:
             text = f"{on} changes no verdict ({counts})"
-        islands = [p.record for p in onp if p.record in cmp["saved"]
-                   and math.isfinite(getattr(p, "overturn_scale", math.nan)) and p.overturn_scale <= 1]
-        if islands:  # a save by the luck of the timing is no margin (docs/assess.md, safe islands)
+        if islands:
             text += (f" (but only by the luck of the timing: under {_names(islands)} it survives on {on} on a 'safe "
                      f"island', a weaker version of the record toppling it)")
         text += _margin_words(alone, onp, on, body)
@@ -156,6 +162,17 @@ def plinth_help_parts(assessment, stack) -> list:
             text += f" ({_names(cmp['open'])} not compared: undecided or not computed on one of the two)"
         parts.append(f"{where}, {text}")
     return [p[:1].upper() + p[1:] + "." for p in parts]
+
+
+def _topple_counts(kp: int, ka: int, n: int, on: str) -> str:
+    """How many of the ``n`` records compared topple the body on the plinth (``kp``) and alone (``ka``)."""
+    if n == 1:
+        if kp == ka:
+            return "the record topples it either way" if kp else "it survives the record either way"
+        return f"the record topples it on {on}, not alone" if kp else f"the record topples it alone, not on {on}"
+    if kp != ka:
+        return f"{kp} of {n} records topple it on {on} against {ka} of {n} alone"
+    return f"{kp} of {n} records topple it either way"
 
 
 def _margin_words(alone, onp, on: str, body: str = "the body") -> str:

@@ -436,6 +436,14 @@ def question(assessment) -> str:
     return f"{'Does' if one else 'Do'} {who} topple under {what}, {where}?"
 
 
+def _fill(text: str, width: int, **kw) -> str:
+    """``textwrap.fill`` that never breaks a number from its unit (``62 %``, ``0.34 m``, ``6.8 s``, ``0.28 g``)."""
+    import textwrap
+
+    glued = re.sub(r"(\d) (%|m|s|g)(?!\w)", "\\1\x1f\\2", text)
+    return textwrap.fill(glued, width, **kw).replace("\x1f", " ")
+
+
 def format_verdicts(assessment, width: int = 100) -> str:
     """The answer as ``rockcli assess column`` prints it: per body, one sentence per configuration.
 
@@ -446,7 +454,6 @@ def format_verdicts(assessment, width: int = 100) -> str:
         number >= 40.
     """
     import numbers
-    import textwrap
 
     from rockcli.assess.table import Assessment
     from rockcli.errors import RockcliInputError
@@ -464,15 +471,15 @@ def format_verdicts(assessment, width: int = 100) -> str:
     for b in assessment.columns:
         lines.append(f"{body_words(b)}, {under}:")
         for _, c, _, sentence in (a for a in answers if a[0] is b):
-            lines.append(textwrap.fill(f"{configuration_words(c)}: {sentence}.", width, initial_indent="  ",
+            lines.append(_fill(f"{configuration_words(c)}: {sentence}.", width, initial_indent="  ",
                                        subsequent_indent="      "))
         short = isolation_summary(assessment, b)
         if short:
-            lines.append(textwrap.fill(short, width, initial_indent="  ", subsequent_indent="      "))
+            lines.append(_fill(short, width, initial_indent="  ", subsequent_indent="      "))
         helps = plinth_help_parts(assessment, b) if getattr(b, "plinth", None) is not None else []
         if helps:
             lines.append("  Does the plinth help?")
-            lines += [textwrap.fill(h, width, initial_indent="  - ", subsequent_indent="    ") for h in helps]
+            lines += [_fill(h, width, initial_indent="  - ", subsequent_indent="    ") for h in helps]
     return "\n".join(lines)
 
 
