@@ -5,6 +5,7 @@ Files (data flows down this list):
 ========================  ======================================================================
 ``layout``                codes and array layouts shared with :mod:`rockcli.solve` (plain Python)
 ``cache``                 numba's disk cache keyed on the sources of this whole package
+``jit``                   ``@kernel``: the ``njit`` options every kernel function shares
 ``ground``                ground motion: pulses, segments, the rigid-foundation uplift scan, the
                           remaining ground impulse
 ``polynomials``           the dense-output quartics: evaluation, first crossings and excursions
@@ -43,18 +44,15 @@ Files (data flows down this list):
 Every physical constant reaches the kernels as an argument (the ``prm`` tuple); module-level
 names are codes, indices and the fixed coefficients of the integration method.
 
-Compile time (a cold cache compiles every kernel: about two minutes of CPU). Every function is
-``@njit(cache=True, no_cfunc_wrapper=True, ...)``: numba otherwise also builds, optimises and emits a
-C-ABI wrapper of each compiled function, for its use as a first-class function value, which the kernels
-never need (a function passed as an argument, such as a driver's right-hand side, is typed as its own
-dispatcher; calls from Python go through the CPython wrapper, which is kept). Integers passed to compiled
-functions are int64 values, never literals (:mod:`rockcli.kernels.layout`). ``benchmarks/bench_compile.py``
-measures the cold compile of each driver.
+Compile time (a cold cache compiles every kernel: about two minutes of CPU). Every function is decorated
+``@kernel`` (:mod:`rockcli.kernels.jit`: ``njit(cache=True, no_cfunc_wrapper=True)``, without the C-ABI
+wrapper the kernels never need). Integers passed to compiled functions are int64 values, never literals
+(:mod:`rockcli.kernels.layout`). ``benchmarks/bench_compile.py`` measures the cold compile of each driver.
 """
 
 from rockcli.kernels import cache as _cache
 
-_cache.install()  # before any @njit(cache=True) of this package is applied
+_cache.install()  # before any @kernel (njit(cache=True)) of this package is applied
 
 from rockcli.kernels.layout import *  # noqa: E402,F401,F403
 from rockcli.kernels.layout import N_PRM  # noqa: E402,F401

@@ -17,13 +17,13 @@ it compiles them side by side (one child process per kernel but one).
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 
 from rockcli.kernels.driver import simulate_core
+from rockcli.kernels.jit import kernel
 from rockcli.kernels.rigid import simulate_rigid, simulate_rigid_vertical
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _scene(i, prms, epars):
     """Scene ``i``'s parameter and excitation tuples."""
     q = prms[i]
@@ -34,7 +34,7 @@ def _scene(i, prms, epars):
     return prm, (e[0], e[1], e[2], e[3], e[4], e[5], e[6], e[7])
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _run_scenes(simulate, fkinds, prms, ekinds, epars, acc_all, jtab_all, acc_off, acc_len, dts, t_begins,
                 t_exc_ends, tails, horizon, max_steps, early, outs):
     """Scene ``i`` of the rows through the driver ``simulate``, verdict only, into ``outs[i]``."""
@@ -46,7 +46,7 @@ def _run_scenes(simulate, fkinds, prms, ekinds, epars, acc_all, jtab_all, acc_of
                  t_exc_ends[i], tails[i], horizon, max_steps, no_history, early, outs[i])
 
 
-@njit(cache=True, no_cfunc_wrapper=True, nogil=True)
+@kernel(nogil=True)
 def simulate_batch_rigid(fkinds, prms, ekinds, epars, acc_all, jtab_all, acc_off, acc_len, dts, t_begins,
                          t_exc_ends, tails, horizon, max_steps, early, outs):
     """Scenes on a rigid foundation (:func:`rockcli.kernels.rigid.simulate_rigid`)."""
@@ -54,7 +54,7 @@ def simulate_batch_rigid(fkinds, prms, ekinds, epars, acc_all, jtab_all, acc_off
                 t_exc_ends, tails, horizon, max_steps, early, outs)
 
 
-@njit(cache=True, no_cfunc_wrapper=True, nogil=True)
+@kernel(nogil=True)
 def simulate_batch(fkinds, prms, ekinds, epars, acc_all, jtab_all, acc_off, acc_len, dts, t_begins, t_exc_ends,
                    tails, horizon, max_steps, early, outs):
     """Scenes on isolated bases (:func:`rockcli.kernels.driver.simulate_core`)."""
@@ -62,7 +62,7 @@ def simulate_batch(fkinds, prms, ekinds, epars, acc_all, jtab_all, acc_off, acc_
                 t_exc_ends, tails, horizon, max_steps, early, outs)
 
 
-@njit(cache=True, no_cfunc_wrapper=True, nogil=True)
+@kernel(nogil=True)
 def simulate_batch_rigid_vertical(fkinds, prms, ekinds, epars, acc_all, jtab_all, acc_off, acc_len, dts, t_begins,
                                   t_exc_ends, tails, horizon, max_steps, early, vacc_all, vjtab_all, v_off, v_len, vdts,
                                   outs):

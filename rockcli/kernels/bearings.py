@@ -42,8 +42,7 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
-
+from rockcli.kernels.jit import kernel
 from rockcli.kernels.layout import (FOUNDATION_BILINEAR, FOUNDATION_DCSS, FOUNDATION_LINEAR, P_BWC, P_BWN, P_K1,
                                     P_K2, P_Q1, P_Q2, P_RTOL, P_SC0, P_UY1, P_UY2, P_W, P_XI)
 
@@ -53,7 +52,7 @@ _HALF_PI = 0.5 * math.pi
 # ---------------------------------------------------------------------------------------------
 # The Bouc-Wen branch in closed form
 # ---------------------------------------------------------------------------------------------
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def bw_slope(y, n, c):
     """``g(y) = dy/dx`` on the branch (``u_y dz/du`` in the direction of motion)."""
     if y >= 0.0:
@@ -62,7 +61,7 @@ def bw_slope(y, n, c):
     return 1.0 + c * (a * a if n == 2.0 else a)
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def bw_phi(y, n, c):
     """Branch coordinate ``Phi(y) = int_0^y dy'/g(y')`` (``y <= 1``; ``+inf`` at ``y = 1``)."""
     if y >= 0.0:
@@ -80,7 +79,7 @@ def bw_phi(y, n, c):
     return -math.log1p(c * a) / c
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def bw_phi_inv(xi, n, c):
     """``y = Phi^-1(xi)``: the branch variable at coordinate ``xi``."""
     if xi >= 0.0:
@@ -97,7 +96,7 @@ def bw_phi_inv(xi, n, c):
     return -math.expm1(-c * xi) / c
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def bw_z(xi_a, d, du, uy, n, c):
     """``(z, dz/du)`` of an element anchored at branch coordinate ``xi_a``, moving in direction ``d``,
     after a displacement ``du`` across it (exact along a path that moves one way)."""
@@ -108,7 +107,7 @@ def bw_z(xi_a, d, du, uy, n, c):
 # ---------------------------------------------------------------------------------------------
 # Double concave: the slider position by force balance
 # ---------------------------------------------------------------------------------------------
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def dcss_split(prm, hy, u):
     """Massless slider: ``(u1, z1, z2, dz1/du1, dz2/du2)`` at base displacement ``u``.
 
@@ -156,7 +155,7 @@ def dcss_split(prm, hy, u):
     return x, z1, z2, s1, s2
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def dcss_split_ratio(prm, z1, z2, d):
     """Share of a small increment of u taken by surface 1 moving in direction ``d``:
     ``K2/(K1 + K2)`` with the tangent stiffnesses ``K_i = k_i + q_i g(d z_i)/u_yi``."""
@@ -170,7 +169,7 @@ def dcss_split_ratio(prm, z1, z2, d):
 # ---------------------------------------------------------------------------------------------
 # Force of each family, its slope, the element states
 # ---------------------------------------------------------------------------------------------
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def base_force(fkind, prm, u, ud, hy):
     """Force of the bearings on the base per unit total mass, ``F`` [m/s^2] (see the module notes).
 
@@ -183,7 +182,7 @@ def base_force(fkind, prm, u, ud, hy):
     return hysteretic_force(fkind, prm, u, hy)
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def hysteretic_force(fkind, prm, u, hy):
     """``F`` of a single Bouc-Wen element (``-w^2 u - Q z``) or of two in series (``-(k1 u1 + q1 z1)``)."""
     if fkind == FOUNDATION_BILINEAR:
@@ -194,7 +193,7 @@ def hysteretic_force(fkind, prm, u, hy):
     return -(prm[P_K1] * u1 + prm[P_Q1] * z1)
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def force_slope(fkind, prm, hy, u):
     """``(F, dF/du)`` of a hysteretic bearing along the step's branch (velocity terms excluded)."""
     if fkind == FOUNDATION_BILINEAR:
@@ -207,7 +206,7 @@ def force_slope(fkind, prm, hy, u):
     return -(prm[P_K1] * u1 + prm[P_Q1] * z1), -K1 * K2 / (K1 + K2)
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def force_rate(fkind, prm, hy, u, ud, udd):
     """``(F, dF/dt)`` of the bearings at ``(u, u', u'')`` (on the step's branch for a hysteretic one)."""
     if fkind == FOUNDATION_LINEAR:
@@ -218,7 +217,7 @@ def force_rate(fkind, prm, hy, u, ud, udd):
     return F, dF * ud
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def element_states(fkind, prm, hy, u):
     """``(z1, z2, u1)`` at ``u`` on the step's branch (``z2 = u1 = 0`` for a single element)."""
     if fkind == FOUNDATION_BILINEAR:
@@ -228,7 +227,7 @@ def element_states(fkind, prm, hy, u):
     return z1, z2, u1
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def tangent_stiffness(fkind, prm, z1, z2, d):
     """Tangent stiffness per unit total mass, ``-dF/du`` [1/s^2], for motion in direction ``d``
     from a state with element variables ``z1`` (``z2``)."""
@@ -242,7 +241,7 @@ def tangent_stiffness(fkind, prm, z1, z2, d):
     return K1 * K2 / (K1 + K2)
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def z_sensitivity(fkind, prm, hy):
     """Largest ``|dz_i/du|`` along the step [1/m]: ``g/u_y`` at the anchor, which is the largest on
     the step because g never grows while u moves one way (``c >= 0``). Used by the error norm of u."""
@@ -260,7 +259,7 @@ KNEE_DX = 1.0
 KNEE_C = 0.1
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _knee_h(q, uy, y, share, ud, udd, tol_v):
     """Step bound of one element (:func:`knee_step`)."""
     A = q * (1.0 - y)  # the force the element can still add on this branch
@@ -276,7 +275,7 @@ def _knee_h(q, uy, y, share, ud, udd, tol_v):
     return max(h_tol, h_x)
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def knee_step(fkind, prm, hy, ud, udd):
     """Largest step [s] from the anchor ``hy`` (base velocity ``ud``, acceleration ``udd``) that
     resolves the knees of the hysteretic elements ahead.
@@ -303,7 +302,7 @@ def knee_step(fkind, prm, hy, ud, udd):
                _knee_h(prm[P_Q2], prm[P_UY2], y2, 1.0 - hy[5], ud, udd, tol_v))
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def knee_ratio(fkind, prm, hy, u, h, ud):
     """How far a step of size ``h`` from the anchor ``hy`` (base velocity ``ud``) to the
     displacement ``u`` moved the elements that are in a knee: the largest ``|dx_i|/KNEE_DX`` over
@@ -330,7 +329,7 @@ def knee_ratio(fkind, prm, hy, u, h, ud):
     return r
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def motion_direction(ud, d):
     """The direction of the base's motion for the next step: the sign of ``u'`` (``d``, the current one, if
     ``u'`` is 0), the ``d_new`` of :func:`reanchor`."""
@@ -341,7 +340,7 @@ def motion_direction(ud, d):
     return d
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def reanchor(fkind, prm, hy, u, d_new):
     """The anchor at displacement ``u`` reached on the branch of ``hy``, for motion in ``d_new``.
 
@@ -365,7 +364,7 @@ def reanchor(fkind, prm, hy, u, d_new):
     return (u, d_new, x1, u1, x2, dcss_split_ratio(prm, z1, z2, d_new))
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def initial_anchor(fkind, prm):
     """Bearings at rest and centred: u = 0, z = 0, moving in +x (the first step corrects it)."""
     if fkind == FOUNDATION_DCSS:
@@ -376,7 +375,7 @@ def initial_anchor(fkind, prm):
 # ---------------------------------------------------------------------------------------------
 # What the free base can still do (end of the run, rockcli.kernels.end_of_run)
 # ---------------------------------------------------------------------------------------------
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def free_force_bound(fkind, prm, hy, u, ud):
     """Upper bound of ``|F|`` over the whole future of a free hysteretic base (ground still, block
     stuck): ``sqrt(F^2 + K ud^2)``, ``K`` the tangent stiffness in the direction of motion (P3s in
@@ -389,7 +388,7 @@ def free_force_bound(fkind, prm, hy, u, ud):
     return math.sqrt(F * F + K * ud * ud)
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def free_disp_bound(fkind, prm, hy, u, ud):
     """Upper bound of ``|u|`` over the future of a free hysteretic base: ``sqrt(2 E)/w`` with the
     non-increasing energy ``E = ud^2/2 + sum_i (k_i u_i^2 + q_i u_yi z_i^2)/2`` (``k = w^2`` for a
@@ -405,7 +404,7 @@ def free_disp_bound(fkind, prm, hy, u, ud):
     return math.sqrt(E2) / w
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def u_at_force(fkind, prm, hy, level, a, b):
     """The displacement in [a, b] at which the (decreasing) branch force equals ``level``, given
     ``F(a) >= level >= F(b)`` (safeguarded Newton, to round-off)."""
@@ -432,7 +431,7 @@ def u_at_force(fkind, prm, hy, level, a, b):
 # ---------------------------------------------------------------------------------------------
 # Imposed displacement paths (hysteresis loops)
 # ---------------------------------------------------------------------------------------------
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def force_along_path(fkind, prm, u_path, out):
     """Bearing under an imposed displacement path: ``out[k] = (F, z1, z2)`` at ``u_path[k]``.
 
@@ -457,7 +456,7 @@ def force_along_path(fkind, prm, u_path, out):
         out[k, 2] = z2
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def bearing_energy(fkind, prm, hy, u):
     """Energy stored in the bearings per unit total mass [J/kg]: ``w^2 u^2/2`` (linear), plus
     ``Q u_y z^2/2`` for a Bouc-Wen element (its elastic part: the rest of its work is dissipated when

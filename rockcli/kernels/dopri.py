@@ -15,8 +15,7 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
-
+from rockcli.kernels.jit import kernel
 from rockcli.kernels.layout import FOUNDATION_BILINEAR, P_RTOL, P_SC0, W_EV, W_FEV, W_RE, W_TMP, W_Y, W_YNEW
 from rockcli.kernels.polynomials import _poly
 
@@ -46,7 +45,7 @@ _P = (
 )
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _dp5_step(rhs_into, fkind, phase, s, prm, seg, epar, hy, gz, t, h, W, i0, i1, r0):
     """One Dormand-Prince step of the active states ``i0:i1`` from ``(t, W[r0 + W_Y])``.
 
@@ -88,7 +87,7 @@ def _dp5_step(rhs_into, fkind, phase, s, prm, seg, epar, hy, gz, t, h, W, i0, i1
     return math.sqrt(tot / (i1 - i0))
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _dense(W, h, i, sign):
     """``sign *`` state ``i`` over the last step as a quartic in sigma = (t - t_step)/h: 5 coefficients."""
     c1 = 0.0
@@ -105,14 +104,14 @@ def _dense(W, h, i, sign):
 
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _state_at(W, h, sig, nst):
     """Dense-output state at fraction ``sig`` of the last step, written into ``W[W_TMP]``."""
     for i in range(nst):
         W[W_TMP, i] = _poly(_dense(W, h, i, 1.0), sig)
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _restep_rows(W):
     """Prepare a step retaken to an event inside the last one: its start state and derivative in
     rows ``W_RE + 0`` and ``W_RE + W_Y``; the driver then takes it with ``r0 = W_RE``
@@ -130,7 +129,7 @@ def _restep_rows(W):
         W[W_RE + W_Y, i] = W[W_Y, i]
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _shift_event(W, dt, i0, i1):
     """Move the event state ``W[W_EV]`` by the small time ``dt`` along ``W[W_FEV] = f`` there: one
     Taylor term, onto the event's root, whose location on the dense output is off by O(h^5) (the

@@ -22,7 +22,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
 from rockcli.kernels.bearings import (base_force, bearing_energy, free_disp_bound, free_force_bound,
                                       force_rate, initial_anchor, knee_ratio, knee_step, motion_direction, reanchor,
@@ -31,6 +30,7 @@ from rockcli.kernels.dopri import _dense, _dp5_step, _restep_rows, _shift_event,
 from rockcli.kernels.events import (REV_AT, REV_WRONG_START, _count_uplift, _hist_grid, _hist_grid_cut, _hist_peak,
                                     _hist_state, _u_extremum, hysteretic_uplift, impact_map, reversal_check)
 from rockcli.kernels.ground import _impulse_left, ground_at
+from rockcli.kernels.jit import kernel
 from rockcli.kernels.linear_base import (advance, base_acceleration, base_norm, base_norm_of, coefficients, first_exceed,
                                          free_part, linear_base_table, step_clear, velocity_zero)
 from rockcli.kernels.layout import (EXC_RECORD, FOUNDATION_BILINEAR, FOUNDATION_LINEAR, H_KIND, H_T, HK_GRID, HK_IMPACT,
@@ -52,13 +52,13 @@ from rockcli.kernels.steps import (EV_FAILED, EV_IMPACT, EV_OVERTURN, _advance_s
 # ---------------------------------------------------------------------------------------------
 # Small accessors of the run record
 # ---------------------------------------------------------------------------------------------
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _hy(rs):
     """The anchor of the hysteretic elements (``rockcli.kernels.bearings``)."""
     return (rs[RS_UA], rs[RS_DIR], rs[RS_XI1], rs[RS_U1A], rs[RS_XI2], rs[RS_SPLIT])
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _set_hy(rs, hy):
     rs[RS_UA] = hy[0]
     rs[RS_DIR] = hy[1]
@@ -68,34 +68,34 @@ def _set_hy(rs, hy):
     rs[RS_SPLIT] = hy[5]
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _reanchor(fkind, prm, rs, u, d_new):
     """Anchor the hysteretic elements at ``u`` (reached on the current branch) for motion in ``d_new``."""
     if fkind >= FOUNDATION_BILINEAR:
         _set_hy(rs, reanchor(fkind, prm, _hy(rs), u, d_new))
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _history_row(H, nh, fkind, prm, rs, epar, W, row, kind):
     """Append the state ``W[row]`` at ``rs[RS_T]`` to the history, with the bearing's z and force."""
     t = rs[RS_T]
     return _hist_state(H, nh, t, ground_at(t, _seg(rs), epar), fkind, prm, _hy(rs), W, row, kind)
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _mark_uplift(H, nh, t):
     """Mark the last history row as the uplift when it is a plain step row at ``t``."""
     if nh > 0 and H[nh - 1, H_KIND] == HK_STATE and H[nh - 1, H_T] == t:
         H[nh - 1, H_KIND] = HK_UPLIFT
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _dp5_iso(fkind, phase, s, prm, seg, epar, hy, gz, t, h, W, i0, i1, r0):
     """The Dormand-Prince step on an isolated base (compiled once for this driver)."""
     return _dp5_step(_rhs_into, fkind, phase, s, prm, seg, epar, hy, gz, t, h, W, i0, i1, r0)
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _restep_iso(fkind, phase, s, prm, seg, epar, hy, t, h, W, i0, i1):
     """The last step retaken to an event at ``t + h`` (:func:`rockcli.kernels.dopri._restep_rows`)."""
     _restep_rows(W)
@@ -105,7 +105,7 @@ def _restep_iso(fkind, phase, s, prm, seg, epar, hy, t, h, W, i0, i1):
 # ---------------------------------------------------------------------------------------------
 # Phases
 # ---------------------------------------------------------------------------------------------
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _end_of_run(fkind, prm, ekind, epar, jtab, dt, lin, t_exc_end, early, want_history, t_show_end, t_horizon,
                 max_steps, rs, W, out):
     """The end-of-run rule on an isolated base (P3, P3s, P5, P8, and with ``early`` P9, P9s, in
@@ -164,7 +164,7 @@ def _end_of_run(fkind, prm, ekind, epar, jtab, dt, lin, t_exc_end, early, want_h
 EARLY_MARGIN = 1e-6
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _early_stuck(fkind, prm, ekind, epar, jtab, dt, lin, rs, W):
     """P9, P9s (block stuck, ``early`` only): ``(proven, u_bound)``: True when no later base acceleration
     can reach ``g tan(alpha)`` (to within :data:`EARLY_MARGIN`), and a bound of every later ``|u|`` [m].
@@ -197,7 +197,7 @@ def _early_stuck(fkind, prm, ekind, epar, jtab, dt, lin, rs, W):
     return F < thr, root / w
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _free_energy(fkind, prm, rs, W):
     """Mechanical energy of block + base per unit total mass ``m + m_b`` [J/kg] at ``W[W_Y]`` (P5):
     kinetic ``u'^2/2 + gamma R cos(A) u' theta' + (2/3) gamma R^2 theta'^2`` (block centre of mass at
@@ -213,7 +213,7 @@ def _free_energy(fkind, prm, rs, W):
     return kin + pot + bearing_energy(fkind, prm, _hy(rs), W[W_Y, 2])
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _decoupled_energy_bound(prm, rs, W):
     """P8 (gamma = 0, linear bearings, ground still): a bound on the block's energy per unit block mass
     [J/kg] at every later time, ``(sqrt(E0) + sqrt(3/2)/2 J)^2`` with ``E0 = (2/3) R^2 theta'^2 + g R
@@ -243,14 +243,14 @@ def _decoupled_energy_bound(prm, rs, W):
     return root * root
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _barrier(prm, level, weight):
     """Energy the block needs to reach ``|theta| = level <= alpha`` from rest: per unit total mass with
     ``weight = gamma`` (P5), per unit block mass with ``weight = 1`` (P8) [J/kg]."""
     return weight * prm[P_R] * prm[P_G] * (math.cos(prm[P_ALPHA] - level) - prm[P_COSA])
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _take_step(fkind, prm, ekind, epar, max_steps, rs, W, t_stop, nst):
     """One accepted Dormand-Prince step from ``rs[RS_T]`` inside ``[t, t_stop]``.
 
@@ -334,7 +334,7 @@ def _take_step(fkind, prm, ekind, epar, max_steps, rs, W, t_stop, nst):
     return True, hs, last, sig_lim
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _after_stuck_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, epar):
     """Stuck on an isolated base, after a step of the base: uplift when |a| crosses g tan(alpha)."""
     thr = prm[P_THR]
@@ -387,7 +387,7 @@ def _after_stuck_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, epar):
     rs[RS_UMAX] = max(rs[RS_UMAX], abs(W[W_Y, 2]))
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _linear_stuck_step(prm, rs, W, out, t_stop, dt, lbc):
     """Stuck on linear bearings under a record: the base advanced exactly to ``t_stop`` (the end of the
     sample interval; after the record at most ``dt`` on), or to the lift-off inside the step.
@@ -441,7 +441,7 @@ def _linear_stuck_step(prm, rs, W, out, t_stop, dt, lbc):
         rs[RS_T] = t_end
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _hist_grid_linear(H, nh, kg, hdt, t0, u0, v0, seg, t_end, fkind, prm, hy, epar, W):
     """The grid rows (``HK_GRID``) at ``kg hdt, ... <= t_end`` of an exact stuck step from ``t0``
     (state ``u0, v0``; ground of the segment ``seg``): :func:`_hist_grid` for :func:`_linear_stuck_step`."""
@@ -461,7 +461,7 @@ def _hist_grid_linear(H, nh, kg, hdt, t0, u0, v0, seg, t_end, fkind, prm, hy, ep
     return H, nh, kg
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _after_rocking_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, nst, epar):
     """Rocking on an isolated base, after a step: the events in theta
     (:func:`rockcli.kernels.steps._rocking_events`) and the base's part of each. Returns the event
@@ -503,7 +503,7 @@ def _after_rocking_step(fkind, prm, rs, W, out, hs, t_new, sig_lim, nst, epar):
     return code
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _impact(fkind, prm, rs, W, out, t_exc_end):
     """The impact at theta = 0 (state in ``W[W_Y]`` with theta_dot before it): the momentum map,
     the pivot switch and the rest rule (the base acceleration that could lift the block again is
@@ -522,7 +522,7 @@ def _impact(fkind, prm, rs, W, out, t_exc_end):
 # ---------------------------------------------------------------------------------------------
 # The simulation kernel
 # ---------------------------------------------------------------------------------------------
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def simulate_core(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, tail, horizon, max_steps,
                   want_history, early, out):
     """Integrate one scene on an isolated base. Fills ``out`` (see the ``O_*`` layout) and returns the history.

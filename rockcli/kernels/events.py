@@ -9,11 +9,11 @@ the state the run goes on from at an impact, an uplift or a reversal is the step
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 
 from rockcli.kernels.bearings import base_force, element_states, u_at_force
 from rockcli.kernels.dopri import _dense
 from rockcli.kernels.ground import ground_at
+from rockcli.kernels.jit import kernel
 from rockcli.kernels.layout import (FOUNDATION_BILINEAR, FOUNDATION_RIGID, H_AG, H_FB, H_KIND, H_T, H_TH, H_THD, H_U,
                                     H_UD, H_Z, H_Z2, HK_GRID, HK_PEAK, N_HIST, O_N_UPLIFTS, O_T_UPLIFT, O_UPLIFTED,
                                     P_COSA, P_DU, P_ETA, P_G, P_P2, P_REST, W_TMP, W_Y)
@@ -23,7 +23,7 @@ from rockcli.kernels.polynomials import _first_down, _first_exceed, _poly
 # ---------------------------------------------------------------------------------------------
 # Impact and rest
 # ---------------------------------------------------------------------------------------------
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def impact_map(prm, thd1):
     """Velocities just after an impact at theta = 0: ``(theta_dot+, jump of u_dot)``.
 
@@ -41,7 +41,7 @@ def impact_map(prm, thd1):
     return prm[P_ETA] * thd1, prm[P_DU] * thd1
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def comes_to_rest(prm, a_rest, thd2, thr, alpha):
     """Rest rule after an impact: the block could not lift off under the current base acceleration
     ``a_rest``, and the rotation it could still reach against the restoring
@@ -60,7 +60,7 @@ REV_AT = 1  # u reverses inside the step: the step ends there
 REV_WRONG_START = 2  # u moved against the anchor's direction from the start: flip it, retake the step
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def reversal_check(W, hs, d, tol):
     """Did u keep moving in direction ``d`` through the step? ``(code, sigma)``.
 
@@ -85,7 +85,7 @@ def reversal_check(W, hs, d, tol):
     return REV_NONE, 1.0
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def hysteretic_uplift(fkind, prm, hy, cu, sig_lim, thr):
     """First sigma in [0, sig_lim] at which a block stuck on a hysteretic base lifts: ``(sigma, s)``,
     else ``(-1, 0)``; ``s`` is the corner it pivots on.
@@ -126,7 +126,7 @@ def hysteretic_uplift(fkind, prm, hy, cu, sig_lim, thr):
 # ---------------------------------------------------------------------------------------------
 # Peaks, uplift bookkeeping, history rows
 # ---------------------------------------------------------------------------------------------
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _u_extremum(W, hs, sig_end):
     """|u| at an extremum of u inside [0, sig_end] of the last step (u_dot changes sign), else -1."""
     c = _dense(W, hs, np.int64(3), 1.0 if W[W_Y, 3] > 0.0 else -1.0)
@@ -136,7 +136,7 @@ def _u_extremum(W, hs, sig_end):
     return abs(_poly(_dense(W, hs, np.int64(2), 1.0), sx))
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _count_uplift(out, t):
     out[O_N_UPLIFTS] += 1
     if out[O_UPLIFTED] == 0.0:
@@ -144,7 +144,7 @@ def _count_uplift(out, t):
         out[O_T_UPLIFT] = t
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _hist_push(H, n, t, ag, W, row, z1, z2, fb, kind):
     """Append the row ``t, ag, theta, theta_dot, u, u_dot, z1, z2, bearing force, kind`` (grows ``H``;
     ``kind`` is one of the ``HK_*`` row kinds)."""
@@ -167,7 +167,7 @@ def _hist_push(H, n, t, ag, W, row, z1, z2, fb, kind):
     return H, n + 1
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _hist_peak(H, n, t, ag, W, row):
     """Append a peak row (``HK_PEAK``): the state ``W[row]`` at the turning point ``t`` of theta, with
     theta_dot = 0 exactly and no bearing variables (NaN)."""
@@ -177,7 +177,7 @@ def _hist_peak(H, n, t, ag, W, row):
 
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _hist_state(H, n, t, ag, fkind, prm, hy, W, row, kind):
     """Append the state ``W[row]`` at ``t`` with the bearings' z's and force for the anchor ``hy``
     (zeros on a rigid foundation)."""
@@ -192,7 +192,7 @@ def _hist_state(H, n, t, ag, fkind, prm, hy, W, row, kind):
     return _hist_push(H, n, t, ag, W, row, z1, z2, fb, kind)
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _hist_grid(H, n, kg, hdt, t0, hs, t_end, fkind, prm, hy, seg, epar, W, i0, nst):
     """Append the grid rows (``HK_GRID``) at the times ``kg hdt, (kg + 1) hdt, ... <= t_end`` of the
     last step (from ``t0``, length ``hs``; ``hs = 0``: the state ``W[W_Y]`` held, a block stuck on a
@@ -216,7 +216,7 @@ def _hist_grid(H, n, kg, hdt, t0, hs, t_end, fkind, prm, hy, seg, epar, W, i0, n
     return H, n, kg
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _hist_grid_cut(H, n0, n, kg, t_cut):
     """Drop the grid rows appended from row ``n0`` on that lie after ``t_cut`` (the event that
     ended the step early), keeping the other rows in order: ``(n, kg)``."""

@@ -12,13 +12,13 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
+from rockcli.kernels.jit import kernel
 from rockcli.kernels.layout import (E_AP, E_BETA, E_T0, E_TE, E_TP, E_TS, EXC_COSINE, EXC_RECORD, EXC_RICKER_ANTI,
                                     EXC_RICKER_SYM, EXC_SINE, SEG_LINEAR)
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def pulse_acc(mode, epar, t):
     """Acceleration of an analytic pulse at time ``t`` [m/s^2] (zero outside its support)."""
     if t < epar[E_TS] or t > epar[E_TE]:
@@ -39,7 +39,7 @@ def pulse_acc(mode, epar, t):
     return 0.0
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _ground(t, seg, epar):
     """Ground acceleration inside the current segment, ``seg = (mode, a0, slope, ts)``."""
     mode = int(seg[0])
@@ -48,7 +48,7 @@ def _ground(t, seg, epar):
     return pulse_acc(mode, epar, t)
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _vertical(t, seg):
     """Vertical ground acceleration [m/s^2] (upward positive) inside the current segment: linear on
     the piece ``seg[4:7] = (v0, slope, tv)`` of the vertical series (all zero without one, so that
@@ -56,7 +56,7 @@ def _vertical(t, seg):
     return seg[4] + seg[5] * (t - seg[6])
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def ground_at(t, seg, epar):
     """:func:`_ground` as a called function: for the places off the integrator's hot path (uplift
     scans, rest checks, history rows), where one compiled copy serves every call site."""
@@ -65,7 +65,7 @@ def ground_at(t, seg, epar):
 
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _pulse_segment(j, ekind, epar, t_begin):
     """Segment ``j`` of a pulse: 0 = [t_begin, ts] zero, 1 = the support [ts, te], 2 = zero tail."""
     if j == 0:
@@ -75,7 +75,7 @@ def _pulse_segment(j, ekind, epar, t_begin):
     return (float(SEG_LINEAR), 0.0, 0.0, epar[E_TE]), np.inf
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _pulse_turns(mode):
     """The times ``tau / T_p`` (from ``t0``) where a pulse's acceleration turns (``ag' = 0``) inside
     its support, ascending, padded with +inf: between two of them (or a turn and an end of the
@@ -102,7 +102,7 @@ def _pulse_turns(mode):
     return (inf, inf, inf, inf)
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _piece_end(turns, k, epar, lo, t_end):
     """End of the monotone piece of a pulse that starts at ``lo`` and ends at its turn ``k`` (0-3; 4: none
     left) or at ``t_end``, whichever comes first; ``-inf`` when the turn ``k`` lies at or before ``lo``."""
@@ -115,7 +115,7 @@ def _piece_end(turns, k, epar, lo, t_end):
     return t_end
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _rigid_uplift(seg, epar, thr, t, t_end):
     """First time in [t, t_end] at which |ag| exceeds ``thr`` (rigid foundation, stuck phase).
 
@@ -166,7 +166,7 @@ def _rigid_uplift(seg, epar, thr, t, t_end):
 N_UPLIFT_SCAN = 64
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _uplift_excess(t, seg, epar, thr, g):
     """``(ag - thr_v, -ag - thr_v)`` at ``t``, ``thr_v = thr (1 + a_v/g) = (g + a_v) tan(alpha)``: the
     block lifts about the left corner when the first is positive, about the right one when the second is."""
@@ -175,7 +175,7 @@ def _uplift_excess(t, seg, epar, thr, g):
     return ag - thr_v, -ag - thr_v
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _rigid_uplift_vertical(seg, epar, thr, g, t, t_end):
     """:func:`_rigid_uplift` under a vertical motion: the first time in [t, t_end] at which
     ``|ag| > (g + a_v) tan(alpha)`` (``thr = g tan(alpha)``); ``[t, t_end]`` lies inside one piece of
@@ -238,7 +238,7 @@ def _rigid_uplift_vertical(seg, epar, thr, g, t, t_end):
 # ---------------------------------------------------------------------------------------------
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _record_left(jtab, dt, t):
     """The suffix integral of a record's table at the sample at or before ``t`` (0 past its end)."""
     n = jtab.shape[0]
@@ -249,7 +249,7 @@ def _record_left(jtab, dt, t):
     return jtab[j]
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _impulse_left(ekind, jtab, epar, dt, t):
     """An upper bound of ``int_t^{t_exc_end} |ag| dtau`` [m/s], the ground's remaining "impulse".
 
@@ -272,7 +272,7 @@ def _impulse_left(ekind, jtab, epar, dt, t):
     return abs(epar[E_AP]) * epar[E_TP] * jtab[k]
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _vertical_left(vjtab, vdt, t):
     """An upper bound of ``int_t^{t_v_end} |a_v| dtau`` [m/s] of the vertical series (its table is
     :func:`rockcli.solve.record_impulse_table` of the scaled samples); 0 without one."""

@@ -44,7 +44,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+
+from rockcli.kernels.jit import kernel
 
 #: Below this ``|z| = |mu^2 tau^2|`` the functions C and S are summed as series (error < 1e-20).
 Z_SERIES = 0.01
@@ -54,7 +55,7 @@ Q_SERIES = 1.5
 FIRST_EXCEED_LEVELS = 44
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def transition(w, xi, tau):
     """``P = exp(A tau)`` of the free base: ``(P11, P12, P21, P22)``."""
     sig = xi * w
@@ -82,7 +83,7 @@ def transition(w, xi, tau):
     return c + sig * s, s, -w * w * s, c - sig * s
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def coefficients(w, xi, tau):
     """The exact step of length ``tau`` under ``ag = a0 + b t``: ``(P11, P12, P21, P22, q1u, q1v, q2u, q2v)``
     (:func:`advance`)."""
@@ -113,20 +114,20 @@ def coefficients(w, xi, tau):
     return p11, p12, p21, p22, q1u, q1v, q2u, q1u
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def advance(c, u, v, a0, b):
     """The state ``(u, u')`` after the step ``c`` (:func:`coefficients`) from ``(u, v)`` under ``ag = a0 + b t``."""
     return (c[0] * u + c[1] * v - a0 * c[4] - b * c[6],
             c[2] * u + c[3] * v - a0 * c[5] - b * c[7])
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def base_acceleration(w, xi, u, v):
     """The absolute base acceleration ``a = -w^2 u - 2 xi w u'`` (the bearings' force per unit total mass)."""
     return -w * w * u - 2.0 * xi * w * v
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def free_part(w, xi, u, v, a0, b):
     """``(a(0), a_h(0), a_h'(0), K)`` at the start of a step from ``(u, v)`` under ``ag = a0 + b t``:
     the acceleration, its free part and the bound ``K`` of ``|a''|`` over the step (module notes)."""
@@ -137,20 +138,20 @@ def free_part(w, xi, u, v, a0, b):
     return a, ah, ahd, k
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def acceleration_at(w, xi, ah, ahd, a0, b, tau):
     """``a(tau) = a0 + b tau + P11(tau) a_h(0) + P12(tau) a_h'(0)`` inside a step."""
     p11, p12, _, _ = transition(w, xi, tau)
     return a0 + b * tau + p11 * ah + p12 * ahd
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def step_clear(a_start, a_end, k, h, thr):
     """True when no ``|a| > thr`` can occur inside a step of length ``h`` with these end values (module notes)."""
     return max(abs(a_start), abs(a_end)) + 0.125 * k * h * h <= thr
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def first_exceed(w, xi, a_start, ah, ahd, k, a0, b, h, thr):
     """The first ``tau`` in ``(0, h]`` with ``|a(tau)| > thr`` and the sign of ``a`` there, or ``(-1, 0)``
     (``|a(0)| <= thr``; module notes: bisection with the bound ``K l^2/8`` on every piece)."""
@@ -184,7 +185,7 @@ def first_exceed(w, xi, a_start, ah, ahd, k, a0, b, h, thr):
     return -1.0, 0.0
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def velocity_zero(w, xi, u, v, a0, b, h):
     """The displacement at the reversal of the base inside a step over which ``u'`` changes sign:
     ``u(tau)`` where ``u'(tau) = 0``, by bisection (``u`` is flat there: 30 halvings leave an error of
@@ -206,13 +207,13 @@ def velocity_zero(w, xi, u, v, a0, b, h):
     return um
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def p3_bound(w, xi, u, v):
     """P3's bound on every later ``|a|`` of the free base: ``w sqrt(1 + 4 xi^2) sqrt(u'^2 + w^2 u^2)``."""
     return w * math.sqrt(1.0 + 4.0 * xi * xi) * math.sqrt(v * v + w * w * u * u)
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def step_peak(w, xi, a_s, a_e, ah, ahd, k, a0, b, h, target):
     """``(U, L)``: an upper bound ``U`` of ``|a|`` over a step of length ``h`` and the largest ``|a|``
     evaluated, ``L``. Pieces whose bound ``max |a(ends)| + K l^2/8`` exceeds ``max(target, L)`` are
@@ -254,7 +255,7 @@ def step_peak(w, xi, a_s, a_e, ah, ahd, k, a0, b, h, target):
     return u, best
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _sweep(w, xi, acc, dt, scale, t_limit, slack, target):
     """One pass of :func:`stuck_peak`: ``(M, t_proof, L)`` with every step's bound refined down to
     ``target`` (:func:`step_peak`; ``target = inf``: the cheap bound, no refinement), ``L`` the largest
@@ -292,7 +293,7 @@ def _sweep(w, xi, acc, dt, scale, t_limit, slack, target):
         j += 1
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def stuck_peak(w, xi, acc, dt, scale, t_limit, slack, tol):
     """``(M, t_proof)``: a bound of ``|a|`` of the base carrying the standing block, from rest at t = 0,
     under ``scale * acc`` (piecewise linear, zero after the last sample), at all times.
@@ -319,7 +320,7 @@ def stuck_peak(w, xi, acc, dt, scale, t_limit, slack, tol):
 # A norm that the free base never increases, and the base's response to a whole record (the early stop P9
 # of rockcli.kernels.driver.simulate_core)
 # ---------------------------------------------------------------------------------------------
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def base_norm(xi):
     """``(c, k_a, k_u)`` of the norm ``S = sqrt(v^2 + 2 c v y + y^2)`` (``v = u'``, ``y = w u``) of a
     linear base ``u'' + 2 xi w u' + w^2 u = -ag`` (P9 in :func:`rockcli.kernels.driver.simulate_core`).
@@ -335,14 +336,14 @@ def base_norm(xi):
     return c, k_a, 1.0 / math.sqrt(1.0 - c * c)
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def base_norm_of(c, w, u, v):
     """The norm ``S`` of :func:`base_norm` of the base state ``(u, v)`` [m/s]."""
     y = w * u
     return math.sqrt(max(v * v + 2.0 * c * v * y + y * y, 0.0))
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def linear_base_table(acc, dt, w, xi):
     """The linear base's response to a record of unit scale, from rest at t = 0 (the block riding on it
     throughout), one row per sample: ``u``, ``u'`` and the largest later value of its norm.

@@ -7,15 +7,15 @@ base) is located on the quartic dense output of the step, ``poly(c, sigma)`` wit
 
 from __future__ import annotations
 
-from numba import njit
+from rockcli.kernels.jit import kernel
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _poly(c, x):
     return c[0] + x * (c[1] + x * (c[2] + x * (c[3] + x * c[4])))
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _refine_root(c, level, lo, hi, flo):
     """Root of ``poly(c) - level`` in [lo, hi] given a sign change (Illinois regula falsi)."""
     fhi = _poly(c, hi) - level
@@ -46,7 +46,7 @@ def _refine_root(c, level, lo, hi, flo):
     return hi
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _first_down(c, level, lo, hi):
     """First sigma in (lo, hi] where ``poly(c) - level`` falls from > 0 to <= 0, else -1.
 
@@ -70,7 +70,7 @@ def _first_down(c, level, lo, hi):
     return -1.0
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _golden_max(c, sgn, lo, hi):
     """Location of the largest ``sgn * poly(c)`` on [lo, hi] (golden section; unimodal there)."""
     for _ in range(60):
@@ -83,7 +83,7 @@ def _golden_max(c, sgn, lo, hi):
     return 0.5 * (lo + hi)
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _first_exceed(c, thr):
     """First sigma in [0, 1] where ``|poly(c)|`` exceeds ``thr``: ``(sigma, sign of poly)``, else ``(-1, 0)``.
 

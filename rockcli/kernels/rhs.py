@@ -19,14 +19,13 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
-
 from rockcli.kernels.bearings import base_force
 from rockcli.kernels.ground import _ground, _vertical
+from rockcli.kernels.jit import kernel
 from rockcli.kernels.layout import P_ALPHA, P_G, P_GAMMA, P_P2, P_R, PHASE_STUCK
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _rhs_rigid(s, prm, seg, epar, t, th, thd):
     """Rigid foundation: ``(theta_dot, theta_ddot)`` at ``t`` (Eq 3)."""
     ag = _ground(t, seg, epar)
@@ -35,7 +34,7 @@ def _rhs_rigid(s, prm, seg, epar, t, th, thd):
     return thd, -prm[P_P2] * (math.sin(A) * gv + ag / prm[P_G] * math.cos(A))
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _rhs_rigid_into(fkind, phase, s, prm, seg, epar, hy, t, W, src, dst):
     """:func:`_rhs_rigid` from row ``src`` into row ``dst`` of ``W`` (the signature of :func:`_rhs_into`)."""
     d0, d1 = _rhs_rigid(s, prm, seg, epar, t, W[src, 0], W[src, 1])
@@ -43,7 +42,7 @@ def _rhs_rigid_into(fkind, phase, s, prm, seg, epar, hy, t, W, src, dst):
     W[dst, 1] = d1
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _rhs(fkind, phase, s, prm, seg, epar, hy, t, th, thd, u, ud):
     """Isolated base: derivatives ``(theta_dot, theta_ddot, u_dot, u_ddot)`` of the scene's states at ``t``."""
     ag = _ground(t, seg, epar)
@@ -58,7 +57,7 @@ def _rhs(fkind, phase, s, prm, seg, epar, hy, t, th, thd, u, ud):
     return thd, -prm[P_P2] * (sA + a / prm[P_G] * cA), ud, a - ag
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _rhs_into(fkind, phase, s, prm, seg, epar, hy, t, W, src, dst):
     d0, d1, d2, d3 = _rhs(fkind, phase, s, prm, seg, epar, hy, t, W[src, 0], W[src, 1], W[src, 2], W[src, 3])
     W[dst, 0] = d0

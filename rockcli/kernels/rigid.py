@@ -88,12 +88,12 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
 from rockcli.kernels.dopri import _dp5_step, _restep_rows, _state_at
 from rockcli.kernels.events import _count_uplift, _hist_grid, _hist_grid_cut, _hist_peak, _hist_push, impact_map
 from rockcli.kernels.ground import (_impulse_left, _rigid_uplift, _rigid_uplift_vertical, _vertical, _vertical_left,
                                    ground_at)
+from rockcli.kernels.jit import kernel
 from rockcli.kernels.layout import (EXC_RECORD, FK_RIGID, HK_IMPACT, HK_STATE, HK_UPLIFT, O_T_SETTLED, O_T_THETA_MAX,
                                     O_UPLIFTED, P_ALPHA, P_COSA, P_ETA, P_G, P_HDT, P_P2, P_SINA, P_TH0, P_THD0, P_THR,
                                     PHASE_ROCKING, PHASE_STUCK,
@@ -109,7 +109,7 @@ from rockcli.kernels.steps import (EV_FAILED, EV_IMPACT, EV_OVERTURN, _accept_st
 _NO_HY = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)  # no hysteretic elements
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _end_of_run_rigid(prm, ekind, epar, jtab, dt, t_exc_end, early, want_history, t_show_end, t_horizon,
                       max_steps, rs, W, out, vjtab, vdt):
     """The end-of-run rule on the ground (P1, P2, P4, P6, P7 in the module notes): True when the run ends now."""
@@ -170,7 +170,7 @@ def _end_of_run_rigid(prm, ekind, epar, jtab, dt, t_exc_end, early, want_history
     return _out_of_time(rs, t_horizon, max_steps)
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _stuck_rigid(prm, rs, epar, t_stop, out, vertical):
     """Stuck on a rigid foundation: scan the ground motion up to ``t_stop``, integrate nothing."""
     if vertical:
@@ -187,7 +187,7 @@ def _stuck_rigid(prm, rs, epar, t_stop, out, vertical):
         rs[RS_FRESH] = 1.0
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _take_step_rigid(prm, ekind, epar, max_steps, rs, W, t_stop):
     """One accepted Dormand-Prince step of theta, theta_dot inside ``[t, t_stop]``:
     ``(ok, hs, last)`` (``ok`` False when the step cap is reached first)."""
@@ -195,33 +195,33 @@ def _take_step_rigid(prm, ekind, epar, max_steps, rs, W, t_stop):
     return _accept_step(_dp5_rigid, rs[RS_S], prm, _seg(rs), epar, rs[RS_T], h, W, rs, max_steps, t_stop)
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _rhs_rigid_once(fkind, phase, s, prm, seg, epar, hy, t, W, src, dst):
     """:func:`rockcli.kernels.rhs._rhs_rigid_into` as a call: for the derivative at a step's start
     after an event (rare), so that the step's own copy is the only inlined one."""
     _rhs_rigid_into(fkind, phase, s, prm, seg, epar, hy, t, W, src, dst)
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _dp5_rigid(s, prm, seg, epar, t, h, W, r0):
     """The Dormand-Prince step of theta, theta_dot (compiled once for this driver)."""
     return _dp5_step(_rhs_rigid_into, FK_RIGID, PHASE_ROCKING, s, prm, seg, epar, _NO_HY, 0.0, t, h, W, 0, 2, r0)
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _restep_rigid(fkind, phase, s, prm, seg, epar, hy, t, h, W, i0, i1):
     """The last step retaken to an event at ``t + h`` (:func:`rockcli.kernels.dopri._restep_rows`)."""
     _restep_rows(W)
     _dp5_rigid(s, prm, seg, epar, t, h, W, np.int64(W_RE))
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _history_rigid(H, nh, rs, epar, W, kind):
     t = rs[RS_T]
     return _hist_push(H, nh, t, ground_at(t, _seg(rs), epar), W, W_Y, 0.0, 0.0, 0.0, kind)
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _substep_stop(t, seg_end, dt, t_stop):
     """``t_stop``, or the next of the ``RIGID_RECORD_SUBSTEPS - 1`` points that divide the sample
     interval ending at ``seg_end`` evenly, if one lies ahead of ``t`` and before it."""
@@ -234,7 +234,7 @@ def _substep_stop(t, seg_end, dt, t_stop):
     return t_stop
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def simulate_rigid(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, tail, horizon, max_steps,
                    want_history, early, out):
     """Integrate one scene on a rigid foundation; the arguments, outputs and the general end-of-run
@@ -244,7 +244,7 @@ def simulate_rigid(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, t
                                    max_steps, want_history, early, none, none, 1.0, out)
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def simulate_rigid_vertical(fkind, prm, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, tail, horizon, max_steps,
                             want_history, early, vacc, vjtab, vdt, out):
     """:func:`simulate_rigid` under a vertical ground acceleration as well: ``vacc`` [m/s^2, upward

@@ -34,11 +34,11 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
 from rockcli.kernels.dopri import _dense, _dp5_step, _restep_rows, _shift_event, _state_at
 from rockcli.kernels.events import _count_uplift, _hist_push, comes_to_rest, impact_map
 from rockcli.kernels.ground import _pulse_turns, _rigid_uplift, ground_at
+from rockcli.kernels.jit import kernel
 from rockcli.kernels.layout import (E_T0, E_TP, EXC_RECORD, FK_RIGID, HK_IMPACT, HK_IMPACT_AFTER, HK_OVERTURN, HK_REST,
                                     HK_STATE, HK_UPLIFT, J_BASE, J_JOINT,
                                     O_N_IMPACTS, O_N_IMPACTS_ALL, O_N_RESTS, O_T_EXCEED, O_T_OVERTURN, O_UPLIFTED,
@@ -78,7 +78,7 @@ N_DEMAND = 16  # sub-intervals of a BP step at which the friction demand is read
 # ---------------------------------------------------------------------------------------------
 # Friction demand and contact checks along a step
 # ---------------------------------------------------------------------------------------------
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _max_abs_ag(seg, epar, t0, t1):
     """The largest ``|ag|`` on ``[t0, t1]`` inside one segment (linear: its ends; a pulse: its ends and turns)."""
     a = max(abs(ground_at(t0, seg, epar)), abs(ground_at(t1, seg, epar)))
@@ -91,7 +91,7 @@ def _max_abs_ag(seg, epar, t0, t1):
     return a
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _demand(xo, NB, TB, NJ, TJ):
     if NB > 0.0:
         xo[X_FR_B] = max(xo[X_FR_B], abs(TB) / NB)
@@ -99,7 +99,7 @@ def _demand(xo, NB, TB, NJ, TJ):
         xo[X_FR_J] = max(xo[X_FR_J], abs(TJ) / NJ)
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _bp_forces(s, k, sp, q0, q1, q2, q3, sig, tt, seg, epar):
     """Normal and tangential forces ``(NB, TB, NJ, TJ)`` of pattern BP at the base and at the joint at fraction
     ``sig`` of the last step (``q0..q3`` its quartics of ``psi, psi', theta2, theta2'``, ``tt`` the time there)."""
@@ -113,13 +113,13 @@ def _bp_forces(s, k, sp, q0, q1, q2, q3, sig, tt, seg, epar):
     return NB, TB, NJ, TJ
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _ratio(T, N):
     """The friction demand ``|T|/N``, or -1 where the normal force ``N`` is not positive."""
     return abs(T) / N if N > 0.0 else -1.0
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _vertex(left, best, right, i):
     """Where the parabola through ``(i - 1, left), (i, best), (i + 1, right)`` peaks (in sample units), or -1 when
     the largest sample ``best`` is not interior or a neighbour has no demand (a normal force not positive)."""
@@ -129,7 +129,7 @@ def _vertex(left, best, right, i):
     return i + 0.5 * (left - right) / curv
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _bp_demand(s, k, sp, W, hs, sig_end, t, seg, epar, xo):
     """The peak friction demand of the last BP step over ``[0, sig_end]`` (its dense output), at both interfaces:
     read at ``N_DEMAND + 1`` equally spaced fractions (both ends included), then at the vertex of the parabola
@@ -174,7 +174,7 @@ def _bp_demand(s, k, sp, W, hs, sig_end, t, seg, epar, xo):
     return pull
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _one_forces(pat, s, k, sp, prm, c0, c1, sig, tt, seg, epar, xo):
     """B or P at fraction ``sig`` of the step (``c0``, ``c1`` its quartics of the angle and rate): the smaller corner
     force of the watched face (the base in B, the joint in P), the corner that keeps pressing, whether the pivot
@@ -196,7 +196,7 @@ def _one_forces(pat, s, k, sp, prm, c0, c1, sig, tt, seg, epar, xo):
     return f, (1.0 if PR > PL else -1.0), pull
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _face_opens(pat, s, k, sp, prm, W, hs, t, seg, epar, xo, sig_lim):
     """First fraction in ``(0, sig_lim]`` of the last step of B or P at which the watched face's smaller corner
     force reaches 0 (16 samples, then bisection): ``(sigma, corner that keeps pressing)``, else ``(-1, 0)``. The
@@ -229,7 +229,7 @@ def _face_opens(pat, s, k, sp, prm, W, hs, t, seg, epar, xo, sig_lim):
     return -1.0, 0.0
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _impact_ahead(W, hs, col, c):
     """Fraction of the last step at which the angle in column ``col`` (corner ``c``) comes back to 0, else 1."""
     e1 = c * W[W_YNEW, col]
@@ -245,12 +245,12 @@ def _impact_ahead(W, hs, col, c):
 # ---------------------------------------------------------------------------------------------
 # Pattern BP: the step, its events
 # ---------------------------------------------------------------------------------------------
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _dp5_bp(code, sp, seg, epar, t, h, W, r0):
     return _dp5_step(_rhs_bp_into, FK_RIGID, PHASE_ROCKING, code, sp, seg, epar, _NO_HY, 0.0, t, h, W, 0, 4, r0)
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _take_step_bp(sp, ekind, epar, max_steps, rs, W, t_stop):
     """One accepted step of pattern BP (4 states) inside ``[t, t_stop]``: ``(ok, hs, last)``."""
     code = rs[RS_S]
@@ -277,13 +277,13 @@ def _take_step_bp(sp, ekind, epar, max_steps, rs, W, t_stop):
     return _accept_step(_dp5_bp, code, sp, seg, epar, t, h, W, rs, max_steps, t_stop)
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _restep_bp(code, sp, seg, epar, t, h, W):
     _restep_rows(W)
     _dp5_bp(code, sp, seg, epar, t, h, W, np.int64(W_RE))
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _abs_max(c, sig_end):
     """The largest ``|poly(c)|`` on ``[0, sig_end]`` (17 samples, golden section about the largest)."""
     m = 0.0
@@ -298,7 +298,7 @@ def _abs_max(c, sig_end):
     return max(m, abs(_poly(c, _golden_max(c, sg, lo, hi))))
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _bp_peaks(rs, out, xo, sp, W, hs, sig_end):
     """Peaks of ``|psi|``, ``|theta2|`` and ``|theta1|`` over ``[0, sig_end]`` of the last BP step, and the first
     time ``|psi|`` reaches alpha1 and ``|theta2|`` alpha_asm."""
@@ -334,7 +334,7 @@ def _bp_peaks(rs, out, xo, sp, W, hs, sig_end):
 # ---------------------------------------------------------------------------------------------
 # Changes of pattern
 # ---------------------------------------------------------------------------------------------
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _set_pattern(rs, W, xo, s, k, psi, psid, th2, thd2):
     """Enter the pattern of corners ``(s, k)`` (0: a face) with these states."""
     for i in range(4):
@@ -371,13 +371,13 @@ def _set_pattern(rs, W, xo, s, k, psi, psid, th2, thd2):
     rs[RS_FRESH] = 1.0
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _plinth_lifts(xo, t):
     if math.isnan(xo[X_PL_T_UPLIFT]):
         xo[X_PL_T_UPLIFT] = t
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _rest_check(j, s, k, sp, th2, psi, V, ag):
     """The rest rule after an impact that leaves pivot ``j`` (0 base, 1 joint) of ``(s, k)`` turning: True (stick it,
     momentum kept along the rest) when the relative accelerations that pull it back on both corners are positive and
@@ -400,7 +400,7 @@ def _rest_check(j, s, k, sp, th2, psi, V, ag):
     return stick, q2, q1
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _stack_rests(sp, V, ag):
     """The rest rule of the whole stack, both angles at 0 after an impact: nothing could lift it from rest under
     ``ag`` (each interface's restoring moment ``M_j`` at rest positive: ``g b1 - |ag| h1`` for the body,
@@ -419,7 +419,7 @@ def _stack_rests(sp, V, ag):
     return 0.5 * _dot(sp, V, V) < sp[S_REST] * min(sp[S_A1REST] * M1, sp[S_AAREST] * M0)
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _after_impact(j, s, k, sp, prm, prm_asm, th2, psi, V, rs, W, out, xo, t, ag):
     """The pattern after an impact at ``j`` from ``(s, k)`` (generic: any pattern may follow), and the rest rule
     (the single block's, with the body's or the assembly's parameters, when one body rocks after the impact)."""
@@ -469,7 +469,7 @@ def _after_impact(j, s, k, sp, prm, prm_asm, th2, psi, V, rs, W, out, xo, t, ag)
 # ---------------------------------------------------------------------------------------------
 # The run
 # ---------------------------------------------------------------------------------------------
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _hist(H, nh, rs, epar, W, xo, kind):
     """A history row: ``t, ag, psi, psi', theta2, theta2'`` (the rigid layout's ``theta, theta_dot, u, u_dot``), the
     pattern code in the ``z`` column, ``kind``."""
@@ -486,7 +486,7 @@ def _hist(H, nh, rs, epar, W, xo, kind):
     return _hist_push(H, nh, t, ground_at(t, _seg(rs), epar), W, W_TMP, pat, 0.0, 0.0, kind)
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _p2s(prm, sp, rs, W, out, xo):
     """P2S (module notes): True when the body rocking on the still plinth after the excitation is settled."""
     alpha = prm[P_ALPHA]
@@ -519,7 +519,7 @@ def _p2s(prm, sp, rs, W, out, xo):
     return True
 
 
-@njit(cache=True, no_cfunc_wrapper=True, nogil=True)
+@kernel(nogil=True)
 def simulate_stack(prm, prm_asm, sp, ekind, epar, acc, jtab, dt, t_begin, t_exc_end, tail, horizon, max_steps,
                    want_history, out, xo):
     """Integrate a body on its plinth under one excitation (arguments as :func:`rockcli.kernels.simulate_rigid`;

@@ -36,11 +36,11 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
 from rockcli.kernels.bearings import (free_disp_bound, free_force_bound, initial_anchor, knee_ratio, knee_step,
                                       motion_direction, reanchor, z_sensitivity)
 from rockcli.kernels.ground import ground_at
+from rockcli.kernels.jit import kernel
 from rockcli.kernels.layout import FOUNDATION_LINEAR, J_BASE, J_JOINT, N_OUT
 from rockcli.kernels.polynomials import _first_down, _poly
 from rockcli.kernels.stack_linear_physics import (L_AASM, L_PMAX, L_RTOL, L_SC, L_THR1, L_THRA, L_WB, L_XI, accel,
@@ -85,7 +85,7 @@ _P = ((1.0, -8048581381.0 / 2820520608.0, 8663915743.0 / 2820520608.0, -12715105
       (0.0, 40617522.0 / 29380423.0, -110615467.0 / 29380423.0, 69997945.0 / 29380423.0))
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _dp5(s, k, sp, lp, bb, seg, epar, t, h, y, K, ynew):
     """One Dormand-Prince step from ``y`` (``K[0] = f(t, y)`` given) into ``ynew``, ``K[6] = f(t + h, ynew)``:
     the error norm (<= 1: accepted)."""
@@ -120,7 +120,7 @@ def _dp5(s, k, sp, lp, bb, seg, epar, t, h, y, K, ynew):
     return err
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _dense(y, K, h, sig, out):
     s2 = sig * sig
     w = np.empty(7)
@@ -133,7 +133,7 @@ def _dense(y, K, h, sig, out):
         out[i] = y[i] + h * acc
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _value(kind, c, sgn, s, k, sp, lp, bb, seg, epar, t, h, y, K, sg, yy):
     """The value whose first fall to 0 is the event, at fraction ``sg`` of the step: ``kind`` 0 an impact of the
     pivot in column ``c`` on corner ``sgn``, 1 its block's overturn, 2 the watched face (:func:`_face_value`; 3 and
@@ -146,7 +146,7 @@ def _value(kind, c, sgn, s, k, sp, lp, bb, seg, epar, t, h, y, K, sg, yy):
     return _face_value(s, k, sp, lp, bb, yy, ground_at(t + sg * h, seg, epar), kind)
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _first_fall(kind, c, sgn, s, k, sp, lp, bb, seg, epar, t, h, y, K, sig_lim):
     """First fraction in ``(0, sig_lim]`` of the step where the event value is <= 0 (16 samples, bisection;
     the start counts as above 0), else 2."""
@@ -169,7 +169,7 @@ def _first_fall(kind, c, sgn, s, k, sp, lp, bb, seg, epar, t, h, y, K, sig_lim):
     return 2.0
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _face_value(s, k, sp, lp, bb, yy, ag, kind):
     """R: the lower uplift threshold less the bearing's force (``kind`` 3: the joint held, the plinth's threshold;
     4: the base held, the body's); B: the plinth's smaller base corner force over its load; P: the joint's over the
@@ -184,7 +184,7 @@ def _face_value(s, k, sp, lp, bb, yy, ag, kind):
     return min(f[6], f[7]) / sp[S_G]
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _face_kind(s, k, held):
     """The face the driver watches in pattern ``(s, k)`` with interface ``held`` held shut (-1: none): -1 none, 2 the
     pattern's own (R: the lower threshold), 3 at rest with the joint held (the plinth's threshold), 4 with the base
@@ -198,7 +198,7 @@ def _face_kind(s, k, held):
     return -1  # P or B: its only face is the held one
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _unresolved_fall(c, sgn, lp, y, K, h, sig):
     """The hair-lift test (docs/physics-plinth.md, "A lift below the tolerance"): the pivot in column ``c`` (corner
     ``sgn``) started the step just opened (angle and rate exactly 0), and its angle, back at 0 at fraction ``sig``,
@@ -215,7 +215,7 @@ def _unresolved_fall(c, sgn, lp, y, K, h, sig):
     return abs(yy[c + 1]) <= lp[L_RTOL] * lp[L_SC + c + 1]
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _held_push(held, hc, s, k, sp, lp, bb, seg, epar, t, h, y, K):
     """The largest opening acceleration the held interface would have over the step (17 samples): its pivot on
     corner ``hc`` at angle 0 with no rate, the rest of the stack as it is."""
@@ -231,7 +231,7 @@ def _held_push(held, hc, s, k, sp, lp, bb, seg, epar, t, h, y, K):
     return amax
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _rest_bounds(lp, y, K, h):
     """At rest (pattern R): bounds over the step of ``|F|`` (the bearing's force) and of ``|u|``, from the
     continuous extension's quartics ``sum_m c_m sigma^m`` (``|p(sigma)| <= sum |c_m|`` on ``[0, 1]``)."""
@@ -250,7 +250,7 @@ def _rest_bounds(lp, y, K, h):
     return fb, ub
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _coeffs(y, K, h, i):
     """The quartic ``sum_m c_m sigma^m`` of state ``i`` over the step (the continuous extension)."""
     c = [y[i], 0.0, 0.0, 0.0, 0.0]
@@ -262,7 +262,7 @@ def _coeffs(y, K, h, i):
     return (c[0], c[1], c[2], c[3], c[4])
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _rest_bounds_hysteretic(lp, bb, y, K, h):
     """:func:`_rest_bounds` on a hysteretic bearing: ``|u(sigma) - u(0)| <= span = sum_m>0 |c_m|``, and on the
     step's branch (the step ends at a reversal of u) ``F`` is a decreasing function of ``u`` alone, so ``|F| <=
@@ -274,7 +274,7 @@ def _rest_bounds_hysteretic(lp, bb, y, K, h):
     return fb, abs(y[4]) + span
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _reversal(y, K, h, d, tol):
     """Did the base keep moving in direction ``d`` through the step (a hysteretic bearing's elements follow ``u``
     exactly only while it moves one way)? ``(code, sigma)``, as the single block's
@@ -297,7 +297,7 @@ def _reversal(y, K, h, d, tol):
     return 0, 1.0
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _may_cross(c, a0, r0, a1, r1, kind):
     """Whether a pivot's angle (corner ``c``, from ``a0``, rate ``r0`` to ``a1``, ``r1`` over the step) may reach
     0 (``kind`` 0) or pi/2 (1) inside the step: its end is there, or the angle turned inside it (a minimum, or a
@@ -307,7 +307,7 @@ def _may_cross(c, a0, r0, a1, r1, kind):
     return c * a1 >= HALF_PI or (c * r0 > 0.0 and c * r1 < 0.0 and max(c * a0, c * a1) > 1.0)
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _scan(s, k, sp, lp, bb, seg, epar, t, h, y, K, sig_end, z):
     """Peaks, first exceedances and the friction demand over ``[0, sig_end]`` of the step (17 samples, the
     largest of each peak refined by golden section); counts a step where a pivot's normal force is below 0."""
@@ -372,7 +372,7 @@ def _scan(s, k, sp, lp, bb, seg, epar, t, h, y, K, sig_end, z):
         z[Z_JUMPS] += 1.0
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _after_impact(j, s, k, sp, lp, bb, Md, y, t, t_exc_end, z, ag):
     """The impact at interface ``j`` (its angle set to 0): the pattern after it, the rest rules. Returns the new
     ``(s, k)``; ``y`` is updated."""
@@ -453,7 +453,7 @@ def _after_impact(j, s, k, sp, lp, bb, Md, y, t, t_exc_end, z, ag):
     return c0, c1
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _hist(H, nh, t, ag, y, s, k, kind):
     if nh >= H.shape[0]:
         H2 = np.empty((2 * H.shape[0], ZH_N))
@@ -470,13 +470,13 @@ def _hist(H, nh, t, ag, y, s, k, kind):
     return H, nh + 1
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _uplift(z, j, t):
     if math.isnan(z[Z_TUP0 + j]):
         z[Z_TUP0 + j] = t
 
 
-@njit(cache=True, no_cfunc_wrapper=True, nogil=True)
+@kernel(nogil=True)
 def simulate_stack_linear(sp, lp, fk, bp, ekind, epar, acc, dt, t_begin, t_exc_end, tail, horizon, max_steps,
                           want_history, z):
     """Integrate a body on its plinth on an isolated base under one excitation (``sp`` the stack tuple of
@@ -762,7 +762,7 @@ def simulate_stack_linear(sp, lp, fk, bp, ekind, epar, acc, dt, t_begin, t_exc_e
     return H[:nh]
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _open(s, k, sp, lp, bb, y, ag, body_first, z, t):
     """The watched face opens about the corner that keeps pressing: R -> B or P (the lower threshold), B -> BP
     (the plinth lifts), P -> BP (the body lifts off it). Returns the new ``(s, k)``."""

@@ -26,9 +26,9 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
 from rockcli.kernels.bearings import hysteretic_force
+from rockcli.kernels.jit import kernel
 from rockcli.kernels.layout import FOUNDATION_LINEAR
 from rockcli.kernels.stack_physics import (S_A1, S_A2, S_B1, S_B2, S_G, S_H1, S_H2, S_I1, S_I2, S_M2, S_R1, S_R2,
                                            bp_acc)
@@ -41,14 +41,14 @@ L_THR1, L_THRA, L_PMAX, L_YC = 18, 19, 20, 21  # g tan(alpha1), g tan(alpha_asm)
 N_LP = 22
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def bearing(lp, u, ud):
     """The bearings' force per unit moving mass, ``F = -omega_b^2 u - 2 xi omega_b u'``."""
     w = lp[L_WB]
     return -w * w * u - 2.0 * lp[L_XI] * w * ud
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def force(lp, bb, u, ud):
     """The bearings' force per unit moving mass: linear (:func:`bearing`) or hysteretic (``bb``, the module notes)."""
     if bb[0] == FOUNDATION_LINEAR:
@@ -56,7 +56,7 @@ def force(lp, bb, u, ud):
     return hysteretic_force(bb[0], bb[1], u, bb[2])
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def on_base(th, thd, c, F, alpha, p2, gamma, R, g):
     """``(theta'', a_b)``: one block rocking on corner ``c`` of a base pushed by ``F`` (Eqs 10-11)."""
     A = alpha * c - th
@@ -68,7 +68,7 @@ def on_base(th, thd, c, F, alpha, p2, gamma, R, g):
     return thdd, a_b
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def bp_base(s, k, sp, lp, th2, psi, thd2, psid, F):
     """``(psi'', theta2'', a_b)`` of pattern BP on the bearings: the note's 3x3 system."""
     b1, b2, h2, R1, R2, m2, g = sp[S_B1], sp[S_B2], sp[S_H2], sp[S_R1], sp[S_R2], sp[S_M2], sp[S_G]
@@ -99,7 +99,7 @@ def bp_base(s, k, sp, lp, th2, psi, thd2, psid, F):
     return x1 - x2, x2, x3
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def accel(s, k, sp, lp, bb, y, ag):
     """``(psi'', theta2'', a_b)`` of the pattern ``(s, k)`` at the state ``y`` (``u'' = a_b - ag``)."""
     F = force(lp, bb, y[4], y[5])
@@ -115,7 +115,7 @@ def accel(s, k, sp, lp, bb, y, ag):
     return bp_base(s, k, sp, lp, y[2], y[0], y[3], y[1], F)
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def rhs(s, k, sp, lp, bb, y, ag, dy):
     pdd, tdd, ab = accel(s, k, sp, lp, bb, y, ag)
     dy[0] = y[1]
@@ -129,20 +129,20 @@ def rhs(s, k, sp, lp, bb, y, ag, dy):
 # ---------------------------------------------------------------------------------------------
 # Impacts in maximal coordinates (plinth x, y, theta; body x, y, theta; base x)
 # ---------------------------------------------------------------------------------------------
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _rot(t, x, y):
     c = math.cos(t)
     sn = math.sin(t)
     return c * x + sn * y, -sn * x + c * y
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def mass_diag(sp, lp):
     m2 = sp[S_M2]
     return np.array([m2, m2, m2 * sp[S_I2], 1.0, 1.0, sp[S_I1], lp[L_MB]])
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _geometry(st0, st1, sp, q0, q1):
     """Centres ``G (2, 2)`` and pivots ``P (2, 2)`` (NaN at a face) with the base at 0 (only differences matter)."""
     b = (sp[S_B2], sp[S_B1])
@@ -171,7 +171,7 @@ def _geometry(st0, st1, sp, q0, q1):
     return G, P
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def velocities(st0, st1, sp, q0, q1, qd0, qd1, ud):
     """Maximal velocities from the pivots' rates ``qd`` (base pivot, joint pivot) and the base's ``u'``."""
     G, P = _geometry(st0, st1, sp, q0, q1)
@@ -190,7 +190,7 @@ def velocities(st0, st1, sp, q0, q1, qd0, qd1, ud):
     return v
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _constraints(st0, st1, sp, q0, q1):
     b = (sp[S_B2], sp[S_B1])
     h = (sp[S_H2], sp[S_H1])
@@ -223,7 +223,7 @@ def _constraints(st0, st1, sp, q0, q1):
     return J
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def impact_into(st0, st1, sp, Md, q0, q1, vm, j, target, with_rate):
     """Velocities and per-interface impulses ``(N, T, P_right, P_left)`` (rows 0 base, 1 joint) just after an
     impact into the pattern ``(st0, st1)``; ``with_rate``: the relative rate of interface ``j`` prescribed."""
@@ -275,12 +275,12 @@ def impact_into(st0, st1, sp, Md, q0, q1, vm, j, target, with_rate):
     return v, imp
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def rel_rates(v):
     return v[2], v[5] - v[2]
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def post_velocities(c0, c1, j, sp, Md, q0, q1, vm, E):
     """The plastic impact into ``(c0, c1)``, or with ``E >= 0`` the energetic rule of the note."""
     cj = c1 if j else c0
@@ -299,7 +299,7 @@ def post_velocities(c0, c1, j, sp, Md, q0, q1, vm, E):
     return impact_into(c0, c1, sp, Md, q0, q1, vm, j, E * W * math.copysign(1.0, rj), np.bool_(True))
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _best(st0, st1, j, sp, Md, q0, q1, vm, E):
     r = rel_rates(vm)
     vscale = max(abs(r[0]), abs(r[1])) + 1e-300
@@ -357,7 +357,7 @@ def _best(st0, st1, j, sp, Md, q0, q1, vm, E):
     return bc0, bc1, bv, bimp, best_m
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def choose_post(st0, st1, j, sp, Md, q0, q1, vm, E, tol):
     """``(c0, c1, v+, impulses, margin, pulls, plastic)``: the pattern after an impact at ``j`` (as the
     reference's ``choose_post``: a restitution no candidate can carry gives way to the plastic law)."""
@@ -375,7 +375,7 @@ def choose_post(st0, st1, j, sp, Md, q0, q1, vm, E, tol):
     return c0, c1, v, imp, margin, pulls, plastic
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def kinetic_relative(Md, v):
     """The blocks' kinetic energy relative to the base."""
     e = 0.0
@@ -385,7 +385,7 @@ def kinetic_relative(Md, v):
     return 0.5 * e
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def rest_moments(sp, lp, a):
     """The restoring moments at rest of the joint (the body) and of the base (the assembly) under the support's
     acceleration ``a``, per unit body mass: ``m1 (g b1 - |a| h1)`` and ``(m1 + m2)(g b2 - |a| y_c)``."""
@@ -393,7 +393,7 @@ def rest_moments(sp, lp, a):
     return (g * sp[S_B1] - abs(a) * sp[S_H1]), (1.0 + sp[S_M2]) * (g * sp[S_B2] - abs(a) * lp[L_YC])
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def restoring(j, s0, k0, sp, lp, q0, q1, qd0, qd1, a):
     """The smaller relative acceleration pulling interface ``j`` back (``min_sigma -sigma psi''_sigma`` with
     ``j`` pivoting at angle 0 on corner sigma, the rest of the stack ``(s0, k0)`` as it is) on a support moving

@@ -14,9 +14,8 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
-
 from rockcli.kernels.ground import _ground
+from rockcli.kernels.jit import kernel
 from rockcli.kernels.layout import N_PRM
 
 # the stack tuple ``sp``: the geometry (indices after the kernel's own parameters)
@@ -30,7 +29,7 @@ S_TOL = N_PRM + 16  # relative slack of the impact consistency tests
 N_SP = N_PRM + 17
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _rot(t, x, y):
     """The clockwise rotation by ``t`` of the body-frame vector ``(x, y)``."""
     c = math.cos(t)
@@ -38,7 +37,7 @@ def _rot(t, x, y):
     return c * x + s * y, -s * x + c * y
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _cw(rx, ry, fx, fy):
     """Clockwise moment of the force ``(fx, fy)`` at the arm ``(rx, ry)``."""
     return ry * fx - rx * fy
@@ -47,7 +46,7 @@ def _cw(rx, ry, fx, fy):
 # ---------------------------------------------------------------------------------------------
 # Both rocking: the 2x2 system of Lagrange's equations
 # ---------------------------------------------------------------------------------------------
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def bp_acc(s, k, sp, th2, psi, thd2, psid, ag):
     """``(psi'', theta2'')`` of pattern BP on the base corner ``s`` and the joint corner ``k`` (the note's
     ``M11 theta1'' + M12 theta2'' = Q1 - m1 D R1 sin(phi) theta2'^2`` and ``M12 theta1'' + M22 theta2'' = Q2 + m1 D
@@ -84,7 +83,7 @@ def bp_acc(s, k, sp, th2, psi, thd2, psid, ag):
     return thdd1 - thdd2, thdd2
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _rhs_bp_into(fkind, phase, code, sp, seg, epar, hy, t, W, src, dst):
     """Right-hand side of pattern BP from row ``src`` into row ``dst`` (the signature of the other drivers'
     right-hand sides; ``code = 2 s + k`` carries the two corners)."""
@@ -101,7 +100,7 @@ def _rhs_bp_into(fkind, phase, code, sp, seg, epar, hy, t, W, src, dst):
 # ---------------------------------------------------------------------------------------------
 # Positions and the velocity fields of a pattern
 # ---------------------------------------------------------------------------------------------
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def positions(s, k, sp, th2, psi):
     """``(O, G2, T, J, C1, G1)`` as 12 numbers: the base pivot (the base centre when ``s = 0``), the plinth's
     centre, the centre of its top, the joint pivot (``T`` when ``k = 0``), the body's base centre and centre."""
@@ -121,7 +120,7 @@ def positions(s, k, sp, th2, psi):
     return ox, oy, g2x, g2y, tx, ty, jx, jy, cx, cy, cx + x, cy + y
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def fields(s, k, sp, th2, psi):
     """The velocity fields (6 maximal velocities each) of a unit rate of the base pivot (everything turning
     about ``O``, the body fixed on the plinth; zeros when ``s = 0``) and of the joint pivot (the body turning
@@ -138,7 +137,7 @@ def fields(s, k, sp, th2, psi):
     return e2, e1
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _dot(sp, u, v):
     """The kinetic-energy inner product of two maximal velocity vectors (per unit body mass)."""
     m2 = sp[S_M2]
@@ -146,13 +145,13 @@ def _dot(sp, u, v):
             + u[3] * v[3] + u[4] * v[4] + sp[S_I1] * u[5] * v[5])
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _comb(a, u, b, v):
     return (a * u[0] + b * v[0], a * u[1] + b * v[1], a * u[2] + b * v[2], a * u[3] + b * v[3],
             a * u[4] + b * v[4], a * u[5] + b * v[5])
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def project(sp, e2, e1, V):
     """``(q2, q1)``: the rates of the orthogonal projection of ``V`` onto the span of the fields ``e2``, ``e1`` in
     the kinetic-energy metric (a zero field takes no part): the plastic impact into that pattern."""
@@ -174,13 +173,13 @@ def project(sp, e2, e1, V):
 # ---------------------------------------------------------------------------------------------
 # Contact forces
 # ---------------------------------------------------------------------------------------------
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _face(N, Mc, c):
     """The two corner forces ``(right, left)`` of a face carrying ``N`` and the clockwise couple ``Mc``."""
     return 0.5 * N - Mc / (2.0 * c), 0.5 * N + Mc / (2.0 * c)
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def forces(s, k, sp, th2, psi, thd2, psid, thdd2, psidd, ag):
     """Contact forces of the pattern ``(s, k)`` (0: a face) at a state and its accelerations, per unit body mass:
     ``(NB, TB, PRB, PLB, NJ, TJ, PRJ, PLJ)``, normal and tangential force of the base and of the joint in the frame
@@ -225,7 +224,7 @@ def forces(s, k, sp, th2, psi, thd2, psid, thdd2, psidd, ag):
     return fby, fbx, PRB, PLB, NJ, TJ, PRJ, PLJ
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def forces_b(k, sp, psi, psid, psidd, ag):
     """:func:`forces` of pattern B (the body on its corner ``k``, the plinth still) in closed form:
     ``(NB, TB, PRB, PLB, NJ, TJ)``. ``F_J = R1 (psi'' cos A + psi'^2 sin A) + ag, R1 (psi'' sin A - psi'^2 cos A) +
@@ -241,7 +240,7 @@ def forces_b(k, sp, psi, psid, psidd, ag):
     return NB, fx + m2 * ag, NB - PLB, PLB, fy, fx
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def forces_p(s, sp, th, thd, thdd, ag):
     """:func:`forces` of pattern P (the assembly on the plinth's corner ``s``) in closed form:
     ``(NB, TB, NJ, TJ, PRJ, PLJ)``; the joint's couple ``Mc = I1 theta'' + h1 T_J``."""
@@ -263,7 +262,7 @@ def forces_p(s, sp, th, thd, thdd, ag):
 # ---------------------------------------------------------------------------------------------
 # Impacts
 # ---------------------------------------------------------------------------------------------
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _impulses(s, k, sp, th2, psi, V0, V1):
     """Impulses of the jump ``V0 -> V1`` into the pattern ``(s, k)``: ``(NB, TB, PRB, PLB, NJ, TJ, PRJ, PLJ)`` as in
     :func:`forces` (the momentum balances of the body, then of the plinth)."""
@@ -294,7 +293,7 @@ def _impulses(s, k, sp, th2, psi, V0, V1):
     return lby, lbx, PRB, PLB, NJ, TJ, PRJ, PLJ
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def post_velocities(s, k, j, sp, th2, psi, V, E):
     """Velocities just after an impact at interface ``j`` (0 base, 1 joint) into the pattern ``(s, k)``: the
     plastic projection (``E < 0``), or with a restitution ``E >= 0`` the energetic rule (the motions that keep
@@ -319,7 +318,7 @@ def post_velocities(s, k, j, sp, th2, psi, V, E):
     return _comb(1.0, P0, E * W * (1.0 if rate > 0.0 else -1.0), w)
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _best_candidate(s, k, j, sp, th2, psi, V, E):
     """The most consistent pattern after the impact under the law ``E`` (< 0: plastic): ``(s', k', V+, margin)``."""
     zero_b = th2 == 0.0
@@ -375,7 +374,7 @@ def _best_candidate(s, k, j, sp, th2, psi, V, E):
     return bs, bk, bV, best
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def choose_after_impact(s, k, j, sp, th2, psi, V):
     """The pattern after an impact at ``j`` from the pattern ``(s, k)`` (its angle at ``j`` just back to 0):
     every candidate (an interface at angle 0 a face or either pivot, the other keeping its pivot; with a
@@ -403,7 +402,7 @@ def choose_after_impact(s, k, j, sp, th2, psi, V):
     return bs, bk, bV, best, jump, dmd_b, dmd_j, plastic
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def max_velocities(s, k, sp, th2, psi, thd2, psid):
     """The six maximal velocities of the pattern ``(s, k)`` at the rates ``theta2'``, ``psi'``."""
     e2, e1 = fields(s, k, sp, th2, psi)

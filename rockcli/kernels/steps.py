@@ -21,11 +21,11 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
 from rockcli.kernels.dopri import _dense, _shift_event, _state_at
 from rockcli.kernels.events import _count_uplift, comes_to_rest
 from rockcli.kernels.ground import _pulse_segment
+from rockcli.kernels.jit import kernel
 from rockcli.kernels.layout import (E_AP, E_TP, EXC_RECORD, HK_IMPACT_AFTER, HK_OVERTURN, HK_REST, HK_STATE, N_HIST, N_OUT, N_RS, N_W, O_N_IMPACTS, O_N_IMPACTS_ALL,
                                     O_N_RESTS, O_N_REVERSALS, O_NRHS, O_PEAK_FINAL, O_REJECTED, O_SETTLED, O_STATUS,
                                     O_STEPS, O_T_END, O_T_EXCEED, O_T_OVERTURN, O_T_THETA_MAX, O_T_UPLIFT,
@@ -42,7 +42,7 @@ from rockcli.kernels.polynomials import _first_down, _poly
 # ---------------------------------------------------------------------------------------------
 # The run record
 # ---------------------------------------------------------------------------------------------
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _seg(rs):
     """The segment tuple ``(mode, a0, slope, ts, v0, vslope, tv)``: the horizontal ground motion
     (:func:`rockcli.kernels.ground._ground`) and the vertical one (:func:`rockcli.kernels.ground._vertical`)."""
@@ -50,7 +50,7 @@ def _seg(rs):
             rs[RS_VSEG + 2])
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _set_seg(rs, seg, seg_end):
     rs[RS_SEG] = seg[0]
     rs[RS_SEG + 1] = seg[1]
@@ -59,7 +59,7 @@ def _set_seg(rs, seg, seg_end):
     rs[RS_SEG_END] = seg_end
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _start(ekind, epar, acc, dt, t_begin, want_history, out):
     """A new run: cleared outputs, the work array ``W``, the run record ``rs`` at ``t_begin`` on
     the first excitation segment, and an empty history ``H`` (room for the run when wanted)."""
@@ -92,7 +92,7 @@ def _start(ekind, epar, acc, dt, t_begin, want_history, out):
     return W, rs, H
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _initial_state(prm, rs, W, out):
     """A start from a tilt ``theta0`` and/or an angular velocity ``theta_dot0`` (``P_TH0``, ``P_THD0``;
     both 0: at rest, nothing to do). The block starts rocking at ``t_begin`` on the corner
@@ -119,7 +119,7 @@ def _initial_state(prm, rs, W, out):
             out[O_T_EXCEED] = rs[RS_T]
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _finish(rs, W, out):
     """Copy the run record's results into ``out`` (``O_*`` layout)."""
     out[O_STATUS] = rs[RS_STATUS]
@@ -136,7 +136,7 @@ def _finish(rs, W, out):
     out[O_N_REVERSALS] = rs[RS_NREV]
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _advance_segment(rs, ekind, epar, acc, dt, t_begin):
     """Move to the excitation segment that contains t (records: one per sample interval)."""
     nrec = acc.shape[0]
@@ -158,7 +158,7 @@ def _advance_segment(rs, ekind, epar, acc, dt, t_begin):
             rs[RS_FRESH] = 1.0
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _vertical_piece(rs, vacc, vdt):
     """Move to the piece of the vertical series ``vacc`` (samples every ``vdt`` from t = 0, zero after
     the last) that contains t; nothing without a vertical motion (``vacc`` empty). The series is
@@ -186,7 +186,7 @@ def _vertical_piece(rs, vacc, vdt):
     rs[RS_VJ] = k
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _out_of_time(rs, t_horizon, max_steps):
     """The horizon or the step cap is reached (the latter sets ``STATUS_MAX_STEPS``)."""
     if rs[RS_T] >= t_horizon:
@@ -200,7 +200,7 @@ def _out_of_time(rs, t_horizon, max_steps):
 # ---------------------------------------------------------------------------------------------
 # Step-size control (Dormand-Prince 5(4), the controller SciPy's RK45 uses)
 # ---------------------------------------------------------------------------------------------
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _step_start(rhs_into, fkind, prm, ekind, epar, rs, W, hy):
     """The step size to try from ``rs[RS_T]``; (re)computes ``W[0] = f(t, y)`` when stale.
 
@@ -226,7 +226,7 @@ def _step_start(rhs_into, fkind, prm, ekind, epar, rs, W, hy):
     return h
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _accept_step(dp5, s, prm, seg, epar, t, h, W, rs, max_steps, t_stop):
     """The step-size loop of a driver with a single Dormand-Prince step ``dp5(s, prm, seg, epar, t, h, W, r0)`` (the
     rigid block's, the stack's pattern BP): from ``t`` with the proposal ``h``, clipped to ``t_stop``, retried smaller
@@ -252,7 +252,7 @@ def _accept_step(dp5, s, prm, seg, epar, t, h, W, rs, max_steps, t_stop):
     return _close_step(rs, h, rej, nrhs, steps, err), hs, last
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _grown(h, hs, err, last):
     """Step size to try after an accepted step of size ``hs`` with scaled error ``err <= 1``: grown
     by the controller, unless the step was cut short to land on ``t_stop`` and would grow (then the
@@ -261,13 +261,13 @@ def _grown(h, hs, err, last):
     return hs * fac if (not last or fac < 1.0) else h
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _shrink(err):
     """Factor of the retry after a rejected step with scaled error ``err > 1``."""
     return max(0.2, 0.9 * err ** -0.2)
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _close_step(rs, h, rej, nrhs, steps, err):
     """Write a step's bookkeeping back to the run record; True when the step was accepted."""
     rs[RS_H] = h
@@ -288,7 +288,7 @@ EV_FAILED = 2  # the block never rose above theta = 0: the uplift did not take
 EV_IMPACT = 3  # s theta falls to 0 at sigma
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel
 def _rocking_events(prm, rs, W, out, hs, t_new, sig_lim):
     """Events in theta of a rocking step about corner ``s`` over ``[0, sig_lim]`` of the step:
     ``(code, sigma)`` (``EV_*``; sigma of the event, or ``sig_lim``). Updates the peak
@@ -335,7 +335,7 @@ def _rocking_events(prm, rs, W, out, hs, t_new, sig_lim):
     return EV_NONE, sig_lim
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _row_kind(code, rs):
     """The history kind (``HK_*``) of the row at the end of a rocking step whose event was ``code``."""
     if code == EV_IMPACT:
@@ -345,7 +345,7 @@ def _row_kind(code, rs):
     return HK_STATE
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _to_overturn(rs, W, out, hs, so, nst):
     """The state at ``s theta = pi/2`` (fraction ``so`` of the step) ends the run: overturned."""
     _state_at(W, hs, so, nst)
@@ -359,7 +359,7 @@ def _to_overturn(rs, W, out, hs, so, nst):
     rs[RS_STATUS] = STATUS_OVERTURNED
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _to_impact(restep, fkind, prm, rs, W, epar, hy, hs, sig, nst):
     """The state at the impact, fraction ``sig`` of the step: the step retaken to it (``restep``,
     the driver's :func:`rockcli.kernels.dopri._restep_rows`), moved onto the root theta = 0 by one
@@ -376,7 +376,7 @@ def _to_impact(restep, fkind, prm, rs, W, epar, hy, hs, sig, nst):
     W[W_Y, 0] = 0.0
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _to_step_end(rs, W, t_new, nst):
     """Accept the whole step: its end state and (first same as last) its end derivative."""
     rs[RS_T] = t_new
@@ -385,7 +385,7 @@ def _to_step_end(rs, W, t_new, nst):
         W[0, i] = W[6, i]
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline='always')
+@kernel(inline='always')
 def _bounce(prm, rs, W, out, thd1, t_exc_end, a_rest, thd2, thr):
     """After the impact map (``theta_dot`` ``thd1`` before, ``thd2`` after, the pivot switched):
     count the impact and apply the rest rule under the base acceleration ``a_rest`` and the uplift
