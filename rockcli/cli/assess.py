@@ -606,7 +606,8 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
         from rockcli.report.html import write_report
         from rockcli.report.html_pages import fragility_report
 
-        write_report(report_path, fragility_report(result, command=command_line(), restitution=solver.get("restitution")))
+        write_report(report_path, fragility_report(result, command=command_line(),
+                                                   restitution=solver.get("restitution")))
         click.echo(f"wrote {report_path} (HTML report)", err=as_json)
 
 

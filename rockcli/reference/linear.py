@@ -4,9 +4,9 @@ On a rigid foundation the block lifts when ``|a_g| = g tan(alpha)``: the ground 
 fine grid and the crossing solved by ``brentq``; after the excitation it rests for good. On linear
 bearings a stuck block rides the base oscillator: the free base is integrated (during a record one
 window of about a second at a time) and its acceleration ``|F(u, u')|`` searched for the first crossing
-of ``g tan(alpha)`` on the dense output; after the
-excitation the run ends once the oscillator's energy bounds ``|F|`` below the threshold. The rocking
-phases, impacts and rests are those of :class:`rockcli.reference.phases.Phases`.
+of ``g tan(alpha)`` on the dense output; after the excitation the run ends once the oscillator's energy
+bounds ``|F|`` below the threshold. The rocking phases, impacts and rests are those of
+:class:`rockcli.reference.phases.Phases`.
 """
 
 from __future__ import annotations
@@ -140,13 +140,14 @@ def reference_linear(block, foundation, excitation, work, *, horizon, rest_tol, 
         peak = np.zeros(grid.size, bool)
         peak[1:-1] = (absa[1:-1] >= absa[:-2]) & (absa[1:-1] >= absa[2:])
         peak[0], peak[-1] = absa[0] >= absa[1], absa[-1] >= absa[-2]
+
+        def neg(x):
+            z = sol.sol(x)
+            return -abs(F(z[0], z[1]))
+
         for k in np.nonzero(peak & near)[0]:
             if k >= k_over:
                 break
-
-            def neg(x):
-                z = sol.sol(x)
-                return -abs(F(z[0], z[1]))
             lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)]
             m = minimize_scalar(neg, bounds=(lo, hi), method="bounded", options={"xatol": 1e-14})
             if -m.fun > thr:
