@@ -21,6 +21,11 @@ from rockcli.reference.result import RefResult
 from rockcli.io.units import G
 
 
+def _sign(x):
+    """``numpy.sign`` of one number, without its cost on a scalar."""
+    return 1.0 if x > 0.0 else (-1.0 if x < 0.0 else (0.0 if x == 0.0 else math.nan))
+
+
 @dataclass
 class Bearing:
     """A hysteretic bearing typed again from the paper, per unit total mass ``m + m_b``.
@@ -61,7 +66,8 @@ class Bearing:
         return 5 if self.dcss else 3
 
     def bracket(self, ud, z):
-        return 1.0 - self.gbw * np.sign(ud * z) * abs(z) ** self.n - self.beta * abs(z) ** self.n
+        zn = abs(z) ** self.n
+        return 1.0 - self.gbw * _sign(ud * z) * zn - self.beta * zn
 
     def force(self, b):
         if self.dcss:
