@@ -217,24 +217,20 @@ class Verdicts:
 def _history_events(k, H) -> tuple[HistoryEvent, ...]:
     """The events of the kernel's history rows ``H`` (in time order): an impact is read from its
     row before and the row after it (the impact map's two sides)."""
-    events = []
     kinds = H[:, k.H_KIND]
-    for i in np.flatnonzero((kinds != k.HK_STATE) & (kinds != k.HK_GRID) & (kinds != k.HK_IMPACT_AFTER)):
-        r = H[i]
-        kind = r[k.H_KIND]
-        state = dict(t_s=float(r[k.H_T]), theta_rad=float(r[k.H_TH]), theta_dot_rad_s=float(r[k.H_THD]),
-                     u_m=float(r[k.H_U]), u_dot_mps=float(r[k.H_UD]), ag_mps2=float(r[k.H_AG]))
+    idx = np.flatnonzero((kinds != k.HK_STATE) & (kinds != k.HK_GRID) & (kinds != k.HK_IMPACT_AFTER))
+    # Python floats for the whole table at once (``tolist``), not one ``float()`` per cell
+    states = H[idx][:, [k.H_T, k.H_TH, k.H_THD, k.H_U, k.H_UD, k.H_AG]].tolist()
+    after = H[np.minimum(idx + 1, len(H) - 1), k.H_THD].tolist()  # the kernel writes the state just after an impact next
+    names = {k.HK_UPLIFT: "uplift", k.HK_OVERTURN: "overturn", k.HK_PEAK: "peak", k.HK_REST: "rest"}
+    events = []
+    for kind, state, thd_after in zip(kinds[idx].tolist(), states, after):
         if kind == k.HK_IMPACT:
-            after = H[i + 1]  # the kernel writes the state just after an impact next
-            events.append(HistoryEvent("impact", theta_dot_before=state["theta_dot_rad_s"],
-                                       theta_dot_after=float(after[k.H_THD]), **state))
-        elif kind == k.HK_REST:
-            events.append(HistoryEvent("rest", **state))
+            events.append(HistoryEvent("impact", *state, theta_dot_before=state[2], theta_dot_after=thd_after))
         else:
-            name = {k.HK_UPLIFT: "uplift", k.HK_OVERTURN: "overturn", k.HK_PEAK: "peak"}[kind]
-            events.append(HistoryEvent(name, **state))
-    order = np.argsort([e.t_s for e in events], kind="stable")
-    return tuple(events[j] for j in order)
+            events.append(HistoryEvent(names[kind], *state))
+    events.sort(key=lambda e: e.t_s)  # stable: events at one time keep the kernel's order
+    return tuple(events)
 
 
 def _history(k, H, fkind: int, grid_dt: float | None) -> History:
