@@ -141,12 +141,20 @@ def test_a_variable_read_at_import_makes_it_decline(both):
     assert "declined (environment differs in ['NUMBA_NUM_THREADS'])" in log()
 
 
+def _signals_as_on_a_terminal() -> None:
+    """SIGINT and SIGQUIT at their defaults, as a terminal's shell starts a command. A test run started in the
+    background of a non-interactive shell (``pytest ... &`` in a script) has both ignored, as POSIX asks of such a
+    shell, and a command started from it inherits that: Ctrl-C would not reach it, run for real or not."""
+    for signum in (signal.SIGINT, signal.SIGQUIT):
+        signal.signal(signum, signal.SIG_DFL)
+
+
 def _on_a_terminal(cmd: str, env: dict, cwd: Path, until: bytes | None = None, then=None):
     """Run ``cmd`` with its standard error on a terminal; ``then(proc)`` once that terminal has shown ``until``.
     ``(exit code, stdout, what the terminal showed)``."""
     master, slave = pty.openpty()
     proc = subprocess.Popen(["bash", "-c", cmd], env=env, cwd=cwd, stdout=subprocess.PIPE, stderr=slave,
-                            start_new_session=True)
+                            start_new_session=True, preexec_fn=_signals_as_on_a_terminal)
     os.close(slave)
     shown, deadline = b"", time.monotonic() + 300
     while time.monotonic() < deadline:
