@@ -90,6 +90,12 @@ def test_gmprocess_configuration_parsed_once_is_a_fresh_parse():
     first["read"]["sac_source"] = "edited by a reader"
     assert second["read"]["sac_source"] == fresh["read"]["sac_source"]
 
+    def containers(x):  # every dict and list of a configuration, by identity
+        inner = x.values() if isinstance(x, dict) else x if isinstance(x, list) else ()
+        return [id(x)] * isinstance(x, (dict, list)) + [i for v in inner for i in containers(v)]
+
+    assert not set(containers(second)) & set(containers(once()))  # no container shared between two calls
+
 
 def test_cosmos_units_as_gmprocess_converts_them(tmp_path, monkeypatch):
     """gmprocess's COSMOS reader multiplies a file in g by 980.665 (to cm/s^2) but leaves ``units`` = "g": the
