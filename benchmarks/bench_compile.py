@@ -1,7 +1,8 @@
 """Cold-compile CPU of each compiled driver (numba), with an empty numba cache; the real cache is left alone.
 
 One child process (``NUMBA_CACHE_DIR`` pointed at a new, empty folder) makes the first call of each driver in a
-fixed order, with the argument types :mod:`rockcli.solve` passes: the rigid foundation, the rigid foundation under
+fixed order, with the argument types :mod:`rockcli.solve` passes (``tests/kernel_first_calls.py``, whose groups
+the test suite compiles ahead on a fresh clone): the rigid foundation, the rigid foundation under
 a vertical motion, the isolated base, the body on its plinth (rigid foundation, then bearings), the three batch
 kernels, and the two kernels called from Python elsewhere (the lift-off floor, a bearing's loop). It prints the
 CPU time of each outermost compile (a driver compiles the callees that an earlier driver has not compiled already,
@@ -60,40 +61,10 @@ def compile(self, sig):
 
 D.Dispatcher.compile = compile
 
-from rockcli.models import Block, LinearIsolation, Plinth, Rigid, Stack
-from rockcli.pulses import make_pulse
-from rockcli.records import Record
-from rockcli.solve import simulate, simulate_stack
-from rockcli.io.units import G
-from rockcli.kernels import batch as kb
-from rockcli.kernels.layout import N_EPAR, N_OUT, N_PRM
-from rockcli.assess.liftoff import load_floor_kernel
-from rockcli.models import SingleConcaveSliding
-from rockcli.solve import bearing_force_path
+sys.path.insert(0, sys.argv[1])
+from kernel_first_calls import first_calls
 
-block = Block(1.0, 0.2)
-pulse = make_pulse("sine", 2.0 * G * math.tan(0.2), 0.5)
-stack = Stack(Block.from_dimensions(1.5, 0.4, "body"), Plinth(0.5, 1.0, None))
-bearings = LinearIsolation(2.0, xi=0.1, gamma=0.2)
-vertical = Record(np.full(200, 1.0), 0.01, "constant")
-
-def vertical_batch(kernel):
-    ints, floats = np.zeros(0, np.int64), np.zeros(0)
-    kernel(ints, np.zeros((0, N_PRM)), ints, np.zeros((0, N_EPAR)), floats, floats, ints, ints, floats, floats,
-           floats, floats, 0.0, 1, False, floats, floats, ints, ints, floats, np.zeros((0, N_OUT)))
-
-steps = [
-    ("rigid.simulate_rigid", lambda: simulate(block, Rigid(), pulse)),
-    ("rigid.simulate_rigid_vertical", lambda: simulate(block, Rigid(), pulse, vertical=vertical)),
-    ("driver.simulate_core", lambda: simulate(block, LinearIsolation(2.0), pulse)),
-    ("stack.simulate_stack", lambda: simulate_stack(stack, pulse)),
-    ("stack_linear.simulate_stack_linear", lambda: simulate_stack(stack, pulse, isolation=bearings)),
-    ("batch.simulate_batch_rigid", lambda: kb._empty_call(kb.simulate_batch_rigid)),
-    ("batch.simulate_batch", lambda: kb._empty_call(kb.simulate_batch)),
-    ("batch.simulate_batch_rigid_vertical", lambda: vertical_batch(kb.simulate_batch_rigid_vertical)),
-    ("linear_base.stuck_peak", lambda: load_floor_kernel()),
-    ("bearings.force_along_path", lambda: bearing_force_path(SingleConcaveSliding(2.0, 0.05), np.zeros(3))),
-]
+steps = [(name, call) for _, name, call in first_calls()]
 rows = []
 for name, call in steps:
     n = len(log)
@@ -122,7 +93,7 @@ def main() -> None:
         try:
             env = dict(os.environ, NUMBA_CACHE_DIR=cache,
                        PYTHONPATH=os.pathsep.join(filter(None, [str(ROOT), os.environ.get("PYTHONPATH")])))
-            child = subprocess.run([sys.executable, "-c", CHILD], env=env, cwd=ROOT, capture_output=True, text=True)
+            child = subprocess.run([sys.executable, "-c", CHILD, str(ROOT / "tests")], env=env, cwd=ROOT, capture_output=True, text=True)
             if child.returncode != 0:
                 sys.exit(f"the child process failed:\n{child.stderr}")
             out = child.stdout

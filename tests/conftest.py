@@ -1,5 +1,8 @@
 """Shared fixtures.
 
+On several workers, the drivers numba's disk cache lacks are compiled ahead in child processes
+(tests/kernel_first_calls.py).
+
 ``fork_servers``: this pytest process's pre-warmed fork servers for ``rockcli`` commands
 (tests/forkserver.py; ``ROCKCLI_TEST_FORKSERVER=0`` turns them off).
 
@@ -37,6 +40,24 @@ def _absolute_record_folders() -> None:
 
 
 _absolute_record_folders()
+
+
+def pytest_configure(config):
+    """On several workers (``-n 2``), pytest's main process starts compiling the drivers numba's disk cache lacks,
+    one child process per group, before the workers need them (tests/kernel_first_calls.py)."""
+    if hasattr(config, "workerinput") or not getattr(config.option, "numprocesses", None):
+        return
+    import kernel_first_calls
+
+    config.rockcli_compiling = kernel_first_calls.start()
+
+
+def pytest_unconfigure(config):
+    children = getattr(config, "rockcli_compiling", None)
+    if children:
+        import kernel_first_calls
+
+        kernel_first_calls.stop(children)
 
 
 def _record_folders() -> list[Path]:

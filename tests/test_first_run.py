@@ -281,3 +281,44 @@ def test_two_processes_that_lack_a_kernel_compile_it_once(tmp_path):
         outs.append(json.loads(out.splitlines()[-1]))
     assert sorted(o["misses"] for o in outs) == [0, 1] and sum(o["hits"] for o in outs) == 1, outs
     assert outs[0]["x"] == outs[1]["x"] and abs(float.fromhex(outs[0]["x"]) - 0.5) < 1e-12
+
+
+# --------------------------------------------------------------------------------------------------
+# the suite's compiles ahead (tests/kernel_first_calls.py)
+# --------------------------------------------------------------------------------------------------
+@pytest.mark.parametrize("cached, switch, started", [(False, None, 4), (True, None, 0), (None, None, 0),
+                                                     (False, "0", 0)])
+def test_the_suite_compiles_ahead_only_the_groups_the_cache_lacks(monkeypatch, cached, switch, started):
+    """A child per group whose driver the disk cache lacks (``_cached`` False), none when it has them or cannot
+    tell, none when turned off; each child runs its own group's first calls, from this repository."""
+    import kernel_first_calls as k
+
+    import rockcli.kernels.batch as batch
+
+    monkeypatch.setattr(batch, "_cached", lambda kernel: cached)
+    if switch is None:
+        monkeypatch.delenv("ROCKCLI_TEST_COMPILE_AHEAD", raising=False)
+    else:
+        monkeypatch.setenv("ROCKCLI_TEST_COMPILE_AHEAD", switch)
+    spawned = []
+
+    class _Popen:
+        def __init__(self, argv, **kw):
+            spawned.append((argv, kw))
+
+    monkeypatch.setattr(k.subprocess, "Popen", _Popen)
+    assert len(k.start()) == started
+    groups = [argv[-1].split("compile_group(")[1].rstrip(")") for argv, _ in spawned]
+    assert groups == [repr(g) for g in k.GROUP_DRIVERS][:started]
+    for _, kw in spawned:
+        assert str(k.ROOT) in kw["env"]["PYTHONPATH"].split(os.pathsep)
+
+
+def test_each_group_of_first_calls_reaches_its_driver():
+    """Every group compiles the driver that makes it cold, and every first call belongs to a group."""
+    import kernel_first_calls as k
+
+    calls = k.first_calls()
+    assert {g for g, _, _ in calls} == set(k.GROUP_DRIVERS)
+    for group, (module, name) in k.GROUP_DRIVERS.items():
+        assert f"{module}.{name}" in [driver for g, driver, _ in calls if g == group]
