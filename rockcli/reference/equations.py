@@ -31,11 +31,12 @@ def ground_function(excitation):
     if hasattr(excitation, "acc"):
         acc = np.asarray(excitation.acc, float)
         tt = excitation.dt * np.arange(acc.size)
+        interp = interpolant(tt, acc)
 
         def ag(t):
             if t > tt[-1] or t < 0:
                 return 0.0
-            return float(np.interp(t, tt, acc))
+            return interp(t)
 
         return ag, float(tt[-1]), float(excitation.dt), float(excitation.dt)
 
@@ -44,6 +45,32 @@ def ground_function(excitation):
 
     ts, te = excitation.support()
     return ag, float(te), excitation.T_p / 200.0, np.inf
+
+
+def interpolant(x, y):
+    """``numpy.interp(t, x, y)`` at one time ``t`` inside ``[x[0], x[-1]]``, as NumPy computes it (the interval by
+    bisection, a sample's own value where ``t`` is one, else ``slope * (t - x[j]) + y[j]``), in plain Python
+    floats: some 5 times cheaper than ``numpy.interp`` on a scalar, which the right-hand side calls at every
+    stage. tests/test_reference.py checks it against ``numpy.interp`` bit for bit."""
+    from bisect import bisect_right
+
+    xs, ys = np.asarray(x, float).tolist(), np.asarray(y, float).tolist()
+    last = len(xs) - 1
+
+    def interp(t):
+        t = float(t)
+        j = bisect_right(xs, t) - 1
+        if j >= last or xs[j] == t:
+            return ys[min(j, last)]
+        slope = (ys[j + 1] - ys[j]) / (xs[j + 1] - xs[j])
+        value = slope * (t - xs[j]) + ys[j]
+        if math.isnan(value):  # as NumPy: from the interval's other end, or the common value of a flat one
+            value = slope * (t - xs[j + 1]) + ys[j + 1]
+            if math.isnan(value) and ys[j] == ys[j + 1]:
+                value = ys[j]
+        return value
+
+    return interp
 
 
 class ColonnadeMasses(NamedTuple):

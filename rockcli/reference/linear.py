@@ -16,7 +16,7 @@ import math
 import numpy as np
 
 from rockcli.models import LinearIsolation
-from rockcli.reference.equations import colonnade_masses, ground_function, rocking_accelerations
+from rockcli.reference.equations import colonnade_masses, ground_function, interpolant, rocking_accelerations
 from rockcli.reference.phases import Phases
 from rockcli.reference.result import RefResult
 from rockcli.io.units import G
@@ -42,9 +42,10 @@ def reference_linear(block, foundation, excitation, work, *, horizon, rest_tol, 
     else:
         vacc = np.asarray(vertical[0], float)
         vtt = float(vertical[1]) * np.arange(vacc.size)
+        v_at = interpolant(vtt, vacc)
 
         def gv(t):  # gravity felt by the block: g + a_v(t), a_v zero outside the series
-            return g + (float(np.interp(t, vtt, vacc)) if 0.0 <= t <= vtt[-1] else 0.0)
+            return g + (v_at(t) if 0.0 <= t <= vtt[-1] else 0.0)
 
         t_exc_end = max(t_exc_end, float(vtt[-1]))
         scan_step = min(scan_step, float(vertical[1]))
