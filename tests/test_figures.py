@@ -114,6 +114,60 @@ def test_wrapping_never_breaks_a_formula():
         assert line.count("$") % 2 == 0
 
 
+def _wrapped_word_by_word(fig, text, fontsize, share=1.0):
+    """The wrapping as it was first written: each line grows a word at a time while it fits (the reference of
+    the bisection in wrap_to)."""
+    import re
+
+    from rockcli.report.figures import text_width_pt
+
+    room = 0.97 * share * fig.get_figwidth() * 72.0
+    parts = text.split("$")
+    glued = "$".join(p.replace(" ", "\0") if k % 2 else p for k, p in enumerate(parts))
+    glued = re.sub(r" = (\S+)( (?:g|s|m|mm|rad/s|m/s)\b)?",
+                   lambda m: "\0=\0" + m.group(1) + (m.group(2) or "").replace(" ", "\0"), glued)
+    out = []
+    for para in glued.split("\n"):
+        if text_width_pt(para.replace("\0", " "), fontsize) <= room:
+            out.append(para)
+            continue
+        line = ""
+        for word in para.split(" "):
+            trial = f"{line} {word}" if line else word
+            if line and text_width_pt(trial.replace("\0", " "), fontsize) > room:
+                out.append(line)
+                line = word
+            else:
+                line = trial
+        out.append(line)
+    return "\n".join(out).replace("\0", " ")
+
+
+def test_wrapping_by_bisection_is_the_word_by_word_wrapping():
+    """60 random titles (words of 1-14 letters, a few formulas, values with units, double spaces, paragraphs,
+    a word wider than the room) on figures 1.5-8 inches wide: the same lines as growing each line a word at a
+    time."""
+    from rockcli.report.figures import new_figure, wrap_to
+
+    rng = np.random.default_rng(12)
+    pieces = ["$T_b$ = 2 s", "$a_p/(g \\tan\\alpha)$", "$\\alpha$ = 14°", "R = 1.03 m", "", "Supercalifragilistic" * 2]
+    for k in range(60):
+        words = []
+        for _ in range(int(rng.integers(1, 30))):
+            if rng.random() < 0.12:
+                words.append(pieces[int(rng.integers(len(pieces)))])
+            else:
+                words.append("".join(rng.choice(list("abcdefghijklmnopqrstuvwxyzWM"), int(rng.integers(1, 15)))))
+            if rng.random() < 0.03:
+                words.append("\n")
+        text = " ".join(words).replace(" \n ", "\n")
+        fig = new_figure(float(rng.uniform(1.5, 8.0)), 2.0)
+        size, share = float(rng.choice([7.0, 9.0, 11.0])), float(rng.choice([1.0, 0.45]))
+        assert wrap_to(fig, text, size, share) == _wrapped_word_by_word(fig, text, size, share), (k, text)
+        plt = __import__("matplotlib.pyplot").pyplot
+        plt.close(fig)
+
+
 # --------------------------------------------------------------------------------------------------
 # simulate --plot (Figures 1 and 12)
 # --------------------------------------------------------------------------------------------------

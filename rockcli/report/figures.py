@@ -201,15 +201,26 @@ def wrap_to(fig, text: str, fontsize: float, share: float = 1.0) -> str:
         if text_width_pt(para.replace("\0", " "), fontsize) <= room:  # it fits: no word would move (a prefix of
             out.append(para)  # a line is never wider than the line), one measurement instead of one a word
             continue
-        line = ""
-        for word in para.split(" "):
-            trial = f"{line} {word}" if line else word
-            if line and text_width_pt(trial.replace("\0", " "), fontsize) > room:
-                out.append(line)
-                line = word
-            else:
-                line = trial
-        out.append(line)
+        words = para.split(" ")
+
+        def fits(i, k):  # words i .. i + k - 1 as one line
+            return text_width_pt(" ".join(words[i:i + k]).replace("\0", " "), fontsize) <= room
+
+        i = 0
+        while i < len(words):
+            while i < len(words) - 1 and not words[i]:  # a line starts at a word, not at a space
+                i += 1
+            # the longest line from word i that fits (its first word in any case), the line the words fill one by
+            # one: a prefix of a line is never wider than the line, so it is found by bisection on its length
+            lo, hi = 1, len(words) - i  # lo words fit (or are the first); more than hi do not exist
+            while lo < hi:
+                mid = (lo + hi + 1) // 2
+                if fits(i, mid):
+                    lo = mid
+                else:
+                    hi = mid - 1
+            out.append(" ".join(words[i:i + lo]))
+            i += lo
     return "\n".join(out).replace("\0", " ")
 
 
