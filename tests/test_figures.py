@@ -117,17 +117,11 @@ def test_wrapping_never_breaks_a_formula():
 def _wrapped_word_by_word(fig, text, fontsize, share=1.0):
     """The wrapping as it was first written: each line grows a word at a time while it fits (the reference of
     the bisection in wrap_to)."""
-    import re
+    from rockcli.report.figures import glued_words, text_width_pt, wrap_room
 
-    from rockcli.report.figures import text_width_pt
-
-    room = 0.97 * share * fig.get_figwidth() * 72.0
-    parts = text.split("$")
-    glued = "$".join(p.replace(" ", "\0") if k % 2 else p for k, p in enumerate(parts))
-    glued = re.sub(r" = (\S+)( (?:g|s|m|mm|rad/s|m/s)\b)?",
-                   lambda m: "\0=\0" + m.group(1) + (m.group(2) or "").replace(" ", "\0"), glued)
+    room = wrap_room(fig, share)
     out = []
-    for para in glued.split("\n"):
+    for para in glued_words(text).split("\n"):
         if text_width_pt(para.replace("\0", " "), fontsize) <= room:
             out.append(para)
             continue

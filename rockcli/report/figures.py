@@ -188,16 +188,26 @@ def text_width_pt(text: str, fontsize: float) -> float:
     return width
 
 
+def wrap_room(fig, share: float = 1.0) -> float:
+    """The width [pt] a wrapped line may take: ``share`` of the figure's width, less a margin."""
+    return 0.97 * share * fig.get_figwidth() * 72.0
+
+
+def glued_words(text: str) -> str:
+    """``text`` with the spaces no line may break at as NUL characters: inside a ``$...$`` formula, and around
+    `` = `` between a name and its value with its unit (``$T_b$ = 2 s``)."""
+    parts = text.split("$")
+    glued = "$".join(p.replace(" ", "\0") if k % 2 else p for k, p in enumerate(parts))
+    return re.sub(r" = (\S+)( (?:g|s|m|mm|rad/s|m/s)\b)?",
+                  lambda m: "\0=\0" + m.group(1) + (m.group(2) or "").replace(" ", "\0"), glued)
+
+
 def wrap_to(fig, text: str, fontsize: float, share: float = 1.0) -> str:
     """``text`` wrapped to ``share`` of the figure's width, by the measured width of each line, never
     inside a ``$...$`` formula nor between a value and its symbol or unit (``$T_b$ = 2 s``)."""
-    room = 0.97 * share * fig.get_figwidth() * 72.0
-    parts = text.split("$")
-    glued = "$".join(p.replace(" ", "\0") if k % 2 else p for k, p in enumerate(parts))
-    glued = re.sub(r" = (\S+)( (?:g|s|m|mm|rad/s|m/s)\b)?",
-                   lambda m: "\0=\0" + m.group(1) + (m.group(2) or "").replace(" ", "\0"), glued)
+    room = wrap_room(fig, share)
     out = []
-    for para in glued.split("\n"):
+    for para in glued_words(text).split("\n"):
         if text_width_pt(para.replace("\0", " "), fontsize) <= room:  # it fits: no word would move (a prefix of
             out.append(para)  # a line is never wider than the line), one measurement instead of one a word
             continue
