@@ -43,9 +43,18 @@ _absolute_record_folders()
 
 
 def pytest_configure(config):
-    """On several workers (``-n 2``), pytest's main process starts compiling the drivers numba's disk cache lacks,
-    one child process per group, before the workers need them (tests/kernel_first_calls.py)."""
-    if hasattr(config, "workerinput") or not getattr(config.option, "numprocesses", None):
+    """pytest's main process writes rockcli's Python bytecode, as a user's first run leaves it: where
+    PYTHONDONTWRITEBYTECODE is set (as on this machine and some CI machines) every process of the session, the
+    workers, the fork servers and the commands run for real, would otherwise compile rockcli from source again
+    (0.2-0.4 s of CPU each); ``__pycache__`` is ignored by git, like numba's cache of the kernels beside it.
+    On several workers (``-n 2``), it then starts compiling the drivers numba's disk cache lacks, one child
+    process per group, before the workers need them (tests/kernel_first_calls.py)."""
+    if hasattr(config, "workerinput"):
+        return
+    import compileall
+
+    compileall.compile_dir(str(Path(__file__).resolve().parents[1] / "rockcli"), quiet=1)
+    if not getattr(config.option, "numprocesses", None):
         return
     import kernel_first_calls
 

@@ -31,7 +31,6 @@ page (under 200 lines).
 
 from __future__ import annotations
 
-import compileall
 import hashlib
 import json
 import os
@@ -180,10 +179,7 @@ def clone(tmp_path_factory, fork_servers):
     folders = [p for p in os.environ.get("ROCKCLI_RECORDS", "").split(os.pathsep) if p and Path(p).is_dir()]
     if not folders:
         pytest.skip("ROCKCLI_RECORDS names no folder of records: the documented commands need them")
-    # the repository's Python bytecode, as a user's first run leaves it: where PYTHONDONTWRITEBYTECODE is set
-    # (some CI machines set it) each of the ~90 processes would otherwise compile rockcli from source again
-    # (about 0.2 s of CPU each); __pycache__ is ignored by git, like numba's cache of the kernels beside it
-    compileall.compile_dir(str(ROOT / "rockcli"), quiet=1)
+    # rockcli's Python bytecode is written by tests/conftest.py at the start of the session
     return _make_clone(tmp_path_factory.mktemp("docs"), Path(folders[0]), fork_servers)
 
 
