@@ -27,22 +27,6 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def _fixtures():
-    import numpy as np
-
-    from rockcli.io.units import G
-    from rockcli.models import Block, LinearIsolation, Plinth, Stack
-    from rockcli.pulses import make_pulse
-    from rockcli.records import Record
-
-    block = Block(1.0, 0.2)
-    pulse = make_pulse("sine", 2.0 * G * math.tan(0.2), 0.5)
-    stack = Stack(Block.from_dimensions(1.5, 0.4, "body"), Plinth(0.5, 1.0, None))
-    bearings = LinearIsolation(2.0, xi=0.1, gamma=0.2)
-    vertical = Record(np.full(200, 1.0), 0.01, "constant")
-    return block, pulse, stack, bearings, vertical
-
-
 def _vertical_batch(kernel) -> None:
     import numpy as np
 
@@ -58,11 +42,18 @@ def first_calls() -> list[tuple[str, str, object]]:
     import numpy as np
 
     from rockcli.assess.liftoff import load_floor_kernel
+    from rockcli.io.units import G
     from rockcli.kernels import batch as kb
-    from rockcli.models import LinearIsolation, Rigid, SingleConcaveSliding
+    from rockcli.models import Block, LinearIsolation, Plinth, Rigid, SingleConcaveSliding, Stack
+    from rockcli.pulses import make_pulse
+    from rockcli.records import Record
     from rockcli.solve import bearing_force_path, simulate, simulate_stack
 
-    block, pulse, stack, bearings, vertical = _fixtures()
+    block = Block(1.0, 0.2)
+    pulse = make_pulse("sine", 2.0 * G * math.tan(0.2), 0.5)
+    stack = Stack(Block.from_dimensions(1.5, 0.4, "body"), Plinth(0.5, 1.0, None))
+    bearings = LinearIsolation(2.0, xi=0.1, gamma=0.2)
+    vertical = Record(np.full(200, 1.0), 0.01, "constant")
     return [
         ("rigid", "rigid.simulate_rigid", lambda: simulate(block, Rigid(), pulse)),
         ("rigid", "rigid.simulate_rigid_vertical", lambda: simulate(block, Rigid(), pulse, vertical=vertical)),
@@ -86,8 +77,9 @@ GROUP_DRIVERS = {"rigid": ("rigid", "simulate_rigid"), "isolated": ("driver", "s
 
 def compile_group(group: str) -> None:
     """Make the first calls of ``group`` (in a child process of :func:`start`)."""
-    for name, _, call in (c for c in first_calls() if c[0] == group):
-        call()
+    for g, _, call in first_calls():
+        if g == group:
+            call()
 
 
 def cold_groups() -> list[str]:

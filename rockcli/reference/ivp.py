@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import time
 
 import numpy as np
@@ -83,6 +84,7 @@ class Work:
         return sol
 
 
+@functools.cache
 def _radau_direct():
     """SciPy's ``Radau`` with its dense LU factorisation and solves called straight from LAPACK.
 
@@ -92,51 +94,46 @@ def _radau_direct():
     (so every number is the same), and keeps their checks: a non-finite matrix or right-hand side raises
     ``ValueError`` as ``check_finite`` does, a singular factor warns as ``lu_factor`` does.
     """
-    global _RADAU
-    if _RADAU is None:
-        import warnings
+    import warnings
 
-        from scipy.integrate import Radau
-        from scipy.linalg import LinAlgWarning
-        from scipy.linalg.lapack import get_lapack_funcs
-        from scipy.sparse import issparse
+    from scipy.integrate import Radau
+    from scipy.linalg import LinAlgWarning
+    from scipy.linalg.lapack import get_lapack_funcs
+    from scipy.sparse import issparse
 
-        def factor(solver, A):
-            solver.nlu += 1
-            if not np.isfinite(A).all():
-                raise ValueError("array must not contain infs or NaNs")
-            getrf, = get_lapack_funcs(("getrf",), (A,))
-            lu, piv, info = getrf(A, overwrite_a=True)
-            if info < 0:
-                raise ValueError(f"illegal value in {-info}th argument of internal getrf (lu_factor)")
-            if info > 0:
-                warnings.warn(f"Diagonal number {info} is exactly zero. Singular matrix.", LinAlgWarning,
-                              stacklevel=2)
-            return lu, piv, get_lapack_funcs(("getrs",), (lu,))[0]
+    def factor(solver, A):
+        solver.nlu += 1
+        if not np.isfinite(A).all():
+            raise ValueError("array must not contain infs or NaNs")
+        getrf, = get_lapack_funcs(("getrf",), (A,))
+        lu, piv, info = getrf(A, overwrite_a=True)
+        if info < 0:
+            raise ValueError(f"illegal value in {-info}th argument of internal getrf (lu_factor)")
+        if info > 0:
+            warnings.warn(f"Diagonal number {info} is exactly zero. Singular matrix.", LinAlgWarning,
+                          stacklevel=2)
+        return lu, piv, get_lapack_funcs(("getrs",), (lu,))[0]
 
-        def solve(LU, b):
-            lu, piv, getrs = LU
-            if not np.isfinite(b).all():
-                raise ValueError("array must not contain infs or NaNs")
-            x, info = getrs(lu, piv, b, trans=0, overwrite_b=True)
-            if info != 0:
-                raise ValueError(f"illegal value in {-info}th argument of internal gesv|posv")
-            return x
+    def solve(LU, b):
+        lu, piv, getrs = LU
+        if not np.isfinite(b).all():
+            raise ValueError("array must not contain infs or NaNs")
+        x, info = getrs(lu, piv, b, trans=0, overwrite_b=True)
+        if info != 0:
+            raise ValueError(f"illegal value in {-info}th argument of internal gesv|posv")
+        return x
 
-        class DirectRadau(Radau):
-            def __init__(self, *args, **kw):
-                super().__init__(*args, **kw)
-                if not issparse(self.J):  # a dense Jacobian: LAPACK straight
-                    self.lu = lambda A: factor(self, A)
-                    self.solve_lu = solve
+    class DirectRadau(Radau):
+        def __init__(self, *args, **kw):
+            super().__init__(*args, **kw)
+            if not issparse(self.J):  # a dense Jacobian: LAPACK straight
+                self.lu = lambda A: factor(self, A)
+                self.solve_lu = solve
 
-        _RADAU = DirectRadau
-    return _RADAU
+    return DirectRadau
 
 
-_RADAU = None
-
-
+@functools.cache
 def _dop853_scalar_dense():
     """SciPy's ``DOP853`` whose dense output, at one time, sums its polynomial in plain Python floats.
 
@@ -146,40 +143,34 @@ def _dop853_scalar_dense():
     Horner-like sum with the same operations in the same order (numpy's float64 arithmetic is Python's), so every
     number is the same; at several times it is SciPy's own.
     """
-    global _DOP853
-    if _DOP853 is None:
-        from scipy.integrate import DOP853
-        from scipy.integrate._ivp.rk import Dop853DenseOutput
+    from scipy.integrate import DOP853
+    from scipy.integrate._ivp.rk import Dop853DenseOutput
 
-        class ScalarDense(Dop853DenseOutput):
-            def __init__(self, dense):
-                super().__init__(dense.t_old, dense.t, dense.y_old, dense.F)
-                self._rows = self.F[::-1].tolist()  # the sum starts from the highest power, as SciPy's
-                self._y_old = self.y_old.tolist()
+    class ScalarDense(Dop853DenseOutput):
+        def __init__(self, dense):
+            super().__init__(dense.t_old, dense.t, dense.y_old, dense.F)
+            self._rows = self.F[::-1].tolist()  # the sum starts from the highest power, as SciPy's
+            self._y_old = self.y_old.tolist()
 
-            def _call_impl(self, t):
-                if t.ndim:
-                    return super()._call_impl(t)
-                x = float((t - self.t_old) / self.h)
-                x_1 = 1 - x
-                out = []
-                for j, y0 in enumerate(self._y_old):
-                    y = 0.0
-                    for i, f in enumerate(self._rows):
-                        y += f[j]
-                        y *= x if i % 2 == 0 else x_1
-                    out.append(y + y0)
-                return np.array(out)
+        def _call_impl(self, t):
+            if t.ndim:
+                return super()._call_impl(t)
+            x = float((t - self.t_old) / self.h)
+            x_1 = 1 - x
+            out = []
+            for j, y0 in enumerate(self._y_old):
+                y = 0.0
+                for i, f in enumerate(self._rows):
+                    y += f[j]
+                    y *= x if i % 2 == 0 else x_1
+                out.append(y + y0)
+            return np.array(out)
 
-        class ScalarDenseDOP853(DOP853):
-            def _dense_output_impl(self):
-                return ScalarDense(super()._dense_output_impl())
+    class ScalarDenseDOP853(DOP853):
+        def _dense_output_impl(self):
+            return ScalarDense(super()._dense_output_impl())
 
-        _DOP853 = ScalarDenseDOP853
-    return _DOP853
-
-
-_DOP853 = None
+    return ScalarDenseDOP853
 
 
 class Chain:
