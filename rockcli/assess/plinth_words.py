@@ -99,10 +99,14 @@ def run_sentence(stack, res) -> str:
                    f"Neither {body} nor its {name} has toppled") + ": " + words + "."
 
 
+#: The question :func:`plinth_help_parts` answers, as the text and the HTML report head their answers.
+PLINTH_QUESTION = "Does the plinth help?"
+
+
 def plinth_summary(assessment, stack) -> str:
-    """"Does the plinth help?" and :func:`plinth_help_parts` as one paragraph ('' when there is nothing to compare)."""
+    """:data:`PLINTH_QUESTION` and :func:`plinth_help_parts` as one paragraph ('' when there is nothing to compare)."""
     parts = plinth_help_parts(assessment, stack)
-    return ("Does the plinth help? " + " ".join(parts)) if parts else ""
+    return (f"{PLINTH_QUESTION} " + " ".join(parts)) if parts else ""
 
 
 def plinth_help_parts(assessment, stack) -> list:
@@ -203,4 +207,5 @@ def _margin_words(alone, onp, on: str, body: str = "the body") -> str:
     return ("; " + "; ".join(out)) if out else ""
 
 
-__all__ = ["peak_words", "plinth_name", "plinth_summary", "row_peak_words", "run_sentence", "survivors_peak_words"]
+__all__ = ["PLINTH_QUESTION", "peak_words", "plinth_help_parts", "plinth_name", "plinth_summary", "row_peak_words",
+           "run_sentence", "survivors_peak_words"]

@@ -478,9 +478,9 @@ def format_verdicts(assessment, width: int = 100) -> str:
             lines.append(_fill(short, width, initial_indent="  ", subsequent_indent="      "))
         helps = plinth_help_parts(assessment, b) if getattr(b, "plinth", None) is not None else []
         if helps:
-            lines.append("  Does the plinth help?")
+            lines.append(f"  {PLINTH_QUESTION}")
             lines += [_fill(h, width, initial_indent="  - ", subsequent_indent="    ") for h in helps]
     return "\n".join(lines)
 
 
-from rockcli.assess.plinth_words import plinth_help_parts, plinth_summary  # noqa: E402,F401  (re-exported)
+from rockcli.assess.plinth_words import PLINTH_QUESTION, plinth_help_parts, plinth_summary  # noqa: E402,F401

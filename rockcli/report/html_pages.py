@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 from types import SimpleNamespace
 
-from rockcli.assess.verdicts import (SURVIVES, TOPPLES, body_noun, body_words, configuration_words,
+from rockcli.assess.verdicts import (PLINTH_QUESTION, SURVIVES, TOPPLES, body_noun, body_words, configuration_words,
                                      isolation_summary, outcome, plinth_help_parts, question, scene_sentence, stroke_m,
                                      survivor_stroke, verdict_lines)
 from rockcli.report.html import (assumptions_section, body_section, card, configurations_section, esc, figure,
@@ -218,7 +218,7 @@ def assessment_report(assessment, *, check=None, command: str = "") -> str:
             first.append(f"<p class='short'>{esc(short)}</p>")
         helps = plinth_help_parts(assessment, b) if getattr(b, "plinth", None) is not None else []
         if helps:
-            first.append("<p class='short'>Does the plinth help?</p><ul class='short'>"
+            first.append(f"<p class='short'>{esc(PLINTH_QUESTION)}</p><ul class='short'>"
                          + "".join(f"<li>{esc(h)}</li>" for h in helps) + "</ul>")
     facts = []
     for b in blocks:
