@@ -96,6 +96,30 @@ def test_format_number_is_exact_and_short(x):
     assert format_number(2.5) == "2.5" and format_number(100.0001) == "100.0001"
 
 
+def test_models_write_their_sentences_only_for_a_check_that_fails(monkeypatch):
+    """A block, a bearing or a plinth built within its ranges formats no number (a sweep builds thousands of
+    them); out of range, the sentence quotes the number as written."""
+    import rockcli.io.inputs as inputs
+    from rockcli.models import (Block, DoubleConcaveSliding, LeadRubber, LinearIsolation, Plinth,
+                                SingleConcaveSliding, Stack)
+
+    def build():
+        body = Block.from_dimensions(1.79, 0.5)
+        return [Block(1.0, 0.2), Block.from_degrees(1.2, 14.0), body, LinearIsolation(2.5, 0.1, 0.05),
+                SingleConcaveSliding(2.0, 0.05), LeadRubber(2.0, 0.05, 0.02), DoubleConcaveSliding(0.5, 0.5, 0.03, 0.07),
+                Stack(body, Plinth(1.0, 0.6))]
+
+    expected = build()
+    monkeypatch.setattr(inputs, "format_number", lambda *a, **k: pytest.fail("a number formatted for no message"))
+    assert build() == expected
+    monkeypatch.undo()
+    for make, words in [(lambda: Block(1.0, 0.001), "0.001 rad"), (lambda: Block.from_degrees(200.0, 14.0), "200"),
+                        (lambda: Block.from_dimensions(0.01, 0.002), "from height 0.01 m and width 0.002 m"),
+                        (lambda: LinearIsolation(2.5, 11.5), "xi = 11.5"), (lambda: Plinth(0.5, -1.25), "-1.25")]:
+        with pytest.raises(RockcliInputError, match=words.replace(".", r"\.")):
+            make()
+
+
 def test_spec_items_refuse_a_key_given_twice_case_insensitively():
     with pytest.raises(RockcliInputError, match="ap is given twice"):
         spec_items("ap=1,ap=2", "pulse spec")

@@ -41,18 +41,20 @@ class Block:
     def from_dimensions(cls, height: float, width: float, name: str = "block") -> "Block":
         """Block of full ``height`` and base ``width`` [m] (for a column: the base drum diameter)."""
         _check(_finite(height) and float(height) > 0,
-               f"block height must be a positive length in m, got {_num(height)}")
-        _check(_finite(width) and float(width) > 0, f"block width must be a positive length in m, got {_num(width)}")
+               lambda: f"block height must be a positive length in m, got {_num(height)}")
+        _check(_finite(width) and float(width) > 0,
+               lambda: f"block width must be a positive length in m, got {_num(width)}")
         h, b = 0.5 * float(height), 0.5 * float(width)
         R, alpha = math.hypot(h, b), math.atan2(b, h)
-        _check_block(R, alpha, f" (from height {_num(height)} m and width {_num(width)} m)")
+        _check_block(R, alpha, dimensions=(height, width))
         return cls(R, alpha, name)
 
     @classmethod
     def from_degrees(cls, R: float, alpha_deg: float, name: str = "block") -> "Block":
         """Block from its semi-diagonal [m] and slenderness in degrees."""
         _check(_finite(alpha_deg) and 0 < float(alpha_deg) < 90,
-               f"block slenderness alpha must lie strictly between 0 and 90 degrees, got {_num(alpha_deg)}")
+               lambda: f"block slenderness alpha must lie strictly between 0 and 90 degrees, got "
+                       f"{_num(alpha_deg)}")
         _check_block(R, math.radians(float(alpha_deg)), alpha_deg=alpha_deg)  # quoting the degrees as given
         return cls(R, math.radians(float(alpha_deg)), name)
 
@@ -94,27 +96,36 @@ class Block:
         return 1.0 - 1.5 * math.sin(self.alpha) ** 2
 
 
-def _check_block(R, alpha, source: str = "", alpha_deg=None) -> None:
+def _check_block(R, alpha, dimensions=None, alpha_deg=None) -> None:
     """Raise one sentence when R [m] or alpha [rad] lies outside :data:`R_RANGE_M` / :data:`ALPHA_MIN_DEG`.
 
     The slenderness is quoted as it was given: ``alpha_deg`` (degrees, :meth:`Block.from_degrees`), else the
-    radians of :class:`Block` with their degrees, or (``source``: derived from a height and a width) the
-    degrees to 12 significant digits (:func:`rockcli.io.inputs.format_number` with ``derived=True``)."""
-    _check(_finite(R) and float(R) > 0, f"block size R must be a positive length in m, got {_num(R)}")
+    radians of :class:`Block` with their degrees, or (``dimensions``: the ``(height, width)`` they were derived
+    from, quoted as given) the degrees to 12 significant digits (:func:`rockcli.io.inputs.format_number` with
+    ``derived=True``). The sentences are written only for a check that fails (a block is built thousands of times
+    in a sweep)."""
+    _check(_finite(R) and float(R) > 0, lambda: f"block size R must be a positive length in m, got {_num(R)}")
     _check(_finite(alpha) and 0 < float(alpha) < math.pi / 2,
-           f"block slenderness alpha must lie strictly between 0 and 90 degrees, got {_num(alpha)} rad")
+           lambda: f"block slenderness alpha must lie strictly between 0 and 90 degrees, got {_num(alpha)} rad")
+
+    def source() -> str:
+        return "" if dimensions is None else f" (from height {_num(dimensions[0])} m and width {_num(dimensions[1])} m)"
+
     lo, hi = R_RANGE_M
-    shown = _num(R) if not source else format_number(R, derived=True)  # a derived R: the source quotes the input
-    _check(lo <= float(R) <= hi,
-           f"block size R = {shown} m{source} lies outside the supported {lo:g} m to {hi:g} m (a figurine 2 cm "
-           f"tall to a 140 m monolith; smaller bodies rock too fast to integrate, p = sqrt(3 g/4 R))")
+    _check(lo <= float(R) <= hi,  # a derived R: the source quotes the input
+           lambda: f"block size R = {_num(R) if dimensions is None else format_number(R, derived=True)} m{source()} "
+                   f"lies outside the supported {lo:g} m to {hi:g} m (a figurine 2 cm tall to a 140 m monolith; "
+                   f"smaller bodies rock too fast to integrate, p = sqrt(3 g/4 R))")
     deg = math.degrees(float(alpha))
-    shown = (f"{_num(alpha_deg)} deg" if alpha_deg is not None else
-             f"{format_number(deg, derived=True)} deg" if source else f"{_num(alpha)} rad ({deg:.3g} deg)")
+
+    def shown() -> str:
+        return (f"{_num(alpha_deg)} deg" if alpha_deg is not None else f"{format_number(deg, derived=True)} deg"
+                if dimensions is not None else f"{_num(alpha)} rad ({deg:.3g} deg)")
+
     _check(deg >= ALPHA_MIN_DEG * (1 - 1e-12),
-           f"block slenderness alpha = {shown}{source} is below the supported {ALPHA_MIN_DEG:g} deg "
-           f"(h/b = {1 / math.tan(float(alpha)):.3g} > 57): such a needle uplifts under ground noise, "
-           f"rocks through ever longer impact cascades, and its theta/alpha means nothing")
+           lambda: f"block slenderness alpha = {shown()}{source()} is below the supported {ALPHA_MIN_DEG:g} deg "
+                   f"(h/b = {1 / math.tan(float(alpha)):.3g} > 57): such a needle uplifts under ground noise, "
+                   f"rocks through ever longer impact cascades, and its theta/alpha means nothing")
 
 
 #: The temple columns of the paper (monolithic idealisation): full height and base drum diameter [m].

@@ -56,20 +56,20 @@ class LinearIsolation:
 
     def __post_init__(self):
         _check(_finite(self.T_b) and float(self.T_b) > 0,
-               f"isolation period Tb must be positive (s), got {_num(self.T_b)}")
+               lambda: f"isolation period Tb must be positive (s), got {_num(self.T_b)}")
         lo, hi = TB_RANGE_S
         _check(lo <= float(self.T_b) <= hi,
-               f"isolation period Tb = {_num(self.T_b)} s lies outside the supported {lo:g} s to {hi:g} s "
-               f"(stiffer bearings are a rigid foundation for any record: use 'none'; at {hi:g} s the base is "
-               f"already free)")
+               lambda: f"isolation period Tb = {_num(self.T_b)} s lies outside the supported {lo:g} s to {hi:g} s "
+                       f"(stiffer bearings are a rigid foundation for any record: use 'none'; at {hi:g} s the base is "
+                       f"already free)")
         _check(_finite(self.xi) and float(self.xi) >= 0,
-               f"isolation damping ratio xi must be >= 0, got {_num(self.xi)}")
+               lambda: f"isolation damping ratio xi must be >= 0, got {_num(self.xi)}")
         _check(float(self.xi) <= XI_MAX,
-               f"isolation damping ratio xi = {_num(self.xi)} is above the supported {XI_MAX:g} (bearings have "
-               f"0.02-0.3; beyond {XI_MAX:g} times critical the dampers lock the base and the run needs "
-               f"~2 xi omega_b steps per second)")
+               lambda: f"isolation damping ratio xi = {_num(self.xi)} is above the supported {XI_MAX:g} (bearings have "
+                       f"0.02-0.3; beyond {XI_MAX:g} times critical the dampers lock the base and the run needs "
+                       f"~2 xi omega_b steps per second)")
         _check(_finite(self.gamma) and 0 <= float(self.gamma) < 1,
-               f"mass ratio gamma = m/(m+m_b) must satisfy 0 <= gamma < 1, got {_num(self.gamma)}")
+               lambda: f"mass ratio gamma = m/(m+m_b) must satisfy 0 <= gamma < 1, got {_num(self.gamma)}")
         for f in ("T_b", "xi", "gamma"):
             object.__setattr__(self, f, float(getattr(self, f)))
 
@@ -237,7 +237,8 @@ class DoubleConcaveSliding:
     def __post_init__(self):
         for name in ("R1_eff", "R2_eff"):
             v = getattr(self, name)
-            _check(_finite(v) and v > 0, f"effective radius {name[:2]} must be a positive length in m, got {v!r}")
+            _check(_finite(v) and v > 0,
+                   lambda: f"effective radius {name[:2]} must be a positive length in m, got {v!r}")
             _check_period(2.0 * math.pi * math.sqrt(float(v) / G), f"the period of surface {name[:2]} alone")
         _check_period(2.0 * math.pi * math.sqrt((float(self.R1_eff) + float(self.R2_eff)) / G))
         _check_fraction("friction coefficient mu1", self.mu1)
@@ -248,7 +249,7 @@ class DoubleConcaveSliding:
     def from_period(cls, T_b: float, mu1: float, mu2: float, ratio: float = 1.0, **kwargs) -> "DoubleConcaveSliding":
         """The bearing of period ``T_b = 2 pi sqrt((R1_eff + R2_eff)/g)`` with ``R2_eff/R1_eff = ratio``."""
         _check_period(T_b)
-        _check(_finite(ratio) and ratio > 0, f"radius ratio r = R2/R1 must be positive, got {ratio!r}")
+        _check(_finite(ratio) and ratio > 0, lambda: f"radius ratio r = R2/R1 must be positive, got {ratio!r}")
         R_e = G * (float(T_b) / (2.0 * math.pi)) ** 2
         R1 = R_e / (1.0 + float(ratio))
         return cls(R1, R_e - R1, mu1, mu2, **kwargs)

@@ -39,16 +39,16 @@ class Plinth:
 
     def __post_init__(self):
         _check(_finite(self.height) and float(self.height) > 0,
-               f"plinth height must be a positive length in m, got {_num(self.height)}")
+               lambda: f"plinth height must be a positive length in m, got {_num(self.height)}")
         _check(_finite(self.width) and float(self.width) > 0,
-               f"plinth width must be a positive length in m, got {_num(self.width)}")
+               lambda: f"plinth width must be a positive length in m, got {_num(self.width)}")
         object.__setattr__(self, "height", float(self.height))
         object.__setattr__(self, "width", float(self.width))
         if self.mass_ratio is not None:
             lo, hi = MASS_RATIO_RANGE
             ok = _finite(self.mass_ratio) and lo <= float(self.mass_ratio) <= hi
-            _check(ok, f"plinth mass_ratio (its mass over the body's) must lie between {lo:g} and {hi:g}, "
-                       f"got {_num(self.mass_ratio)}")
+            _check(ok, lambda: f"plinth mass_ratio (its mass over the body's) must lie between {lo:g} and {hi:g}, "
+                               f"got {_num(self.mass_ratio)}")
             object.__setattr__(self, "mass_ratio", float(self.mass_ratio))
         self.block  # the plinth's own size and slenderness within the supported ranges
 
@@ -74,12 +74,12 @@ class Stack:
         if not isinstance(self.plinth, Plinth):
             raise RockcliInputError(f"the plinth must be a rockcli.models.Plinth, got {type(self.plinth).__name__}")
         _check(self.body.width <= self.plinth.width * (1 + 1e-12),
-               f"the body ({self.body.width:.4g} m wide) must be no wider than its plinth ({self.plinth.width:.4g} m "
-               f"wide): rockcli models a body standing centred on its plinth's top")
+               lambda: f"the body ({self.body.width:.4g} m wide) must be no wider than its plinth "
+                       f"({self.plinth.width:.4g} m wide): rockcli models a body standing centred on its plinth's top")
         m2 = self.m2
         lo, hi = MASS_RATIO_RANGE
-        _check(lo <= m2 <= hi, f"the plinth's mass over the body's, {m2:.4g} (same density), lies outside the "
-                               f"supported {lo:g} to {hi:g}: give mass_ratio= explicitly")
+        _check(lo <= m2 <= hi, lambda: f"the plinth's mass over the body's, {m2:.4g} (same density), lies outside the "
+                                       f"supported {lo:g} to {hi:g}: give mass_ratio= explicitly")
 
     # ---- the two blocks -------------------------------------------------------------------------
     @property
