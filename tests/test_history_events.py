@@ -23,7 +23,7 @@ from rockcli.models import Block, LinearIsolation, Rigid, SingleConcaveSliding
 from rockcli.pulses import make_pulse
 from rockcli.records import Record
 from rockcli.report.response import history_columns, history_table, write_history_csv
-from rockcli.solve import default_rtol, simulate
+from rockcli.solve import default_rtol, response, simulate
 from rockcli.io.units import G
 
 ALPHA = 0.2
@@ -227,3 +227,100 @@ def test_bad_history_dt_is_one_sentence(bad, tmp_path):
         simulate(BLOCK, Rigid(), None, theta0=0.1, history_dt=float(bad) if bad != "x" else bad)
     with pytest.raises(RockcliInputError, match="rows"):
         simulate(BLOCK, Rigid(), None, theta0=0.1, history_dt=1e-9)
+
+
+# --------------------------------------------------------------------------------------------------
+# the History of the kernel's rows, against the rows read the plain way
+# --------------------------------------------------------------------------------------------------
+def _plain_history(k, H, fkind, grid_dt):
+    """The fields of the :class:`History` of rows ``H``, read one obvious step at a time: each column copied,
+    each event kind labelled in turn, the shown rows sorted by time (stably) whether in order or not, and the
+    events read from the rows off the grid, an impact's far side from the next of them."""
+    kinds = H[:, k.H_KIND]
+    step_rows = (kinds != k.HK_PEAK) & (kinds != k.HK_GRID)
+    plain, shown = ((kinds == k.HK_GRID, kinds != k.HK_STATE) if grid_dt else (step_rows, step_rows))
+    shown_rows = H[shown][np.argsort(H[shown][:, k.H_T], kind="stable")]
+    labels = np.full(len(shown_rows), "", dtype=object)
+    for code, name in response.EVENT_KINDS:
+        labels[shown_rows[:, k.H_KIND] == getattr(k, code)] = name
+    P = H[plain]
+    hyst = fkind in (k.FOUNDATION_BILINEAR, k.FOUNDATION_DCSS)
+    off_grid = H[kinds != k.HK_GRID]
+    names = {k.HK_UPLIFT: "uplift", k.HK_OVERTURN: "overturn", k.HK_PEAK: "peak", k.HK_REST: "rest"}
+    events = []
+    for i, row in enumerate(off_grid):
+        kind = row[k.H_KIND]
+        if kind in (k.HK_STATE, k.HK_IMPACT_AFTER):
+            continue
+        state = [float(row[c]) for c in (k.H_T, k.H_TH, k.H_THD, k.H_U, k.H_UD, k.H_AG)]
+        if kind == k.HK_IMPACT:
+            after = float(off_grid[min(i + 1, len(off_grid) - 1), k.H_THD])
+            events.append(response.HistoryEvent("impact", *state, theta_dot_before=state[2], theta_dot_after=after))
+        else:
+            events.append(response.HistoryEvent(names[kind], *state))
+    events.sort(key=lambda e: e.t_s)
+    column = (lambda c: P[:, c].copy())
+    return dict(t=column(k.H_T), ag=column(k.H_AG), theta=column(k.H_TH), theta_dot=column(k.H_THD),
+                u=column(k.H_U), u_dot=column(k.H_UD), z=column(k.H_Z) if hyst else None,
+                z2=column(k.H_Z2) if fkind == k.FOUNDATION_DCSS else None,
+                bearing_force=column(k.H_FB) if fkind != k.FOUNDATION_RIGID else None,
+                peak_t=H[kinds == k.HK_PEAK][:, k.H_T].copy(), peak_theta=H[kinds == k.HK_PEAK][:, k.H_TH].copy(),
+                events=repr(tuple(events)), rows=shown_rows[:, :k.H_KIND].copy(), row_event=labels,
+                grid_dt=grid_dt or None)
+
+
+def _assert_same_history(k, H, fkind, grid_dt, where):
+    got, want = response._history(k, H, fkind, grid_dt), _plain_history(k, H, fkind, grid_dt)
+    for name, value in want.items():
+        mine = getattr(got, name)
+        if name == "events":
+            assert repr(mine) == value, (where, name)
+        elif isinstance(value, np.ndarray):
+            assert mine.dtype == value.dtype and mine.shape == value.shape, (where, name)
+            assert np.array_equal(mine, value, equal_nan=value.dtype != object), (where, name)
+        else:
+            assert mine == value, (where, name)
+
+
+def test_the_history_is_the_rows_read_the_plain_way():
+    """The History of a run (columns, peaks, events with both sides of each impact, the CSV rows and their event
+    names) equals the kernel's rows read the plain way (:func:`_plain_history`): on the raw rows of 140 random
+    runs (rigid and linear bases, sliding, lead-rubber and double concave bearings, at the steps and on a grid),
+    and on 3,000 random row tables made to be awkward (grid rows between an impact's two sides, times out of
+    order, ties, NaN, a single row, no row)."""
+    from test_sliding import random_sliding_scenes
+    from test_verdict_paths import random_scenes
+
+    k = response._kernel()
+    captured = []
+    real = response._history
+
+    def capture(kk, H, fkind, grid_dt):
+        captured.append((H.copy(), fkind, grid_dt))
+        return real(kk, H, fkind, grid_dt)
+
+    jobs = random_scenes(100, 4411) + random_sliding_scenes(40, 4412)
+    response._history = capture
+    try:
+        for i, job in enumerate(jobs):
+            simulate(*job, history=True, **({"history_dt": job[2].T_p / 7.0} if i % 3 == 0 else {}))
+    finally:
+        response._history = real
+    assert len(captured) == len(jobs)
+    assert {fk for _, fk, _ in captured} >= {k.FOUNDATION_RIGID, k.FOUNDATION_BILINEAR, k.FOUNDATION_DCSS}
+    for i, (H, fkind, grid_dt) in enumerate(captured):
+        _assert_same_history(k, H, fkind, grid_dt, ("run", i))
+    rng = np.random.default_rng(2026)
+    codes = [k.HK_STATE, k.HK_PEAK, k.HK_GRID, k.HK_UPLIFT, k.HK_IMPACT, k.HK_IMPACT_AFTER, k.HK_REST, k.HK_OVERTURN]
+    for i in range(3000):
+        n = int(rng.integers(0, 40))
+        H = rng.normal(size=(n, k.H_KIND + 1))
+        H[:, k.H_KIND] = rng.choice(codes, size=n)
+        t = np.cumsum(rng.choice([0.0, 0.01, 0.1], size=n))
+        if i % 3 == 1:
+            t = rng.permutation(t)  # out of order
+        if i % 7 == 2 and n:
+            t[rng.integers(0, n)] = np.nan
+        H[:, k.H_T] = t
+        fkind = int(rng.choice([k.FOUNDATION_RIGID, k.FOUNDATION_BILINEAR, k.FOUNDATION_DCSS, k.FOUNDATION_LINEAR]))
+        _assert_same_history(k, H, fkind, 0.01 if i % 2 else None, ("table", i))

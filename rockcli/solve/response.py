@@ -5,6 +5,7 @@
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 from typing import Any
@@ -215,13 +216,16 @@ class Verdicts:
 
 
 def _history_events(k, H) -> tuple[HistoryEvent, ...]:
-    """The events of the kernel's history rows ``H`` (in time order): an impact is read from its
-    row before and the row after it (the impact map's two sides)."""
+    """The events of the kernel's history rows ``H`` (the grid rows skipped, in time order): an impact is read
+    from its row before and the next row that is not on the grid after it (the impact map's two sides)."""
     kinds = H[:, k.H_KIND]
-    idx = np.flatnonzero((kinds != k.HK_STATE) & (kinds != k.HK_GRID) & (kinds != k.HK_IMPACT_AFTER))
+    rows = np.flatnonzero(kinds != k.HK_GRID)
+    rk = kinds[rows]
+    at = np.flatnonzero((rk != k.HK_STATE) & (rk != k.HK_IMPACT_AFTER))
+    idx = rows[at]
     # Python floats for the whole table at once (``tolist``), not one ``float()`` per cell
-    states = H[idx][:, [k.H_T, k.H_TH, k.H_THD, k.H_U, k.H_UD, k.H_AG]].tolist()
-    after = H[np.minimum(idx + 1, len(H) - 1), k.H_THD].tolist()  # the kernel writes the state just after an impact next
+    states = H[np.ix_(idx, [k.H_T, k.H_TH, k.H_THD, k.H_U, k.H_UD, k.H_AG])].tolist()
+    after = H[rows[np.minimum(at + 1, len(rows) - 1)], k.H_THD].tolist()  # the kernel writes the state just after
     names = {k.HK_UPLIFT: "uplift", k.HK_OVERTURN: "overturn", k.HK_PEAK: "peak", k.HK_REST: "rest"}
     events = []
     for kind, state, thd_after in zip(kinds[idx].tolist(), states, after):
@@ -233,31 +237,40 @@ def _history_events(k, H) -> tuple[HistoryEvent, ...]:
     return tuple(events)
 
 
+@functools.cache
+def _row_labels(k) -> np.ndarray:
+    """Each row kind's event name (``""`` for a plain row), indexed by the kind's code."""
+    codes = [int(getattr(k, name)) for name in dir(k) if name.startswith("HK_")]
+    labels = np.full(max(codes) + 1, "", dtype=object)
+    for code, name in EVENT_KINDS:
+        labels[int(getattr(k, code))] = name
+    return labels
+
+
 def _history(k, H, fkind: int, grid_dt: float | None) -> History:
     """The :class:`History` of the kernel's rows ``H`` (kinds ``HK_*``) on a foundation ``fkind``."""
     hyst = fkind in (k.FOUNDATION_BILINEAR, k.FOUNDATION_DCSS)
     kinds = H[:, k.H_KIND]
-    peaks = H[kinds == k.HK_PEAK]
-    step_rows = (kinds != k.HK_PEAK) & (kinds != k.HK_GRID)
+    is_peak = kinds == k.HK_PEAK
+    step_rows = ~is_peak & (kinds != k.HK_GRID)
     if grid_dt:
         plain, shown = kinds == k.HK_GRID, kinds != k.HK_STATE
     else:  # the step rows, as without the event column: the peaks (between steps) only in ``events``
         plain, shown = step_rows, step_rows
     shown_rows = H[shown]
-    order = np.argsort(shown_rows[:, k.H_T], kind="stable")
-    shown_rows = shown_rows[order]
-    labels = np.full(len(shown_rows), "", dtype=object)  # each row's event name ("" for a plain row)
-    for code, name in EVENT_KINDS:
-        labels[shown_rows[:, k.H_KIND] == getattr(k, code)] = name
-    P = H[plain]
-    return History(t=P[:, k.H_T].copy(), ag=P[:, k.H_AG].copy(), theta=P[:, k.H_TH].copy(),
-                   theta_dot=P[:, k.H_THD].copy(), u=P[:, k.H_U].copy(), u_dot=P[:, k.H_UD].copy(),
-                   z=P[:, k.H_Z].copy() if hyst else None,
-                   z2=P[:, k.H_Z2].copy() if fkind == k.FOUNDATION_DCSS else None,
-                   bearing_force=P[:, k.H_FB].copy() if fkind != k.FOUNDATION_RIGID else None,
-                   peak_t=peaks[:, k.H_T].copy(), peak_theta=peaks[:, k.H_TH].copy(),
-                   events=_history_events(k, H[step_rows | (kinds == k.HK_PEAK)]),
-                   rows=shown_rows[:, :k.H_KIND].copy(), row_event=labels, grid_dt=grid_dt or None)
+    t = shown_rows[:, k.H_T]
+    in_order = bool((t[1:] >= t[:-1]).all())  # a stable sort of times already in order leaves them be
+    if not in_order:
+        shown_rows = shown_rows[np.argsort(t, kind="stable")]
+    P = shown_rows if in_order and not grid_dt else H[plain]
+    cols = P[:, :k.H_KIND].T.copy()  # one contiguous row per column
+    return History(t=cols[k.H_T], ag=cols[k.H_AG], theta=cols[k.H_TH], theta_dot=cols[k.H_THD], u=cols[k.H_U],
+                   u_dot=cols[k.H_UD], z=cols[k.H_Z] if hyst else None,
+                   z2=cols[k.H_Z2] if fkind == k.FOUNDATION_DCSS else None,
+                   bearing_force=cols[k.H_FB] if fkind != k.FOUNDATION_RIGID else None,
+                   peak_t=H[is_peak, k.H_T], peak_theta=H[is_peak, k.H_TH], events=_history_events(k, H),
+                   rows=shown_rows[:, :k.H_KIND].copy(),
+                   row_event=_row_labels(k)[shown_rows[:, k.H_KIND].astype(np.intp)], grid_dt=grid_dt or None)
 
 
 def _response(out: np.ndarray, H, block, out_fkind: int = 0, grid_dt: float | None = None) -> Response:
