@@ -38,6 +38,7 @@ class IsolatedColonnade(Colonnade):
         super().__init__(block, gamma_c, N)
         self.M = N * (1.0 + gamma_c) / gamma
         self.wb, self.xi = omega_b, xi
+        self._arms = {}
 
     def points(self, theta, side=None):
         """Masses and ``(dx, dy, ddx, ddy)`` (first and second theta-derivatives of the positions) of every
@@ -51,9 +52,10 @@ class IsolatedColonnade(Colonnade):
             k = 0 if ys[0] > ys[1] else 1 if ys[1] > ys[0] else (0 if s > 0 else 1)
         else:
             k = 0 if s > 0 else 1  # at theta = 0: the corner diagonally opposite the pivot
-        pts = np.vstack([self.pts, tops[k:k + 1]])
-        m = np.append(self.N * self.w, self.mb)
-        rx, ry = pts[:, 0] - s * self.b, pts[:, 1]
+        if (s, k) not in self._arms:  # the masses and their arms about the pivot depend on the pivot and corner only
+            pts = np.vstack([self.pts, tops[k:k + 1]])
+            self._arms[s, k] = (np.append(self.N * self.w, self.mb), pts[:, 0] - s * self.b, pts[:, 1])
+        m, rx, ry = self._arms[s, k]
         dx, dy = -rx * sn + ry * c, -rx * c - ry * sn
         ddx, ddy = -rx * c - ry * sn, rx * sn - ry * c
         return m, dx, dy, ddx, ddy
