@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import gc
 import os
 import select
 import signal
@@ -103,6 +104,17 @@ class Server:
         self.waiting = {}  # connection -> pid (until the client goes away)
         self.internal = []  # descriptors a child must not keep
 
+    @staticmethod
+    def freeze() -> None:
+        """Move every object the server holds out of reach of the cyclic garbage collector (``gc.freeze``).
+
+        A child's first collections would otherwise walk the whole warmed-up heap (NumPy, SciPy, numba, matplotlib
+        and the kernels: some hundreds of MB), touching every object and so copying nearly every page the fork
+        shared: about 0.1 s of CPU per command. What is frozen is what the server holds after a full collection,
+        all of it reachable, so no object a real process would free is kept and no finalizer is skipped."""
+        gc.collect()
+        gc.freeze()
+
     # -- what a request may differ in
     def decline(self, req: Request, conn) -> str | None:
         if self.broken:
@@ -128,7 +140,10 @@ class Server:
             stem = name.split(".")[0]
             if stem in self.modules and (name.endswith((".py", ".pyc", ".so")) or _is_package(req.cwd_fd, name)):
                 return f"the working folder's {name} would shadow the imported module {stem}"
+        loaded = self.kernels.loaded
         self.kernels.refresh()
+        if self.kernels.loaded != loaded:
+            self.freeze()
         from rockcli import compiling
 
         if compiling.compiles():
@@ -397,6 +412,7 @@ def main(argv) -> int:
     try:
         with reads:
             kernels = warm_up()
+        gc.collect()  # the warm-up's garbage goes now, its finalizers' output captured with the warm-up's
     except BaseException as exc:  # noqa: BLE001
         reason = f"the warm-up failed: {exc!r}"
     for stream in (sys.stdout, sys.stderr):
@@ -421,6 +437,7 @@ def main(argv) -> int:
         ready.write(f"unavailable: {reason}\n")
         ready.close()
         return 1
+    gc.freeze()  # after the collection above (see Server.freeze)
     server = Server(kernels, max_native, RUNTIME_ENV - (reads.names - READ_UNUSED))
     listener = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
     listener.bind(socket_path)
