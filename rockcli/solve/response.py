@@ -224,7 +224,7 @@ def _history_events(k, H) -> tuple[HistoryEvent, ...]:
     at = np.flatnonzero((rk != k.HK_STATE) & (rk != k.HK_IMPACT_AFTER))
     idx = rows[at]
     # Python floats for the whole table at once (``tolist``), not one ``float()`` per cell
-    states = H[np.ix_(idx, [k.H_T, k.H_TH, k.H_THD, k.H_U, k.H_UD, k.H_AG])].tolist()
+    states = H[idx][:, [k.H_T, k.H_TH, k.H_THD, k.H_U, k.H_UD, k.H_AG]].tolist()
     after = H[rows[np.minimum(at + 1, len(rows) - 1)], k.H_THD].tolist()  # the kernel writes the state just after
     names = {k.HK_UPLIFT: "uplift", k.HK_OVERTURN: "overturn", k.HK_PEAK: "peak", k.HK_REST: "rest"}
     events = []
