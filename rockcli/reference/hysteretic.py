@@ -78,11 +78,12 @@ class Bearing:
         ud = b[1]
         if not self.dcss:
             return [ud * self.bracket(ud, b[2]) / self.uy]
-        K1 = self.k1 + self.q1 * self.bracket(ud, b[3]) / self.uy1
-        K2 = self.k2 + self.q2 * self.bracket(ud, b[4]) / self.uy2
+        br1, br2 = self.bracket(ud, b[3]), self.bracket(ud, b[4])
+        K1 = self.k1 + self.q1 * br1 / self.uy1
+        K2 = self.k2 + self.q2 * br2 / self.uy2
         u1d = ud * K2 / (K1 + K2)
         u2d = ud - u1d
-        return [u1d, u1d * self.bracket(ud, b[3]) / self.uy1, u2d * self.bracket(ud, b[4]) / self.uy2]
+        return [u1d, u1d * br1 / self.uy1, u2d * br2 / self.uy2]
 
     def stiffness(self, b, d):
         if not self.dcss:
