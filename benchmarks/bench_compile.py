@@ -84,7 +84,8 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=1, help="cold runs (each in a new process and cache folder)")
     parser.add_argument("--callees", type=int, default=0, metavar="N",
                         help="also print the N nested compiles of most CPU (exclusive of their own callees)")
-    parser.add_argument("--signatures", action="store_true", help="print the signatures of those compiled twice or more")
+    parser.add_argument("--signatures", action="store_true",
+                        help="print the signatures of those compiled twice or more")
     parser.add_argument("--json", metavar="FILE", help="write every run's rows and compile log to FILE")
     opts = parser.parse_args()
     runs = []
@@ -93,7 +94,8 @@ def main() -> None:
         try:
             env = dict(os.environ, NUMBA_CACHE_DIR=cache,
                        PYTHONPATH=os.pathsep.join(filter(None, [str(ROOT), os.environ.get("PYTHONPATH")])))
-            child = subprocess.run([sys.executable, "-c", CHILD, str(ROOT / "tests")], env=env, cwd=ROOT, capture_output=True, text=True)
+            child = subprocess.run([sys.executable, "-c", CHILD, str(ROOT / "tests")], env=env, cwd=ROOT,
+                                   capture_output=True, text=True)
             if child.returncode != 0:
                 sys.exit(f"the child process failed:\n{child.stderr}")
             out = child.stdout

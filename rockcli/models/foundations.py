@@ -12,8 +12,8 @@ import math
 from dataclasses import dataclass
 
 from rockcli.models.limits import (DEFAULT_BW_BETA, DEFAULT_BW_GAMMA, DEFAULT_BW_N, DEFAULT_GAMMA, DEFAULT_UY,
-                                   DEFAULT_XI, KIND_BILINEAR, KIND_DCSS, KIND_LINEAR, KIND_RIGID, TB_RANGE_S, XI_MAX,
-                                   _check, _check_fraction, _check_hysteresis, _check_period, _finite, _num)
+                                   DEFAULT_XI, KIND_BILINEAR, KIND_DCSS, KIND_LINEAR, KIND_RIGID, XI_MAX, _check,
+                                   _check_fraction, _check_gamma, _check_hysteresis, _check_period, _finite, _num)
 from rockcli.io.units import G
 
 
@@ -55,21 +55,14 @@ class LinearIsolation:
     n_states = 2
 
     def __post_init__(self):
-        _check(_finite(self.T_b) and float(self.T_b) > 0,
-               lambda: f"isolation period Tb must be positive (s), got {_num(self.T_b)}")
-        lo, hi = TB_RANGE_S
-        _check(lo <= float(self.T_b) <= hi,
-               lambda: f"isolation period Tb = {_num(self.T_b)} s lies outside the supported {lo:g} s to {hi:g} s "
-                       f"(stiffer bearings are a rigid foundation for any record: use 'none'; at {hi:g} s the base is "
-                       f"already free)")
+        _check_period(self.T_b)
         _check(_finite(self.xi) and float(self.xi) >= 0,
                lambda: f"isolation damping ratio xi must be >= 0, got {_num(self.xi)}")
         _check(float(self.xi) <= XI_MAX,
                lambda: f"isolation damping ratio xi = {_num(self.xi)} is above the supported {XI_MAX:g} (bearings have "
                        f"0.02-0.3; beyond {XI_MAX:g} times critical the dampers lock the base and the run needs "
                        f"~2 xi omega_b steps per second)")
-        _check(_finite(self.gamma) and 0 <= float(self.gamma) < 1,
-               lambda: f"mass ratio gamma = m/(m+m_b) must satisfy 0 <= gamma < 1, got {_num(self.gamma)}")
+        _check_gamma(self.gamma)
         for f in ("T_b", "xi", "gamma"):
             object.__setattr__(self, f, float(getattr(self, f)))
 

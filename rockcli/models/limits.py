@@ -89,7 +89,7 @@ def _finite(x) -> bool:
 
 
 def _check_period(T_b, what="isolation period Tb"):
-    _check(_finite(T_b) and T_b > 0, lambda: f"{what} must be positive (s), got {_num(T_b)}")
+    _check(_finite(T_b) and float(T_b) > 0, lambda: f"{what} must be positive (s), got {_num(T_b)}")
     lo, hi = TB_RANGE_S
     _check(lo <= float(T_b) <= hi,
            lambda: f"{what} = {_num(T_b)} s lies outside the supported {lo:g} s to {hi:g} s (stiffer bearings are a "
@@ -97,7 +97,7 @@ def _check_period(T_b, what="isolation period Tb"):
 
 
 def _check_gamma(gamma):
-    _check(_finite(gamma) and 0 <= gamma < 1,
+    _check(_finite(gamma) and 0 <= float(gamma) < 1,
            lambda: f"mass ratio gamma = m/(m+m_b) must satisfy 0 <= gamma < 1, got {_num(gamma)}")
 
 

@@ -226,9 +226,9 @@ def _history_events(k, H) -> tuple[HistoryEvent, ...]:
     # Python floats for the whole table at once (``tolist``), not one ``float()`` per cell
     states = H[idx][:, [k.H_T, k.H_TH, k.H_THD, k.H_U, k.H_UD, k.H_AG]].tolist()
     after = H[rows[np.minimum(at + 1, len(rows) - 1)], k.H_THD].tolist()  # the kernel writes the state just after
-    names = {k.HK_UPLIFT: "uplift", k.HK_OVERTURN: "overturn", k.HK_PEAK: "peak", k.HK_REST: "rest"}
+    names = _row_labels(k)
     events = []
-    for kind, state, thd_after in zip(kinds[idx].tolist(), states, after):
+    for kind, state, thd_after in zip(kinds[idx].astype(np.intp).tolist(), states, after):
         if kind == k.HK_IMPACT:
             events.append(HistoryEvent("impact", *state, theta_dot_before=state[2], theta_dot_after=thd_after))
         else:
