@@ -65,28 +65,46 @@ from dataclasses import replace
 from typing import Sequence
 
 
-def expand(excitations: Sequence, azimuths) -> tuple[list, dict]:
-    """The excitations with every pair replaced by its projections onto ``azimuths``; and, per pair label,
-    the labels of its projections in azimuth order."""
+def expand(excitations: Sequence, azimuths=None) -> tuple[list, dict]:
+    """The excitations with every pair replaced by its projections onto ``azimuths`` (None: each pair's own
+    ``Excitation.azimuths``; a pair without them, or an excitation that is no pair, is kept as it is); and,
+    per pair label, the labels of its projections in azimuth order."""
+    out, groups = [], {}
+    for x in excitations:
+        thetas = x.azimuths if azimuths is None else azimuths
+        if x.pair is None or x.motion is None or not len(thetas):
+            out.append(x)
+            continue
+        subs = [projection(x, theta) for theta in thetas]
+        out += subs
+        groups[x.label] = [sub.label for sub in subs]
+    return out, groups
+
+
+def projection(x, theta: float):
+    """The pair ``x`` (an :class:`~rockcli.assess.scenes.Excitation` with ``pair``) projected onto ``theta``
+    [deg]: one excitation labelled ``LABEL@THETA``, run like any other (the pair's vertical component, if
+    attached, goes with it)."""
     from rockcli.records.orientation import project
     from rockcli.solve import attached_vertical, vertical_label, with_vertical
 
-    out, groups = [], {}
-    for x in excitations:
-        if x.pair is None or x.motion is None:
-            out.append(x)
-            continue
-        subs = []
-        for theta in azimuths:
-            rec = project(*x.pair, float(theta))
-            if attached_vertical(x.motion) is not None:  # the pair's vertical component goes with every projection
-                rec = with_vertical(rec, attached_vertical(x.motion), vertical_label(x.motion))
-            sub = replace(x, label=f"{x.label}@{float(theta):g}", motion=rec, pga_g=rec.pga_g,
-                          azimuth_deg=float(theta))
-            subs.append(sub.label)
-            out.append(sub)
-        groups[x.label] = subs
-    return out, groups
+    rec = project(*x.pair, float(theta))
+    if attached_vertical(x.motion) is not None:  # the pair's vertical component goes with every projection
+        rec = with_vertical(rec, attached_vertical(x.motion), vertical_label(x.motion))
+    return replace(x, label=f"{x.label}@{float(theta):g}", motion=rec, pga_g=rec.pga_g, azimuth_deg=float(theta),
+                   azimuths=())
+
+
+def row_excitation(x, row):
+    """The excitation that ``row`` (a row of :func:`collapse`, of the excitation ``x``) ran: for a pair run in
+    every orientation (``x.azimuths``), its projection onto the row's azimuth, or onto the first orientation
+    when none is more adverse than another (``azimuth_deg`` NaN: the row is that one's, see :func:`collapse`);
+    else ``x`` itself. The figures, the reruns and the provenance of a row use it, so that they show the run
+    the row reports (``x.motion`` of such a pair is its projection onto 0 deg only)."""
+    if not getattr(x, "azimuths", ()) or x.pair is None or x.motion is None:
+        return x
+    theta = row.azimuth_deg if math.isfinite(row.azimuth_deg) else x.azimuths[0]
+    return projection(x, theta)
 
 
 def adverse_key(overturned: bool, t_overturn_s: float, theta_max_over_alpha: float,

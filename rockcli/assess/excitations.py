@@ -65,6 +65,11 @@ class Excitation:
     #: ``--azimuth worst`` on a catalogue record with one known horizontal component: why it runs as recorded
     #: (:func:`rockcli.assess.pairs.catalogue_worst`), in one orientation
     as_recorded: str = ""
+    #: ``azimuth="worst"``: the orientations [deg] the pair is run in (:func:`rockcli.records.orientation.sweep_azimuths`);
+    #: :func:`rockcli.assess.run_assessment` runs every one of them and keeps the most adverse
+    #: (:mod:`rockcli.assess.azimuth`): ``motion``, the projection onto 0 deg, is no row's run by itself. Empty:
+    #: ``motion`` is what runs.
+    azimuths: tuple = ()
 
 
 @dataclass(frozen=True)
@@ -190,7 +195,7 @@ def table_ii_entries() -> list:
 
 def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto", *, units: str | None = None,
                         dt: float | None = None, gain=None, component: str | None = None, azimuth=None,
-                        glob: Sequence[str] = (), exclude: Sequence[str] = ()):
+                        glob: Sequence[str] = (), exclude: Sequence[str] = (), azimuth_step: float | None = None):
     """Turn record sources into excitations.
 
     Parameters
@@ -214,11 +219,16 @@ def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto"
     azimuth : float or "worst", optional
         Project two horizontal components onto this azimuth (the normal to the rocking axis, degrees
         clockwise from north): a source ``A+B`` names the two files (each ``FILE`` or ``FILE@DEG``), a
-        multi-component file gives its own two; anything else is an error row.
+        multi-component file gives its own two; anything else is an error row. ``"worst"``: every orientation
+        of each pair (``Excitation.azimuths``), which :func:`rockcli.assess.run_assessment` runs, keeping the
+        most adverse one's row (``azimuth_deg``), as ``assess column --azimuth worst`` does.
     glob, exclude : sequence of str
         Shell patterns of file names: a folder suite takes the files matching one of ``glob`` (all when
         empty) and none of ``exclude``. Files that are not records by their content are skipped and
         returned in ``unavailable`` as :class:`Skipped`.
+    azimuth_step : float, optional
+        With ``azimuth="worst"``: the step [deg] between the orientations run, 0.1 to 90 (``--azimuth-step``;
+        default :data:`rockcli.records.orientation.AZIMUTH_STEP`, 5 deg: 36 orientations).
 
     Returns
     -------
@@ -243,10 +253,34 @@ def resolve_excitations(sources: Sequence[str] | None = None, mode: str = "auto"
         catalogue record that cannot be run, an empty folder, an unknown ``mode``, bad
         ``units``/``dt`` values.
     """
-    from rockcli.records.catalog import expand_user, load_catalog
-
     if mode not in EXCITATION_MODES:
         raise RockcliInputError(f"excitation mode {mode!r} is not one of {', '.join(EXCITATION_MODES)}")
+    azimuths = _worst_azimuths(azimuth, azimuth_step)
+    out, unavailable = _resolve(sources, mode, units, dt, gain, component, azimuth, glob, exclude)
+    if azimuths:  # every orientation of each pair runs (rockcli.assess.azimuth); a pair that failed is an error row
+        from dataclasses import replace
+
+        out = [replace(x, azimuths=azimuths) if x.pair is not None and x.motion is not None else x for x in out]
+    return out, unavailable
+
+
+def _worst_azimuths(azimuth, step) -> tuple:
+    """The orientations [deg] of ``azimuth="worst"`` at ``step`` (none for another azimuth; a step without
+    ``"worst"`` is refused)."""
+    from rockcli.records.orientation import AZIMUTH_STEP, sweep_azimuths
+
+    if azimuth != "worst":
+        if step is not None:
+            raise RockcliInputError(f"azimuth_step {step!r} is the step of azimuth='worst' (every orientation "
+                                    f"of each pair); give azimuth='worst' with it, or no azimuth_step")
+        return ()
+    return tuple(float(a) for a in sweep_azimuths(AZIMUTH_STEP if step is None else step))
+
+
+def _resolve(sources, mode, units, dt, gain, component, azimuth, glob, exclude):
+    """:func:`resolve_excitations` without the orientations of ``azimuth="worst"``."""
+    from rockcli.records.catalog import expand_user, load_catalog
+
     if sources is not None:
         import os
 

@@ -279,6 +279,11 @@ def run_fragility(columns: Sequence[Block], excitations: Sequence[Excitation],
         raise RockcliInputError("no body to assess: name a preset (bassae, nemea) or give a body of your own")
     if not configurations:
         raise RockcliInputError("no isolation configuration to assess")
+    worst = next((x for x in excitations if x.azimuths), None)
+    if worst is not None:  # its motion is the projection onto 0 deg only: never a fragility of that in silence
+        raise RockcliInputError(f"excitations: {worst.label} is a pair to run in every orientation "
+                                f"(azimuth='worst'): run_fragility_azimuths(columns, excitations, configurations) "
+                                f"gives the fragility of its median and of its worst orientation")
     if int(n_boot) < 0 or not (0 < level < 1):
         raise RockcliInputError("n_boot must be >= 0 and the confidence level between 0 and 1")
     timings = {}

@@ -33,10 +33,11 @@ import numpy as np
 ORIENTATIONS = ("median", "worst")
 
 
-def run_fragility_azimuths(columns, excitations: Sequence, configurations, *, azimuths, im: str = "pga",
+def run_fragility_azimuths(columns, excitations: Sequence, configurations, *, azimuths=None, im: str = "pga",
                            n_boot: int | None = None, seed: int | None = None, level: float | None = None,
                            unavailable=(), **kwargs) -> dict:
-    """``{"median": Fragility, "worst": Fragility}`` of the pairs in ``excitations`` over ``azimuths`` [deg].
+    """``{"median": Fragility, "worst": Fragility}`` of the pairs in ``excitations`` over ``azimuths`` [deg]
+    (None: each pair's own, ``Excitation.azimuths``).
 
     ``excitations`` come from :func:`rockcli.assess.resolve_excitations` with ``azimuth="worst"`` (pairs,
     or error rows); ``kwargs`` (progress, runner, chunk_size, solver options) go to the margin runs of

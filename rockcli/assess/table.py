@@ -123,6 +123,14 @@ class Assessment:
             index = self.__dict__["_index"] = {(r.column, r.record, r.configuration): r for r in self.rows}
         return index[(column, record, configuration)]
 
+    def excitation_of(self, row: AssessmentRow) -> Excitation:
+        """The excitation ``row`` ran: its record's, or for a pair run in every orientation (``azimuth="worst"``)
+        the projection onto the row's azimuth (:func:`rockcli.assess.azimuth.row_excitation`), labelled
+        ``LABEL@AZIMUTH``. What a figure, a rerun or a provenance of the row must use."""
+        from rockcli.assess.azimuth import row_excitation
+
+        return row_excitation(next(x for x in self.excitations if x.label == row.record), row)
+
     @property
     def idealised(self) -> list:
         return [x.label for x in self.excitations if x.kind == EXCITATION_PULSE]
@@ -184,11 +192,14 @@ def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
         (verdicts, margin search, neighbourhood) is announced with :func:`rockcli.progress.phase`
         (local runs only: a ``runner`` reports its own, see :func:`rockcli.assess.cluster.run_on_dask`).
     orientations : dict, optional
-        ``--azimuth worst``: the projections of each pair (:func:`rockcli.assess.azimuth.expand`). The
-        orientations of one column, pair and configuration are searched together, only as far as the most
-        adverse one needs, and the neighbourhood runs for that one only (:mod:`rockcli.assess.azimuth`):
-        the other orientations' rows are complete at 1x only; :func:`rockcli.assess.azimuth.collapse` the
-        result.
+        The projections of each pair (:func:`rockcli.assess.azimuth.expand`), for ``excitations`` expanded
+        already. The orientations of one column, pair and configuration are searched together, only as far
+        as the most adverse one needs, and the neighbourhood runs for that one only
+        (:mod:`rockcli.assess.azimuth`): the other orientations' rows are complete at 1x only;
+        :func:`rockcli.assess.azimuth.collapse` the result. Without it, the pairs of
+        ``resolve_excitations(..., azimuth="worst")`` (``Excitation.azimuths``) are expanded, run so and
+        collapsed here: one row per column x pair x configuration, the most adverse orientation's, with its
+        ``azimuth_deg`` (``assess column --azimuth worst``).
     runner, chunks
         Where the runs go: :func:`rockcli.assess.margin.map_chunks` (default: here, one chunk of
         everything), in ``chunks`` chunks per part. The verdicts and the neighbourhood map over scenes,
@@ -212,6 +223,14 @@ def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
         raise RockcliInputError("no body to assess: name a preset (bassae, nemea) or give a body of your own")
     if not configurations:
         raise RockcliInputError("no isolation configuration to assess")
+    if orientations is None and any(x.azimuths for x in excitations):  # azimuth="worst": every orientation
+        from rockcli.assess.azimuth import collapse, expand
+
+        expanded, groups = expand(excitations)
+        result = run_assessment(columns, expanded, configurations, margin=margin, neighbourhood=neighbourhood,
+                                unavailable=unavailable, progress=progress, orientations=groups, runner=runner,
+                                chunks=chunks, **solver)
+        return collapse(result, excitations, groups)
     timings = {}
     rows, scenes, run_rows = [], [], []
     for b in columns:
@@ -334,8 +353,9 @@ class _Advance:
 
 
 def count_runs(columns, excitations, configurations, margin: bool, neighbourhood: bool = False) -> int:
-    """Runs for the progress bar: the scenes, plus the margin grid (an upper bound) and the neighbourhood."""
-    n = len(columns) * sum(x.motion is not None for x in excitations) * len(configurations)
+    """Runs for the progress bar: the scenes (a pair of ``azimuth="worst"``: one per orientation), plus the
+    margin grid (an upper bound) and the neighbourhood."""
+    n = len(columns) * sum(max(1, len(x.azimuths)) for x in excitations if x.motion is not None) * len(configurations)
     return n * (1 + (MARGIN_GRID.size - 1 if margin else 0) + (NEIGHBOURHOOD.size if neighbourhood else 0))
 
 
@@ -350,7 +370,7 @@ def history_runs(assessment: Assessment, **solver):
         x = xs[row.record]
         if x.motion is None or row.error:
             continue
-        b, c = blocks[row.column], confs[row.configuration]
+        b, c, x = blocks[row.column], confs[row.configuration], assessment.excitation_of(row)  # a pair: its azimuth
         yield row, b, c, x, simulate(b, c.foundation, x.motion, history=True, **{**assessment.solver, **solver})
 
 
@@ -411,7 +431,13 @@ def check_tolerance(assessment: Assessment, *, factor: float = 100.0, base_rtol:
     confs = {c.header: c for c in assessment.configurations}
     xs = {x.label: x for x in assessment.excitations}
     rows = [r for r in assessment.rows if not r.error and r.verdict and xs[r.record].motion is not None]
-    jobs = [(blocks[r.column], confs[r.configuration].foundation, xs[r.record].motion) for r in rows]
+    ran = [assessment.excitation_of(r) for r in rows]  # a pair of azimuth="worst": the row's orientation
+    motions = {}  # each motion run, in the order of the excitations (the one-ulp copies are drawn in this order)
+    for x in assessment.excitations:
+        if x.motion is not None:
+            motions.update({y.label: y.motion for y in ran if y.label.rpartition("@")[0] == x.label}
+                           if x.azimuths else {x.label: x.motion})
+    jobs = [(blocks[r.column], confs[r.configuration].foundation, x.motion) for r, x in zip(rows, ran)]
     bases = [default_rtol(j[1]) if base_rtol is None else float(base_rtol) for j in jobs]
     other = {k: v for k, v in assessment.solver.items() if k != "rtol"}
 
@@ -438,8 +464,8 @@ def check_tolerance(assessment: Assessment, *, factor: float = 100.0, base_rtol:
     verdicts = [[] for _ in rows]
     moved = [0.0] * len(rows)
     for _ in range(ulp_draws):
-        copies = {label: ulp_perturbed(x.motion, rng) for label, x in xs.items() if x.motion is not None}
-        for i, r in enumerate(sweep([(b, f, copies[row.record]) for (b, f, _), row in zip(jobs, rows)], 1.0)):
+        copies = {label: ulp_perturbed(m, rng) for label, m in motions.items()}
+        for i, r in enumerate(sweep([(b, f, copies[x.label]) for (b, f, _), x in zip(jobs, ran)], 1.0)):
             verdicts[i].append(r.verdict)
             moved[i] = widest(moved[i], _peak_change(rows[i], r))
     ill = [(row, tuple(v), d) for row, v, d in zip(rows, verdicts, moved) if ill_conditioned(row.verdict, d, v)]

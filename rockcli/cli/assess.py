@@ -289,41 +289,34 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
 
         check_scheduler(scheduler)
     azimuth = given_azimuth()
+    worst = azimuth["azimuth"] == "worst"
+    if worst and (hist_dir or plot_dir or check_tolerance):
+        raise InputError("--azimuth worst keeps the most adverse orientation of each pair: --history-dir, "
+                         "--plot-dir and --check-tolerance need one --azimuth DEG")
     excitations, unavailable = resolve_excitations(records, excitation, units=units, dt=dt, gain=given_gain(),
                                                    component=given_component(), azimuth=azimuth["azimuth"],
-                                                   **given_suite())
+                                                   azimuth_step=azimuth["step"] if worst else None, **given_suite())
     _refuse_if_none_can_run(excitations, unavailable)
     excitations = _with_vertical(excitations, configurations, units, dt)
     _refuse_if_none_can_run(excitations)
     _add_record_inputs(excitations)
-    run_excitations, groups = excitations, {}
-    if azimuth["azimuth"] == "worst":
-        from rockcli.assess.azimuth import expand
-        from rockcli.records.orientation import sweep_azimuths
-
-        if hist_dir or plot_dir or check_tolerance:
-            raise InputError("--azimuth worst keeps the most adverse orientation of each pair: --history-dir, "
-                             "--plot-dir and --check-tolerance need one --azimuth DEG")
-        run_excitations, groups = expand(excitations, sweep_azimuths(azimuth["step"]))
     if hist_dir or plot_dir:
         _plan_run_files(columns, excitations, configurations, hist_dir, plot_dir)
 
-    kwargs = dict(margin=margin, neighbourhood=neighbourhood, unavailable=unavailable, orientations=groups or None,
-                  horizon=horizon, **solver)
+    # with --azimuth worst, run_assessment runs every orientation of each pair (Excitation.azimuths) and keeps the
+    # most adverse one's row: the path of resolve_excitations(..., azimuth="worst") + run_assessment from Python
+    kwargs = dict(margin=margin, neighbourhood=neighbourhood, unavailable=unavailable, horizon=horizon, **solver)
     if scheduler is not None:
         from rockcli.assess.cluster import run_on_dask
         from rockcli.cli.options import dask_client
 
         client = dask_client(scheduler)
-        with progress_bar(len(columns) * len(run_excitations) * len(configurations), "scenes on Dask") as bar:
-            result = run_on_dask(client, columns, run_excitations, configurations, progress=bar, **kwargs)
+        n_scenes = count_runs(columns, excitations, configurations, margin=False)
+        with progress_bar(n_scenes, "scenes on Dask") as bar:
+            result = run_on_dask(client, columns, excitations, configurations, progress=bar, **kwargs)
     else:
-        result = _run_counted(count_runs(columns, run_excitations, configurations, margin, neighbourhood),
-                              partial(run_assessment, columns, run_excitations, configurations, **kwargs))
-    if groups:
-        from rockcli.assess.azimuth import collapse
-
-        result = collapse(result, excitations, groups)
+        result = _run_counted(count_runs(columns, excitations, configurations, margin, neighbourhood),
+                              partial(run_assessment, columns, excitations, configurations, **kwargs))
 
     from rockcli.report.tables import format_matrix, format_notes
 
@@ -556,7 +549,9 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
         raise InputError("--report shows one fragility per configuration: with --azimuth worst (two, the median "
                          "and the worst orientation) write --csv and --plot instead, or give one --azimuth DEG")
     excitations, unavailable = resolve_excitations(records, "record", units=units, dt=dt, gain=given_gain(),
-                                                   azimuth=azimuth, component=given_component(), **given_suite())
+                                                   azimuth=azimuth, component=given_component(),
+                                                   azimuth_step=given["step"] if azimuth == "worst" else None,
+                                                   **given_suite())
     _refuse_if_none_can_run(excitations, unavailable)
     excitations = _with_vertical(excitations, configurations, units, dt)
     _refuse_if_none_can_run(excitations)

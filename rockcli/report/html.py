@@ -59,6 +59,8 @@ nav{font-size:.92em;color:#555;margin:1em 0}nav a{color:#1f5fa8;margin-right:.8e
 table{border-collapse:collapse;margin:.5em 0;font-size:.9em}
 th,td{border:1px solid #ddd;padding:.25em .55em;text-align:left;vertical-align:top}
 th{background:#f0f0f0}td.num{text-align:right;white-space:nowrap;font-variant-numeric:tabular-nums}
+td.num .note{white-space:normal;display:inline-block;min-width:7em;max-width:11em;text-align:left}
+.words{min-width:15em}
 .figrow{display:flex;flex-wrap:wrap;gap:12px}.figrow figure{flex:1 1 480px;margin:0}
 figure{margin:.8em 0}figure img{max-width:100%;border:1px solid #eee;display:block}
 figcaption{font-size:.88em;color:#444}
@@ -72,6 +74,14 @@ pre{background:#f4f4f4;padding:.6em;white-space:pre-wrap;word-break:break-all}
 def esc(text) -> str:
     """``text`` escaped for HTML (quotes too)."""
     return html.escape(str(text), quote=True)
+
+
+def breakable(text) -> str:
+    """``text`` escaped, with a line break allowed after each ``+ _ . / @`` (a record label such as
+    ``RSN982_NORTHR_JEN022.AT2+JEN292.AT2`` is one word to a browser, which would widen its column to it)."""
+    import re
+
+    return re.sub(r"([+_./@])", r"\1<wbr>", esc(text))
 
 
 def num(x, spec: str = ".3g", unit: str = "") -> str:

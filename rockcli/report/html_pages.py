@@ -15,9 +15,9 @@ from types import SimpleNamespace
 from rockcli.assess.verdicts import (PLINTH_QUESTION, SURVIVES, TOPPLES, body_noun, body_words, configuration_words,
                                      isolation_summary, outcome, plinth_help_parts, question, scene_sentence, stroke_m,
                                      survivor_stroke, verdict_lines)
-from rockcli.report.html import (assumptions_section, body_section, card, configurations_section, esc, figure,
-                                 num, page, plural, reproduce_section, table)
-from rockcli.report.html_deciding import response_figures, stack_figures
+from rockcli.report.html import (assumptions_section, body_section, breakable, card, configurations_section, esc,
+                                 figure, num, page, plural, reproduce_section, table)
+from rockcli.report.html_deciding import orientation_words, response_figures, stack_figures
 from rockcli.report.html_records import records_section
 from rockcli.report.figures import block_text
 from rockcli.report.html_figures import margins_png, png_of, share_png, stroke_png
@@ -92,10 +92,10 @@ def _verdict_table(assessment, block) -> str:
             factor = (num(s, ".2f") if math.isfinite(s) else ">4" if r.margin_note.startswith("no overturning")
                       else "-")
             css = "w-" + word.replace(" ", "-")
-            rows.append((esc(x.label), esc(c.header), f'<b class="{css}">{esc(word)}</b>', _peak_cell(r), factor,
-                         _stroke_cell(r, word) if c.isolated else "-",
+            rows.append((breakable(x.label), esc(c.header), f'<b class="{css}">{esc(word)}</b>', _peak_cell(r),
+                         factor, _stroke_cell(r, word) if c.isolated else "-",
                          num(100 * r.overturn_share_pm10, ".0f", "%"),
-                         esc(scene_sentence(r, isolated=False) + "."),
+                         f"<div class='words'>{esc(scene_sentence(r, isolated=False) + '.')}</div>",
                          f"<code>{esc(format_cell(r, assessment.margin, assessment.neighbourhood))}</code>"))
     head = ("record", "configuration", "verdict", "peak rocking", "toppling factor", "base moves up to",
             "&plusmn;10 % share toppling", "in words", "terse")
@@ -170,11 +170,14 @@ def _certainty(assessment, check) -> str:
 def _stroke_cell(r, word: str) -> str:
     """The verdict table's "base moves up to": the run's peak base displacement (until the fall when it toppled);
     with --azimuth worst, the stroke over the orientations in which the body survives."""
+    def note(text: str) -> str:  # wraps under the number (the cell's numbers do not)
+        return f"<br><span class='note'>{text}</span>"
+
     if getattr(r, "azimuths_run", None):
         s = stroke_m(r)
-        return (num(s, ".3f", "m") + " (largest over the orientations it survives)" if math.isfinite(s) else
-                "- (it survives in no orientation)")
-    return num(r.base_disp_max_m, ".3f", "m") + (" (until it toppled)" if word == TOPPLES else "")
+        return (num(s, ".3f", "m") + note("largest over the orientations it survives") if math.isfinite(s) else
+                "-" + note("it survives in no orientation"))
+    return num(r.base_disp_max_m, ".3f", "m") + (note("until it toppled") if word == TOPPLES else "")
 
 
 def _not_available(unavailable) -> list:
@@ -203,6 +206,28 @@ def _stroke_fact(assessment, block, c, many: bool) -> tuple:
     return (name, f"{top.base_disp_max_m:.2f} m",
             f"under {top.record}, the largest where it survives ({kept} of {len(rows)} records); the "
             f"{plural(fell, 'run')} in which it topples {'is' if fell == 1 else 'are'} left out")
+
+
+def _projections(assessment) -> dict:
+    """Per pair run in every orientation (``azimuth="worst"``), the projections its rows ran and why:
+    ``{label: [(record, words)]}`` (:func:`rockcli.report.html_records.records_section`), in azimuth order."""
+    out = {}
+    many = len(assessment.columns) > 1
+    for x in assessment.excitations:
+        if not getattr(x, "azimuths", ()) or x.motion is None:
+            continue
+        used = {}
+        for b in assessment.columns:
+            for c in assessment.configurations:
+                row = assessment.row(b.name, x.label, c.header)
+                if row.error:
+                    continue
+                ran = assessment.excitation_of(row)
+                where = configuration_words(c) + (f" ({b.name})" if many else "")
+                used.setdefault(ran.azimuth_deg, (ran, []))[1].append((where, row))
+        out[x.label] = [(ran.motion, orientation_words(len(x.azimuths), items))
+                        for _, (ran, items) in sorted(used.items())]
+    return out
 
 
 def assessment_report(assessment, *, check=None, command: str = "") -> str:
@@ -259,7 +284,7 @@ def assessment_report(assessment, *, check=None, command: str = "") -> str:
         "body": body_section(blocks, restitution=assessment.solver.get("restitution"),
                              cap_ratio=assessment.solver.get("cap_ratio") or 0.0),
         "configurations": configurations_section(assessment.configurations),
-        "records": records_section(assessment.excitations, assessment.unavailable),
+        "records": records_section(assessment.excitations, assessment.unavailable, _projections(assessment)),
         "verdicts": (MARGIN_WORDS if assessment.margin else NO_MARGIN_WORDS)
                     + "\n".join(_verdict_table(assessment, b) for b in blocks),
         "figures": "\n".join(f for f in figs if f) or "<p>No run to draw.</p>",
