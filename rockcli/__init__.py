@@ -16,8 +16,9 @@ runs                        :func:`simulate` (-> :class:`Response` with its :cla
                             :func:`simulate_many`, :func:`simulate_verdicts`, :func:`default_rtol`
 spectra                     :func:`overturning_map`, :func:`min_overturning_curves`,
                             :func:`critical_sizes`, :func:`parse_grid`
-assessment                  :func:`run_assessment`, :func:`run_fragility`, :func:`parse_configurations`,
-                            :func:`resolve_excitations`, :func:`find_overturn_scales`, :func:`format_verdicts`
+assessment                  :func:`run_assessment`, :func:`run_fragility`, :func:`parse_column_spec`,
+                            :func:`parse_configurations`, :func:`resolve_excitations`,
+                            :func:`find_overturn_scales`, :func:`format_verdicts`
 errors                      :class:`RockcliInputError` (bad input, in one sentence)
 ==========================  =====================================================================
 
@@ -40,8 +41,8 @@ _LAZY = {
     **dict.fromkeys(("simulate", "simulate_many", "simulate_verdicts", "default_rtol", "Response", "History"),
                     "rockcli.solve"),
     **dict.fromkeys(("overturning_map", "min_overturning_curves", "critical_sizes", "parse_grid"), "rockcli.spectra"),
-    **dict.fromkeys(("run_assessment", "run_fragility", "parse_configurations", "resolve_excitations",
-                     "find_overturn_scales", "format_verdicts"), "rockcli.assess"),
+    **dict.fromkeys(("run_assessment", "run_fragility", "parse_column_spec", "parse_configurations",
+                     "resolve_excitations", "find_overturn_scales", "format_verdicts"), "rockcli.assess"),
     "RockcliInputError": "rockcli.errors",
 }
 
