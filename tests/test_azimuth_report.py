@@ -207,7 +207,7 @@ def test_the_verdict_table_cells_can_wrap(report):
 def test_python_gives_the_clis_worst_rows(pair, report):
     """``resolve_excitations([pair], azimuth="worst")`` then ``run_assessment``: the rows of ``assess column
     --azimuth worst`` (same azimuths, verdicts, margins, times), not the 0 deg projection's."""
-    from rockcli import parse_column_spec, parse_configurations, resolve_excitations, run_assessment
+    from rockcli.assess import parse_column_spec, parse_configurations, resolve_excitations, run_assessment
 
     xs, _ = resolve_excitations([pair[0]], azimuth="worst", azimuth_step=STEP)
     assert xs[0].azimuths == (0.0, 30.0, 60.0, 90.0, 120.0, 150.0)
@@ -228,21 +228,21 @@ def test_python_gives_the_clis_worst_rows(pair, report):
 
 def test_python_default_step_is_the_clis(pair):
     """Without ``azimuth_step`` both sweep 36 orientations (5 deg) and agree (verdicts only, to stay quick)."""
-    from rockcli import parse_column_spec, parse_configurations, resolve_excitations, run_assessment
+    from rockcli.assess import parse_column_spec, parse_configurations, resolve_excitations, run_assessment
 
     xs, _ = resolve_excitations([pair[0]], azimuth="worst")
-    assert len(xs[0].azimuths) == 36
     mine = run_assessment([parse_column_spec(BODY)], xs, parse_configurations(["none"]), margin=False).rows[0]
     theirs = _cli(["--isolation", "none", "--records", pair[0], "--azimuth", "worst", "--no-margin"])["rows"]
     theirs = next(r for r in theirs if r["configuration"] == "none")
     assert (mine.azimuth_deg, mine.verdict, mine.t_overturn_s, mine.azimuths_run) == (
         theirs["azimuth_deg"], theirs["verdict"], theirs["t_overturn_s"], 36)
+    assert len(xs[0].azimuths) == 36
 
 
 def test_what_does_not_sweep_says_so(pair):
     """A fragility of the pairs of azimuth="worst" would be that of their 0 deg projection: refused in one
     sentence naming the function that sweeps; a step without "worst" too."""
-    from rockcli import parse_column_spec, parse_configurations, resolve_excitations, run_fragility
+    from rockcli.assess import parse_column_spec, parse_configurations, resolve_excitations, run_fragility
 
     xs, _ = resolve_excitations([pair[0]], azimuth="worst", azimuth_step=STEP)
     with pytest.raises(RockcliInputError, match=r"is a pair to run in every orientation \(azimuth='worst'\): "
