@@ -6,6 +6,11 @@ any other, margins included, on all cores); :func:`collapse` keeps, per column x
 the row of the most adverse orientation, with its azimuth (``azimuth_deg``) and the orientations that
 overturn at 1x (``overturning_azimuths``). theta and theta + 180 deg are the same motion reversed, which
 a symmetric block answers with the mirrored response, so half a turn covers every orientation.
+``resolve_excitations(..., azimuth="worst")`` marks each pair with its orientations (``Excitation.azimuths``),
+and :func:`rockcli.assess.run_assessment` expands, runs and collapses them: one path for ``assess column
+--azimuth worst`` and for Python. A kept row's own motion is :func:`row_excitation` (the pair's ``motion`` is
+its 0 deg projection only): the report's figures and provenance, the reruns of ``history_runs`` and
+``check_tolerance`` use it.
 
 **The most adverse orientation** (one definition for ``assess column`` and ``simulate``,
 :func:`adverse_key` and :func:`most_adverse`): the smallest overturning scale (the margin, when it was
