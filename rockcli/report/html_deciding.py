@@ -2,15 +2,18 @@
 
 * :func:`deciding_records`: for each configuration, every record that topples the body there (the most
   severe first), else the runs not proven, else the closest call;
-* :func:`response_figures`: those records rerun with their history, each on every configuration side by
-  side on common axes (:func:`rockcli.report.html_figures.responses_png`), under a heading that says
-  which verdict the record decides.
+* :func:`response_runs`, :func:`response_figures`: those records rerun with their history, each on every
+  configuration side by side on common axes (:func:`rockcli.report.html_figures.responses_png`), under a
+  heading that says which verdict the record decides. Each configuration is rerun on the motion its row ran
+  (``Assessment.excitation_of``): a pair of ``--azimuth worst`` in the orientation its row gives, named in
+  the heading (configurations whose orientations differ get a figure each).
 
 * :func:`stack_runs`, :func:`stack_figures`: the same for a body on a plinth (``--on``): each record that
   decides its verdict on a configuration, rerun there with its history beside the body alone on the same
   foundation, drawn by :func:`rockcli.report.stack.plot_stack_response` (the figure of ``simulate --on --plot``).
 
-The figures then agree with the answer: a configuration that topples the body is shown toppling it.
+The figures then agree with the answer: a configuration that topples the body is shown toppling it, at the
+instant the table says (the same run; a rerun that differs from its row is said under its figure).
 """
 
 from __future__ import annotations
