@@ -65,10 +65,10 @@ class Excitation:
     #: ``--azimuth worst`` on a catalogue record with one known horizontal component: why it runs as recorded
     #: (:func:`rockcli.assess.pairs.catalogue_worst`), in one orientation
     as_recorded: str = ""
-    #: ``azimuth="worst"``: the orientations [deg] the pair is run in (:func:`rockcli.records.orientation.sweep_azimuths`);
-    #: :func:`rockcli.assess.run_assessment` runs every one of them and keeps the most adverse
-    #: (:mod:`rockcli.assess.azimuth`): ``motion``, the projection onto 0 deg, is no row's run by itself. Empty:
-    #: ``motion`` is what runs.
+    #: ``azimuth="worst"``: the orientations [deg] the pair is run in
+    #: (:func:`rockcli.records.orientation.sweep_azimuths`); :func:`rockcli.assess.run_assessment` runs every one of
+    #: them and keeps the most adverse (:mod:`rockcli.assess.azimuth`): ``motion``, the projection onto 0 deg, is
+    #: no row's run by itself. Empty: ``motion`` is what runs.
     azimuths: tuple = ()
 
 

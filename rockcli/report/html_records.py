@@ -169,8 +169,8 @@ def _pair_rows(p, what: str, scaled: str) -> list:
         rows.append((f"projected onto <b>{q['azimuth_deg']:g} deg</b>: the motion run{where}",
                      esc(_projection_formula(q["azimuth_deg"], q["cos"], names))
                      + "<br><span class='note'>from the two files above</span>",
-                     "<span class='note'>as the two files</span>", _samples_cell(q, scaled), num(q["pga_g"], ".3f", "g"),
-                     num(q["pgv_mps"], ".3f", "m/s"), _pulse_cell(q), "-"))
+                     "<span class='note'>as the two files</span>", _samples_cell(q, scaled),
+                     num(q["pga_g"], ".3f", "g"), num(q["pgv_mps"], ".3f", "m/s"), _pulse_cell(q), "-"))
     return rows
 
 
@@ -208,8 +208,9 @@ def records_section(excitations, unavailable=(), projections=None) -> str:
                              if v)
             scaled = f"<br>scaled by {p['scale']:g} (PGA and PGV of the scaled motion)" if p["scale"] != 1.0 else ""
             rows.append((f"<b>{breakable(p['label'])}</b><br>{esc(what or '-')}",
-                         f"{breakable(p['file'])}<br>{esc(p['format'])}", _units_cell(p), _samples_cell(p, scaled), num(p["pga_g"], ".3f", "g"),
-                         num(p["pgv_mps"], ".3f", "m/s"), _pulse_cell(p), _hash_cell(p["sha256"])))
+                         f"{breakable(p['file'])}<br>{esc(p['format'])}", _units_cell(p), _samples_cell(p, scaled),
+                         num(p["pga_g"], ".3f", "g"), num(p["pgv_mps"], ".3f", "m/s"), _pulse_cell(p),
+                         _hash_cell(p["sha256"])))
     parts = ["<p>Each ground motion is used as it is in its file (no filtering, no baseline correction), scaled "
              "only where said. PGA: peak ground acceleration; PGV: peak ground velocity (integrated from rest); "
              "the fitted pulse is the Ricker wavelet that best matches the record's strongest pulse (the sign of "
