@@ -242,12 +242,16 @@ def test_python_default_step_is_the_clis(pair):
 def test_what_does_not_sweep_says_so(pair):
     """A fragility of the pairs of azimuth="worst" would be that of their 0 deg projection: refused in one
     sentence naming the function that sweeps; a step without "worst" too."""
-    from rockcli.assess import parse_column_spec, parse_configurations, resolve_excitations, run_fragility
+    from rockcli.assess import (parse_column_spec, parse_configurations, resolve_excitations, run_assessment,
+                                run_fragility)
 
     xs, _ = resolve_excitations([pair[0]], azimuth="worst", azimuth_step=STEP)
     with pytest.raises(RockcliInputError, match=r"is a pair to run in every orientation \(azimuth='worst'\): "
                                                 r"run_fragility_azimuths"):
         run_fragility([parse_column_spec(BODY)], xs, parse_configurations(["none"]), n_boot=0)
+    with pytest.raises(RockcliInputError, match=r"is a pair to run in every orientation \(azimuth='worst'\) and "
+                                                r"orientations= is given"):
+        run_assessment([parse_column_spec(BODY)], xs, parse_configurations(["none"]), orientations={})
     with pytest.raises(RockcliInputError, match="azimuth_step 30 is the step of azimuth='worst'"):
         resolve_excitations([pair[0]], azimuth=30, azimuth_step=30)
     fixed, _ = resolve_excitations([pair[0]], azimuth=60)

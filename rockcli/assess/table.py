@@ -223,7 +223,12 @@ def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
         raise RockcliInputError("no body to assess: name a preset (bassae, nemea) or give a body of your own")
     if not configurations:
         raise RockcliInputError("no isolation configuration to assess")
-    if orientations is None and any(x.azimuths for x in excitations):  # azimuth="worst": every orientation
+    swept = next((x for x in excitations if x.azimuths), None)
+    if swept is not None and orientations is not None:  # its motion is its 0 deg projection only
+        raise RockcliInputError(f"excitations: {swept.label} is a pair to run in every orientation (azimuth='worst') "
+                                f"and orientations= is given: pass the pairs without orientations=, or expand them "
+                                f"with rockcli.assess.azimuth.expand first")
+    if swept is not None:  # azimuth="worst": every orientation, the most adverse kept (the CLI's path)
         from rockcli.assess.azimuth import collapse, expand
 
         expanded, groups = expand(excitations)
