@@ -73,6 +73,10 @@ def test_the_python_page_runs(records_dirs, capsys):
     table = ns["table"]
     assert list(table.configuration) == ["none", "Tb=2.5s"] and "In short:" in out
     assert table.verdict[0] == "overturned" and table.overturn_scale[0] < 1 < table.overturn_scale[1]
+    # azimuth="worst" (issue 44): one row, its most adverse orientation's, and the motion that row ran
+    row = ns["row"]
+    assert len(ns["worst"].rows) == 1 and row.azimuths_run == 12 and row.azimuth_deg in ns["pairs"][0].azimuths
+    assert ns["worst"].excitation_of(row).label == f"{row.record}@{row.azimuth_deg:g}"
 
 
 def _pulse_suite():
