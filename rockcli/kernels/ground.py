@@ -279,3 +279,46 @@ def _vertical_left(vjtab, vdt, t):
     if vjtab.shape[0] == 0:
         return 0.0
     return _record_left(vjtab, vdt, t)
+
+
+@kernel
+def band_exit(seg, epar, a_lo, a_hi, t, t_end):
+    """First time in [t, t_end] at which the ground acceleration leaves ``[a_lo, a_hi]`` (``a_lo < 0 < a_hi``: the
+    band in which a stack at rest on the ground stays at rest; :func:`_rigid_uplift` is the symmetric case), else
+    -1. Linear segments are exact; a pulse segment is cut at its turns into monotone pieces, on which the exit is
+    bisected to the last bit (the argument of :func:`_rigid_uplift`)."""
+    a0 = ground_at(t, seg, epar)
+    if a0 > a_hi or a0 < a_lo:
+        return t
+    if int(seg[0]) == SEG_LINEAR:
+        if seg[2] == 0.0:
+            return -1.0
+        a1 = ground_at(t_end, seg, epar)
+        if a1 > a_hi:
+            return t + (a_hi - a0) / (a1 - a0) * (t_end - t)
+        if a1 < a_lo:
+            return t + (a_lo - a0) / (a1 - a0) * (t_end - t)
+        return -1.0
+    turns = _pulse_turns(int(seg[0]))
+    lo = t
+    for k in range(5):
+        hi = _piece_end(turns, k, epar, lo, t_end)
+        if hi < lo:
+            continue
+        f_hi = ground_at(hi, seg, epar)
+        if f_hi > a_hi or f_hi < a_lo:
+            up = f_hi > a_hi
+            for _ in range(200):
+                mid = 0.5 * (lo + hi)
+                if mid <= lo or mid >= hi:
+                    break
+                fm = ground_at(mid, seg, epar)
+                if (fm > a_hi) if up else (fm < a_lo):
+                    hi = mid
+                else:
+                    lo = mid
+            return hi
+        if hi >= t_end:
+            break
+        lo = hi
+    return -1.0

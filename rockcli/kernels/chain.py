@@ -1,0 +1,424 @@
+"""The mechanics of a chain of rigid blocks standing on each other, with Coulomb friction at every contact
+(docs/physics-sliding.md): the equations of motion of any pattern of contacts, the contact forces, and the
+same equations at the velocity level for impacts. Used by the friction driver (:mod:`rockcli.kernels.chain_run`)
+for a single block (``n = 1``), a body on its plinth (``n = 2``) and, later, a column of drums.
+
+Blocks ``i = 0 .. n-1`` bottom to top: half width ``b``, half height ``h``, mass ``m`` and central inertia ``I``.
+Interface ``j`` lies under block ``j`` (interface 0 on the ground, or on an isolated base). Its relative
+coordinates are the slip ``s_j`` of block ``j`` along the top of the block below (the centre of block ``j``'s base
+from the centre of that top, along it) and the rotation ``psi_j`` of block ``j`` on it (clockwise positive: about
+its right corner, rockcli's sign); the base, when isolated, has its displacement ``u`` relative to the ground.
+The pattern of interface ``j`` is its corner ``c_j`` (0 a face, +1/-1 a pivot on the right/left corner) and its
+slip ``sl_j`` (0 stuck, +1/-1 sliding forwards/backwards along the top below): ``psi_j`` is free where ``c_j !=
+0`` and ``s_j`` where ``sl_j != 0``; the other coordinates keep their values (their rates are 0).
+
+Kane's equations (the generalized forces of a coordinate, from its partial velocities) in the ground's frame,
+where the ground's acceleration ``ag`` is the inertial force ``-m ag`` on every mass. For a free coordinate
+``q_k``: ``sum_i [m_i (a_Gi + (ag, g)) . dv_Gi/dq_k' + I_i alpha_i domega_i/dq_k'] (+ the base's m_b (u'' + ag) + k_b
+u + c_b u' for u) = Q_k``, where the contact forces do work only through a slip: ``Q_k`` is 0 but for a sliding
+``s_j``, whose row is replaced by Coulomb's law ``T_j = -mu_j sl_j N_j`` with ``(N_j, T_j)`` the force the block
+below (or the ground) exerts on everything above interface ``j``, ``F_j = sum_{i >= j} m_i (a_Gi + (ag, g))``,
+in the frame of the surface below: ``F_j . (t_j + mu_j sl_j n_j) = 0``. The accelerations are affine in the free
+``q''`` (propagated up the chain with the Coriolis and centripetal terms), so each pattern is one small linear
+system. At an impact the same rows hold with ``a_Gi + (ag, g)`` replaced by the velocity jumps ``v_Gi+ - v_Gi-``
+(the impulses, finite forces giving none): the plastic impact at the contacts of the pattern after it, with
+Coulomb's law on its impulses where a contact slips.
+
+Layout. ``cp`` (float array): the chain's parameters at the ``CP_*`` indices, then per block ``i`` the fields
+``F_*`` at ``CP_BLK + NF_BLK i``. State ``y`` (columns of the work array): ``u, u'``, then per interface ``j``
+``s_j, s_j', psi_j, psi_j'`` from column ``2 + 4 j``. ``pat`` (float array, ``2 n``): ``c_j, sl_j``.
+The work tuple ``ws`` (:func:`workspace`) holds the chain's kinematics at one state.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from rockcli.kernels.jit import kernel
+
+# the chain's parameters ``cp``
+CP_N, CP_G, CP_RTOL, CP_REST, CP_E, CP_BASE, CP_MB, CP_KB, CP_CB, CP_TOL = 0, 1, 2, 3, 4, 5, 6, 7, 8, 9
+CP_P2MAX = 10  # the largest p^2 = 3 g / (4 R) of the blocks (a first step)
+CP_HDT = 11  # spacing of the history's uniform grid [s], 0: none
+CP_BLK = 16  # the blocks' fields from here
+# a block's fields, and those of the interface under it
+F_B, F_H, F_M, F_I, F_MU = 0, 1, 2, 3, 4  # half width, half height, mass, central inertia, friction under it
+F_AREST = 5  # slenderness of everything above the interface as one body at rest (about a corner of the interface)
+F_EDGE = 6  # the slip at which the block's base passes the edge of the top below: b_below - b (inf on the ground)
+F_SC_S = 7  # the error scale of the slip s [m]
+F_SC_PSI = 8  # the error scale of psi [rad]
+F_P = 9  # sqrt(3 g / (4 R)) of the block [1/s]: the scale of the rates
+NF_BLK = 10
+
+BASE_RIGID, BASE_LINEAR = 0.0, 1.0
+
+
+def cp_size(n: int) -> int:
+    return CP_BLK + NF_BLK * n
+
+
+def n_states(n: int) -> int:
+    return 2 + 4 * n
+
+
+@kernel(inline='always')
+def col_s(j):
+    return 2 + 4 * j
+
+
+@kernel(inline='always')
+def col_psi(j):
+    return 4 + 4 * j
+
+
+@kernel(inline='always')
+def fld(cp, i, f):
+    """Field ``f`` of block ``i``."""
+    return cp[CP_BLK + NF_BLK * i + f]
+
+
+@kernel
+def workspace(n):
+    """Preallocated arrays for :func:`kinematics` and the solves of a chain of ``n`` blocks: ``(free, AG, bG, AA,
+    bA, G, vG, om, th, fr, M, r, x)``. ``free`` lists the free coordinates (as the state column of their
+    position); per block ``AG`` (2 x nf) and ``bG`` the affine acceleration of its centre, ``AA``, ``bA`` of its
+    angular acceleration, ``G`` and ``vG`` its centre and velocity, ``om`` and ``th`` its rate and angle; per
+    interface ``fr`` the contact point and the frame of the surface below ``(Px, Py, tx, ty, nx, ny)``; ``M, r,
+    x`` the linear system and its solution."""
+    nf = 2 * n + 1
+    free = np.zeros(nf, dtype=np.int64)
+    AG = np.zeros((n, 2, nf))
+    bG = np.zeros((n, 2))
+    AA = np.zeros((n, nf))
+    bA = np.zeros(n)
+    G = np.zeros((n, 2))
+    vG = np.zeros((n, 2))
+    om = np.zeros(n)
+    th = np.zeros(n)
+    fr = np.zeros((n, 6))
+    M = np.zeros((nf, nf))
+    r = np.zeros(nf)
+    x = np.zeros(nf)
+    return free, AG, bG, AA, bA, G, vG, om, th, fr, M, r, x
+
+
+@kernel
+def free_coordinates(cp, pat, free):
+    """The free coordinates of the pattern (state columns of their positions, in the order u, then per interface
+    s, psi); their number."""
+    n = int(cp[CP_N])
+    nf = 0
+    if cp[CP_BASE] != BASE_RIGID:
+        free[0] = 0
+        nf = 1
+    for j in range(n):
+        if pat[2 * j + 1] != 0.0:
+            free[nf] = col_s(j)
+            nf += 1
+        if pat[2 * j] != 0.0:
+            free[nf] = col_psi(j)
+            nf += 1
+    return nf
+
+
+@kernel
+def kinematics(cp, pat, y, ws):
+    """Positions, velocities and the affine accelerations of every block at the state ``y`` (a row of the work
+    array) in the pattern ``pat``: fills ``ws``; returns the number of free coordinates."""
+    free, AG, bG, AA, bA, G, vG, om, th, fr, M, r, x = ws
+    n = int(cp[CP_N])
+    nf = free_coordinates(cp, pat, free)
+    # the top of the support: the ground, or the base at u
+    Tx = y[0] if cp[CP_BASE] != BASE_RIGID else 0.0
+    Ty = 0.0
+    vTx = y[1] if cp[CP_BASE] != BASE_RIGID else 0.0
+    vTy = 0.0
+    thL = 0.0
+    omL = 0.0
+    bAL = 0.0
+    # the affine acceleration of the top of the support and of its angular acceleration: columns kept in the
+    # rows of block -1, i.e. computed on the fly from the block below (the base's own is e_u)
+    bTx = 0.0
+    bTy = 0.0
+    rTLx = 0.0  # the support's top from the centre of the block below (set from block 0 on)
+    rTLy = 0.0
+    for j in range(n):
+        c = pat[2 * j]
+        sl = pat[2 * j + 1]
+        b = fld(cp, j, F_B)
+        h = fld(cp, j, F_H)
+        s = y[col_s(j)]
+        sd = y[col_s(j) + 1]
+        ps = y[col_psi(j)]
+        psd = y[col_psi(j) + 1]
+        tx = math.cos(thL)
+        ty = -math.sin(thL)
+        nx = -ty
+        ny = tx
+        d = s + c * b
+        Px = Tx + d * tx
+        Py = Ty + d * ty
+        fr[j, 0] = Px
+        fr[j, 1] = Py
+        fr[j, 2] = tx
+        fr[j, 3] = ty
+        fr[j, 4] = nx
+        fr[j, 5] = ny
+        vPx = vTx - omL * d * nx + sd * tx
+        vPy = vTy - omL * d * ny + sd * ty
+        # affine acceleration of P: a_T - alpha_L d n - 2 omega_L s' n - omega_L^2 d t + s'' t
+        bPx = bTx - bAL * d * nx - 2.0 * omL * sd * nx - omL * omL * d * tx
+        bPy = bTy - bAL * d * ny - 2.0 * omL * sd * ny - omL * omL * d * ty
+        thj = thL + ps
+        omj = omL + psd
+        cth = math.cos(thj)
+        sth = math.sin(thj)
+        # r_G = rot(thj)(-c b, h), r_T = rot(thj)(-c b, 2 h); clockwise rotation (x cos + y sin, -x sin + y cos)
+        rGx = -c * b * cth + h * sth
+        rGy = c * b * sth + h * cth
+        rTx = -c * b * cth + 2.0 * h * sth
+        rTy = c * b * sth + 2.0 * h * cth
+        G[j, 0] = Px + rGx
+        G[j, 1] = Py + rGy
+        th[j] = thj
+        om[j] = omj
+        # perp(r) = (r_y, -r_x): the velocity of r per unit clockwise rate
+        vG[j, 0] = vPx + omj * rGy
+        vG[j, 1] = vPy - omj * rGx
+        bA[j] = bAL
+        bG[j, 0] = bPx + bAL * rGy - omj * omj * rGx
+        bG[j, 1] = bPy - bAL * rGx - omj * omj * rGy
+        for k in range(nf):
+            col = free[k]
+            # the support's top and its angular acceleration: the block below (or the base)
+            if j == 0:
+                aTx = 1.0 if col == 0 else 0.0
+                aTy = 0.0
+                aAL = 0.0
+            else:
+                aTx = AG[j - 1, 0, k] + AA[j - 1, k] * rTLy
+                aTy = AG[j - 1, 1, k] - AA[j - 1, k] * rTLx
+                aAL = AA[j - 1, k]
+            aPx = aTx - aAL * d * nx
+            aPy = aTy - aAL * d * ny
+            if col == col_s(j):
+                aPx += tx
+                aPy += ty
+            aA = aAL + (1.0 if col == col_psi(j) else 0.0)
+            AA[j, k] = aA
+            AG[j, 0, k] = aPx + aA * rGy
+            AG[j, 1, k] = aPy - aA * rGx
+        # the top of block j, the next support: T = P + r_T relative to block j's centre G: r_T - r_G
+        Tx = Px + rTx
+        Ty = Py + rTy
+        vTx = vPx + omj * rTy
+        vTy = vPy - omj * rTx
+        rTLx = rTx - rGx  # the top's centre from the centre of mass of block j
+        rTLy = rTy - rGy
+        bTx = bG[j, 0] + bAL * rTLy - omj * omj * rTLx
+        bTy = bG[j, 1] - bAL * rTLx - omj * omj * rTLy
+        thL = thj
+        omL = omj
+    return nf
+
+
+@kernel
+def solve_small(M, r, x, nf):
+    """``x[:nf] = M[:nf, :nf]^-1 r[:nf]`` by Gaussian elimination with partial pivoting (``M``, ``r`` are
+    overwritten); False when the matrix is singular."""
+    for k in range(nf):
+        p = k
+        big = abs(M[k, k])
+        for i in range(k + 1, nf):
+            if abs(M[i, k]) > big:
+                big = abs(M[i, k])
+                p = i
+        if big == 0.0 or not math.isfinite(big):
+            return False
+        if p != k:
+            for jj in range(nf):
+                M[k, jj], M[p, jj] = M[p, jj], M[k, jj]
+            r[k], r[p] = r[p], r[k]
+        for i in range(k + 1, nf):
+            f = M[i, k] / M[k, k]
+            if f != 0.0:
+                for jj in range(k, nf):
+                    M[i, jj] -= f * M[k, jj]
+                r[i] -= f * r[k]
+    for k in range(nf - 1, -1, -1):
+        acc = r[k]
+        for jj in range(k + 1, nf):
+            acc -= M[k, jj] * x[jj]
+        x[k] = acc / M[k, k]
+    return True
+
+
+@kernel
+def assemble(cp, pat, y, ws, nf, ex, ey, level_v):
+    """The linear system of the pattern for its free coordinates: Kane's rows (Coulomb's law in the rows of the
+    sliding slips). ``level_v`` False: accelerations, the effective load of block ``i`` being ``b_G + (ex, ey)``
+    with ``(ex, ey) = (ag, g)`` (and the base's own forces); True: an impact, the load being ``-v_G-`` (the
+    velocities before, in ``ws``'s ``vG`` and ``om`` as given by the caller) and no base force."""
+    free, AG, bG, AA, bA, G, vG, om, th, fr, M, r, x = ws
+    n = int(cp[CP_N])
+    for k in range(nf):
+        col = free[k]
+        sliding_j = -1
+        if col >= 2 and (col - 2) % 4 == 0:
+            sliding_j = (col - 2) // 4
+        if sliding_j >= 0:
+            # Coulomb: F_j . (t + mu sl n) = 0, F_j = sum_{i >= j} m_i (a_Gi + (ag, g))
+            j = sliding_j
+            mu = fld(cp, j, F_MU)
+            sl = pat[2 * j + 1]
+            wx = fr[j, 2] + mu * sl * fr[j, 4]
+            wy = fr[j, 3] + mu * sl * fr[j, 5]
+            rr = 0.0
+            for l in range(nf):
+                M[k, l] = 0.0
+            for i in range(j, n):
+                m = fld(cp, i, F_M)
+                for l in range(nf):
+                    M[k, l] += m * (wx * AG[i, 0, l] + wy * AG[i, 1, l])
+                if level_v:
+                    rr += m * (wx * vG[i, 0] + wy * vG[i, 1])
+                else:
+                    rr -= m * (wx * (bG[i, 0] + ex) + wy * (bG[i, 1] + ey))
+            r[k] = rr
+            continue
+        rr = 0.0
+        for l in range(nf):
+            M[k, l] = 0.0
+        for i in range(n):
+            m = fld(cp, i, F_M)
+            I = fld(cp, i, F_I)
+            px = AG[i, 0, k]
+            py = AG[i, 1, k]
+            pa = AA[i, k]
+            if px == 0.0 and py == 0.0 and pa == 0.0:
+                continue
+            for l in range(nf):
+                M[k, l] += m * (px * AG[i, 0, l] + py * AG[i, 1, l]) + I * pa * AA[i, l]
+            if level_v:
+                rr += m * (px * vG[i, 0] + py * vG[i, 1]) + I * pa * om[i]
+            else:
+                rr -= m * (px * (bG[i, 0] + ex) + py * (bG[i, 1] + ey)) + I * pa * bA[i]
+        if col == 0:  # the base
+            mb = cp[CP_MB]
+            M[k, k] += mb
+            if level_v:
+                rr += mb * y[1]
+            else:
+                rr -= mb * ex + cp[CP_KB] * y[0] + cp[CP_CB] * y[1]
+        r[k] = rr
+
+
+@kernel
+def accelerations(cp, pat, y, ag, ws, ydot):
+    """The pattern's right-hand side at the state ``y`` (a row): ``ydot`` (same layout; 0 for the coordinates the
+    pattern holds). Returns False when the pattern's system is singular (then ``ydot`` holds no accelerations)."""
+    free, AG, bG, AA, bA, G, vG, om, th, fr, M, r, x = ws
+    nf = kinematics(cp, pat, y, ws)
+    ny = ydot.shape[0]
+    for i in range(ny):
+        ydot[i] = 0.0
+    for k in range(nf):
+        ydot[free[k]] = y[free[k] + 1]
+    if nf == 0:
+        return True
+    assemble(cp, pat, y, ws, nf, ag, cp[CP_G], False)
+    ok = solve_small(M, r, x, nf)
+    for k in range(nf):
+        ydot[free[k] + 1] = x[k] if ok else 0.0
+    return ok
+
+
+@kernel
+def contact_forces(cp, pat, ws, nf, ag, out):
+    """The contact forces of every interface for the accelerations ``x[:nf]`` of the last solve (``ws`` at the same
+    state): ``out[j] = (N, T, Mc)``, the force the block below exerts on everything above interface ``j`` in the frame
+    of the surface below (normal, tangential) and its clockwise moment about the contact point (the face's centre:
+    the couple that splits ``N`` between the two corners). With ``ag`` None-like (``math.nan``) the loads are the
+    velocity jumps of an impact: the impulses."""
+    free, AG, bG, AA, bA, G, vG, om, th, fr, M, r, x = ws
+    n = int(cp[CP_N])
+    g = cp[CP_G]
+    Fx = 0.0
+    Fy = 0.0
+    Mt = 0.0  # moment about the origin of the loads above, accumulated from the top (then shifted to P_j)
+    for j in range(n - 1, -1, -1):
+        m = fld(cp, j, F_M)
+        I = fld(cp, j, F_I)
+        ax = bG[j, 0]
+        ay = bG[j, 1]
+        al = bA[j]
+        for k in range(nf):
+            ax += AG[j, 0, k] * x[k]
+            ay += AG[j, 1, k] * x[k]
+            al += AA[j, k] * x[k]
+        lx = m * (ax + ag)
+        ly = m * (ay + g)
+        Fx += lx
+        Fy += ly
+        # clockwise moment about the origin of the load (lx, ly) at G_j, plus the inertia couple:
+        # sum m (a + (ag, g)) . perp(G - P) + I alpha = sum [l_x (G_y - P_y) - l_y (G_x - P_x)] + I alpha
+        Mt += lx * G[j, 1] - ly * G[j, 0] + I * al
+        Px = fr[j, 0]
+        Py = fr[j, 1]
+        out[j, 0] = Fx * fr[j, 4] + Fy * fr[j, 5]
+        out[j, 1] = Fx * fr[j, 2] + Fy * fr[j, 3]
+        out[j, 2] = Mt - Fx * Py + Fy * Px
+
+
+@kernel
+def impulses(cp, pat, ws, nf, out):
+    """The impulses of every interface for the velocities after an impact ``x[:nf]`` of the last velocity-level
+    solve, the velocities before being ``ws``'s ``vG``, ``om`` (as :func:`contact_forces`, with the velocity jumps
+    as loads): ``out[j] = (N, T, K)``."""
+    free, AG, bG, AA, bA, G, vG, om, th, fr, M, r, x = ws
+    n = int(cp[CP_N])
+    Fx = 0.0
+    Fy = 0.0
+    Mt = 0.0
+    for j in range(n - 1, -1, -1):
+        m = fld(cp, j, F_M)
+        I = fld(cp, j, F_I)
+        vx = -vG[j, 0]
+        vy = -vG[j, 1]
+        w = -om[j]
+        for k in range(nf):
+            vx += AG[j, 0, k] * x[k]
+            vy += AG[j, 1, k] * x[k]
+            w += AA[j, k] * x[k]
+        lx = m * vx
+        ly = m * vy
+        Fx += lx
+        Fy += ly
+        Mt += lx * G[j, 1] - ly * G[j, 0] + I * w
+        Px = fr[j, 0]
+        Py = fr[j, 1]
+        out[j, 0] = Fx * fr[j, 4] + Fy * fr[j, 5]
+        out[j, 1] = Fx * fr[j, 2] + Fy * fr[j, 3]
+        out[j, 2] = Mt - Fx * Py + Fy * Px
+
+
+@kernel
+def energy(cp, pat, y, ws):
+    """``(kinetic, potential)`` energy of the chain and its base at the state ``y`` (potential: gravity from the
+    ground's level and the bearings' spring)."""
+    free, AG, bG, AA, bA, G, vG, om, th, fr, M, r, x = ws
+    kinematics(cp, pat, y, ws)
+    n = int(cp[CP_N])
+    g = cp[CP_G]
+    T = 0.0
+    V = 0.0
+    for i in range(n):
+        m = fld(cp, i, F_M)
+        T += 0.5 * m * (vG[i, 0] ** 2 + vG[i, 1] ** 2) + 0.5 * fld(cp, i, F_I) * om[i] ** 2
+        V += m * g * G[i, 1]
+    if cp[CP_BASE] != BASE_RIGID:
+        T += 0.5 * cp[CP_MB] * y[1] ** 2
+        V += 0.5 * cp[CP_KB] * y[0] ** 2
+    return T, V

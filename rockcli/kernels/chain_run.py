@@ -1,0 +1,505 @@
+"""The friction driver: :func:`simulate_chain` runs a chain of blocks (one block, a body on its plinth) on a rigid
+foundation or on linear bearings with Coulomb friction at every contact (docs/physics-sliding.md), event-driven,
+one pattern of contacts at a time.
+
+The run. While everything stands still on the rigid ground (every interface a face that sticks) nothing is
+integrated: the contact forces are linear in the ground acceleration, so the band of ``ag`` in which every face
+presses and every contact sticks is computed once and the ground motion scanned for its exit
+(:func:`rockcli.kernels.ground.band_exit`); the pattern that starts there is chosen by the contact law. Otherwise a
+Dormand-Prince step of the chain's states (:mod:`rockcli.kernels.chain_step`), its events on the dense output (the
+earliest taken, the step retaken to it), and at each event the pattern that follows (:mod:`rockcli.kernels.contact`):
+an impact by Moreau's law with Coulomb friction and the rest rules, a face that opens, a contact that starts or
+stops sliding. The run ends when a block topples (a pivot's angle reaches ``pi/2``) or slides off the block below
+(its base's centre ``b_below - b`` from centred: its corner at the edge), at rest once the ground is still (on
+bearings: once the free base's energy cannot open a face or start a slip, the bound in :func:`_base_settled`), or
+at the horizon.
+
+Rest rules after an impact (the rocking model's, for any chain): with every angle at 0, the chain is set on its
+faces (a plastic impact into them, each contact sticking or sliding as the contact law says) when nothing could
+lift it from rest under the current ``ag`` (each face's restoring moment at rest positive) and the kinetic energy
+of its rocking (the rates of the slips and of the base left out) is below ``rest_tol`` times the smallest
+``alpha_j M_j``; else the impacting interface is set on its face when both accelerations that would turn it back
+are positive and the rotation it could still reach against the smaller is below ``rest_tol`` times its
+slenderness. For one block on the ground both are the rocking driver's rule.
+
+Outputs ``xo``: the run's fields ``X_*``, then per interface ``j`` the fields ``J_*`` at ``N_XG + NX_J j``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from rockcli.kernels.chain import (BASE_RIGID, CP_BASE, CP_CB, CP_G, CP_KB, CP_MB, CP_N, CP_P2MAX, CP_REST,
+                                   CP_TOL, F_AREST, F_B, F_MU, col_psi, col_s, energy, fld, free_coordinates,
+                                   workspace)
+from rockcli.kernels.chain_step import (EVC_FACE_OPENS, EVC_IMPACT, EVC_NONE, EVC_SLIDE_OFF, EVC_SLIP_STARTS,
+                                        EVC_SLIP_STOP, EVC_TOPPLE, _rhs, dp5, force_events, peaks, restep,
+                                        state_events)
+from rockcli.kernels.contact import (choose_pattern, face_corners, impact, project, rest_moments, restoring_rate,
+                                     solve_pattern)
+from rockcli.kernels.ground import _pulse_segment, band_exit, ground_at
+from rockcli.kernels.jit import kernel
+from rockcli.kernels.layout import (E_AP, E_TP, EXC_RECORD, N_RS, N_W, RS_FRESH, RS_H, RS_J, RS_SEG_END, RS_T,
+                                    RS_VEND, RS_VJ, SEG_LINEAR, STATUS_DONE, STATUS_MAX_STEPS, STATUS_OVERTURNED,
+                                    W_EV, W_FEV, W_Y, W_YNEW)
+from rockcli.kernels.steps import _advance_segment, _grown, _seg, _set_seg, _shrink
+
+STATUS_SLID_OFF = 2
+
+# the run's outputs
+X_STATUS, X_TOPPLED, X_SLIDOFF, X_T_END, X_T_FAIL, X_STEPS, X_REJ, X_NRHS = 0, 1, 2, 3, 4, 5, 6, 7
+X_N_JUMP, X_N_INCONS, X_N_SLIP_IMPACTS, X_SETTLED, X_T_SETTLED = 8, 9, 10, 11, 12
+X_U_MAX, X_T_U_MAX, X_N_SWITCH, X_U_END, X_T_FIRST, X_N_STALL = 13, 14, 15, 16, 17, 18
+N_XG = 20
+# per interface
+J_PSI_MAX, J_T_PSI_MAX, J_T_EXCEED, J_S_MAX, J_T_S_MAX, J_TILT = 0, 1, 2, 3, 4, 5
+J_T_UPLIFT, J_N_IMP, J_N_IMP_ALL, J_N_RESTS, J_T_SLIDE, J_N_SLIPS, J_S_END, J_PSI_END = 6, 7, 8, 9, 10, 11, 12, 13
+NX_J = 14
+
+# history rows: t, ag, kind, the pattern (2 n), the state (2 + 4 n)
+HC_T, HC_AG, HC_KIND, HC_PAT = 0, 1, 2, 3
+HK_STATE, HK_EVENT, HK_IMPACT, HK_IMPACT_AFTER, HK_END = 0.0, 1.0, 2.0, 3.0, 4.0
+MAX_STALL = 64  # events in a row at one instant before the contact law's choice is forced on
+
+
+def n_out(n: int) -> int:
+    return N_XG + NX_J * n
+
+
+@kernel
+def _all_stuck(pat, n):
+    for i in range(2 * n):
+        if pat[i] != 0.0:
+            return False
+    return True
+
+
+@kernel
+def _hist(H, nh, t, ag, kind, pat, W, row):
+    if nh >= H.shape[0]:
+        H2 = np.empty((2 * H.shape[0] + 16, H.shape[1]))
+        H2[:nh] = H[:nh]
+        H = H2
+    npat = pat.shape[0]
+    H[nh, HC_T] = t
+    H[nh, HC_AG] = ag
+    H[nh, HC_KIND] = kind
+    for i in range(npat):
+        H[nh, HC_PAT + i] = pat[i]
+    for i in range(W.shape[1]):
+        H[nh, HC_PAT + npat + i] = W[row, i]
+    return H, nh + 1
+
+
+@kernel
+def rest_band(cp, y, ws, frc, scratch):
+    """``(a_lo, a_hi)``: the ground accelerations under which the chain at rest on the rigid ground (every face
+    sticking, at the slips of ``y``) stays at rest: every corner force pressing and every contact inside Coulomb's
+    cone. At rest the forces are affine in ``ag`` (nothing accelerates in the ground's frame)."""
+    n = int(cp[CP_N])
+    for i in range(2 * n):
+        scratch[i] = 0.0
+    cq = cp.copy()
+    cq[CP_BASE] = BASE_RIGID  # on bearings: the chain riding the base, ``ag`` read as the base's acceleration
+    solve_pattern(cq, scratch, y, 0.0, ws, frc)
+    f0 = frc.copy()
+    solve_pattern(cq, scratch, y, 1.0, ws, frc)
+    lo = -math.inf
+    hi = math.inf
+    for j in range(n):
+        b = fld(cp, j, F_B)
+        mu = fld(cp, j, F_MU)
+        N0, T0, M0 = f0[j, 0], f0[j, 1], f0[j, 2]
+        N1, T1, M1 = frc[j, 0] - N0, frc[j, 1] - T0, frc[j, 2] - M0
+        pr0, pl0 = face_corners(N0, M0, b)
+        pr1, pl1 = face_corners(N1, M1, b)
+        for c0, c1 in ((pr0, pr1), (pl0, pl1), (mu * N0 - T0, mu * N1 - T1), (mu * N0 + T0, mu * N1 + T1)):
+            # c0 + c1 ag >= 0
+            if c1 > 0.0:
+                lo = max(lo, -c0 / c1)
+            elif c1 < 0.0:
+                hi = min(hi, -c0 / c1)
+            elif c0 < 0.0:
+                lo = math.inf
+    return lo, hi
+
+
+@kernel
+def _base_settled(cp, y, ws, frc, scratch):
+    """On bearings, the ground still and the chain standing on the base: the base's energy ``E = (M u'^2 + k u^2)/2``
+    never grows, so ``|u| <= sqrt(2E/k)``, ``|u'| <= sqrt(2E/M)`` and the acceleration of everything on it,
+    ``|a| = |k u + c u'|/M``, stays below ``(k sqrt(2E/k) + c sqrt(2E/M))/M`` for ever; True when that is inside
+    the band in which the chain stays at rest (:func:`rest_band`, with ``a`` for ``ag``)."""
+    n = int(cp[CP_N])
+    M = cp[CP_MB]
+    for j in range(n):
+        M += fld(cp, j, 2)
+    k = cp[CP_KB]
+    c = cp[CP_CB]
+    E = 0.5 * M * y[1] ** 2 + 0.5 * k * y[0] ** 2
+    amax = (k * math.sqrt(2.0 * E / k) + c * math.sqrt(2.0 * E / M)) / M
+    lo, hi = rest_band(cp, y, ws, frc, scratch)
+    return -amax > lo and amax < hi
+
+
+@kernel
+def _switch(xo, pat, new, n, t, t_exc_end):
+    """Enter the pattern ``new``: the bookkeeping of uplifts and slips."""
+    changed = False
+    for j in range(n):
+        o = N_XG + NX_J * j
+        if pat[2 * j] == 0.0 and new[2 * j] != 0.0:
+            if math.isnan(xo[o + J_T_UPLIFT]):
+                xo[o + J_T_UPLIFT] = t
+            if math.isnan(xo[X_T_FIRST]):
+                xo[X_T_FIRST] = t
+        if pat[2 * j + 1] == 0.0 and new[2 * j + 1] != 0.0:
+            if math.isnan(xo[o + J_T_SLIDE]):
+                xo[o + J_T_SLIDE] = t
+            xo[o + J_N_SLIPS] += 1.0
+            if math.isnan(xo[X_T_FIRST]):
+                xo[X_T_FIRST] = t
+        if pat[2 * j] != new[2 * j] or pat[2 * j + 1] != new[2 * j + 1]:
+            changed = True
+        pat[2 * j] = new[2 * j]
+        pat[2 * j + 1] = new[2 * j + 1]
+    if changed:
+        xo[X_N_SWITCH] += 1.0
+
+
+@kernel
+def _rocking_energy(cp, pat, y, ws, ytmp):
+    """The kinetic energy of the chain's rocking: its rates with those of the slips and of the base set to 0."""
+    n = int(cp[CP_N])
+    for i in range(y.shape[0]):
+        ytmp[i] = y[i]
+    ytmp[1] = 0.0
+    for j in range(n):
+        ytmp[col_s(j) + 1] = 0.0
+    T, _ = energy(cp, pat, ytmp, ws)
+    return T
+
+
+@kernel
+def _after_impact(cp, pat, y, j, t, t_exc_end, ag, xo, ws, frc, best, v0, w0, ynew, zero_psi, free_corner, ytmp):
+    """The impact of interface ``j`` (its angle at 0 in ``y``): the pattern and rates after it (Moreau with Coulomb),
+    then the rest rules (module notes). Writes the state after into ``y`` and the pattern into ``pat``."""
+    n = int(cp[CP_N])
+    tol = cp[CP_TOL]
+    o = N_XG + NX_J * j
+    xo[o + J_N_IMP_ALL] += 1.0
+    if t <= t_exc_end:
+        xo[o + J_N_IMP] += 1.0
+    for i in range(n):
+        zero_psi[i] = i == j or pat[2 * i] == 0.0
+        free_corner[i] = zero_psi[i]
+    pat_to = pat.copy()
+    m, pulls, slipped = impact(cp, pat, pat_to, y, ws, frc, zero_psi, free_corner, best, v0, w0, ynew)
+    if m < -tol:
+        xo[X_N_INCONS] += 1.0
+    if pulls > 0:
+        xo[X_N_JUMP] += 1.0
+    if slipped:
+        xo[X_N_SLIP_IMPACTS] += 1.0
+    for i in range(y.shape[0]):
+        y[i] = ynew[i]
+    _switch(xo, pat, best, n, t, t_exc_end)
+    # rest rules
+    all_zero = True
+    for i in range(n):
+        if y[col_psi(i)] != 0.0:
+            all_zero = False
+    rested = False
+    if all_zero:
+        scratch = pat.copy()
+        rest_moments(cp, scratch, y, ag, ws, frc)
+        lim = math.inf
+        for i in range(n):
+            if not frc[i, 0] > 0.0:
+                lim = -1.0
+                break
+            lim = min(lim, fld(cp, i, F_AREST) * frc[i, 0])
+        if lim > 0.0 and _rocking_energy(cp, pat, y, ws, ytmp) < cp[CP_REST] * lim:
+            for i in range(n):
+                pat_to[2 * i] = 0.0
+                pat_to[2 * i + 1] = pat[2 * i + 1]
+            rested = True
+    if not rested and pat[2 * j] != 0.0:
+        rest = restoring_rate(cp, pat, y, ag, ws, frc, j)
+        rate = y[col_psi(j) + 1]
+        if rest > 0.0 and rate * rate < 2.0 * rest * cp[CP_REST] * fld(cp, j, F_AREST):
+            for i in range(2 * n):
+                pat_to[i] = pat[i]
+            pat_to[2 * j] = 0.0
+            rested = True
+    if rested:
+        for i in range(n):
+            if pat_to[2 * i] == 0.0 and pat[2 * i] != 0.0:
+                xo[N_XG + NX_J * i + J_N_RESTS] += 1.0
+        project(cp, pat, pat_to, y, ws, v0, w0, ynew)
+        for i in range(y.shape[0]):
+            y[i] = ynew[i]
+        _switch(xo, pat, pat_to, n, t, t_exc_end)
+
+
+@kernel
+def _first_h(cp, pat, W, h):
+    """Shorten the first step after an event so that it does not swallow a short excursion: a pivot just opened
+    (angle 0) whose rate the acceleration turns back, a slip whose rate is being brought to 0."""
+    n = int(cp[CP_N])
+    for j in range(n):
+        if pat[2 * j] != 0.0 and W[W_Y, col_psi(j)] == 0.0:
+            c = pat[2 * j]
+            vel = c * W[W_Y, col_psi(j) + 1]
+            back = -c * W[0, col_psi(j) + 1]
+            if vel > 0.0 and back > 0.0:
+                h = min(h, 0.5 * vel / back)
+        if pat[2 * j + 1] != 0.0:
+            sl = pat[2 * j + 1]
+            vel = sl * W[W_Y, col_s(j) + 1]
+            back = -sl * W[0, col_s(j) + 1]
+            if vel > 0.0 and back > 0.0:
+                h = min(h, 0.5 * vel / back)
+    return h
+
+
+@kernel
+def simulate_chain(cp, pat0, y0, ekind, epar, acc, dt, t_begin, t_exc_end, tail, horizon, max_steps, want_history,
+                   xo):
+    """Run the chain ``cp`` from the pattern ``pat0`` and state ``y0`` at ``t_begin`` under the ground motion
+    (``ekind``, ``epar``, ``acc``, ``dt`` as for :func:`rockcli.kernels.rigid.simulate_rigid`); the excitation ends at
+    ``t_exc_end``, a history run shows ``tail`` after it, the run stops ``max(horizon, tail)`` after it. Fills
+    ``xo`` (:func:`n_out`); returns the history rows (empty unless ``want_history``)."""
+    n = int(cp[CP_N])
+    ny = 2 + 4 * n
+    for k in range(xo.shape[0]):
+        xo[k] = 0.0
+    for k in (X_T_FAIL, X_T_SETTLED, X_T_U_MAX, X_T_FIRST):
+        xo[k] = np.nan
+    xo[X_TOPPLED] = -1.0
+    xo[X_SLIDOFF] = -1.0
+    for j in range(n):
+        o = N_XG + NX_J * j
+        for k in (J_T_PSI_MAX, J_T_EXCEED, J_T_S_MAX, J_T_UPLIFT, J_T_SLIDE):
+            xo[o + k] = np.nan
+    W = np.zeros((N_W, ny))
+    rs = np.zeros(N_RS)
+    rs[RS_T] = t_begin
+    rs[RS_FRESH] = 1.0
+    rs[RS_VEND] = np.inf
+    rs[RS_VJ] = -1.0
+    if ekind == EXC_RECORD:
+        rscale = epar[E_AP]
+        _set_seg(rs, (float(SEG_LINEAR), rscale * acc[0], rscale * (acc[1] - acc[0]) / dt, 0.0), dt)
+    else:
+        seg0, seg_end0 = _pulse_segment(np.int64(0), ekind, epar, t_begin)
+        _set_seg(rs, seg0, seg_end0)
+    pat = pat0.copy()
+    for i in range(ny):
+        W[W_Y, i] = y0[i]
+    ws = workspace(n)
+    frc = np.zeros((n, 3))
+    best = np.zeros(2 * n)
+    v0 = np.zeros((n, 2))
+    w0 = np.zeros(n)
+    ynew = np.zeros(ny)
+    ytmp = np.zeros(ny)
+    zero_psi = np.zeros(n, dtype=np.bool_)
+    zero_s = np.zeros(n, dtype=np.bool_)
+    free_corner = np.zeros(n, dtype=np.bool_)
+    fcols = np.zeros(2 * n + 1, dtype=np.int64)
+    alpha_rest = np.zeros(n)
+    for j in range(n):
+        alpha_rest[j] = fld(cp, j, F_AREST)
+    rigid = cp[CP_BASE] == BASE_RIGID
+    t_show_end = t_exc_end + tail
+    t_horizon = t_exc_end + max(horizon, tail)
+    nrows = 2 * acc.shape[0] + 1024 if ekind == EXC_RECORD else 4096
+    H = np.empty((nrows if want_history else 0, 3 + 2 * n + ny))
+    nh = 0
+    if want_history:
+        H, nh = _hist(H, nh, rs[RS_T], ground_at(rs[RS_T], _seg(rs), epar), HK_STATE, pat, W, W_Y)
+    settled = False
+    status = STATUS_DONE
+    stall = 0
+    t_last_event = -math.inf
+    x_u = X_U_MAX if not rigid else -1
+    while True:
+        _advance_segment(rs, ekind, epar, acc, dt, t_begin)
+        t = rs[RS_T]
+        seg = _seg(rs)
+        if not settled and t >= t_exc_end and _all_stuck(pat, n):
+            if rigid or _base_settled(cp, W[W_Y], ws, frc, best):
+                settled = True
+                xo[X_SETTLED] = 1.0
+                xo[X_T_SETTLED] = t
+        if settled and (not want_history or t >= t_show_end):
+            break
+        if t >= t_horizon:
+            break
+        if xo[X_STEPS] + xo[X_REJ] >= max_steps:
+            status = STATUS_MAX_STEPS
+            break
+        t_stop = min(rs[RS_SEG_END], t_horizon)
+        if settled:
+            t_stop = min(t_stop, t_show_end)
+        if rigid and _all_stuck(pat, n):
+            lo, hi = rest_band(cp, W[W_Y], ws, frc, best)
+            tu = band_exit(seg, epar, lo, hi, t, t_stop)
+            if tu < 0.0:
+                rs[RS_T] = t_stop
+                continue
+            rs[RS_T] = tu
+            ag = ground_at(tu, seg, epar)
+            if ag >= hi:
+                ag = max(ag, hi + 1e-9 * abs(hi))
+            else:
+                ag = min(ag, lo - 1e-9 * abs(lo))
+            for j in range(n):
+                zero_psi[j] = True
+                zero_s[j] = True
+            choose_pattern(cp, pat, W[W_Y], ag, ws, frc, zero_psi, zero_s, best)
+            _switch(xo, pat, best, n, tu, t_exc_end)
+            rs[RS_FRESH] = 1.0
+            rs[RS_H] = 0.0
+            if want_history:
+                H, nh = _hist(H, nh, tu, ground_at(tu, seg, epar), HK_EVENT, pat, W, W_Y)
+            if _all_stuck(pat, n):  # the threshold met without crossing it (a tangency): go on past it
+                rs[RS_T] = min(t_stop, tu + 1e-9 * max(1.0, tu))
+            continue
+        # one step of the free coordinates
+        nfc = free_coordinates(cp, pat, fcols)
+        if rs[RS_FRESH] != 0.0:
+            _rhs(cp, pat, seg, epar, t, W, np.int64(W_Y), np.int64(0), ws)
+            xo[X_NRHS] += 1.0
+            rs[RS_FRESH] = 0.0
+        h = rs[RS_H]
+        if h <= 0.0:
+            h = 0.02 / math.sqrt(cp[CP_P2MAX])
+            if ekind != EXC_RECORD:
+                h = min(h, epar[E_TP] / 50.0)
+            h = _first_h(cp, pat, W, h)
+        steps = xo[X_STEPS]
+        rej = xo[X_REJ]
+        ok = False
+        hs = h
+        last = False
+        while steps + rej < max_steps:
+            hs = h
+            last = hs >= t_stop - t
+            if last:
+                hs = t_stop - t
+            err = dp5(cp, pat, seg, epar, t, hs, W, np.int64(0), ws, fcols, nfc)
+            xo[X_NRHS] += 6.0
+            if err <= 1.0:
+                h = _grown(h, hs, err, last)
+                ok = True
+                break
+            rej += 1.0
+            h = hs * _shrink(err)
+        rs[RS_H] = h
+        xo[X_REJ] = rej
+        if not ok:
+            status = STATUS_MAX_STEPS
+            break
+        xo[X_STEPS] = steps + 1.0
+        t_new = t_stop if last else t + hs
+        code, who, sig = state_events(cp, pat, W, hs, 1.0)
+        fcode, fwho, fsig, pulled = force_events(cp, pat, W, hs, t, seg, epar, ws, frc, sig)
+        if pulled:
+            xo[X_N_JUMP] += 1.0
+        if fcode != EVC_NONE and (fsig <= sig or code == EVC_NONE):
+            code, who, sig = fcode, fwho, fsig
+        peaks(cp, pat, W, hs, t, sig, xo, N_XG + J_PSI_MAX, N_XG + J_S_MAX, N_XG + J_TILT, x_u, NX_J, alpha_rest)
+        if code == EVC_NONE:
+            rs[RS_T] = t_new
+            for i in range(ny):
+                W[W_Y, i] = W[W_YNEW, i]
+                W[0, i] = W[6, i]
+            if want_history:
+                H, nh = _hist(H, nh, t_new, ground_at(t_new, seg, epar), HK_STATE, pat, W, W_Y)
+            continue
+        # an event: the step retaken to it
+        if sig > 0.0:
+            restep(cp, pat, seg, epar, t, sig * hs, W, ws, fcols, nfc)
+            xo[X_NRHS] += 6.0
+            for i in range(ny):
+                W[W_Y, i] = W[W_EV, i]
+        t_ev = t + sig * hs
+        if t_ev == t_last_event:
+            stall += 1
+        else:
+            stall = 0
+        t_last_event = t_ev
+        rs[RS_FRESH] = 1.0
+        rs[RS_H] = 0.0
+        y = W[W_Y]
+        if code == EVC_IMPACT:
+            ci = col_psi(who)
+            if sig > 0.0 and W[W_FEV, ci] != 0.0:  # onto the root by one Taylor term
+                dt_e = -W[W_EV, ci] / W[W_FEV, ci]
+                dt_e = min(max(dt_e, -sig * hs), (1.0 - sig) * hs)
+                for i in range(ny):
+                    y[i] += W[W_FEV, i] * dt_e
+                t_ev += dt_e
+            y[ci] = 0.0
+            rs[RS_T] = t_ev
+            if want_history:
+                H, nh = _hist(H, nh, t_ev, ground_at(t_ev, seg, epar), HK_IMPACT, pat, W, W_Y)
+            _after_impact(cp, pat, y, who, t_ev, t_exc_end, ground_at(t_ev, seg, epar), xo, ws, frc, best, v0, w0,
+                          ynew, zero_psi, free_corner, ytmp)
+            kind = HK_IMPACT_AFTER
+        elif code == EVC_TOPPLE:
+            y[col_psi(who)] = pat[2 * who] * 0.5 * math.pi
+            rs[RS_T] = t_ev
+            o = N_XG + NX_J * who
+            xo[o + J_PSI_MAX] = 0.5 * math.pi
+            status = STATUS_OVERTURNED
+            xo[X_TOPPLED] = who
+            xo[X_T_FAIL] = t_ev
+            if want_history:
+                H, nh = _hist(H, nh, t_ev, ground_at(t_ev, seg, epar), HK_END, pat, W, W_Y)
+            break
+        elif code == EVC_SLIDE_OFF:
+            rs[RS_T] = t_ev
+            status = STATUS_SLID_OFF
+            xo[X_SLIDOFF] = who
+            xo[X_T_FAIL] = t_ev
+            o = N_XG + NX_J * who
+            xo[o + J_S_MAX] = max(xo[o + J_S_MAX], abs(y[col_s(who)]))
+            if want_history:
+                H, nh = _hist(H, nh, t_ev, ground_at(t_ev, seg, epar), HK_END, pat, W, W_Y)
+            break
+        else:
+            rs[RS_T] = t_ev
+            for j in range(n):
+                zero_psi[j] = False
+                zero_s[j] = False
+            if code == EVC_SLIP_STOP:
+                y[col_s(who) + 1] = 0.0
+                zero_s[who] = True
+            elif code == EVC_FACE_OPENS:
+                zero_psi[who] = True
+                zero_s[who] = pat[2 * who + 1] == 0.0
+            else:  # a stuck contact reaches the cone
+                zero_s[who] = True
+                zero_psi[who] = pat[2 * who] == 0.0
+            if stall > MAX_STALL:
+                xo[X_N_STALL] += 1.0
+            m, pulls = choose_pattern(cp, pat, y, ground_at(t_ev, seg, epar), ws, frc, zero_psi, zero_s, best)
+            if m < -cp[CP_TOL]:
+                xo[X_N_INCONS] += 1.0
+            _switch(xo, pat, best, n, t_ev, t_exc_end)
+            kind = HK_EVENT
+        if want_history:
+            H, nh = _hist(H, nh, rs[RS_T], ground_at(rs[RS_T], seg, epar), kind, pat, W, W_Y)
+    xo[X_STATUS] = status
+    xo[X_T_END] = rs[RS_T]
+    xo[X_U_END] = W[W_Y, 0]
+    for j in range(n):
+        o = N_XG + NX_J * j
+        xo[o + J_S_END] = W[W_Y, col_s(j)]
+        xo[o + J_PSI_END] = W[W_Y, col_psi(j)]
+    return H[:nh]
