@@ -79,6 +79,11 @@ def _split_address(scheduler: str) -> tuple[str, int]:
     return m.group("host").strip("[]"), port
 
 
+#: Said after a scheduler address that cannot be reached: what to start there, or how to do without one.
+NO_SCHEDULER_HINT = ("; start a Dask scheduler there (dask scheduler --port PORT, with workers: dask worker ADDRESS), "
+                     "or give --scheduler local to run a Dask cluster on this machine")
+
+
 def check_scheduler(scheduler) -> None:
     """Raise one sentence unless ``scheduler`` is ``local``, ``tcp://HOST[:PORT]`` or a Client."""
     if scheduler is None or not isinstance(scheduler, str):
@@ -104,9 +109,10 @@ def probe_scheduler(scheduler: str, timeout: float) -> None:
     try:
         sock = socket.create_connection((host, port), timeout=timeout)
     except socket.timeout:
-        raise RockcliInputError(f"--scheduler {scheduler}: no answer within {timeout:g} s") from None
+        raise RockcliInputError(f"--scheduler {scheduler}: no answer within {timeout:g} s{NO_SCHEDULER_HINT}") from None
     except OSError as exc:
-        raise RockcliInputError(f"--scheduler {scheduler}: cannot connect ({exc.strerror or exc})") from None
+        raise RockcliInputError(f"--scheduler {scheduler}: cannot connect ({exc.strerror or exc}){NO_SCHEDULER_HINT}"
+                                ) from None
     with sock:
         head = b""
         deadline = time.monotonic() + timeout
@@ -178,7 +184,8 @@ def open_client(scheduler, *, n_workers: int | None = None, processes: bool = Tr
     try:
         client = distributed.Client(scheduler, timeout=timeout)
     except (OSError, TimeoutError) as exc:
-        raise RockcliInputError(f"--scheduler {scheduler}: cannot connect within {timeout:g} s ({exc})") from None
+        raise RockcliInputError(f"--scheduler {scheduler}: cannot connect within {timeout:g} s ({exc})"
+                                f"{NO_SCHEDULER_HINT}") from None
     try:
         try:
             client.wait_for_workers(1, timeout=timeout)

@@ -301,6 +301,19 @@ def test_a_server_that_is_not_dask_is_refused(dask_timeout, tmp_path, reply, wor
 
 
 @needs_dask
+def test_nothing_listening_names_the_local_cluster(tmp_path):
+    """A scheduler address where nothing listens ("Connection refused"): the sentence says what to do, including
+    running without a cluster of one's own (--scheduler local)."""
+    srv = socket.socket()
+    srv.bind(("127.0.0.1", 0))
+    address = f"tcp://127.0.0.1:{srv.getsockname()[1]}"
+    srv.close()  # the port is free again: nothing listens there
+    res = CliRunner().invoke(main, [*SPECTRUM, "--scheduler", address, "--csv", str(tmp_path / "m.csv")])
+    _one_error(res, "cannot connect", "--scheduler local")
+    assert not (tmp_path / "m.csv").exists()
+
+
+@needs_dask
 @pytest.mark.parametrize("address", ["tls://127.0.0.1:8786", "inproc://127.0.0.1/1/2", "ucx://127.0.0.1:8786",
                                      "ws://127.0.0.1:8786", "tcp://127.0.0.1:70000"])
 def test_other_protocols_are_refused_up_front(address):
