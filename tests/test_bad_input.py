@@ -324,8 +324,14 @@ CLI_CASES = {
                                ["latin.csv, line 2: the manifest is not UTF-8 text (byte 0xe9)"]),
     "column-csv-over-manifest": ([*ASSESS, "--records", "m.csv", "--csv", "m.csv"],
                                  ["--csv m.csv is also an input (the manifest m.csv)"]),
+    # the report is an HTML page whatever its name: any other suffix is refused before the manifest is looked at
     "fragility-report-over-manifest": (["assess", "fragility", "bassae", "--records", "m.csv", "--report", "m.csv"],
-                                       ["--report m.csv is also an input (the manifest m.csv)"]),
+                                       ["--report m.csv: this file is written as HTML, so give it the suffix .html "
+                                        "or .htm"]),
+    "sim-report-pdf": ([*SIM, *SINE, "--report", "x.pdf"],
+                       ["--report x.pdf: this file is written as HTML, so give it the suffix .html or .htm"]),
+    "column-report-no-suffix": ([*ASSESS, "--records", "good.AT2", "--report", "report"],
+                                ["--report report: this file is written as HTML"]),
     "column-csv-over-folder-file": ([*ASSESS, "--records", "notes", "--csv", "notes/README.md"],
                                     ["--csv notes/README.md is also an input (a file of the suite folder notes"]),
 }

@@ -12,7 +12,7 @@ from rockcli.cli.options import (QuietSpellingOption, alias_option, azimuth_opti
                                  echo_json, given_azimuth, given_component, given_gain, given_suite, horizon_option,
                                  is_quiet, json_option, plinth_option, progress_bar, quiet_option, report_option,
                                  restitution_option, vertical_options)
-from rockcli.cli.options import GAMMA_HELP, Group
+from rockcli.cli.options import GAMMA_HELP, REPORT_SUFFIXES, Group
 from rockcli.cli.types import NUMBER, SEED, Number
 
 
@@ -282,7 +282,7 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
             columns, configurations, plinth_spec, isolation_given=bool(isolation), cap_ratio=cap_ratio,
             refused=(("--history-dir", hist_dir), ("--plot-dir", plot_dir)))
     solver.update(_cap_ratio_kw(cap_ratio))
-    check_outputs((csv_path, "--csv", False), (report_path, "--report", False),
+    check_outputs((csv_path, "--csv", False), (report_path, "--report", REPORT_SUFFIXES),
                   folders=((hist_dir, "--history-dir"), (plot_dir, "--plot-dir")))
     if scheduler is not None:
         from rockcli.distributed import check_scheduler
@@ -538,7 +538,8 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
         columns, configurations, plinth_note = with_plinth(columns, configurations, plinth_spec,
                                                            isolation_given=bool(isolation),
                                                            refused=(("--scheduler", scheduler),))
-    check_outputs((csv_path, "--csv", False), (plot_path, "--plot", True), (report_path, "--report", False))
+    check_outputs((csv_path, "--csv", False), (plot_path, "--plot", True),
+                  (report_path, "--report", REPORT_SUFFIXES))
     if scheduler is not None:
         from rockcli.distributed import check_scheduler
 

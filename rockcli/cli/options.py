@@ -5,6 +5,7 @@ from __future__ import annotations
 import click
 
 from rockcli.cli.types import NUMBER, WHOLE
+from rockcli.io.output_checks import REPORT_SUFFIXES  # noqa: F401 - the --report file's suffixes (check_outputs)
 
 
 class Command(click.Command):
@@ -528,7 +529,8 @@ def warn_size(block):
 
 
 def check_outputs(*files, folders=(), catalogue_is_input: bool = True):
-    """Declare and check every output before any work: ``files`` are ``(path, option, is_image)``,
+    """Declare and check every output before any work: ``files`` are ``(path, option, kind)`` (``kind``: True for a
+    figure, the only suffixes allowed such as :data:`REPORT_SUFFIXES` for the HTML report, else False),
     ``folders`` ``(path, option)``; entries whose path is None (option not given) are skipped.
 
     The outputs join the command's transaction (:mod:`rockcli.io.files`, opened by ``user_errors``):
@@ -541,9 +543,9 @@ def check_outputs(*files, folders=(), catalogue_is_input: bool = True):
     outputs = current() or Transaction()
     if catalogue_is_input:
         add_inputs([catalog_file()], "the record catalogue")
-    for path, option, image in files:
+    for path, option, kind in files:
         if path is not None:
-            outputs.declare(path, option, image=image)
+            outputs.declare(path, option, image=kind is True, suffixes=kind if isinstance(kind, tuple) else None)
     for path, option in folders:
         if path is not None:
             outputs.declare_folder(path, option)
@@ -640,7 +642,7 @@ def report_option(func):
                         help="Write a self-contained HTML report (figures embedded, no network needed) for "
                              "readers who are not engineers: the question and the answer, the body, the "
                              "records with their SHA-256, the verdicts, figures, checks, assumptions and the "
-                             "command to reproduce it.")(func)
+                             "command to reproduce it (FILE ends in .html or .htm).")(func)
 
 
 def command_line() -> str:

@@ -11,7 +11,7 @@ from rockcli.cli.options import (azimuth_options, block_from_options, block_opti
                                  check_outputs, command_line, horizon_option, json_option, plinth_option,
                                  record_kwargs, record_options, report_option, restitution_option, scaled,
                                  simulate_vertical_component_option, stack_from_option)
-from rockcli.cli.options import GAMMA_HELP, Command
+from rockcli.cli.options import GAMMA_HELP, REPORT_SUFFIXES, Command
 from rockcli.cli.types import NUMBER, WHOLE
 
 
@@ -108,7 +108,8 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     from rockcli.models import parse_isolation_spec
     from rockcli.io.units import G
 
-    check_outputs((history_path, "--history", False), (plot_path, "--plot", True), (report_path, "--report", False))
+    check_outputs((history_path, "--history", False), (plot_path, "--plot", True),
+                  (report_path, "--report", REPORT_SUFFIXES))
     if history_dt is not None:
         from rockcli.solve.single import check_history_dt
 

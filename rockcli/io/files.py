@@ -103,13 +103,15 @@ class Transaction:
         self.stopped = False                                      # a signal discarded the outputs
 
     # -- before the work ------------------------------------------------------------------------
-    def declare(self, path, option: str | None = None, *, image: bool = False, check: bool = True) -> Path:
-        """Check the output file ``path`` (:func:`check_output`) against the other outputs and the inputs.
+    def declare(self, path, option: str | None = None, *, image: bool = False, check: bool = True,
+                suffixes: tuple | None = None) -> Path:
+        """Check the output file ``path`` (:func:`check_output`, with its ``image`` and ``suffixes``) against the
+        other outputs and the inputs.
 
         ``check=False`` for a file in an output folder that is created later (the folder was
         checked by :meth:`declare_folder`): only the comparisons are made.
         """
-        path = check_output(path, option, image=image) if check else Path(path)
+        path = check_output(path, option, image=image, suffixes=suffixes) if check else Path(path)
         ident = _identity(path)
         for other, other_path, other_option in self.outputs:
             if _same(ident, other):

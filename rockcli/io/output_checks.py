@@ -23,7 +23,7 @@ from pathlib import Path
 
 from rockcli.errors import RockcliInputError
 
-__all__ = ["IMAGE_SUFFIXES", "check_output", "check_output_folder", "describe_os_error", "name_max",
+__all__ = ["IMAGE_SUFFIXES", "REPORT_SUFFIXES", "check_output", "check_output_folder", "describe_os_error", "name_max",
            "os_error_reason"]
 
 #: Image suffixes matplotlib's Agg backend writes without extra packages (jpg/tif/webp need Pillow,
@@ -121,6 +121,17 @@ def _check_image_suffix(path: Path, label: str) -> None:
                                 f"{', '.join('.' + s for s in IMAGE_SUFFIXES)})")
 
 
+#: The suffixes of the HTML report (``--report``): it is one HTML page, whatever the name says.
+REPORT_SUFFIXES = ("html", "htm")
+
+
+def _check_suffix(path: Path, label: str, suffixes: tuple) -> None:
+    """Refuse a suffix other than ``suffixes``: the file is written in the format of the first whatever its name."""
+    if path.suffix.lstrip(".").lower() not in suffixes:
+        raise RockcliInputError(f"{label}: this file is written as {suffixes[0].upper()}, so give it the suffix "
+                                f"{' or '.join('.' + s for s in suffixes)}")
+
+
 def _os_errors_named(check):
     """``check(path, option, ...)`` with an :class:`OSError` of looking at the path (``path.is_dir()`` in a folder
     without permission raises ``PermissionError``) turned into one sentence naming the path and the reason."""
@@ -137,7 +148,7 @@ def _os_errors_named(check):
 
 
 @_os_errors_named
-def check_output(path, option: str | None = None, *, image: bool = False) -> Path:
+def check_output(path, option: str | None = None, *, image: bool = False, suffixes: tuple | None = None) -> Path:
     """Check that the output file ``path`` can be written, before any work is done.
 
     Parameters
@@ -148,6 +159,9 @@ def check_output(path, option: str | None = None, *, image: bool = False) -> Pat
         The option that named it (``--csv``), for the message.
     image : bool
         The file is a figure: its suffix must be one of :data:`IMAGE_SUFFIXES`.
+    suffixes : tuple of str, optional
+        The only suffixes (without the dot, lower case) the file may have, e.g. :data:`REPORT_SUFFIXES` for the
+        HTML report (an HTML page written into ``x.pdf`` would open as a broken PDF).
 
     Returns
     -------
@@ -158,7 +172,8 @@ def check_output(path, option: str | None = None, *, image: bool = False) -> Pat
     RockcliInputError
         The path is a folder, a device or a read-only file, its folder is missing or is a file, the
         folder does not accept a new file (permissions, read-only or virtual file system), its name
-        is longer than the file system allows, or a figure has no known suffix.
+        is longer than the file system allows, a figure has no known suffix, or the suffix is not one of
+        ``suffixes``.
     """
     path = Path(path)
     label = _label(path, option)
@@ -169,6 +184,8 @@ def check_output(path, option: str | None = None, *, image: bool = False) -> Pat
         raise RockcliInputError(f"{label}: is a folder; give a file name")
     if image:
         _check_image_suffix(path, label)
+    if suffixes:
+        _check_suffix(path, label, suffixes)
     blocker = _file_in_path(path)
     if blocker is not None:
         raise RockcliInputError(f"{label}: cannot write there: {blocker} is a file, not a folder")
