@@ -42,6 +42,19 @@ def _absolute_record_folders() -> None:
 _absolute_record_folders()
 
 
+def _no_compile_notice_in_process() -> None:
+    """No compile notice in the output of the commands this process runs (click's ``CliRunner``): the notice goes to
+    stderr on the first run whatever it is (rockcli.cli.progress.watch_compiles), and a test's output must not depend
+    on whether a kernel happened to compile during it. tests/test_first_run.py tests the notice itself; commands run
+    as real processes say it as a user's would."""
+    from rockcli.cli import progress
+
+    progress._watching = True
+
+
+_no_compile_notice_in_process()
+
+
 def pytest_configure(config):
     """pytest's main process writes rockcli's Python bytecode, as a user's first run leaves it: where
     PYTHONDONTWRITEBYTECODE is set (as on this machine and some CI machines) every process of the session, the

@@ -56,7 +56,7 @@ def main():
     """
     from rockcli.cli.progress import watch_compiles, watch_waits
 
-    watch_compiles()  # one line on a terminal when the kernels compile (the first run on a machine)
+    watch_compiles()  # one line on stderr when the kernels compile (the first run on a machine), piped or not
     watch_waits()  # and when a slow step that cannot show progress begins (a first read through gmprocess)
 
 

@@ -1,12 +1,13 @@
 """What a long command shows on a terminal while it works: the notices and the progress lines.
 
-All of it goes to the standard error and only when it is a terminal: output that is piped, redirected or
-checked by tests (and CI logs) is the same on the first run and on every later one, and a script
-could not act on either.
+All of it goes to the standard error, and all but the compile notice only when it is a terminal: a progress
+line redrawn in place would fill a log with carriage returns, and a script could not act on it.
 
-* :func:`watch_compiles`: the first run on a machine compiles the kernels (tens of seconds, nothing
+* :func:`watch_compiles`: the first run on a machine compiles the kernels (minutes on a loaded machine, nothing
   else moves); one line says so when the compile begins (:mod:`rockcli.compiling` tells when), once
-  per process. A run whose kernels load from the cache says nothing.
+  per process, whatever the standard error is: a run piped, redirected or in CI would otherwise sit silent
+  for minutes, and the line tells why that run took longer than the next. A run whose kernels load from the
+  cache says nothing.
 * :func:`watch_waits`: one line when a step that can report no progress begins (a record read
   through gmprocess, whose first read loads its readers: :func:`rockcli.progress.announce`).
 * :class:`Progress`: one line per part of the work (:func:`rockcli.progress.phase`: the verdicts at
@@ -33,11 +34,11 @@ _watching = False
 
 
 def watch_compiles(stream=None) -> None:
-    """Print :data:`COMPILE_NOTICE` once on ``stream`` (stderr) when a kernel compile begins, if it is a
-    terminal (idempotent; costs nothing until the kernels are used)."""
+    """Print :data:`COMPILE_NOTICE` once on ``stream`` (stderr) when a kernel compile begins, on a terminal (over a
+    progress line) or not: piped, redirected, in a CI log (idempotent; costs nothing until the kernels are used)."""
     global _watching
     stream = stream or sys.stderr
-    if _watching or not _isatty(stream):
+    if _watching:
         return
     from rockcli import compiling
 
@@ -47,7 +48,12 @@ def watch_compiles(stream=None) -> None:
         if said:
             return
         said.append(name)
-        _notice(stream, COMPILE_NOTICE)
+        if _isatty(stream):
+            _notice(stream, COMPILE_NOTICE)
+        else:  # a plain line: no carriage return or erase-line code in a log
+            with _screen:
+                stream.write(COMPILE_NOTICE + "\n")
+                stream.flush()
 
     compiling.subscribe(on_start=on_start)
     _watching = True
