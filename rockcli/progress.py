@@ -11,6 +11,9 @@ Two things, both optional for the caller of the library:
   them at once without a run (every factor above the first that overturns, every factor below one
   that does not lift the body off) and the others one run each, of very different costs, and how
   far each search goes is what it finds out; a display shows no time left for such a part.
+* **Runs.** A part whose steps come rarely (the minimum overturning search counts columns, each done only when
+  its whole search ends, minutes into a large search) may also tell the runs it makes as they finish, through
+  :func:`runs_counter`: ``progress.runs(n)`` when the callable has that method, so that a display moves.
 * **Waits.** A step that takes seconds and can report nothing while it runs (a reader's first use of
   a heavy library) calls :func:`announce` with one line saying what it is doing; whoever listens
   (:func:`subscribe`; the command line on a terminal) shows it. Nobody listening: nothing happens.
@@ -46,6 +49,13 @@ def phase(progress, name: str, steps: int, *, known: bool = True, unit: str | No
     begin = getattr(progress, "phase", None)
     if callable(begin):
         begin(name, int(steps), known=bool(known), unit=unit)
+
+
+def runs_counter(progress):
+    """``progress.runs`` (told ``runs(n)`` as ``n`` more runs finish, within a part's steps), or None when the caller's
+    progress callable has no such method (a plain function counts the part's steps only)."""
+    runs = getattr(progress, "runs", None)
+    return runs if callable(runs) else None
 
 
 def subscribe(listener):

@@ -260,3 +260,46 @@ def test_the_first_read_through_gmprocess_says_so_once(fresh_waits, monkeypatch,
     with pytest.raises(RockcliInputError, match="gmprocess cannot read either"):  # a format rockcli knows (USGS SMC)
         extra.read_with_extra(path, None, recognised="SMC")
     assert said[1].startswith("reading x.v2 with gmprocess (the formats extra;")
+
+
+# --------------------------------------------------------------------------------------------------
+# the minimum overturning search: its runs move the line long before a column is done
+# --------------------------------------------------------------------------------------------------
+
+def test_min_search_tells_its_runs_as_they_finish():
+    """`spectrum min-overturning` counts columns, and a column is done only when its whole search ends (the
+    line sat at 0/1488 columns for minutes): the search tells its runs as they finish (progress.runs), the first of
+    them before any column is done, adding up to the runs it made; a plain callable still sees columns only."""
+    import math
+
+    from rockcli.spectra import Family, Isolation, search_min_overturning
+
+    events = []
+
+    class Seen:
+        def __call__(self, n):
+            events.append(("columns", n))
+
+        def runs(self, n):
+            events.append(("runs", n))
+
+    fam = Family(math.radians(12.0), "ricker-sym", Isolation("none"))
+    s = search_min_overturning([fam], [0, 0], [2.0, 4.0], step=0.2, tol=0.05, refine=0.0, progress=Seen())
+    assert events and events[0][0] == "runs"
+    assert sum(n for k, n in events if k == "runs") == s.runs > 0
+    assert sum(n for k, n in events if k == "columns") == 2
+    plain = []
+    search_min_overturning([fam], [0, 0], [2.0, 4.0], step=0.2, tol=0.05, refine=0.0, progress=plain.append)
+    assert sum(plain) == 2
+
+
+def test_the_line_counts_the_runs_beside_the_steps(no_compile):
+    tty, clock = _Tty(), _Clock()
+    with display.Progress(1488, "search", eta=False, unit="columns", stream=tty, clock=clock, tick=None) as bar:
+        assert "0/1488 columns " in bar.line() and "runs" not in bar.line()
+        bar.runs(1200)
+        bar.runs(34_010)
+        bar(3)
+        assert "3/1488 columns, 35,210 runs" in bar.line()
+        bar.draw(force=True)  # (the clock thread's redraw)
+        assert "3/1488 columns, 35,210 runs" in _screen(tty.getvalue())[-1]

@@ -161,6 +161,13 @@ class Progress:
             self._last = self.clock()
             self.draw()
 
+    def runs(self, n: int) -> None:
+        """``n`` more runs of the current part are done (:func:`rockcli.progress.runs_counter`): counted beside its
+        steps, for a part whose steps come rarely; they measure no time left."""
+        with _screen:
+            self.runs_done += int(n)
+            self.draw()
+
     def phase(self, name: str, steps: int, *, known: bool = True, unit: str | None = None) -> None:
         """A new part of ``steps`` steps begins: the current part's line is completed (left as it is when
         nothing of it was done) and the new part's drawn below it."""
@@ -190,11 +197,14 @@ class Progress:
         return left if left > 0 else None
 
     def line(self) -> str:
-        """The current part's line: ``name  [####    ]  12/80 runs  0:42, ETA 1:10``."""
+        """The current part's line: ``name  [####    ]  12/80 runs  0:42, ETA 1:10``; with runs told by :meth:`runs`,
+        ``search  [#       ]  12/1488 columns, 35,210 runs  1:42``."""
         share = min(1.0, self.pos / self.total) if self.total > 0 else 1.0
         fill = int(share * self.BAR)
         count = (f"{min(self.pos, self.total)}/{self.total} {self.unit}" if self.unit
                  else f"{int(share * 100):3d}%")
+        if self.runs_done:
+            count += f", {self.runs_done:,} run{'s' if self.runs_done != 1 else ''}"
         when = clock_text(self.elapsed())
         eta = self.eta()
         if eta is not None:
@@ -246,6 +256,7 @@ class Progress:
     def _begin(self, label, steps, known, unit) -> None:
         self.label, self.total, self.known, self.unit = str(label), max(0, int(steps)), bool(known), unit
         self.pos = 0
+        self.runs_done = 0  # runs told by runs(), within the part's steps
         self._t_begin = self._last = self.clock()
         self._start = None  # (time, pos) from which the rate is measured
         self._updates = 0  # updates since then

@@ -339,7 +339,7 @@ def min_overturning(alpha, pulses, records, isolations, csv_path, plot_path, sch
     n = len(alphas) * len(pcs) * len(isos) * len(plinths) * xs.size
     t0 = time.perf_counter()
     with runner, progress_bar(n, "search", eta=False, unit="columns") as bar:
-        update = bar.update if bar else None
+        update = bar  # the columns done, and the runs as they finish (bar.runs)
         curves = min_overturning_curves(alphas, pcs, isos, xs, ap_max=ap_max, step=step, tol=tol, refine=refine,
                                         refine_band=refine_band, runner=runner, progress=update, plinths=plinths)
     elapsed = time.perf_counter() - t0
@@ -467,7 +467,7 @@ def critical_size(alpha, tb_tp, bearing, xi, gamma, pulses, records, units, dt, 
     n = len(shapes) * len(alphas) * len(plinths) * (1 + len(isos)) * grid.count
     t0 = time.perf_counter()
     with runner, progress_bar(n, "search", eta=False, unit="columns") as bar:
-        update = bar.update if bar else None
+        update = bar  # the columns done, and the runs as they finish (bar.runs)
         result = critical_sizes(pcs, alphas, isos, wp_grid=grid, xtol=xtol, ap_max=ap_max, step=step, tol=tol,
                                 refine=refine, refine_band=refine_band, runner=runner, progress=update,
                                 plinths=plinths)

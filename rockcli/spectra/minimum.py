@@ -178,7 +178,8 @@ def search_min_overturning(families: Sequence[Family], fam, x, *, ap_max: float 
     first overturning value ``F``, a second scan with ratio ``1 + refine`` from ``F / (1 +
     refine_band)`` up to ``F`` (``refine = 0``: none), then geometric bisection to ``tol`` between
     the first overturning value scanned and the value below it. ``progress(n)`` is told when ``n``
-    more columns are finished.
+    more columns are finished; a column is finished only when its whole search ends, so ``progress.runs(n)``, when
+    the callable has that method (:func:`rockcli.progress.runs_counter`), is told as the runs finish.
     """
     _check(step, tol, refine, refine_band, ap_max)
     runner = runner or Runner()
@@ -186,6 +187,9 @@ def search_min_overturning(families: Sequence[Family], fam, x, *, ap_max: float 
     x = np.asarray(x, dtype=float)
     n = len(x)
     _check_size(n, ap_max)
+    from rockcli.progress import runs_counter
+
+    told = {"progress": runs_counter(progress)} if runs_counter(progress) else {}  # the runs as they finish
     runs = 0
     unproven = 0
     limits = np.array([y_limit(f.alpha) for f in families])
@@ -198,9 +202,9 @@ def search_min_overturning(families: Sequence[Family], fam, x, *, ap_max: float 
         if uplift_only and not single.all():
             # only the uplift flags are read: the stack runs may stop once they lift (spectra.runner._run_stacks),
             # and are no verdicts to count
-            out = runner(families, fam[idx], x[idx], yv, early=early, uplift_only=True)
+            out = runner(families, fam[idx], x[idx], yv, early=early, uplift_only=True, **told)
         else:
-            out = runner(families, fam[idx], x[idx], yv, early=early)
+            out = runner(families, fam[idx], x[idx], yv, early=early, **told)
             single[:] = True
         unproven += int(np.count_nonzero((~out.settled & ~out.overturned)[single]))
         return out
