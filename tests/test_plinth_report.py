@@ -115,6 +115,11 @@ def test_does_the_plinth_help_says_when_nothing_lifts():
     assert "its plinth makes it better: the statue survives on it under a and b, which topple it" in both
     assert "(but only by the luck of the timing: under a it survives on its plinth on a 'safe island'" in both
     assert "0 of 2 records topple it on its plinth against 2 of 2 alone" in both
+    # helps under one record and hurts under another: each record's verb agrees with it, 'standing alone' as above
+    mixed = _summary([_alone("a", 5.8, toppled="body", scale=0.7), _alone("b", 0.5, scale=1.3)],
+                     [_row("a", 0.5, 0.3, scale=1.3), _row("b", 5.8, toppled="body", scale=0.8)])
+    assert ("its plinth helps under some records and hurts under others: the statue survives on it under a (which "
+            "topples it standing alone) but topples on it under b (which it survives standing alone)") in mixed
 
 
 # --------------------------------------------------------------------------------------------------
@@ -224,3 +229,24 @@ def test_simulate_on_writes_a_report_that_says_what_the_printout_says(tmp_path):
     assert d["plain_words"].rstrip(".") in page and "(the plinth topples, the statue with it)" in page
     assert f"{d['t_overturn_s']:.3f} s" in page and "The statue alone, standing on the ground" in page
     assert page.count("<img") == 1 and "A red line marks the instant a block topples" in page
+
+
+def test_a_cell_says_a_lift_under_1_percent_and_no_lift_readably():
+    """The table's cell of a survivor: a peak that rounds to 0.00 is '<0.01' (it lifts, a hair), a block that never
+    lifts '0' (the body on a plinth that rocks), never 'survives 0.00 p0.00 x1.20'; the legend says what they mean
+    when a cell shows them; the words never say 'at most under 1 %'."""
+    from rockcli.report.tables import format_cell
+
+    def row(r, p=math.nan, plinth="", s=1.2):
+        return NS(error="", overturned=False, proven=True, verdict="rocked", theta_max_over_alpha=r,
+                  plinth=plinth, plinth_theta_max_over_alpha_asm=p, overturn_scale=s, margin_note="",
+                  azimuths_run=0, overturn_share_pm10=math.nan, toppled="")
+
+    on = "plinth:height=1,width=0.6"
+    assert format_cell(row(1e-6, 5.7e-5, on), True) == "survives <0.01 p<0.01 x1.20"
+    assert format_cell(row(0.0, 0.37, on, 1.12), True) == "survives 0 p0.37 x1.12"
+    assert format_cell(row(0.000577, s=1.24), True) == "survives <0.01 x1.24"
+    assert format_cell(row(0.393, 0.005, on), True) == "survives 0.39 p0.01 x1.20"
+    words = peak_words(0.002, 0.004, most=True)
+    assert "at most under" not in words and "under 1 % of its overturning angle" in words
+    assert "at most 39 %" in peak_words(0.39, 0.004, most=True)

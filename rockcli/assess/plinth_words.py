@@ -42,9 +42,11 @@ def peak_words(body_peak: float, plinth_peak: float, *, body: str = "the body", 
     """
     from rockcli.assess.verdicts import past_words
 
-    at = "at most " if most else ""
-    b = f"{at}{_share(body_peak)} of its overturning angle{body_where}{past_words(body_peak)}"
-    p = (f"{at}{_share(plinth_peak)} of the overturning angle of the two as one block{plinth_where}"
+    def at(r):  # "at most under 1 %" says "under" twice
+        return "at most " if most and _share(r) != "under 1 %" else ""
+
+    b = f"{at(body_peak)}{_share(body_peak)} of its overturning angle{body_where}{past_words(body_peak)}"
+    p = (f"{at(plinth_peak)}{_share(plinth_peak)} of the overturning angle of the two as one block{plinth_where}"
          f"{past_words(plinth_peak)}")
     up_b, up_p = body_peak > 0, plinth_peak > 0
     if not up_b and not up_p:
@@ -154,8 +156,8 @@ def plinth_help_parts(assessment, stack) -> list:
                     f"standing alone; {counts}")
         elif effect == "mixed":
             text = (f"{on} helps under some records and hurts under others: {body} survives on it under "
-                    f"{_names(cmp['saved'])} (which topple it alone) but topples under {_names(cmp['harmed'])} (which "
-                    f"it survives alone); {counts}")
+                    f"{_names(cmp['saved'])} (which {topple} it standing alone) but topples on it under "
+                    f"{_names(cmp['harmed'])} (which it survives standing alone); {counts}")
         else:
             text = f"{on} changes no verdict ({counts})"
         if islands:

@@ -27,8 +27,17 @@ CSV_COLUMNS = ("column", "R_m", "alpha_deg", "height_m", "width_m", "record", "e
 # text matrix
 # --------------------------------------------------------------------------------------------------
 
+def peak_text(r: float) -> str:
+    """A peak over an overturning angle in a cell: ``0.42``; ``<0.01`` for a lift that would print as 0.00 (it lifts,
+    by less than 1 %); ``0`` for a block that never lifts (a body on a still plinth)."""
+    if r == 0:
+        return "0"
+    return "<0.01" if 0 < r < 0.005 else f"{r:.2f}"
+
+
 def format_cell(row, margin: bool, neighbourhood: bool = False) -> str:
-    """``survives 0.42 x1.85`` / ``no uplift x2.10`` / ``OVERTURNS x0.62 [43%]`` / ``ERROR``."""
+    """``survives 0.42 x1.85`` / ``survives <0.01 p0.37 x1.20`` / ``no uplift x2.10`` / ``OVERTURNS x0.62 [43%]`` /
+    ``ERROR``."""
     if row.error:
         return "ERROR"
     if row.overturned:
@@ -38,9 +47,9 @@ def format_cell(row, margin: bool, neighbourhood: bool = False) -> str:
     elif row.verdict == "no_uplift":
         text = "no uplift"
     else:
-        text = f"survives {row.theta_max_over_alpha:.2f}"
+        text = f"survives {peak_text(row.theta_max_over_alpha)}"
         if row.plinth:  # a body on a plinth: the plinth's peak over alpha_asm too
-            text += f" p{row.plinth_theta_max_over_alpha_asm:.2f}"
+            text += f" p{peak_text(row.plinth_theta_max_over_alpha_asm)}"
     if margin:
         if not math.isnan(row.overturn_scale):
             text += f" x{row.overturn_scale:.2f}"
@@ -92,6 +101,12 @@ def format_notes(assessment) -> str:
     confs = assessment.configurations
     lines = ["survives r: the body rocks and survives, r = peak |theta|/alpha; no uplift: it never leaves its "
              "base; OVERTURNS: |theta| reaches 90 deg."]
+    shown = {peak_text(v) for r in assessment.rows if not r.error and not r.overturned and r.verdict != "no_uplift"
+             for v in (r.theta_max_over_alpha, getattr(r, "plinth_theta_max_over_alpha_asm", math.nan))}
+    tiny = [w for t, w in (("<0.01", "<0.01: it lifts, by less than 1 % of its overturning angle"),
+                           ("0", "0: it does not lift (a body on a plinth that rocks)")) if t in shown]
+    if tiny:
+        lines[0] += " " + "; ".join(tiny) + "."
     if assessment.unproven:
         from rockcli.solve import DEFAULT_HORIZON
 
