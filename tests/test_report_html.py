@@ -227,6 +227,8 @@ def test_assess_column_report(find_record, tmp_path):
             assert f"{row.overturn_scale:.2f} times" in text
         if row.configuration != "none":
             assert f"{row.base_disp_max_m:.2f} m" in text  # the bearings' stroke
+    # no card on the first screen counts zero runs not proven (it read as an alarm)
+    assert "not proven" not in answer.lower() and df.proven.all()
     # the figures: the responses (the deciding record on both configurations, side by side), margins, stroke
     images = [a for t, a in page.tags if t == "img"]
     assert len(images) >= 3

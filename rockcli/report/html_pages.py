@@ -253,7 +253,10 @@ def assessment_report(assessment, *, check=None, command: str = "") -> str:
     n_ran = sum(x.motion is not None for x in assessment.excitations)
     missing = _not_available(assessment.unavailable)
     facts.append(("ground motions", f"{n_ran}", *([f"{len(missing)} more not available"] if missing else [])))
-    facts.append(("verdicts not proven", f"{len(assessment.unproven)}"))
+    if assessment.unproven:  # a card of "0" undecided runs on the first screen reads as an alarm: none then
+        facts.append(("runs not proven", f"{len(assessment.unproven)}", "still rocking when the computation stopped: "
+                                                                       "not counted as surviving (see 'How sure is "
+                                                                       "this?')"))
     first.append(_facts(facts))
     figs = []
     for b in blocks:
