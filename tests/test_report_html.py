@@ -129,6 +129,65 @@ def test_configuration_sentence_over_several_records():
     assert survivors.startswith("survives both records") and "50 % of its overturning angle (c)" in survivors
 
 
+def _in_short(ground, bearings) -> str:
+    """``isolation_summary`` of the statue with ``ground`` and ``bearings`` rows (the same records, in order)."""
+    from types import SimpleNamespace as NS
+
+    from rockcli.assess.verdicts import isolation_summary
+    from rockcli.models import parse_isolation_spec
+
+    statue = Block.from_dimensions(1.79, 0.5, "statue")
+    confs = [NS(header="none", foundation=parse_isolation_spec("none"), isolated=False),
+             NS(header="Tb=2.5s", foundation=parse_isolation_spec("linear:Tb=2.5"), isolated=True)]
+    table = {(r.record, "none"): r for r in ground} | {(r.record, "Tb=2.5s"): r for r in bearings}
+    a = NS(columns=[statue], excitations=[NS(label=r.record, motion=object()) for r in ground],
+           configurations=confs, row=lambda c, x, h: table[(x, h)])
+    return re.sub(r"\s+", " ", isolation_summary(a, statue))
+
+
+def _iso(**kw) -> AssessmentRow:
+    return _row(configuration="Tb=2.5s", isolation="linear:Tb=2.5", base_disp_max_m=0.34, **kw)
+
+
+def test_in_short_compares_margins_where_the_verdicts_agree():
+    """Issue 44: isolation that turns a survival by the luck of the timing (x0.61: a weaker record topples it) into
+    no uplift with a margin of x1.21 did "change no verdict" / "survive too": the same verdicts both ways are now
+    compared by their toppling factors, record by record, and a survival by luck is named."""
+    luck = _row(record="kobe", theta_max_over_alpha=1.03, overturn_scale=0.61)
+    margin = _iso(record="kobe", verdict="no_uplift", theta_max_over_alpha=0.0, overturn_scale=1.21)
+    one = _in_short([luck], [margin])
+    assert "it survives on isolation Tb=2.5s too, provided the bearings can move 0.34 m" in one
+    assert ("by the margin isolation Tb=2.5s makes it better: on the ground it survives only by the luck of the "
+            "timing (a weaker record, 0.61 times this one, topples it); on the bearings a record 1.21 times stronger "
+            "would topple it") in one
+    # the reverse, and both toppling: the margins say which way
+    assert "by the margin isolation Tb=2.5s makes it worse" in _in_short(
+        [_row(record="a", theta_max_over_alpha=0.2, overturn_scale=1.5)],
+        [_iso(record="a", theta_max_over_alpha=0.3, overturn_scale=0.9)])
+    fell = _in_short([_row(record="a", verdict="overturned", overturned=True, overturn_scale=0.5)],
+                     [_iso(record="a", verdict="overturned", overturned=True, overturn_scale=0.8)])
+    assert ("does not save it; by the margin isolation Tb=2.5s makes it better: on the ground it topples already at "
+            "0.50 times the record; on the bearings it topples already at 0.80 times the record") in fell
+    # a suite with the same verdicts under every record: "changes no verdict", then record by record
+    ground = [luck, _row(record="sup", verdict="overturned", overturned=True, overturn_scale=0.80),
+              _row(record="park", theta_max_over_alpha=0.39, overturn_scale=1.12)]
+    bearings = [margin, _iso(record="sup", verdict="overturned", overturned=True, overturn_scale=0.52),
+                _iso(record="park", theta_max_over_alpha=0.01, overturn_scale=1.20)]
+    suite = _in_short(ground, bearings)
+    assert "isolation Tb=2.5s changes no verdict: the statue topples under the same 1 of 3 records either way (sup)" \
+        in suite
+    assert ("by the margin, record by record, isolation Tb=2.5s helps under some records and hurts under others: the "
+            "toppling factor (on the ground, then on the bearings) rises under kobe (0.61 to 1.21: from a survival by "
+            "the luck of the timing to a margin) and park (1.12 to 1.20), and falls under sup (0.80 to 0.52)") in suite
+    same = _in_short([_row(record="a", overturn_scale=1.5), _row(record="b", overturn_scale=2.0)],
+                     [_iso(record="a", overturn_scale=1.505), _iso(record="b", overturn_scale=2.01)])
+    assert "no difference in the margin either" in same
+    # a save on the bearings by the luck of the timing is said to be one
+    saved = _in_short([_row(record="a", verdict="overturned", overturned=True, overturn_scale=0.7)],
+                      [_iso(record="a", theta_max_over_alpha=0.8, overturn_scale=0.6)])
+    assert "saves it, provided the bearings can move 0.34 m (but only by the luck of the timing" in saved
+
+
 # --------------------------------------------------------------------------------------------------
 # the HTML report
 # --------------------------------------------------------------------------------------------------

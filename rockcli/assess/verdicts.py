@@ -332,16 +332,97 @@ def _smallest_factor(rows) -> float:
                default=math.nan)
 
 
-def _one_record_clause(c, g_word: str, w: str, stroke: str) -> str:
-    """The comparison under a single record (the words the README quotes)."""
+def _factor(rows) -> float:
+    """The smallest toppling factor over ``rows`` for comparing margins: inf when every row's search found none up
+    to 4x (``no overturning``), NaN when a factor is missing otherwise (no margin search, an error)."""
+    s = _smallest_factor(rows)
+    if math.isfinite(s):
+        return s
+    notes = [str(getattr(r, "margin_note", "") or "") for r in rows]
+    return math.inf if notes and all(n.startswith("no overturning") for n in notes) else math.nan
+
+
+def _fx(s: float) -> str:
+    return "above 4" if s == math.inf else _x(s)
+
+
+def _luck(row) -> bool:
+    """The body survives the run only by the luck of the timing: a weaker version of the record topples it."""
+    s = getattr(row, "overturn_scale", math.nan)
+    return outcome(row) == SURVIVES and math.isfinite(s) and s <= 1
+
+
+def _one_margin(row) -> str:
+    """How far one run is from toppling the body, in words (:func:`_margin_clause` with one record)."""
+    s = getattr(row, "overturn_scale", math.nan)
+    if outcome(row) == TOPPLES:
+        return f"it topples already at {_x(s)} times the record"
+    if _luck(row):
+        return f"it survives only by the luck of the timing (a weaker record, {_x(s)} times this one, topples it)"
+    if s == math.inf or not math.isfinite(s):
+        return "not even a record 4 times stronger topples it"
+    return f"a record {_x(s)} times stronger would topple it"
+
+
+def _margin_clause(c, g_rows, i_rows) -> str:
+    """The margins compared where the verdicts alone say nothing (the same verdict either way), record by record:
+    ``; by the margin isolation Tb=2.5s makes it better: ...``; with several records, under which records the
+    toppling factor rises on the bearings and under which it falls (the largest changes first), a survival by the
+    luck of the timing (a 'safe island': no margin at all) named where a margin replaces it or it replaces one;
+    ``; no difference in the margin ...`` within the 1 % of the margin search; '' without margins."""
+    iso = f"isolation {c.header}"
+    pairs = [(g, i, _factor([g]), _factor([i])) for g, i in zip(g_rows, i_rows)
+             if {outcome(g), outcome(i)} <= {TOPPLES, SURVIVES}]
+    pairs = [p for p in pairs if not (math.isnan(p[2]) or math.isnan(p[3]) or p[2] == p[3] == math.inf)]
+    if not pairs:
+        return ""
+    up = sorted((p for p in pairs if p[3] > 1.01 * p[2]), key=lambda p: -p[3] / p[2])
+    down = sorted((p for p in pairs if p[3] < 0.99 * p[2]), key=lambda p: p[3] / p[2])
+    if len(g_rows) == 1:
+        sides = f"on the ground {_one_margin(g_rows[0])}; on the bearings {_one_margin(i_rows[0])}"
+        if not up and not down:
+            return f"; no difference in the margin: {sides}"
+        return f"; by the margin {iso} makes it {'better' if up else 'worse'}: {sides}"
+    if not up and not down:
+        return (f"; no difference in the margin either: under every record the toppling factor on the bearings is "
+                f"that on the ground, within 1 %")
+
+    def item(p):
+        g, i, a, b = p
+        note = (": from a survival by the luck of the timing to a margin" if _luck(g) and b > 1 else
+                ": from a margin to a survival by the luck of the timing" if _luck(i) and a > 1 else "")
+        return f"{g.record} ({_fx(a)} to {_fx(b)}{note})"
+
+    way = ("helps under some records and hurts under others" if up and down else
+           "makes it better" if up else "makes it worse")
+    moves = ([f"rises under {_names([item(p) for p in up])}"] if up else []) + \
+            ([f"falls under {_names([item(p) for p in down])}"] if down else [])
+    return (f"; by the margin, record by record, {iso} {way}: the toppling factor (on the ground, then on the "
+            f"bearings) {', and '.join(moves)}")
+
+
+def _saved_by_luck(c, g_rows, i_rows) -> str:
+    """`` (but only by the luck of the timing under X: ...)`` when a record isolation saves the body under is a
+    survival on a 'safe island' on the bearings (a weaker version of it topples the body there too)."""
+    lucky = [i.record for g, i in zip(g_rows, i_rows) if outcome(g) == TOPPLES and _luck(i)]
+    if not lucky:
+        return ""
+    under = f" under {_names(lucky)}" if len(g_rows) > 1 else ""
+    return (f" (but only by the luck of the timing{under}: a weaker version of the record topples it on the bearings "
+            f"too)")
+
+
+def _one_record_clause(c, g_word: str, w: str, stroke: str, g_rows=(), i_rows=()) -> str:
+    """The comparison under a single record (the words the README quotes); with the same verdict both ways, the
+    margins compared (:func:`_margin_clause`): a survival by the luck of the timing is no margin."""
     if g_word == TOPPLES and w == SURVIVES:
-        return f"isolation {c.header} saves it{stroke}"
+        return f"isolation {c.header} saves it{stroke}{_saved_by_luck(c, g_rows, i_rows)}"
     if g_word == SURVIVES and w == TOPPLES:
         return f"isolation {c.header} makes it worse: it topples on it"
     if g_word == w == TOPPLES:
-        return f"isolation {c.header} does not save it"
+        return f"isolation {c.header} does not save it{_margin_clause(c, g_rows, i_rows)}"
     if g_word == w == SURVIVES:
-        return f"it survives on isolation {c.header} too{stroke}"
+        return f"it survives on isolation {c.header} too{stroke}{_margin_clause(c, g_rows, i_rows)}"
     return f"on isolation {c.header} it is {w}"
 
 
@@ -362,18 +443,16 @@ def _suite_clause(c, cmp: dict, g_rows, i_rows, stroke: str, noun: str) -> str:
         return f"{iso} makes it worse: it topples {noun} under {_names(cmp['harmed'])} (which it survives on the " \
                f"ground); {counts}"
     if effect == "better":
+        luck = _saved_by_luck(c, g_rows, i_rows)
         if ki == 0:
             return (f"{iso} saves {noun}: it survives all {n} records on the bearings{stroke}, against {kg} of {n} "
-                    "toppling it on the ground")
-        return f"{iso} helps: it {saved}{stroke}; {counts}"
+                    f"toppling it on the ground{luck}")
+        return f"{iso} helps: it {saved}{stroke}{luck}; {counts}"
+    # the same verdicts under every record: the margins decide (a survival by the luck of the timing is no margin)
+    margins = _margin_clause(c, g_rows, i_rows)
     if kg:
         return f"{iso} changes no verdict: {noun} topples under the same {kg} of {n} records either way " \
-               f"({_names(cmp['ground'])})"
-    sg, si = _smallest_factor(g_rows), _smallest_factor(i_rows)
-    margins = ""
-    if math.isfinite(sg) and math.isfinite(si) and sg > 1 and si > 1 and f"{sg:.2f}" != f"{si:.2f}":
-        margins = (f"; its closest call needs a record {_x(sg)} times stronger on the ground and {_x(si)} times on "
-                   f"the bearings ({'more' if si > sg else 'less'} margin on the bearings)")
+               f"({_names(cmp['ground'])}){margins}"
     return f"{noun} survives all {n} records both on the ground and on {iso}{stroke}{margins}"
 
 
@@ -402,7 +481,7 @@ def isolation_summary(assessment, block) -> str:
         top = survivor_stroke(i_rows)
         stroke = f", provided the bearings can move {stroke_m(top):.2f} m" if top is not None else ""
         if len(ran) <= 1:
-            parts.append(_one_record_clause(c, g_word, w, stroke))
+            parts.append(_one_record_clause(c, g_word, w, stroke, g_rows, i_rows))
             continue
         cmp = compare_foundations(g_rows, i_rows)
         noun = body_noun(block)
