@@ -464,7 +464,8 @@ def isolation_summary(assessment, block) -> str:
     several (:func:`compare_foundations`): the records that topple the body each way, counted, and
     whether isolation makes it worse (it topples the body under records it survives on the ground, and
     saves it under none), better (the reverse), is mixed (both: the records are named) or changes no
-    verdict. The stroke is that of the surviving runs only (:func:`survivor_stroke`).
+    verdict; with the same verdicts, the margins compared record by record (:func:`_margin_clause`: a survival by
+    the luck of the timing is no margin). The stroke is that of the surviving runs only (:func:`survivor_stroke`).
     """
     lines = {c.header: (c, w) for b, c, w, _ in verdict_lines(assessment) if b is block}
     grounds = [(c, w) for c, w in lines.values() if not c.isolated]
