@@ -179,6 +179,22 @@ def test_simulate_figure1_draws_the_pulse_itself_and_names_its_parameters(tmp_pa
     # the response from the dense history: points between the steps
     th_t, _ = fig.axes[1].lines[0].get_data()
     assert np.diff(th_t).max() <= 2.0 / 400 + 1e-12
+    # the label "topples at 2.81 s" beside the red line, not over it, nor over the tilt curve, inside its panel
+    tilt = fig.axes[1]
+    label = next(a for a in tilt.texts if a.get_text().startswith("topples at"))
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    renderer = (fig.canvas if hasattr(fig.canvas, "get_renderer") else FigureCanvasAgg(fig)).get_renderer()
+    fig.draw(renderer)
+    box = label.get_window_extent(renderer)
+    line_x = next(ln for ln in tilt.lines if ln.get_color() == "tab:red").get_xdata()[0]
+    x_px = tilt.transData.transform((line_x, 0.0))[0]
+    assert box.x1 < x_px - 1 or box.x0 > x_px + 1, (box, x_px)
+    frame = tilt.get_window_extent(renderer)
+    assert frame.x0 <= box.x0 and box.x1 <= frame.x1 and frame.y0 <= box.y0 and box.y1 <= frame.y1
+    curve = tilt.transData.transform(np.column_stack(tilt.lines[0].get_data()))
+    assert not ((curve[:, 0] >= box.x0) & (curve[:, 0] <= box.x1) & (curve[:, 1] >= box.y0)
+                & (curve[:, 1] <= box.y1)).any()
 
 
 def test_simulate_isolated_record_figure(tmp_path, drawn):

@@ -79,6 +79,8 @@ def write_history_csv(response, block, path: str | os.PathLike) -> Path:
 
 #: Colour of the line that marks the instant the body topples (the reports' captions name it).
 TOPPLE_COLOUR = "tab:red"
+#: The box behind the label of that line: the curves and the grid do not run through its text.
+LABEL_BOX = {"boxstyle": "square,pad=0.15", "facecolor": "white", "edgecolor": "none", "alpha": 0.85}
 
 
 def draw_run(axes: dict, response, block, *, excitation=None, t_end: float | None = None,
@@ -114,11 +116,15 @@ def draw_run(axes: dict, response, block, *, excitation=None, t_end: float | Non
         for ax in axes.values():
             ax.axvline(response.t_overturn_s, color=TOPPLE_COLOUR, lw=1.4)
         if label_topple and "tilt" in axes:
+            # beside the line, never on it (a few points off), and at the panel's edge away from the fall: the
+            # curve leaves through the top when the body falls to theta > 0, so the label goes to the bottom
             late = response.t_overturn_s - float(t[0]) > 0.6 * (end - float(t[0]))  # the label left of the line
-            text = f"topples at {response.t_overturn_s:.2f} s"
-            axes["tilt"].annotate(f"{text} " if late else f" {text}", (response.t_overturn_s, 1.0),
-                                  xycoords=("data", "axes fraction"), va="top", ha="right" if late else "left",
-                                  color=TOPPLE_COLOUR, fontsize=8.5, fontweight="bold")
+            up = float(th[-1]) > 0 if th.size else True
+            axes["tilt"].annotate(f"topples at {response.t_overturn_s:.2f} s", (response.t_overturn_s, 0.0 if up else 1.0),
+                                  xycoords=("data", "axes fraction"), xytext=(-5 if late else 5, 4 if up else -4),
+                                  textcoords="offset points", va="bottom" if up else "top",
+                                  ha="right" if late else "left", color=TOPPLE_COLOUR, fontsize=8.5, fontweight="bold",
+                                  bbox=LABEL_BOX)
 
 
 def plot_response(response, block, foundation, path: str | os.PathLike, *, excitation=None, motion: str | None = None,

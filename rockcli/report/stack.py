@@ -59,7 +59,7 @@ def plot_stack_response(response, stack, path: str | os.PathLike, *, excitation=
     from rockcli.io.files import check_output, save_figure
     from rockcli.report.figures import block_text, foundation_text, motion_text, new_figure, pyplot, title
     from rockcli.report.html_figures import FIGURE_WIDTH_IN, _rc
-    from rockcli.report.response import TOPPLE_COLOUR
+    from rockcli.report.response import LABEL_BOX, TOPPLE_COLOUR
 
     H = response.history
     if H is None:
@@ -115,9 +115,11 @@ def plot_stack_response(response, stack, path: str | os.PathLike, *, excitation=
             text = f"{who} topples at {response.t_overturn_s:.2f} s"
             k = "plinth" if response.toppled == "plinth" else "body"
             falls_down = (H.theta2 if k == "plinth" else H.psi)[-1] < 0  # the label on the side it does not fall to
-            axes[k].annotate(f"{text} " if late else f" {text}", (response.t_overturn_s, 0.97 if falls_down else 0.03),
-                             xycoords=("data", "axes fraction"), va="top" if falls_down else "bottom",
-                             ha="right" if late else "left", color=TOPPLE_COLOUR, fontsize=8.5, fontweight="bold")
+            axes[k].annotate(text, (response.t_overturn_s, 0.97 if falls_down else 0.03),
+                             xycoords=("data", "axes fraction"), xytext=(-5 if late else 5, 0),
+                             textcoords="offset points", va="top" if falls_down else "bottom",
+                             ha="right" if late else "left", color=TOPPLE_COLOUR, fontsize=8.5, fontweight="bold",
+                             bbox=LABEL_BOX)  # beside the red line, never on it
         for k, ax in axes.items():
             ax.grid(True, lw=0.3)
             if k != keys[-1]:
