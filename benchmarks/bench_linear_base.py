@@ -40,8 +40,8 @@ import numpy as np
 
 CATALOGUE = ("parkfield-1966-c02-065", "imperialvalley-1979-elcentro6-230", "irpinia-1980-sturno-270",
              "sansalvador-1986-gic", "superstition-1987-parachute-225", "erzincan-1992-erzincan-ew",
-             "northridge-1994-jensen-022", "kobe-1995-takarazuka-000", "chichi-1999-chy101-e",
-             "chichi-1999-chy128-n")
+             "northridge-1994-jensen-generator-022", "kobe-1995-takarazuka-000", "chichi-1999-chy101-e",
+             "chichi-1999-tcu128-n")
 VERDICTS = ("no_uplift", "rocked", "overturned", "error")
 
 

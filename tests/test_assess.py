@@ -257,7 +257,7 @@ def test_neighbourhood_share_counts_direct_runs(pulse_records):
 def test_table_iii_rows_equal_simulate_on_real_records(find_record):
     find_record("RSN983_NORTHR_JGB022.AT2")
     find_record("RSN1119_KOBE_TAZ000.AT2")
-    ids = ["northridge-1994-jensen-022", "kobe-1995-takarazuka-000"]
+    ids = ["northridge-1994-jensen-generator-022", "kobe-1995-takarazuka-000"]
     xs, _ = resolve_excitations(ids)
     assert [x.kind for x in xs] == ["record", "record"]
     blocks = [column("bassae"), column("nemea")]

@@ -64,9 +64,9 @@ def test_history_and_plot_files(tmp_path):
 
 
 def test_record_from_the_catalogue(records_dirs):
-    res = run("--body", "nemea", "--record", "northridge-1994-jensen-022", "--json")
+    res = run("--body", "nemea", "--record", "northridge-1994-jensen-generator-022", "--json")
     assert res.exit_code == 0, res.output
-    iso = run("--body", "nemea", "--record", "northridge-1994-jensen-022", "--isolation", "linear:Tb=3", "--json")
+    iso = run("--body", "nemea", "--record", "northridge-1994-jensen-generator-022", "--isolation", "linear:Tb=3", "--json")
     # the paper's Figure 12: standing free it survives, isolated with T_b = 3 s it overturns
     assert json.loads(res.output)["verdict"] == "rocked"
     assert json.loads(iso.output)["verdict"] == "overturned"

@@ -78,7 +78,7 @@ def test_the_fragility_printout_speaks_of_the_body():
     from rockcli.assess import parse_column_spec, parse_configurations, resolve_excitations, run_fragility
     from rockcli.report.fragility import format_fragility, format_fragility_notes
 
-    xs, _ = resolve_excitations(["kobe-1995-takarazuka-000", "northridge-1994-jensen-022"], "pulse")
+    xs, _ = resolve_excitations(["kobe-1995-takarazuka-000", "northridge-1994-jensen-generator-022"], "pulse")
     cabinet = parse_column_spec("cabinet:height=1.9,width=0.6")
     fr = run_fragility([cabinet], xs, parse_configurations(["none"]), n_boot=0)
     table, notes = format_fragility(fr), format_fragility_notes(fr)

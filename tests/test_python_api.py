@@ -83,7 +83,7 @@ def _pulse_suite():
     from rockcli import parse_configurations, resolve_excitations
     from rockcli.assess import parse_column_spec
 
-    xs, unavailable = resolve_excitations(["kobe-1995-takarazuka-000", "northridge-1994-jensen-022"], "pulse")
+    xs, unavailable = resolve_excitations(["kobe-1995-takarazuka-000", "northridge-1994-jensen-generator-022"], "pulse")
     return [parse_column_spec("statue:height=1.8,width=0.5")], xs, parse_configurations(["none", "linear:Tb=2.5"])
 
 

@@ -293,7 +293,7 @@ def test_folder_suite_reads_catalogue_pairs_with_the_catalogues_units(agency, tm
         (folder / name).write_bytes(agency(name).read_bytes())
     xs, _ = resolve_excitations([str(folder)], "record")
     by_label = {x.label: x for x in xs}
-    assert sorted(by_label) == ["G06-320", "TCU128-090", "chichi-1999-chy128-n", "coyotelake-1979-gilroy6-230"]
+    assert sorted(by_label) == ["G06-320", "TCU128-090", "chichi-1999-tcu128-n", "coyotelake-1979-gilroy6-230"]
     assert not any(x.error for x in xs), [x.error for x in xs]
     for label in ("G06-320", "TCU128-090"):
         rec = by_label[label].motion

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 import os
+import re
 
 import numpy as np
 import pytest
@@ -15,18 +16,18 @@ from rockcli.records.catalog import (COLUMNS, catalog_path, find_file, format_ca
 
 IDS = ["parkfield-1966-c02-065", "vrancea-1977-bucharest", "imperialvalley-1979-elcentro6-230",
        "irpinia-1980-sturno-270", "sansalvador-1986-gic", "superstition-1987-parachute-225",
-       "erzincan-1992-erzincan-ew", "northridge-1994-jensen-022", "northridge-1994-jensen-admin-022",
+       "erzincan-1992-erzincan-ew", "northridge-1994-jensen-generator-022", "northridge-1994-jensen-admin-022",
        "kobe-1995-takarazuka-000",
-       "chichi-1999-chy101-e", "chichi-1999-chy128-n", "coyotelake-1979-gilroy6-230", "aigio-1995-ote-fp"]
+       "chichi-1999-chy101-e", "chichi-1999-tcu128-n", "coyotelake-1979-gilroy6-230", "aigio-1995-ote-fp"]
 
 #: Table II of the paper: id -> (Mw, distance [km], PGA [g], PGV [m/s]).
 TABLE_II = {
     "parkfield-1966-c02-065": (6.1, 0.1, 0.48, 0.75), "vrancea-1977-bucharest": (7.2, 160, 0.20, 0.74),
     "imperialvalley-1979-elcentro6-230": (6.5, 9.3, 0.41, 0.65), "irpinia-1980-sturno-270": (6.5, 32, 0.36, 0.52),
     "sansalvador-1986-gic": (5.4, 4.3, 0.48, 0.48), "superstition-1987-parachute-225": (6.7, 0.7, 0.45, 1.12),
-    "erzincan-1992-erzincan-ew": (6.9, 13, 0.50, 0.64), "northridge-1994-jensen-022": (6.7, 6.2, 0.57, 0.76),
+    "erzincan-1992-erzincan-ew": (6.9, 13, 0.50, 0.64), "northridge-1994-jensen-generator-022": (6.7, 6.2, 0.57, 0.76),
     "kobe-1995-takarazuka-000": (6.9, 1.2, 0.69, 0.69), "chichi-1999-chy101-e": (7.6, 11.2, 0.35, 0.71),
-    "chichi-1999-chy128-n": (7.6, 9.7, 0.17, 0.69),
+    "chichi-1999-tcu128-n": (7.6, 9.7, 0.17, 0.69),
 }
 
 
@@ -150,7 +151,7 @@ PAIRS = {
     "superstition-1987-parachute-225": ((225.0, 315.0), ("RSN723_SUPER.B_B-PTS225.AT2", "RSN723_SUPER.B_B-PTS315.AT2")),
     "northridge-1994-jensen-admin-022": ((22.0, 292.0), ("RSN982_NORTHR_JEN022.AT2", "RSN982_NORTHR_JEN292.AT2")),
     "coyotelake-1979-gilroy6-230": ((230.0, 320.0), ("G06-230", "G06-320")),
-    "chichi-1999-chy128-n": ((0.0, 90.0), ("TCU128-000", "TCU128-090")),
+    "chichi-1999-tcu128-n": ((0.0, 90.0), ("TCU128-000", "TCU128-090")),
 }
 
 
@@ -233,3 +234,63 @@ def test_records_list_shows_components(records_dirs, monkeypatch, tmp_path):
     text = CliRunner().invoke(main, ["records", "list"]).output
     line = next(x for x in text.splitlines() if x.startswith("imperialvalley-1979-elcentro6-230"))
     assert "230+140 (140 missing)" in line
+
+
+#: Ids renamed to say what they are (issue 44): former id -> id.
+RENAMED = {"northridge-1994-jensen-022": "northridge-1994-jensen-generator-022",
+           "chichi-1999-chy128-n": "chichi-1999-tcu128-n"}
+
+
+def test_renamed_ids_say_what_they_are_and_the_former_ones_still_work():
+    """Two records were both "Jensen 022" (RSN 983, the Generator Building, the catalogue's; RSN 982, the
+    Administrative Building) and 'chichi-1999-chy128-n' was the TCU128 record: the ids and stations say which, and
+    the former ids stand for the new ones wherever an id is taken (scripts and notes name them)."""
+    from rockcli.assess import resolve_excitations
+    from rockcli.records.catalog import is_catalog_id
+
+    for old, new in RENAMED.items():
+        e = get_entry(old)
+        assert e.id == new and old in e.aliases and is_catalog_id(old)
+    gen, admin = get_entry(RENAMED["northridge-1994-jensen-022"]), get_entry("northridge-1994-jensen-admin-022")
+    assert "Generator Building" in gen.station and gen.file.startswith("RSN983_")
+    assert "Administrative Building" in admin.station and admin.file.startswith("RSN982_")
+    assert get_entry("chichi-1999-chy128-n").station.startswith("TCU128")
+    xs, _ = resolve_excitations(list(RENAMED), "pulse")  # the label is the new id
+    assert [x.label for x in xs] == list(RENAMED.values())
+
+
+def test_a_former_id_may_not_be_another_rows_id(tmp_path):
+    entries = load_catalog()
+    kobe = next(i for i, e in enumerate(entries) if e.id == "kobe-1995-takarazuka-000")
+    entries[kobe] = dataclasses.replace(entries[kobe], former_ids="chichi-1999-tcu128-n")
+    write_catalog(entries, tmp_path / "c.csv")
+    with pytest.raises(RockcliInputError, match=r"id 'chichi-1999-tcu128-n' appears twice \(as an id or a former id\)"):
+        load_catalog(tmp_path / "c.csv")
+
+
+def test_records_show_says_the_station_and_the_rsn(records_dirs, monkeypatch):
+    """`records show` tells the two Jensen 022 records apart: station and PEER RSN, by a former id too."""
+    import json
+
+    from click.testing import CliRunner
+
+    from rockcli.cli import main
+
+    monkeypatch.setenv("ROCKCLI_RECORDS", os.pathsep.join(map(str, records_dirs)))
+    for e in (get_entry("northridge-1994-jensen-generator-022"), get_entry("northridge-1994-jensen-admin-022")):
+        if find_file(e) is None:
+            pytest.skip(f"{e.file} not in ROCKCLI_RECORDS")
+    seen = {}
+    for source in ("northridge-1994-jensen-022", "northridge-1994-jensen-admin-022",
+                   str(find_file(get_entry("northridge-1994-jensen-admin-022")))):
+        res = CliRunner().invoke(main, ["records", "show", source, "--json"])
+        assert res.exit_code == 0, res.output
+        seen[source] = json.loads(res.output)
+    gen, admin, file = seen.values()
+    assert (gen["record"], gen["rsn"]) == ("northridge-1994-jensen-generator-022", 983)
+    assert gen["station"] == "Jensen Filter Plant Generator Building" and gen["pga_g"] == pytest.approx(0.571, abs=1e-3)
+    assert admin["rsn"] == file["rsn"] == 982 and "Administrative Building" in admin["station"] == file["station"]
+    text = CliRunner().invoke(main, ["records", "show", "northridge-1994-jensen-022"]).output
+    assert "(asked as northridge-1994-jensen-022, its former id)" in text
+    assert re.search(r"^station +Jensen Filter Plant Generator Building$", text, re.M)
+    assert re.search(r"^PEER RSN +983 ", text, re.M)

@@ -209,7 +209,7 @@ def test_catalogue_pair_id_with_azimuth(find_record):
     """A catalogue id naming two components takes --azimuth: onto its first component's own orientation the
     run is the id's single-component run (bar the label); --record-2 is not needed."""
     find_record("TCU128-090")
-    base = ["simulate", "--body", "bassae", "--json", "--record", "chichi-1999-chy128-n"]
+    base = ["simulate", "--body", "bassae", "--json", "--record", "chichi-1999-tcu128-n"]
     single = CliRunner().invoke(main, base)
     own = CliRunner().invoke(main, [*base, "--azimuth", "0"])
     assert single.exit_code == 0 and own.exit_code == 0, own.output

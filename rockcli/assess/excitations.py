@@ -279,7 +279,7 @@ def _worst_azimuths(azimuth, step) -> tuple:
 
 def _resolve(sources, mode, units, dt, gain, component, azimuth, glob, exclude):
     """:func:`resolve_excitations` without the orientations of ``azimuth="worst"``."""
-    from rockcli.records.catalog import expand_user, load_catalog
+    from rockcli.records.catalog import catalog_ids, expand_user, load_catalog
 
     if sources is not None:
         import os
@@ -293,7 +293,7 @@ def _resolve(sources, mode, units, dt, gain, component, azimuth, glob, exclude):
     if component is not None:
         file_kwargs["component"] = str(component)
     entries = load_catalog()
-    by_id = {e.id: e for e in entries}
+    by_id = catalog_ids(entries)  # former ids too
     by_file = {f: e for e in entries for f in (e.file_2, e.file) if f}  # a pair's second file is read as its first
     from rockcli.assess.suite import Suite
     from rockcli.io.files import note_inputs
@@ -353,7 +353,7 @@ def _resolve(sources, mode, units, dt, gain, component, azimuth, glob, exclude):
         is_file = kind in ("file", "unreadable")  # unreadable: the reader names it (an error row)
         if azimuth is not None and (is_file or src in by_id):
             note_inputs([path] if is_file else [], "the record")
-            suite.add(pair_excitation(path.name if is_file else src, src, None, file_kwargs, azimuth),
+            suite.add(pair_excitation(path.name if is_file else by_id[src].id, src, None, file_kwargs, azimuth),
                       path if is_file else None)
             continue
         if kind == "folder":

@@ -58,10 +58,10 @@ def one_file_pair(first, second, names=("", "")) -> str:
 
 def _catalogued(entries=None) -> tuple[dict, dict]:
     """The catalogue by id, and by file name (first and second component files)."""
-    from rockcli.records.catalog import load_catalog
+    from rockcli.records.catalog import catalog_ids, load_catalog
 
     entries = load_catalog() if entries is None else entries
-    return {e.id: e for e in entries}, {f: e for e in entries for f in (e.file_2, e.file) if f}
+    return catalog_ids(entries), {f: e for e in entries for f in (e.file_2, e.file) if f}
 
 
 def _side(text: str, kwargs: dict, by_id: dict, by_file: dict):

@@ -31,7 +31,7 @@ def _status_rows() -> list[dict]:
                      "component": e.component, "mw": e.mw, "distance_km": e.distance_km,
                      "pga_published_g": e.pga_published_g, "pgv_published_mps": e.pgv_published_mps,
                      "file": e.file, "status": status, "path": str(path) if path else "",
-                     "components": comps, "present": _present(comps)})
+                     "components": comps, "present": _present(comps), "former_ids": list(e.aliases)})
     return rows
 
 
@@ -93,6 +93,9 @@ def _echo_list(rows, found, searched) -> None:
         click.echo("  ".join(cell.ljust(w) for cell, w in zip(row, widths)) + "  " + row[-1])
     click.echo(f"\n{found} of {len(rows)} files found; PGA/PGV are the published values (Table II). "
                f"Searched: {', '.join(str(p) for p in searched)}")
+    former = [f"{a} (now {r['id']})" for r in rows for a in r["former_ids"]]
+    if former:
+        click.echo(f"Former ids, still accepted: {', '.join(former)}.")
 
 
 @records.command(name="show")
@@ -128,15 +131,21 @@ def show(source, units, dt, fmt, column, plot_path, as_json):
         _list_components(source, kwargs, as_json)
         return
     add_inputs([rec.meta.get("path")], "the record")
+    from rockcli.records.at2 import rsn_of
+
     peaks = calc_peaks(rec)
     meta = rec.meta
-    lines = [("record", rec.name)]
+    former = meta.get("catalog_id") and meta["catalog_id"] != source
+    lines = [("record", rec.name + (f" (asked as {source}, its former id)" if former else ""))]
     if meta.get("path"):
         lines.append(("file", meta["path"]))
     lines.append(("format", str(meta.get("format", ""))))
     for key in ("event", "station"):
         if meta.get(key):
             lines.append((key, str(meta[key])))
+    rsn = rsn_of(meta.get("path") or "")
+    if rsn is not None:
+        lines.append(("PEER RSN", f"{rsn} (the NGA record sequence number, from the file's name)"))
     lines.append(("component", _component_text(rec)))
     if meta.get("catalog_id"):
         from rockcli.records.catalog import get_entry
@@ -162,7 +171,8 @@ def show(source, units, dt, fmt, column, plot_path, as_json):
         from rockcli.records.components import component_name, orientation_text
 
         echo_json({"record": rec.name, "file": meta.get("path"), "format": meta.get("format"),
-                   "event": meta.get("event"), "station": meta.get("station"), "component": component_name(rec),
+                   "event": meta.get("event"), "station": meta.get("station"), "rsn": rsn,
+                   "component": component_name(rec),
                    "orientation": orientation_text(rec), "units_in_file": meta.get("units"),
                    "units_source": meta.get("units_source"), "factor_to_mps2": meta.get("factor"),
                    "npts": rec.npts, "dt_s": rec.dt, "dt_source": meta.get("dt_source"), "duration_s": rec.duration,

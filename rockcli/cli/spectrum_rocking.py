@@ -53,7 +53,7 @@ def rocking(source, alpha, R, isolations, units, dt, fmt, column, scale, csv_pat
     Examples:
       rockcli spectrum rocking kobe-1995-takarazuka-000 --alpha 10 --R 0.2:20:200 --isolation none \\
           --isolation linear:Tb=2.5 --plot kobe.png
-      rockcli spectrum rocking northridge-1994-jensen-022 --alpha 8,12 --csv jensen.csv --json
+      rockcli spectrum rocking northridge-1994-jensen-generator-022 --alpha 8,12 --csv jensen.csv --json
     """
     import time
 

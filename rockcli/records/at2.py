@@ -55,6 +55,20 @@ _PLAIN_CHARS = re.compile(r"[0-9eE.+\-\s]*")
 HEADER_LINES = 4
 
 
+#: A PEER NGA file name: ``RSN983_NORTHR_JGB022.AT2``, the record sequence number first.
+_RSN_NAME = re.compile(r"^RSN(?P<rsn>\d+)_", re.I)
+
+
+def rsn_of(name) -> int | None:
+    """The PEER NGA record sequence number (RSN) a file's name gives (``RSN983_NORTHR_JGB022.AT2``: 983), or None: the
+    AT2 header does not state it, and two stations of one site (Jensen's Generator and Administrative Buildings, RSN
+    983 and 982) differ by it and by their station name only."""
+    from pathlib import Path
+
+    m = _RSN_NAME.match(Path(str(name)).name)
+    return int(m.group("rsn")) if m else None
+
+
 def _split_lines(text: str) -> list[str]:
     """Lines of ``text`` whatever the line endings (LF, CRLF, CR, or CR CR LF).
 

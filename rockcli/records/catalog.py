@@ -57,6 +57,9 @@ class CatalogEntry:
         id is a pair: ``--azimuth`` projects the two, ``--component`` picks one.
     file_vertical : str
         The vertical component's file (empty when none is named).
+    former_ids : str
+        Ids the row had before (space-separated; empty when none): still accepted wherever an id is
+        (:func:`catalog_ids`), so that scripts and notes that name a record by its former id keep working.
     """
 
     id: str
@@ -83,6 +86,12 @@ class CatalogEntry:
     file_2: str = ""
     component_2: str = ""
     file_vertical: str = ""
+    former_ids: str = ""
+
+    @property
+    def aliases(self) -> tuple[str, ...]:
+        """The former ids (:attr:`former_ids`) as a tuple."""
+        return tuple(self.former_ids.split())
 
     @property
     def components(self) -> list[tuple[str, str]]:
@@ -98,7 +107,7 @@ class CatalogEntry:
 
 COLUMNS = tuple(f.name for f in fields(CatalogEntry))
 #: Columns a catalogue may leave out (written by :func:`format_catalog`; an older catalogue lacks them).
-OPTIONAL_COLUMNS = ("file_2", "component_2", "file_vertical")
+OPTIONAL_COLUMNS = ("file_2", "component_2", "file_vertical", "former_ids")
 _FLOATS = {"mw", "distance_km", "pga_published_g", "pgv_published_mps", "dt", "a_p_g", "T_p_s", "t0_s", "pulse_energy"}
 _INTS = {"year", "column"}
 _OPTIONAL_STR = {"units", "pulse_shape"}
@@ -184,9 +193,10 @@ def load_catalog(path: str | os.PathLike | None = None) -> list[CatalogEntry]:
         for row in reader:
             where = f"{path}, line {reader.line_num}"
             entry = CatalogEntry(**{c: _parse_cell(c, row.get(c) or "", where) for c in COLUMNS})
-            if entry.id in seen:
-                raise RockcliInputError(f"{where}: id {entry.id!r} appears twice")
-            seen.add(entry.id)
+            for name in (entry.id, *entry.aliases):
+                if name in seen:
+                    raise RockcliInputError(f"{where}: id {name!r} appears twice (as an id or a former id)")
+                seen.add(name)
             entries.append(entry)
     except csv.Error as exc:  # a field over csv's limit (128 KiB), a NUL byte, ...
         limit = csv.field_size_limit()
@@ -244,8 +254,15 @@ def write_catalog(entries, path: str | os.PathLike | None = None) -> Path:
     return write_text(path, format_catalog(entries))
 
 
+def catalog_ids(entries=None) -> dict:
+    """``{id: entry}`` over the catalogue (``entries``, default :func:`load_catalog`), each entry also under its
+    former ids (:attr:`CatalogEntry.aliases`): the one lookup of a record id, wherever one is taken."""
+    entries = load_catalog() if entries is None else entries
+    return {**{a: e for e in entries for a in e.aliases}, **{e.id: e for e in entries}}
+
+
 def get_entry(record_id: str) -> CatalogEntry:
-    """The catalogue entry with this id.
+    """The catalogue entry with this id (or former id).
 
     Raises
     ------
@@ -253,9 +270,9 @@ def get_entry(record_id: str) -> CatalogEntry:
         If no entry has this id.
     """
     entries = load_catalog()
-    for e in entries:
-        if e.id == record_id:
-            return e
+    e = catalog_ids(entries).get(record_id)
+    if e is not None:
+        return e
     raise RockcliInputError(f"{record_id!r} is neither a file nor a catalogue id{did_you_mean(record_id, entries)} "
                             f"(see 'rockcli records list')")
 
@@ -277,7 +294,7 @@ def is_catalog_id(source) -> bool:
     if not isinstance(source, str) or os.sep in source or "/" in source:
         return False
     try:
-        return any(e.id == source for e in load_catalog())
+        return source in catalog_ids()
     except RockcliInputError:
         return False
 

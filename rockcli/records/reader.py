@@ -210,9 +210,9 @@ def _catalog_entry(source):
     read is said as such, not as "no such file, nor a catalogue id"."""
     if not isinstance(source, str) or os.sep in source or "/" in source or path_exists(source):
         return None
-    from rockcli.records.catalog import load_catalog
+    from rockcli.records.catalog import catalog_ids
 
-    return next((e for e in load_catalog() if e.id == source), None)
+    return catalog_ids().get(source)
 
 
 def _read_entry(entry, component: str, file: str, fmt, units, dt, column, gain) -> Record:
