@@ -197,6 +197,35 @@ def test_simulate_figure1_draws_the_pulse_itself_and_names_its_parameters(tmp_pa
                 & (curve[:, 1] <= box.y1)).any()
 
 
+def test_simulate_draws_the_papers_two_panel_figures_in_one(tmp_path, drawn):
+    """Figure 1 (two pulses) and Figure 12 (the ground and an isolated base) have two panels each: several --pulse
+    or --isolation draw their scenes side by side, one column each, each named by its motion, foundation and
+    verdict; one motion on several foundations shares its time axis."""
+    res = run(["simulate", "--height", 2, "--width", 0.5, "--pulse", "sine:ap=0.5,Tp=0.5", "--pulse",
+               "sine:ap=0.29,Tp=2", "--plot", tmp_path / "f1.png"])
+    assert (tmp_path / "f1.png").exists()
+    assert "scene 1 (column 1)" in res.output and "scene 2 (column 2)" in res.output
+    fig = drawn[-1]
+    check(fig, "$a_p$ = 0.5 g", "$T_p$ = 0.5 s", "$a_p$ = 0.29 g", "$T_p$ = 2 s", "survives", "OVERTURNS",
+          "$R$ = 1.03 m")
+    tops = [ax for ax in fig.axes if ax.get_title()]
+    assert len(tops) == 2 and tops[0].get_position().x0 < tops[1].get_position().x0
+    assert "0.5 g" in tops[0].get_title() and "survives" in tops[0].get_title()
+    assert "0.29 g" in tops[1].get_title() and "OVERTURNS" in tops[1].get_title()
+    for ax, (ap, tp) in zip(tops, ((0.5, 0.5), (0.29, 2.0))):  # each column's ground row is its own pulse
+        t, ag = ax.lines[0].get_data()
+        assert np.allclose(ag, make_pulse("sine", ap * G, tp).acceleration(t) / G, atol=1e-12)
+    assert len(fig.axes) == 6
+
+    run(["simulate", "--height", 2, "--width", 0.5, "--pulse", "ricker-sym:ap=0.3,Tp=1", "--isolation", "none",
+         "--isolation", "linear:Tb=2", "--plot", tmp_path / "f12.png"])
+    fig = drawn[-1]
+    check(fig, "rigid foundation", "linear bearings, $T_b$ = 2 s", "the base does not move")
+    assert len(fig.axes) == 8
+    tops = [ax for ax in fig.axes if ax.get_title()]
+    assert tops[0].get_xlim() == tops[1].get_xlim()  # one motion: one time axis
+
+
 def test_simulate_isolated_record_figure(tmp_path, drawn):
     rec = write_pulse_record(tmp_path / "r.txt", 0.6, 0.5, "ricker-anti", dt=0.01, pad=1.0)
     run(["simulate", "--R", 0.8, "--alpha", 12, "--record", rec, "--isolation", "scss:Tb=2,mu=0.08",

@@ -17,8 +17,9 @@ from rockcli.cli.types import NUMBER, WHOLE
 
 @click.command(cls=Command, context_settings={"show_default": True})
 @block_options
-@click.option("--isolation", default="none", metavar="SPEC",
-              help="Foundation: 'none' (rigid); 'linear:Tb=2.5,xi=0.1,gamma=0.01'; single concave sliding "
+@click.option("--isolation", default=("none",), multiple=True, metavar="SPEC",
+              help="Foundation (repeatable: several draw their scenes side by side with --plot, like the paper's "
+                   "Figure 12): 'none' (rigid); 'linear:Tb=2.5,xi=0.1,gamma=0.01'; single concave sliding "
                    "'scss:Tb=3,mu=0.05[,uy=0.00025,gamma=0.01]'; lead-rubber 'lrb:Tb=2.5,Q=0.06,uy=0.015' "
                    "(Q = strength/weight); double concave 'dcss:R1=1.1,R2=1.1,mu1=0.03,mu2=0.07[,uy=..,gamma=..]' "
                    "(effective radii R-h in m) or 'dcss:Tb=3,mu1=0.03,mu2=0.07[,r=R2/R1]'; uy = yield displacement "
@@ -27,9 +28,10 @@ from rockcli.cli.types import NUMBER, WHOLE
               help="Ground motion: a record file or a catalogue id (see 'rockcli records list').")
 @record_options
 @azimuth_options
-@click.option("--pulse", default=None, metavar="SPEC",
+@click.option("--pulse", multiple=True, metavar="SPEC",
               help="Ground motion: an analytic pulse, e.g. 'ricker-sym:ap=0.3,Tp=0.6' (ap in g, Tp in s); "
-                   "shapes ricker-sym, ricker-anti, sine, cosine.")
+                   "shapes ricker-sym, ricker-anti, sine, cosine (repeatable: several draw their scenes side by side "
+                   "with --plot, like the paper's Figure 1).")
 @click.option("--vertical", "vertical_source", default=None, metavar="SOURCE",
               help="Vertical ground acceleration (upward positive), rigid foundation only: a record file or a "
                    "catalogue id, read with the same --units/--dt/--format as --record; it must share the horizontal "
@@ -90,6 +92,7 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     \b
     Examples:
       rockcli simulate --height 2 --width 0.5 --pulse sine:ap=0.29,Tp=2
+      rockcli simulate --height 2 --width 0.5 --pulse sine:ap=0.5,Tp=0.5 --pulse sine:ap=0.29,Tp=2 --plot fig1.png
       ROCKCLI_RECORDS=../shared/records rockcli simulate --body nemea --record kobe-1995-takarazuka-000 \\
           --isolation linear:Tb=3
       rockcli simulate --body statue:height=1.7,width=0.45 --pulse ricker-anti:ap=0.4,Tp=0.5 --json
@@ -115,6 +118,18 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
 
         history_dt = check_history_dt(history_dt, "--history-dt")
     block = block_from_options(column_name, R, alpha, height, width, name)
+    if len(isolation) > 1 or len(pulse) > 1:  # several scenes side by side in one figure (Figures 1 and 12)
+        from rockcli.cli.simulate_beside import run_beside
+
+        return run_beside(block, isolation, pulse, record_source=record_source,
+                          record_kw=record_kwargs(units, dt, fmt, column), scale=scale, flip=flip, rtol=rtol,
+                          tail=tail, horizon=horizon, restitution=restitution, cap_ratio=cap_ratio,
+                          plot_path=plot_path, one_scene={
+                              "--json": as_json, "--history": history_path, "--history-dt": history_dt,
+                              "--report": report_path, "--check-tolerance": check, "--on": plinth_spec,
+                              "--friction": friction, "--theta0": theta0, "--theta-dot0": theta_dot0,
+                              "--vertical": vertical_source, "--vertical-pulse": vertical_pulse})
+    isolation, pulse = isolation[0], (pulse[0] if pulse else None)
     foundation = parse_isolation_spec(isolation)
     restitution = check_restitution(restitution, "--restitution")
     solver = {} if restitution is None else {"restitution": restitution}

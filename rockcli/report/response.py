@@ -140,60 +140,97 @@ def plot_response(response, block, foundation, path: str | os.PathLike, *, excit
     (run with ``history_dt``, e.g. :func:`rockcli.report.figures.plot_grid_dt`, for the dense output
     between steps; the event rows sit among them). The title names the body (R, alpha, p), the
     motion (``motion``, else the record's name; a pulse's a_p and T_p) and the foundation with all
-    its parameters.
+    its parameters. Several runs side by side: :func:`plot_responses`.
+    """
+    return plot_responses([(response, foundation, excitation, motion)], block, path, dpi=dpi)
+
+
+def _right_end(response) -> float:
+    """The right end of a run's time axis: its last row, and a little room past the red line of a run that topples."""
+    t = response.history.rows[:, 0]
+    right = float(t[-1])
+    if response.verdict == "overturned":  # the red line at the instant it topples, inside the frame
+        right += 0.04 * (right - float(t[0]))
+    return right
+
+
+def plot_responses(runs, block, path: str | os.PathLike, *, dpi: int = 120) -> Path:
+    """Runs of one body side by side, one column each, as :func:`plot_response` draws one: the paper's Figures 1
+    (two pulses) and 12 (the ground and an isolated base), both panels in one figure.
+
+    ``runs``: ``(response, foundation, excitation, motion)`` tuples (``motion`` as in :func:`plot_response`), each
+    response with its history. Each column has its own time axis (each run to its own end; one axis for all when they
+    share one motion, as the ground and the bearings under one record); its top names the
+    motion, the foundation and the verdict, the figure's title the body. With an isolated base among them every
+    column has a base-displacement row (a rigid foundation's says the base does not move), and a loop row when a
+    run is on hysteretic bearings.
     """
     import numpy as np
 
     from rockcli.report.figures import block_text, foundation_text, motion_text, new_figure, pyplot, title
 
-    H = response.history
-    if H is None:
-        raise ValueError("this response was computed without history (simulate(..., history=True))")
+    runs = list(runs)
+    for response, *_ in runs:
+        if response.history is None:
+            raise ValueError("this response was computed without history (simulate(..., history=True))")
     check_output(path, image=True)
     plt = pyplot()
-    isolated = getattr(foundation, "kind", 0) != 0
-    loop = H.z is not None and H.bearing_force is not None
-    n = 4 if isolated else 3
-    fig = new_figure(8.0, 1.9 * n + 1.2 + (3.0 if loop else 0.0))
-    heights = [1.0] * n + ([1.7] if loop else [])
-    grid = fig.add_gridspec(len(heights), 1, height_ratios=heights)
-    axes = [fig.add_subplot(grid[0])]
-    for i in range(1, n):
-        axes.append(fig.add_subplot(grid[i], sharex=axes[0]))
-    for ax in axes[:-1]:
-        ax.tick_params(labelbottom=False)
-    rows = H.rows
-    t = rows[:, 0]
-    right = float(t[-1])
-    if response.verdict == "overturned":  # the red line at the instant it topples, inside the frame
-        right += 0.04 * (right - float(t[0]))
-    draw_run(dict(zip(("ground", "tilt", "rate", "base"), axes)), response, block, excitation=excitation,
-             t_end=right)
-    axes[0].set_ylabel(r"ground acc. $\ddot u_g$ [g]")
-    axes[1].set_ylabel(r"$\theta/\alpha$")
-    axes[2].set_ylabel(r"$\dot\theta/p$")
-    if isolated:
-        axes[3].set_ylabel("base displacement $u$ [m]")
-    if response.verdict == "overturned":
-        axes[1].set_ylim(-math.pi / 2 / block.alpha * 1.05, math.pi / 2 / block.alpha * 1.05)
-    for ax in axes:
-        ax.grid(True, lw=0.3)
-    axes[0].set_xlim(float(t[0]), right)
-    axes[-1].set_xlabel("time $t$ [s]")
-    if loop:
-        ax = fig.add_subplot(grid[n])
-        fu, ff = rows[:, 4], rows[:, 8]
-        ok = np.isfinite(ff)  # the peak rows carry no bearing force
-        ax.plot(fu[ok], ff[ok] / G, lw=0.8, color="tab:purple")
-        ax.set_xlabel("base displacement $u$ [m]")
-        ax.set_ylabel("bearing force / $W$")
-        ax.set_title("force-displacement loop of the bearings ($W = (m + m_b)\\,g$)", fontsize=8)
-        ax.grid(True, lw=0.3)
-    verdict = {"overturned": f"OVERTURNS at $t$ = {response.t_overturn_s:.2f} s",
-               "rocked": f"survives, peak $|\\theta|/\\alpha$ = {response.theta_max_over_alpha:.2f}",
-               "no_uplift": "no uplift"}[response.verdict]
-    title(fig, f"{block_text(block)}\n{motion_text(excitation, motion)}\n{foundation_text(foundation)}\n{verdict}",
-          fontsize=9)
+    iso = [getattr(f, "kind", 0) != 0 for _, f, _, _ in runs]
+    loops = [r.history.z is not None and r.history.bearing_force is not None for r, *_ in runs]
+    n = 4 if any(iso) else 3
+    many = len(runs) > 1
+    fig = new_figure(8.0 if not many else 6.0 * len(runs), 1.9 * n + (1.2 if not many else 1.6)
+                     + (3.0 if any(loops) else 0.0))
+    heights = [1.0] * n + ([1.7] if any(loops) else [])
+    grid = fig.add_gridspec(len(heights), len(runs), height_ratios=heights)
+    # one motion on several foundations (Figure 12): one time axis, each run seen against the same record
+    same = many and all(x is runs[0][2] for _, _, x, _ in runs)
+    t_right = max(_right_end(r) for r, *_ in runs)
+    for j, (response, foundation, excitation, motion) in enumerate(runs):
+        axes = [fig.add_subplot(grid[0, j])]
+        for i in range(1, n):
+            axes.append(fig.add_subplot(grid[i, j], sharex=axes[0]))
+        for ax in axes[:-1]:
+            ax.tick_params(labelbottom=False)
+        rows = response.history.rows
+        t = rows[:, 0]
+        right = t_right if same else _right_end(response)
+        keys = ("ground", "tilt", "rate") + (("base",) if iso[j] else ())
+        draw_run(dict(zip(keys, axes)), response, block, excitation=excitation, t_end=right)
+        if j == 0 or not many:
+            axes[0].set_ylabel(r"ground acc. $\ddot u_g$ [g]")
+            axes[1].set_ylabel(r"$\theta/\alpha$")
+            axes[2].set_ylabel(r"$\dot\theta/p$")
+        if iso[j] and j == iso.index(True):  # the first isolated column names the row
+            axes[3].set_ylabel("base displacement $u$ [m]")
+        if n == 4 and not iso[j]:  # a rigid foundation beside an isolated base: its base does not move
+            axes[3].text(0.5, 0.5, "rigid foundation:\nthe base does not move", ha="center", va="center",
+                         transform=axes[3].transAxes, fontsize=8.5, color="0.35")
+            axes[3].tick_params(left=False, labelleft=False)
+        if response.verdict == "overturned":
+            axes[1].set_ylim(-math.pi / 2 / block.alpha * 1.05, math.pi / 2 / block.alpha * 1.05)
+        for ax in axes[:3] if n == 4 and not iso[j] else axes:
+            ax.grid(True, lw=0.3)
+        if n == 4 and not iso[j]:
+            axes[3].grid(False)
+        axes[0].set_xlim(float(t[0]), right)
+        axes[-1].set_xlabel("time $t$ [s]")
+        if loops[j]:
+            ax = fig.add_subplot(grid[n, j])
+            fu, ff = rows[:, 4], rows[:, 8]
+            ok = np.isfinite(ff)  # the peak rows carry no bearing force
+            ax.plot(fu[ok], ff[ok] / G, lw=0.8, color="tab:purple")
+            ax.set_xlabel("base displacement $u$ [m]")
+            ax.set_ylabel("bearing force / $W$")
+            ax.set_title("force-displacement loop of the bearings ($W = (m + m_b)\\,g$)", fontsize=8)
+            ax.grid(True, lw=0.3)
+        verdict = {"overturned": f"OVERTURNS at $t$ = {response.t_overturn_s:.2f} s",
+                   "rocked": f"survives, peak $|\\theta|/\\alpha$ = {response.theta_max_over_alpha:.2f}",
+                   "no_uplift": "no uplift"}[response.verdict]
+        scene = f"{motion_text(excitation, motion)}\n{foundation_text(foundation)}\n{verdict}"
+        if many:
+            title(axes[0], scene, fontsize=9, color="#c0392b" if response.verdict == "overturned" else "0.1")
+    title(fig, f"{block_text(block)}\n{scene}" if not many else block_text(block), fontsize=9 if not many else 10)
     try:
         return save_figure(fig, path, dpi=dpi)
     finally:
