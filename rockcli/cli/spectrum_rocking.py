@@ -92,9 +92,10 @@ def rocking(source, alpha, R, isolations, units, dt, fmt, column, scale, csv_pat
 
         write_rocking_csv(curves, csv_path, name, scale, extra)
     if plot_path:
+        from rockcli.report.figures import plain
         from rockcli.report.rocking import plot_rocking_spectrum
 
-        shown = f"{name}" + (f" x {format_number(scale)}" if scale != 1.0 else "")
+        shown = plain(name) + (f" x {format_number(scale)}" if scale != 1.0 else "")
         plot_rocking_spectrum(curves, plot_path, title=f"Rocking spectrum under {shown} (PGA {record.pga_g:.3g} g)")
     if as_json:
         from rockcli.report.rocking import rocking_json

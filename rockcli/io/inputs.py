@@ -16,7 +16,8 @@ Messages never show a rounded value: :func:`format_number` gives the shortest te
 as the same double (``100.0001`` stays ``100.0001``, ``1e-06`` stays ``1e-06``).
 
 :func:`spec_items` splits the items of a spec (``key=value,key=value``) and refuses a key given
-twice (case-insensitively): ``ap=0.3,ap=0.5`` is an error, never "the last one wins".
+twice in any spelling (case, ``_``, an alias): ``ap=0.3,AP=0.5`` and ``mass_ratio=1,massratio=2`` are errors,
+never "the last one wins".
 """
 
 from __future__ import annotations
@@ -248,7 +249,17 @@ def as_list(value, what: str, expected: str, *, one=()) -> list:
         raise RockcliInputError(f"{what} must be {expected}, got {type_words(value)}") from None
 
 
-def spec_items(rest: str, what: str) -> list[tuple[str, str, bool]]:
+def spec_key(key: str, names: dict | None = None) -> str:
+    """What a spec key means, for telling whether two keys are one: ``names[key]`` (the parser's table, lower-case
+    keys and their aliases to one name) when it lists it, else the key in lower case without ``_`` and ``-``
+    (``MassRatio``, ``mass_ratio`` and ``massratio`` are one key)."""
+    k = str(key).strip().lower()
+    if names and k in names:
+        return names[k]
+    return k.replace("_", "").replace("-", "")
+
+
+def spec_items(rest: str, what: str, names: dict | None = None) -> list[tuple[str, str, bool]]:
     """The items of ``key=value,key=value``: ``(key, value, has_equals)``, blanks stripped, empty items skipped.
 
     Parameters
@@ -257,17 +268,21 @@ def spec_items(rest: str, what: str) -> list[tuple[str, str, bool]]:
         The part of a spec after ``NAME:``.
     what : str
         How the spec is named in messages (``"pulse spec 'sine:ap=1,ap=2,Tp=1'"``).
+    names : dict, optional
+        The parser's keys (lower case, aliases included) to the name each stands for: two spellings of one
+        name are one key (see :func:`spec_key`).
 
     Raises
     ------
     RockcliInputError
-        A key given twice (compared case-insensitively): ``"<what>: ap is given twice"``.
+        A key given twice in any spelling (``ap=1,AP=2``, ``mass_ratio=1,massratio=2``): ``"<what>: ap is given
+        twice"``, ``"<what>: mass_ratio (as massratio) is given twice"``; never "the last one wins".
     """
     out, seen = [], {}
     for item in filter(None, (s.strip() for s in str(rest).split(","))):
         key, eq, val = item.partition("=")
         key, val = key.strip(), val.strip()
-        k = key.lower()
+        k = spec_key(key, names)
         if not eq and out and out[-1][2] and re.fullmatch(r"[0-9]+(?:[eE][-+]?[0-9]+)?", key) \
                 and re.fullmatch(r"[-+]?[0-9]+", out[-1][1]):
             prev_key, prev_val, _ = out[-1]
@@ -293,7 +308,7 @@ def spec_numbers(rest: str, what: str, keys: dict, listing: str, *, limits: dict
     another spec. Anything wrong is one sentence beginning with ``what``.
     """
     values = {}
-    for key, val, eq in spec_items(rest, what):
+    for key, val, eq in spec_items(rest, what, keys):
         k = key.lower()
         if eq and refuse and k in refuse:
             raise RockcliInputError(f"{what}: {refuse[k].format(key=key)}")

@@ -98,9 +98,23 @@ def foundation_text(foundation) -> str:
     return ", ".join([KIND_WORDS.get(kind, kind)] + [item_text(k, v) for k, v in items])
 
 
+#: A ``$`` that opens or closes a formula (one written ``\\$`` by :func:`plain` is a dollar sign).
+_DOLLAR = re.compile(r"(?<!\\)\$")
+
+
 def plain(text: str) -> str:
-    """``text`` (a name given by the user or a file) shown as written: a ``$`` does not open a formula."""
+    """``text`` (a name given by the user or read from a file) drawn as written: a ``$`` opens no formula.
+
+    Every user string that reaches a figure's text goes through here, where it enters the text (a body's, a
+    plinth's or a record's name, a file name, a sentence built from them), so that matplotlib's mathtext never
+    reads it: ``Plinth $1`` would stop the drawing ("Expected end of text"), ``a$x$b`` would draw an italic x."""
     return str(text).replace("$", r"\$")
+
+
+def formula_parts(text: str) -> list[str]:
+    """``text`` split at the ``$`` that open and close formulas (a dollar sign written ``\\$`` stays): the odd
+    items are formulas."""
+    return _DOLLAR.split(text)
 
 
 def block_text(block) -> str:
@@ -184,7 +198,7 @@ def text_width_pt(text: str, fontsize: float) -> float:
     from matplotlib.textpath import TextToPath
 
     width, _, _ = TextToPath().get_text_width_height_descent(text, FontProperties(size=fontsize),
-                                                             ismath=text.count("$") >= 2)
+                                                             ismath=len(formula_parts(text)) >= 3)
     return width
 
 
@@ -196,7 +210,7 @@ def wrap_room(fig, share: float = 1.0) -> float:
 def glued_words(text: str) -> str:
     """``text`` with the spaces no line may break at as NUL characters: inside a ``$...$`` formula, and around
     `` = `` between a name and its value with its unit (``$T_b$ = 2 s``)."""
-    parts = text.split("$")
+    parts = formula_parts(text)
     glued = "$".join(p.replace(" ", "\0") if k % 2 else p for k, p in enumerate(parts))
     return re.sub(r" = (\S+)( (?:g|s|m|mm|rad/s|m/s)\b)?",
                   lambda m: "\0=\0" + m.group(1) + (m.group(2) or "").replace(" ", "\0"), glued)

@@ -27,6 +27,8 @@ import math
 import tempfile
 from pathlib import Path
 
+from rockcli.report.figures import plain
+
 #: Colours of the outcomes (the report's CSS uses the same).
 COLOURS = {"topples": "#c0392b", "survives": "#2e7d32", "undecided": "#e69500", "not computed": "#777777"}
 _CONF_COLOURS = ("#444444", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#17becf")
@@ -315,7 +317,7 @@ def margins_png(rows, records, configurations, title: str) -> bytes | None:
     ax.axvline(1.0, color="k", lw=1.0)
     _scale_axis(ax, (0.1, 12), (0.1, 0.2, 0.5, 1, 2, 4, 10))
     ax.set_yticks(range(len(records)))
-    ax.set_yticklabels(records)
+    ax.set_yticklabels([plain(rec) for rec in records])  # the records' names as written
     ax.set_ylim(len(records) - 0.5, -0.5)
     ax.set_xlabel("smallest scale factor of the record that topples the body (log scale)")
     ax.grid(True, axis="x", which="both", color="0.9", lw=0.5)
@@ -389,7 +391,7 @@ def stroke_png(rows, records, configurations, title: str) -> bytes | None:
             top = max(top, d)
     ax.set_xlim(0, max(top, 1e-3) * 1.55)
     ax.set_yticks(range(len(records)))
-    ax.set_yticklabels(records)
+    ax.set_yticklabels([plain(rec) for rec in records])  # the records' names as written
     ax.set_ylim(len(records) - 0.5, -0.5)
     ax.set_xlabel("peak displacement of the isolated base relative to the ground [m]")
     ax.grid(True, axis="x", color="0.9", lw=0.5)

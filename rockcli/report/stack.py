@@ -57,7 +57,7 @@ def plot_stack_response(response, stack, path: str | os.PathLike, *, excitation=
     from rockcli.assess.plinth_words import plinth_name, run_sentence
     from rockcli.assess.verdicts import body_noun
     from rockcli.io.files import check_output, save_figure
-    from rockcli.report.figures import block_text, foundation_text, motion_text, new_figure, pyplot, title
+    from rockcli.report.figures import block_text, foundation_text, motion_text, new_figure, plain, pyplot, title
     from rockcli.report.html_figures import FIGURE_WIDTH_IN, _rc
     from rockcli.report.response import LABEL_BOX, TOPPLE_COLOUR
 
@@ -70,7 +70,7 @@ def plot_stack_response(response, stack, path: str | os.PathLike, *, excitation=
     A = alone.history.rows if alone is not None and alone.history is not None else None
     on_bearings = H.u is not None
     t0, t1 = _time_window(response, A, alone, excitation, t_end)
-    noun, name = body_noun(stack.body), plinth_name(stack)
+    noun, name = plain(body_noun(stack.body)), plain(plinth_name(stack))  # the user's names, drawn as written
     where = ("standing on the ground" if foundation is None or not on_bearings else "on the same bearings")
     keys = ["ground", "body", "plinth"] + (["base"] if on_bearings else [])
     with _rc():
@@ -134,7 +134,7 @@ def plot_stack_response(response, stack, path: str | os.PathLike, *, excitation=
         head = (f"{block_text(stack.body)}, on a free {name} {p.height:g} m tall x {p.width:g} m wide "
                 f"({stack.m2:.2g} times its mass)\n{motion_text(excitation, motion)}; "
                 f"{'rigid foundation' if foundation is None else foundation_text(foundation)}")
-        title(fig, f"{head}\n{run_sentence(stack, response)}", fontsize=10, x=0.01, ha="left")
+        title(fig, f"{head}\n{plain(run_sentence(stack, response))}", fontsize=10, x=0.01, ha="left")
     try:
         return save_figure(fig, path, dpi=dpi)
     finally:

@@ -77,3 +77,31 @@ def as_values(values, what: str, *, positive: bool = False) -> np.ndarray:
     if not np.all(np.isfinite(out)) or (positive and not np.all(out > 0)):
         raise RockcliInputError(f"{what} must be finite{' positive' if positive else ''} numbers")
     return out
+
+
+def as_plinths(plinths, what: str = "plinths") -> list:
+    """What the body stands on in a spectrum: a list of None (the body alone) and/or
+    :class:`~rockcli.spectra.plinth.PlinthRatio` plinths or their specs (``"plinth:height_ratio=0.5,width_ratio=1.5"``,
+    :func:`~rockcli.spectra.plinth.parse_plinth_ratio`); one plinth or one spec is a list of itself, None the body
+    alone. An empty list is refused, and so is a plinth in metres (a :class:`rockcli.models.Plinth`): a spectrum
+    holds for a body of any size."""
+    from rockcli.models import Plinth
+    from rockcli.spectra.plinth import PlinthRatio, parse_plinth_ratio
+
+    expected = ("None (the body alone) or a plinth in proportion to the body, a PlinthRatio or its spec such as "
+                "'plinth:height_ratio=0.5,width_ratio=1.5'")
+    out = []
+    given = [None] if plinths is None else plinths
+    for p in as_list(given, what, f"a list of plinths, each {expected}", one=(str, PlinthRatio, Plinth)):
+        if isinstance(p, str):
+            p = parse_plinth_ratio(p, f"{what}:")
+        elif isinstance(p, Plinth):
+            raise RockcliInputError(f"{what}: a spectrum is dimensionless (it holds for a body of any size), so give "
+                                    f"the plinth in proportion to the body, e.g. 'plinth:height_ratio=0.5,"
+                                    f"width_ratio=1.5', not a Plinth in metres, got {type_words(p)}")
+        elif p is not None:
+            check_type(p, PlinthRatio, f"{what}: each plinth", expected)
+        out.append(p)
+    if not out:
+        raise RockcliInputError(f"{what} is empty: give None for the body alone and/or plinths in proportion to it")
+    return out

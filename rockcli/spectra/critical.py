@@ -88,9 +88,10 @@ def critical_sizes(pulses: Sequence[PulseChoice], alphas_deg: Sequence[float], i
     :class:`rockcli.spectra.plinth.PlinthRatio` plinths: the rigid and the isolated curves of the body on that
     plinth are compared (the size is the body's R, the plinth in proportion to it).
     """
-    from rockcli.spectra.arguments import as_alphas, as_grid, as_isolations, as_pulses
+    from rockcli.spectra.arguments import as_alphas, as_grid, as_isolations, as_plinths, as_pulses
 
     pulses, alphas_deg, isolations = as_pulses(pulses), as_alphas(alphas_deg), as_isolations(isolations)
+    plinths = as_plinths(plinths)
     wp_grid = as_grid(wp_grid, "wp_grid")
     if not (isinstance(xtol, (int, float)) and math.isfinite(xtol) and TOL_MIN <= xtol <= 0.5):
         raise RockcliInputError(f"xtol must lie in [{TOL_MIN:g}, 0.5] (relative; double precision cannot bisect "
@@ -106,7 +107,6 @@ def critical_sizes(pulses: Sequence[PulseChoice], alphas_deg: Sequence[float], i
     shapes = list(dict.fromkeys(pc.shape for pc in pulses))
     rigid = Isolation("none")
     # the dimensionless curves depend on the shape, not on T_p: one rigid + isolated set per shape
-    plinths = list(plinths)
     fam_keys = [(a, sh, iso, pl) for sh in shapes for a in alphas_deg for pl in plinths
                 for iso in [rigid, *isolations]]
     families = [Family(math.radians(a), sh, iso, R, pl) for a, sh, iso, pl in fam_keys]

@@ -57,11 +57,11 @@ def overturning_maps(alphas_deg: Sequence[float], pulses: Sequence[PulseChoice],
     alone) and/or :class:`rockcli.spectra.plinth.PlinthRatio` plinths the block stands on (its maps then run on
     the stack driver, full peaks whatever ``early`` says: :mod:`rockcli.spectra.runner`).
     """
-    from rockcli.spectra.arguments import as_alphas, as_grid, as_isolations, as_pulses
+    from rockcli.spectra.arguments import as_alphas, as_grid, as_isolations, as_plinths, as_pulses
 
     alphas_deg, pulses, isolations = as_alphas(alphas_deg), as_pulses(pulses), as_isolations(isolations)
     wp_grid, ap_grid = as_grid(wp_grid, "wp_grid"), as_grid(ap_grid, "ap_grid")
-    plinths = list(plinths)
+    plinths = as_plinths(plinths)
     cells = len(alphas_deg) * len(pulses) * len(isolations) * len(plinths) * wp_grid.count * ap_grid.count
     if cells > MAX_CELLS:
         raise RockcliInputError(f"the maps have {cells:,} cells (slenderness x pulse x foundation x omega_p/p x "

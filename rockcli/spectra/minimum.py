@@ -459,9 +459,10 @@ def min_overturning_curves(alphas_deg: Sequence[float], pulses: Sequence[PulseCh
     """Minimum overturning curves for every ``alpha x pulse x isolation x plinth`` (nesting order), one search.
     Pulses and isolations may be spec strings; a wrong type is one sentence (:mod:`rockcli.spectra.arguments`).
     ``plinths``: None (the block alone) and/or :class:`rockcli.spectra.plinth.PlinthRatio` plinths it stands on."""
-    from rockcli.spectra.arguments import as_alphas, as_isolations, as_pulses, as_values
+    from rockcli.spectra.arguments import as_alphas, as_isolations, as_plinths, as_pulses, as_values
 
     alphas_deg, pulses, isolations = as_alphas(alphas_deg), as_pulses(pulses), as_isolations(isolations)
+    plinths = as_plinths(plinths)
     xs = as_values(wp_values, "wp_values", positive=True)
     keys = [(a, pc, iso, pl) for a in alphas_deg for pc in pulses for iso in isolations for pl in plinths]
     families = [Family(math.radians(a), pc.shape, iso, R, pl) for a, pc, iso, pl in keys]

@@ -139,13 +139,14 @@ def rocking_spectrum(record, alphas_deg: Sequence[float], foundations: Sequence,
     from rockcli.io.inputs import as_list, check_type
     from rockcli.records.record import Record
     from rockcli.solve import check_foundation
-    from rockcli.spectra.arguments import as_alphas, as_values
+    from rockcli.spectra.arguments import as_alphas, as_plinths, as_values
 
     check_type(record, Record, "record", "a rockcli Record (read_record(...))")
     alphas_deg = as_alphas(alphas_deg)
     foundations = [check_foundation(f, "foundations: each foundation")
                    for f in as_list(foundations, "foundations", "a list of foundations (Rigid(), ...)")]
     R = as_values(R, "R", positive=True)
+    plinths = as_plinths(plinths)
     families = [RecordFamily(float(a), f, record, pl) for a in alphas_deg for f in foundations for pl in plinths]
     n = len(families) * R.size
     if n > MAX_CELLS:
