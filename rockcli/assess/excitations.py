@@ -297,7 +297,7 @@ def _resolve(sources, mode, units, dt, gain, component, azimuth, glob, exclude):
     by_file = {f: e for e in entries for f in (e.file_2, e.file) if f}  # a pair's second file is read as its first
     from rockcli.assess.suite import Suite
     from rockcli.io.files import note_inputs
-    from rockcli.records.orientation import split_source
+    from rockcli.records.orientation import pair_sources, refuse_pair_without_azimuth, split_source
 
     from rockcli.assess.pairs import catalogue_worst, pair_excitation, pair_label
 
@@ -325,8 +325,11 @@ def _resolve(sources, mode, units, dt, gain, component, azimuth, glob, exclude):
         src = str(src)
         path = expand_user(src, "--records")
         kind = _path_kind(path)
-        if azimuth is not None and "+" in src and kind not in ("file", "folder"):
-            first, _, second = src.partition("+")
+        halves = pair_sources(src, "--records") if kind not in ("file", "folder") and src not in by_id else None
+        if halves is not None and azimuth is None:
+            refuse_pair_without_azimuth(src, "--records")
+        if halves is not None:
+            first, second = halves
             files = [split_source(f)[0] for f in (first, second)]
             note_inputs(files, "a record of the pair")
             suite.add(pair_excitation(pair_label(*(Path(f).name for f in files)), first, second, file_kwargs,

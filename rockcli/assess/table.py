@@ -155,11 +155,16 @@ def _base_row(block: Block, x: Excitation, conf: Configuration) -> AssessmentRow
 
 
 def _plinth_label(block) -> str:
-    """The plinth of a body on a plinth (``plinth:height=1,width=0.6,mass_ratio=0.67``), "" for a single block."""
+    """The plinth of a body on a plinth as a spec that gives the same plinth when rerun (``--on LABEL``):
+    ``plinth:height=1,width=0.6,mass_ratio=0.6703910614525139`` (every number as the shortest text that reads back
+    as the same double, :func:`rockcli.io.inputs.format_number`; the mass ratio as run, also when it came from the
+    density); "" for a single block."""
+    from rockcli.io.inputs import format_number as num
+
     plinth = getattr(block, "plinth", None)
     if plinth is None:
         return ""
-    return (f"{plinth.name}:height={plinth.height:g},width={plinth.width:g},mass_ratio={block.m2:.4g}")
+    return f"{plinth.name}:height={num(plinth.height)},width={num(plinth.width)},mass_ratio={num(block.m2)}"
 
 
 def _plinth_fields(row: AssessmentRow, r) -> None:

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from contextlib import contextmanager
+
 import click
 
 from rockcli.cli.options import add_inputs, given_azimuth
@@ -17,7 +19,8 @@ def read_excitation(source, kwargs: dict):
 
     given = given_azimuth()
     if given["azimuth"] is None:
-        rec = read_record(source, **kwargs)
+        with _pair_written_as_suite(source):
+            rec = read_record(source, **kwargs)
         add_inputs([rec.meta.get("path")], "the record")
         return rec, None
     from rockcli.assess.pairs import one_file_pair
@@ -25,9 +28,26 @@ def read_excitation(source, kwargs: dict):
     one = one_file_pair(source, given["record_2"], ("--record", "--record-2"))
     if one:
         raise RockcliInputError(one)
-    pair = read_pair(source, given["record_2"], **kwargs)
+    with _pair_written_as_suite(source):
+        pair = read_pair(source, given["record_2"], **kwargs)
     add_inputs([r.meta.get("path") for r in pair], "the record")
     return project(*pair, 0.0 if given["azimuth"] == "worst" else given["azimuth"]), pair
+
+
+@contextmanager
+def _pair_written_as_suite(source):
+    """A ``--record A+B`` that cannot be read as written is said to be a pair written as in a suite: ``simulate``
+    takes a pair as ``--record A --record-2 B`` with ``--azimuth`` (not "A+B: no such file")."""
+    try:
+        yield
+    except RockcliInputError:
+        from rockcli.records.reader import path_exists
+
+        if "+" in str(source) and not path_exists(source):
+            raise RockcliInputError(f"--record {source}: simulate takes the two horizontal components of a pair as "
+                                    f"--record A --record-2 B, with --azimuth DEG (or --azimuth worst); A+B is "
+                                    f"how a suite writes a pair (assess --records)") from None
+        raise
 
 
 def refuse_without_record() -> None:

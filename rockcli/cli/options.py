@@ -444,8 +444,9 @@ def plinth_option(func):
                         help=f"Stand the body on a free plinth, {PLINTH_FORM} (e.g. plinth:height=1.0,width=0.6): "
                              "a rigid block at least as wide as the body, which can rock with it (the two-block "
                              "assembly, rocking only: docs/plinth.md). mass_ratio left out: the same density as "
-                             "the body (the ratio of the areas height x width). On a rigid foundation or "
-                             "linear bearings (not yet on sliding ones).")(func)
+                             "the body (the ratio of the areas height x width). On a rigid foundation and on "
+                             "every --isolation kind (linear, sliding and lead-rubber bearings; not gamma=0, an "
+                             "infinitely heavy base).")(func)
 
 
 def stack_from_option(block, plinth_spec):

@@ -63,6 +63,16 @@ def format_number(x, *, derived: bool = False) -> str:
     return repr(v)  # pragma: no cover -- 17 significant digits always read back
 
 
+def format_apart(a, b, *, derived: bool = True) -> tuple[str, str]:
+    """``a`` and ``b`` as :func:`format_number` writes them, for a sentence that compares them: two different
+    numbers never read the same (``derived`` rounding is dropped where it would make them equal), so that a refusal
+    such as "the body (0.5 m wide) must be no wider than its plinth (0.49999 m wide)" shows why."""
+    ta, tb = format_number(a, derived=derived), format_number(b, derived=derived)
+    if ta == tb and float(a) != float(b):
+        ta, tb = format_number(a), format_number(b)
+    return ta, tb
+
+
 #: The largest peak acceleration [g] of a motion rockcli runs, as read (records) or built (pulses) and after a
 #: scale factor the user gives (``--scale``, ``--vertical-scale``): recorded peaks reach about 4 g, so only a
 #: unit mistake gets past 100 g (the limit of :data:`rockcli.pulses.A_P_MAX_G` and of the record readers).

@@ -72,7 +72,7 @@ class LinearIsolation:
 
     @property
     def label(self) -> str:
-        return f"linear:Tb={self.T_b:g},xi={self.xi:g},gamma={self.gamma:g}"
+        return f"linear:Tb={_spec_num(self.T_b)},xi={_spec_num(self.xi)},gamma={_spec_num(self.gamma)}"
 
 
 def _spec_num(x: float) -> str:

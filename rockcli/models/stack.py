@@ -23,6 +23,14 @@ from rockcli.models.block import Block
 from rockcli.models.limits import _check, _finite, _num
 from rockcli.io.units import G
 
+
+def _apart(a: float, b: float) -> tuple[str, str]:
+    """Two numbers a sentence compares, never rounded to the same text (:func:`rockcli.io.inputs.format_apart`)."""
+    from rockcli.io.inputs import format_apart
+
+    return format_apart(a, b)
+
+
 #: Supported plinth mass over body mass: from a thin slab under a heavy bronze to a massive pedestal.
 MASS_RATIO_RANGE = (1e-3, 1e3)
 
@@ -74,8 +82,8 @@ class Stack:
         if not isinstance(self.plinth, Plinth):
             raise RockcliInputError(f"the plinth must be a rockcli.models.Plinth, got {type(self.plinth).__name__}")
         _check(self.body.width <= self.plinth.width * (1 + 1e-12),
-               lambda: f"the body ({self.body.width:.4g} m wide) must be no wider than its plinth "
-                       f"({self.plinth.width:.4g} m wide): rockcli models a body standing centred on its plinth's top")
+               lambda: "the body ({} m wide) must be no wider than its plinth ({} m wide): rockcli models a body "
+                       "standing centred on its plinth's top".format(*_apart(self.body.width, self.plinth.width)))
         m2 = self.m2
         lo, hi = MASS_RATIO_RANGE
         _check(lo <= m2 <= hi, lambda: f"the plinth's mass over the body's, {m2:.4g} (same density), lies outside the "

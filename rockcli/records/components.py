@@ -57,8 +57,11 @@ _VERTICAL_WORDS = {"UP", "DWN", "DOWN", "UD", "V", "VER", "VERT", "VERTICAL", "Z
 _LETTERS = {"N": 0.0, "E": 90.0, "S": 180.0, "W": 270.0, "NS": 0.0, "EW": 90.0, "SN": 180.0, "WE": 270.0}
 
 
-def parse_orientation(text) -> tuple[float | None, bool]:
+def parse_orientation(text, *, given: bool = False) -> tuple[float | None, bool]:
     """``(azimuth_deg, vertical)`` from a component name; ``(None, False)`` when it states none.
+
+    A file's name of a component may carry a leading ``_`` (``_H1``, cut from a file name), which is skipped;
+    ``given=True`` reads a name the user gave (``--component``) as written: ``_242`` states nothing.
 
     Examples
     --------
@@ -68,7 +71,8 @@ def parse_orientation(text) -> tuple[float | None, bool]:
     s = str(text or "").strip().upper()
     if not s:
         return None, False
-    s = re.sub(r"^[_ ]+", "", s)  # "_H1"; a minus is a sign: -242 is 118 deg, and -S62W is no bearing
+    if not given:
+        s = re.sub(r"^[_ ]+", "", s)  # "_H1"; a minus is a sign: -242 is 118 deg, and -S62W is no bearing
     if re.fullmatch(r"[-+]?\d{1,3}(\.\d+)?", s):
         value = float(s)
         return (value % 360.0, False) if abs(value) <= 360.0 else (None, False)
@@ -128,7 +132,7 @@ def select_component(records: Sequence, name, filename: str):
     exact = [r for r in records if component_name(r).upper() == wanted.upper()]
     if len(exact) == 1:
         return exact[0]
-    az, vertical = parse_orientation(wanted)
+    az, vertical = parse_orientation(wanted, given=True)  # as written: "_242" is no azimuth
     if vertical:
         found = [r for r in records if r.meta.get("vertical")]
     elif az is not None:

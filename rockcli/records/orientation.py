@@ -61,6 +61,35 @@ def split_source(text: str):
     return m.group(1), float(m.group(2))
 
 
+def pair_sources(text, option: str = "--records"):
+    """``(A, B)`` of a pair of horizontal components written ``A+B`` (each a file, ``FILE@DEG`` or a catalogue id);
+    None for a source with no ``+`` or one that exists as written (a file named ``a+b.txt``). A pair that lacks a
+    file (``A+``, ``+B``) or names more than two is refused in one sentence naming ``option``."""
+    from rockcli.records.reader import path_exists
+
+    s = str(text)
+    if "+" not in s or path_exists(s):
+        return None
+    first, _, second = s.partition("+")
+    if not first.strip() or not second.strip():
+        which = "first" if not first.strip() else "second"
+        raise RockcliInputError(f"{option} {s}: a pair of horizontal components is written A+B, two files or "
+                                f"catalogue ids; this pair is missing its {which} file")
+    if "+" in second:
+        raise RockcliInputError(f"{option} {s}: a pair of horizontal components is written A+B, two files or "
+                                f"catalogue ids; this one names {s.count('+') + 1} files")
+    return first, second
+
+
+def refuse_pair_without_azimuth(text, option: str = "--records") -> None:
+    """A pair ``A+B`` given with no azimuth: one sentence that says it needs one (a planar run takes one
+    direction of the ground's motion); nothing for any other source."""
+    if pair_sources(text, option) is not None:
+        raise RockcliInputError(f"{option} {text} is a pair of horizontal components: a pair needs --azimuth DEG "
+                                f"(the direction the body rocks in, clockwise from north) or --azimuth worst (every "
+                                f"direction)")
+
+
 def oriented(rec: Record, given, label: str) -> Record:
     """``rec`` with the orientation ``given`` [deg] (from ``FILE@DEG``) when the file states none; a given
     orientation that contradicts the stated one is refused."""

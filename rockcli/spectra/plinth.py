@@ -61,10 +61,13 @@ class PlinthRatio:
 
     @property
     def label(self) -> str:
-        """``plinth:height_ratio=0.5,width_ratio=1.5`` (and ``mass_ratio=`` when given): the CSV's column."""
-        items = [f"height_ratio={self.height_ratio:g}", f"width_ratio={self.width_ratio:g}"]
+        """``plinth:height_ratio=0.5,width_ratio=1.5`` (and ``mass_ratio=`` when given): the CSV's column, a spec
+        that gives the same plinth when rerun (each number the shortest text that reads back as the same double)."""
+        from rockcli.io.inputs import format_number as num
+
+        items = [f"height_ratio={num(self.height_ratio)}", f"width_ratio={num(self.width_ratio)}"]
         if self.mass_ratio is not None:
-            items.append(f"mass_ratio={self.mass_ratio:g}")
+            items.append(f"mass_ratio={num(self.mass_ratio)}")
         return f"{self.name}:{','.join(items)}"
 
 
