@@ -270,7 +270,7 @@ def run_fragility(columns: Sequence[Block], excitations: Sequence[Excitation],
         Rows in the order column, excitation, configuration; curves in the order column,
         configuration.
     """
-    from rockcli.assess.scenes import check_scenes
+    from rockcli.assess.scenes import check_count, check_scenes
 
     columns, excitations, configurations = check_scenes(columns, excitations, configurations)
     if im not in IMS:
@@ -284,7 +284,10 @@ def run_fragility(columns: Sequence[Block], excitations: Sequence[Excitation],
         raise RockcliInputError(f"excitations: {worst.label} is a pair to run in every orientation "
                                 f"(azimuth='worst'): run_fragility_azimuths(columns, excitations, configurations) "
                                 f"gives the fragility of its median and of its worst orientation")
-    if int(n_boot) < 0 or not (0 < level < 1):
+    chunk_size = check_count(chunk_size, "chunk_size", "None (one chunk of everything) or a whole number of scenes "
+                                                       ">= 1")
+    n_boot = check_count(n_boot, "n_boot", "a whole number of bootstrap samples >= 0", lo=0, none=False)
+    if not (0 < level < 1):
         raise RockcliInputError("n_boot must be >= 0 and the confidence level between 0 and 1")
     timings = {}
     t0 = time.perf_counter()

@@ -95,7 +95,39 @@ def check_scenes(columns, excitations, configurations) -> tuple[list, list, list
                 raise RockcliInputError("excitations must be the Excitation objects of resolve_excitations, "
                                         "unpacked: excitations, unavailable = resolve_excitations([...]); got a list")
             check_type(x, kind, f"{what}: each item", expected)
+    if not cols:
+        raise RockcliInputError("no body to assess: name a preset (bassae, nemea) or give a body of your own")
+    if not exc:
+        raise RockcliInputError("no record to run: excitations is empty (resolve_excitations found none; the second "
+                                "list it returns, the unavailable records, says why)")
+    if not conf:
+        raise RockcliInputError("no isolation configuration to assess")
     return cols, exc, conf
+
+
+def check_flag(value, what: str) -> bool:
+    """``value`` when it is True or False (a numpy bool too), else one sentence: ``margin="no"`` is no False (a
+    non-empty string is true: it would run the margins)."""
+    import numpy as np
+
+    from rockcli.io.inputs import check_type
+
+    return bool(check_type(value, (bool, np.bool_), what, "True or False"))
+
+
+def check_count(value, what: str, expected: str, *, lo: int = 1, none: bool = True):
+    """``value`` as an int when it is a whole number >= ``lo`` (not a bool) or, with ``none``, None; else one
+    sentence."""
+    if value is None and none:
+        return None
+    import numpy as np
+
+    from rockcli.io.inputs import check_type
+
+    check_type(value, (int, np.integer), what, expected)
+    if value < lo:
+        raise RockcliInputError(f"{what} must be {expected}, got {value}")
+    return int(value)
 
 
 def check_scale_search(scenes, grid, known=None, progress=None) -> list:

@@ -221,9 +221,11 @@ def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
     """
     import time
 
-    from rockcli.assess.scenes import check_scenes
+    from rockcli.assess.scenes import check_count, check_flag, check_scenes
 
     columns, excitations, configurations = check_scenes(columns, excitations, configurations)
+    margin, neighbourhood = check_flag(margin, "margin"), check_flag(neighbourhood, "neighbourhood")
+    chunks = check_count(chunks, "chunks", "None (one chunk of everything) or a whole number of chunks >= 1")
     if not columns:
         raise RockcliInputError("no body to assess: name a preset (bassae, nemea) or give a body of your own")
     if not configurations:

@@ -41,13 +41,15 @@ def format_number(x, *, derived: bool = False) -> str:
     """The shortest ``%g`` text of ``x`` that reads back as the same double (never a rounded value).
 
     ``format_number(100.0001) == '100.0001'`` where ``f"{100.0001:g}"`` gives ``'100'``;
-    ``format_number(1e-6) == '1e-06'`` as ``:g`` gives. Non-numbers are shown with ``repr``.
+    ``format_number(1e-6) == '1e-06'`` as ``:g`` gives. Non-numbers (a bool among them) are shown with ``repr``.
 
     ``derived=True`` for a value that went through a unit conversion and back (degrees -> radians ->
     degrees, a semi-diagonal from a height and a width): rounded to 12 significant digits first, which
     gives back what was typed (``0.9999``, not ``0.9999000000000001``) and is still far finer than any
     limit it is compared with.
     """
+    if isinstance(x, bool) or type(x).__name__ in ("bool", "bool_"):  # True is no number 1
+        return repr(bool(x))
     try:
         v = float(x)
     except (TypeError, ValueError):

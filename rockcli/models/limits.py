@@ -82,6 +82,10 @@ def _check(cond: bool, message) -> None:
 
 
 def _finite(x) -> bool:
+    """``x`` is a finite number (a numeric string too, as the specs give); a bool is not (``Plinth(True, 0.6)``
+    would build a plinth 1 m tall)."""
+    if isinstance(x, bool) or type(x).__name__ in ("bool", "bool_"):  # Python's and numpy's
+        return False
     try:
         return math.isfinite(float(x))
     except (TypeError, ValueError):

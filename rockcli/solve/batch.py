@@ -70,7 +70,8 @@ def simulate_many(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL,
         :class:`JobError` with the reason and the others still run. Invalid solver options
         (``rtol``, ``tail``, ``rest_tol``, ``horizon``) concern every job and raise.
     """
-    if isinstance(jobs, (list, tuple)):  # a body on a plinth (a Stack job) runs on the stack driver
+    jobs = as_jobs(jobs)
+    if jobs:  # a body on a plinth (a Stack job) runs on the stack driver
         from rockcli.solve.stack_many import is_stack_job, mixed
 
         if any(is_stack_job(j) for j in jobs):
@@ -104,6 +105,24 @@ def simulate_verdicts(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL, res
         theta_max_over_alpha=outs[:, k.O_THETA_MAX] / np.asarray(alphas, dtype=float).reshape(-1),
         settled=outs[:, k.O_SETTLED] != 0.0, status=outs[:, k.O_STATUS].astype(np.int64),
         nfev=outs[:, k.O_NRHS].astype(np.int64), peak_final=outs[:, k.O_PEAK_FINAL] != 0.0)
+
+
+#: What ``jobs`` must be, for the sentence that refuses anything else.
+JOBS_EXPECTED = "a list of (block, foundation, excitation[, scale]) tuples"
+
+
+def as_jobs(jobs) -> list:
+    """``jobs`` as a list of jobs, else one sentence: a list, a tuple or another sequence of jobs; one job not
+    wrapped in a list (``(block, foundation, pulse)``: its items would be three jobs, each an error row) is refused
+    as such. A job that fails its own checks is not refused here: it comes back as a :class:`JobError` row."""
+    from rockcli.io.inputs import as_list, type_words
+    from rockcli.models import Stack
+
+    items = as_list(jobs, "jobs", JOBS_EXPECTED)
+    if items and isinstance(items[0], (Block, Stack)):
+        raise RockcliInputError(f"jobs must be {JOBS_EXPECTED}, got one job's items ({type_words(items[0])}, ...): "
+                                f"give the job in a list, [(block, foundation, excitation)]")
+    return items
 
 
 #: The work estimates that passed in this process, by everything :func:`_check_work` reads: the block and the
@@ -201,9 +220,7 @@ def _run_many(jobs, *, rtol, tail, rest_tol, horizon, max_steps, early, progress
     Returns ``(outs, alphas, failed)``: ``outs`` has one row per valid job in job order,
     ``alphas`` one entry per job (NaN for a failed one), ``failed`` maps job index -> JobError.
     """
-    from rockcli.io.inputs import as_list
-
-    jobs = as_list(jobs, "jobs", "a list of (block, foundation, excitation[, scale]) tuples")
+    jobs = as_jobs(jobs)
     tails_in = np.asarray(tail, dtype=float)
     if tails_in.ndim == 0:
         validate_options(rtol, float(tails_in), rest_tol, horizon, max_steps)
