@@ -29,6 +29,8 @@ from typing import Sequence
 
 import numpy as np
 
+from rockcli.errors import RockcliInputError
+
 #: The two capacities kept per pair, in the order they are reported.
 ORIENTATIONS = ("median", "worst")
 
@@ -45,8 +47,9 @@ def run_fragility_azimuths(columns, excitations: Sequence, configurations, *, az
     ``orientation``.
     """
     from rockcli.assess.azimuth import expand
-    from rockcli.assess.fragility import (CENSORED_RIGHT, DEFAULT_LEVEL, DEFAULT_N_BOOT, DEFAULT_SEED, FragilityRow,
-                                          _fit_curves, run_fragility)
+    from rockcli.assess.fragility import (CENSORED_RIGHT, DEFAULT_LEVEL, DEFAULT_N_BOOT, DEFAULT_SEED, IMS,
+                                          MARGIN_GRID, Fragility, FragilityRow, _fit_curves, run_fragility)
+    from rockcli.assess.scenes import check_scenes
 
     n_boot = DEFAULT_N_BOOT if n_boot is None else int(n_boot)
     seed = DEFAULT_SEED if seed is None else int(seed)
@@ -55,8 +58,16 @@ def run_fragility_azimuths(columns, excitations: Sequence, configurations, *, az
     # an azimuth normal to a motion that stays in one vertical plane feels nothing: it never overturns
     # (right-censored at any factor), and its IM is 0; it is not run
     still = {x.label for x in expanded if x.pair is not None and x.motion is not None and not np.any(x.motion.acc)}
-    each = run_fragility(columns, [x for x in expanded if x.label not in still], configurations, im=im, n_boot=0,
-                         seed=seed, level=level, unavailable=unavailable, **kwargs)
+    run = [x for x in expanded if x.label not in still]
+    if run:
+        each = run_fragility(columns, run, configurations, im=im, n_boot=0, seed=seed, level=level,
+                             unavailable=unavailable, **kwargs)
+    else:  # no motion along any orientation of any pair: nothing to run (run_fragility refuses no excitation)
+        columns, _, configurations = check_scenes(columns, excitations, configurations)
+        if im not in IMS:
+            raise RockcliInputError(f"intensity measure {im!r} is not one of {', '.join(IMS)}")
+        each = Fragility(list(columns), list(configurations), [], IMS[im], [], [], 0, seed, level,
+                         (float(MARGIN_GRID[0]), float(MARGIN_GRID[-1])), list(unavailable))
     by_key = {(r.column, r.record, r.configuration): r for r in each.rows}
     for b in columns:
         for c in configurations:
