@@ -86,7 +86,8 @@ def workspace(n):
     position); per block ``AG`` (2 x nf) and ``bG`` the affine acceleration of its centre, ``AA``, ``bA`` of its
     angular acceleration, ``G`` and ``vG`` its centre and velocity, ``om`` and ``th`` its rate and angle; per
     interface ``fr`` the contact point and the frame of the surface below ``(Px, Py, tx, ty, nx, ny)``; ``M, r,
-    x`` the linear system and its solution."""
+    x`` the linear system and its solution; ``mo`` per interface 1 where a sliding contact's friction is off (it
+    pulls: :func:`solve_level`), ``fq`` scratch forces."""
     nf = 2 * n + 1
     free = np.zeros(nf, dtype=np.int64)
     AG = np.zeros((n, 2, nf))
@@ -101,7 +102,9 @@ def workspace(n):
     M = np.zeros((nf, nf))
     r = np.zeros(nf)
     x = np.zeros(nf)
-    return free, AG, bG, AA, bA, G, vG, om, th, fr, M, r, x
+    mo = np.zeros(n)
+    fq = np.zeros((n, 3))
+    return free, AG, bG, AA, bA, G, vG, om, th, fr, M, r, x, mo, fq
 
 
 @kernel
@@ -127,7 +130,7 @@ def free_coordinates(cp, pat, free):
 def kinematics(cp, pat, y, ws):
     """Positions, velocities and the affine accelerations of every block at the state ``y`` (a row of the work
     array) in the pattern ``pat``: fills ``ws``; returns the number of free coordinates."""
-    free, AG, bG, AA, bA, G, vG, om, th, fr, M, r, x = ws
+    free, AG, bG, AA, bA, G, vG, om, th, fr, M, r, x, mo, fq = ws
     n = int(cp[CP_N])
     nf = free_coordinates(cp, pat, free)
     # the top of the support: the ground, or the base at u
@@ -261,7 +264,7 @@ def assemble(cp, pat, y, ws, nf, ex, ey, level_v):
     sliding slips). ``level_v`` False: accelerations, the effective load of block ``i`` being ``b_G + (ex, ey)``
     with ``(ex, ey) = (ag, g)`` (and the base's own forces); True: an impact, the load being ``-v_G-`` (the
     velocities before, in ``ws``'s ``vG`` and ``om`` as given by the caller) and no base force."""
-    free, AG, bG, AA, bA, G, vG, om, th, fr, M, r, x = ws
+    free, AG, bG, AA, bA, G, vG, om, th, fr, M, r, x, mo, fq = ws
     n = int(cp[CP_N])
     for k in range(nf):
         col = free[k]
@@ -271,7 +274,7 @@ def assemble(cp, pat, y, ws, nf, ex, ey, level_v):
         if sliding_j >= 0:
             # Coulomb: F_j . (t + mu sl n) = 0, F_j = sum_{i >= j} m_i (a_Gi + (ag, g))
             j = sliding_j
-            mu = fld(cp, j, F_MU)
+            mu = fld(cp, j, F_MU) * (1.0 - mo[j])
             sl = pat[2 * j + 1]
             wx = fr[j, 2] + mu * sl * fr[j, 4]
             wy = fr[j, 3] + mu * sl * fr[j, 5]
@@ -319,7 +322,7 @@ def assemble(cp, pat, y, ws, nf, ex, ey, level_v):
 def accelerations(cp, pat, y, ag, ws, ydot):
     """The pattern's right-hand side at the state ``y`` (a row): ``ydot`` (same layout; 0 for the coordinates the
     pattern holds). Returns False when the pattern's system is singular (then ``ydot`` holds no accelerations)."""
-    free, AG, bG, AA, bA, G, vG, om, th, fr, M, r, x = ws
+    free, AG, bG, AA, bA, G, vG, om, th, fr, M, r, x, mo, fq = ws
     nf = kinematics(cp, pat, y, ws)
     ny = ydot.shape[0]
     for i in range(ny):
@@ -328,11 +331,44 @@ def accelerations(cp, pat, y, ag, ws, ydot):
         ydot[free[k]] = y[free[k] + 1]
     if nf == 0:
         return True
-    assemble(cp, pat, y, ws, nf, ag, cp[CP_G], False)
-    ok = solve_small(M, r, x, nf)
+    ok = solve_level(cp, pat, y, ws, nf, ag, False)
     for k in range(nf):
         ydot[free[k] + 1] = x[k] if ok else 0.0
     return ok
+
+
+@kernel
+def solve_level(cp, pat, y, ws, nf, ag, level_v):
+    """Assemble and solve the pattern's system (accelerations, or at an impact the rates after it: ``level_v``) into
+    ``ws``'s ``x``, with Coulomb's law as ``|T| <= mu max(N, 0)``: a sliding contact whose normal force (impulse)
+    comes out negative, a pull the model keeps as a contact that does not fly (a jump, counted by the driver), carries
+    no friction (``mo[j] = 1``) and the system is solved again. Without that, the friction of a pulling contact would
+    push along the slip and feed energy in. False when the system is singular."""
+    free, AG, bG, AA, bA, G, vG, om, th, fr, M, r, x, mo, fq = ws
+    n = int(cp[CP_N])
+    any_slide = False
+    for j in range(n):
+        mo[j] = 0.0
+        if pat[2 * j + 1] != 0.0:
+            any_slide = True
+    assemble(cp, pat, y, ws, nf, ag, cp[CP_G], level_v)
+    if not solve_small(M, r, x, nf):
+        return False
+    if not any_slide:
+        return True
+    if level_v:
+        impulses(cp, pat, ws, nf, fq)
+    else:
+        contact_forces(cp, pat, ws, nf, ag, fq)
+    again = False
+    for j in range(n):
+        if pat[2 * j + 1] != 0.0 and fq[j, 0] < 0.0:
+            mo[j] = 1.0
+            again = True
+    if not again:
+        return True
+    assemble(cp, pat, y, ws, nf, ag, cp[CP_G], level_v)
+    return solve_small(M, r, x, nf)
 
 
 @kernel
@@ -342,7 +378,7 @@ def contact_forces(cp, pat, ws, nf, ag, out):
     of the surface below (normal, tangential) and its clockwise moment about the contact point (the face's centre:
     the couple that splits ``N`` between the two corners). With ``ag`` None-like (``math.nan``) the loads are the
     velocity jumps of an impact: the impulses."""
-    free, AG, bG, AA, bA, G, vG, om, th, fr, M, r, x = ws
+    free, AG, bG, AA, bA, G, vG, om, th, fr, M, r, x, mo, fq = ws
     n = int(cp[CP_N])
     g = cp[CP_G]
     Fx = 0.0
@@ -377,7 +413,7 @@ def impulses(cp, pat, ws, nf, out):
     """The impulses of every interface for the velocities after an impact ``x[:nf]`` of the last velocity-level
     solve, the velocities before being ``ws``'s ``vG``, ``om`` (as :func:`contact_forces`, with the velocity jumps
     as loads): ``out[j] = (N, T, K)``."""
-    free, AG, bG, AA, bA, G, vG, om, th, fr, M, r, x = ws
+    free, AG, bG, AA, bA, G, vG, om, th, fr, M, r, x, mo, fq = ws
     n = int(cp[CP_N])
     Fx = 0.0
     Fy = 0.0
@@ -408,7 +444,7 @@ def impulses(cp, pat, ws, nf, out):
 def energy(cp, pat, y, ws):
     """``(kinetic, potential)`` energy of the chain and its base at the state ``y`` (potential: gravity from the
     ground's level and the bearings' spring)."""
-    free, AG, bG, AA, bA, G, vG, om, th, fr, M, r, x = ws
+    free, AG, bG, AA, bA, G, vG, om, th, fr, M, r, x, mo, fq = ws
     kinematics(cp, pat, y, ws)
     n = int(cp[CP_N])
     g = cp[CP_G]

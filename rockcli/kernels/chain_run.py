@@ -310,6 +310,9 @@ def simulate_chain(cp, pat0, y0, ekind, epar, acc, dt, t_begin, t_exc_end, tail,
     zero_s = np.zeros(n, dtype=np.bool_)
     free_corner = np.zeros(n, dtype=np.bool_)
     fcols = np.zeros(2 * n + 1, dtype=np.int64)
+    mg0 = np.zeros(2 * n)
+    mg1 = np.zeros(2 * n)
+    mg2 = np.zeros(2 * n)
     alpha_rest = np.zeros(n)
     for j in range(n):
         alpha_rest[j] = fld(cp, j, F_AREST)
@@ -347,13 +350,13 @@ def simulate_chain(cp, pat0, y0, ekind, epar, acc, dt, t_begin, t_exc_end, tail,
             t_stop = min(t_stop, t_show_end)
         if rigid and _all_stuck(pat, n):
             lo, hi = rest_band(cp, W[W_Y], ws, frc, best)
-            tu = band_exit(seg, epar, lo, hi, t, t_stop)
+            tu, side = band_exit(seg, epar, lo, hi, t, t_stop)
             if tu < 0.0:
                 rs[RS_T] = t_stop
                 continue
             rs[RS_T] = tu
-            ag = ground_at(tu, seg, epar)
-            if ag >= hi:
+            ag = ground_at(tu, seg, epar)  # the pattern chosen just past the band's edge (the motion that starts)
+            if side > 0.0:
                 ag = max(ag, hi + 1e-9 * abs(hi))
             else:
                 ag = min(ag, lo - 1e-9 * abs(lo))
@@ -407,7 +410,7 @@ def simulate_chain(cp, pat0, y0, ekind, epar, acc, dt, t_begin, t_exc_end, tail,
         xo[X_STEPS] = steps + 1.0
         t_new = t_stop if last else t + hs
         code, who, sig = state_events(cp, pat, W, hs, 1.0)
-        fcode, fwho, fsig, pulled = force_events(cp, pat, W, hs, t, seg, epar, ws, frc, sig)
+        fcode, fwho, fsig, pulled = force_events(cp, pat, W, hs, t, seg, epar, ws, frc, sig, mg0, mg1, mg2)
         if pulled:
             xo[X_N_JUMP] += 1.0
         if fcode != EVC_NONE and (fsig <= sig or code == EVC_NONE):

@@ -163,64 +163,83 @@ def state_events(cp, pat, W, hs, sig_lim):
 
 
 @kernel
-def _force_check(cp, pat, W, hs, sig, t, seg, epar, ws, frc):
-    """The smallest margin of the pattern's force conditions at fraction ``sig`` of the step (relative: a face's
-    smaller corner force over its normal force, a sticking contact's ``(mu N - |T|)/N``): ``(margin, j, code,
-    pulls)`` (``code`` the event that a margin <= 0 means)."""
+def _force_margins(cp, pat, W, hs, sig, t, seg, epar, ws, frc, mg):
+    """The pattern's force conditions at fraction ``sig`` of the step, relative to each contact's normal force:
+    ``mg[2 j]`` interface ``j``'s face (its smaller corner force), ``mg[2 j + 1]`` its cone while it sticks (``mu N -
+    |T|``); ``inf`` where the condition does not apply. Returns the pivots that pull (-1: a singular system)."""
     dense_at(W, hs, sig, W_TMP)
     ag = ground_at(t + sig * hs, seg, epar)
     nf = solve_pattern(cp, pat, W[W_TMP], ag, ws, frc)
     n = int(cp[CP_N])
-    worst = math.inf
-    who = -1
-    code = EVC_NONE
-    pulls = 0
+    for k in range(2 * n):
+        mg[k] = math.inf
     if nf < 0:
-        return worst, who, code, pulls
+        return -1
+    pulls = 0
     for j in range(n):
         c = pat[2 * j]
         sl = pat[2 * j + 1]
         N = frc[j, 0]
+        scale = max(abs(N), 1e-300)
         if c == 0.0:
             pr, pl = face_corners(N, frc[j, 2], fld(cp, j, 0))
-            m = min(pr, pl) / max(abs(N), 1e-300)
-            if m < worst:
-                worst, who, code = m, j, EVC_FACE_OPENS
+            mg[2 * j] = min(pr, pl) / scale
         elif N < 0.0:
             pulls += 1
         if sl == 0.0 and (c == 0.0 or N > 0.0):
-            m = (fld(cp, j, F_MU) * N - abs(frc[j, 1])) / max(abs(N), 1e-300)
-            if m < worst:
-                worst, who, code = m, j, EVC_SLIP_STARTS
-    return worst, who, code, pulls
+            mg[2 * j + 1] = (fld(cp, j, F_MU) * N - abs(frc[j, 1])) / scale
+    return pulls
 
 
 @kernel
-def force_events(cp, pat, W, hs, t, seg, epar, ws, frc, sig_lim):
-    """The first force event of the step in ``(0, sig_lim]`` (16 samples, then bisection): ``(code, j, sigma,
-    pulled)``; ``pulled`` True when a pivot's normal force was negative at a sample before it."""
-    prev = 0.0
+def _crossing(mg0, mg, n2):
+    """The smallest margin among the conditions that were positive at ``mg0`` and are not at ``mg``, and which:
+    ``(value, k)``; ``(inf, -1)`` when none crossed."""
+    best = math.inf
+    who = -1
+    for k in range(n2):
+        if mg0[k] > 0.0 and mg[k] <= 0.0 and mg[k] < best:
+            best = mg[k]
+            who = k
+    return best, who
+
+
+@kernel
+def force_events(cp, pat, W, hs, t, seg, epar, ws, frc, sig_lim, mg0, mg1, mg2):
+    """The first force event of the step in ``(0, sig_lim]``: a condition that is positive and then is not (16
+    samples, then bisection between the last sample where every crossing condition held and the first where one
+    failed). A condition that does not hold at the start of the step (a tangency: the pattern was entered at its
+    threshold) is an event only once it has held. Returns ``(code, j, sigma, pulled)``; ``pulled`` True when a pivot's
+    normal force was negative at a sample before it. ``mg0``, ``mg1``, ``mg2``: scratch (2 n)."""
+    n2 = 2 * int(cp[CP_N])
     pulled = False
+    _force_margins(cp, pat, W, hs, 0.0, t, seg, epar, ws, frc, mg0)
+    prev = 0.0
     for m in range(1, N_SAMPLES + 1):
         sg = sig_lim * m / N_SAMPLES
-        w, who, code, pulls = _force_check(cp, pat, W, hs, sg, t, seg, epar, ws, frc)
+        pulls = _force_margins(cp, pat, W, hs, sg, t, seg, epar, ws, frc, mg1)
         if pulls > 0:
             pulled = True
-        if w <= 0.0 and code != EVC_NONE:
+        v, k = _crossing(mg0, mg1, n2)
+        if k >= 0:
             lo = prev
             hi = sg
             for _ in range(60):
                 mid = 0.5 * (lo + hi)
                 if mid <= lo or mid >= hi:
                     break
-                wm, wm_j, wm_code, _p = _force_check(cp, pat, W, hs, mid, t, seg, epar, ws, frc)
-                if wm <= 0.0 and wm_code != EVC_NONE:
+                _force_margins(cp, pat, W, hs, mid, t, seg, epar, ws, frc, mg2)
+                vm, km = _crossing(mg0, mg2, n2)
+                if km >= 0:
                     hi = mid
-                    who = wm_j
-                    code = wm_code
+                    k = km
                 else:
                     lo = mid
-            return code, who, hi, pulled
+            code = EVC_FACE_OPENS if k % 2 == 0 else EVC_SLIP_STARTS
+            return code, k // 2, hi, pulled
+        for q in range(n2):  # a condition that holds now counts as held from here on
+            if mg1[q] > 0.0:
+                mg0[q] = mg1[q]
         prev = sg
     return EVC_NONE, -1, sig_lim, pulled
 

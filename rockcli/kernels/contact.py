@@ -36,7 +36,7 @@ import math
 
 import numpy as np
 
-from rockcli.kernels.chain import (BASE_RIGID, CP_BASE, CP_BLK, CP_N, CP_TOL, F_B, F_M, F_MU, NF_BLK, assemble, col_psi, col_s,
+from rockcli.kernels.chain import (BASE_RIGID, CP_BASE, CP_BLK, CP_N, CP_TOL, F_B, F_M, F_MU, NF_BLK, assemble, col_psi, col_s, solve_level,
                                    contact_forces, fld, impulses, kinematics, solve_small)
 from rockcli.kernels.jit import kernel
 
@@ -55,7 +55,7 @@ def pattern_margin(cp, pat, y, ws, frc, nf, zero_psi, zero_s, level_v, y_before)
     the number of pivots that pull. ``zero_psi[j]``: interface ``j``'s angle is at 0 (a face or a pivot starting:
     its corner and its opening are checked); ``zero_s[j]``: its slip rate is at 0 (a slide starting: its direction is
     checked on ``s''``). At an impact (``level_v``) the opening and the slip are checked on the rates after it."""
-    free, AG, bG, AA, bA, G, vG, om, th, fr, M, r, x = ws
+    free, AG, bG, AA, bA, G, vG, om, th, fr, M, r, x, mo, fq = ws
     n = int(cp[CP_N])
     worst = math.inf
     pulls = 0
@@ -88,9 +88,12 @@ def pattern_margin(cp, pat, y, ws, frc, nf, zero_psi, zero_s, level_v, y_before)
         if sl == 0.0:
             if N > 0.0 or c == 0.0 or zero_psi[j]:
                 worst = min(worst, (mu * max(N, 0.0) - abs(T)) / fs)
-        elif zero_s[j] or level_v:
-            rate = _rate_of(free, x, nf, col_s(j))
-            worst = min(worst, sl * rate / vs)
+        else:
+            if mo[j] != 0.0:  # solved without friction because it pulled: it must pull still
+                worst = min(worst, -N / fs)
+            if zero_s[j] or level_v:
+                rate = _rate_of(free, x, nf, col_s(j))
+                worst = min(worst, sl * rate / vs)
     return worst, pulls
 
 
@@ -107,10 +110,8 @@ def solve_pattern(cp, pat, y, ag, ws, frc):
     """The accelerations of the pattern at the state ``y`` (``ws``'s ``x``) and its contact forces ``frc``; the
     number of free coordinates, or -1 when its system is singular."""
     nf = kinematics(cp, pat, y, ws)
-    free, AG, bG, AA, bA, G, vG, om, th, fr, M, r, x = ws
     if nf > 0:
-        assemble(cp, pat, y, ws, nf, ag, cp[1], False)
-        if not solve_small(M, r, x, nf):
+        if not solve_level(cp, pat, y, ws, nf, ag, False):
             return -1
     contact_forces(cp, pat, ws, nf, ag, frc)
     return nf
@@ -120,8 +121,12 @@ def solve_pattern(cp, pat, y, ag, ws, frc):
 def choose_pattern(cp, pat, y, ag, ws, frc, zero_psi, zero_s, best):
     """The pattern that continues the motion from the state ``y`` (no impact): the interfaces with ``zero_psi``
     (angle and rate at 0) may be a face or either pivot, those with ``zero_s`` (slip rate 0) may stick or slide
-    either way; the others keep ``pat``'s. Writes the chosen pattern into ``best``; returns its margin (negative:
-    none met every condition, the least bad is taken) and its pulling pivots."""
+    either way; the others keep ``pat``'s. ``pat`` itself, whose condition has just failed (the event), is taken only
+    when no other candidate meets the conditions (within the relative slack ``CP_TOL``): a tangency, where the force
+    touches its threshold and turns back. At the threshold the pattern that starts has its new freedom at zero
+    acceleration (the corner force is exactly 0 there), so its own margin is at rounding level; ``pat``'s is too,
+    and only the direction of the motion after the event tells them apart: the failing one is left out. Writes the
+    chosen pattern into ``best``; returns its margin (negative: none met every condition) and its pulling pivots."""
     n = int(cp[CP_N])
     nz = 0
     for j in range(n):
@@ -142,6 +147,12 @@ def choose_pattern(cp, pat, y, ag, ws, frc, zero_psi, zero_s, best):
             if zero_s[j]:
                 cand[2 * j + 1] = float(rest % 3 - 1) if rest % 3 != 1 else 0.0
                 rest //= 3
+        same = True
+        for i in range(2 * n):
+            if cand[i] != pat[i]:
+                same = False
+        if same:  # the pattern whose condition just failed: only if no other meets the conditions (a tangency)
+            continue
         nf = solve_pattern(cp, cand, y, ag, ws, frc)
         if nf < 0:
             continue
@@ -151,6 +162,11 @@ def choose_pattern(cp, pat, y, ag, ws, frc, zero_psi, zero_s, best):
             best_pulls = pulls
             for i in range(2 * n):
                 best[i] = cand[i]
+    if best_m < -cp[CP_TOL]:
+        for i in range(2 * n):
+            best[i] = pat[i]
+        nf = solve_pattern(cp, pat, y, ag, ws, frc)
+        best_m, best_pulls = pattern_margin(cp, pat, y, ws, frc, nf, zero_psi, zero_s, False, y)
     return best_m, best_pulls
 
 
@@ -164,7 +180,7 @@ def impact(cp, pat, pat_to, y, ws, frc, zero_psi, free_corner, best, v0, w0, yne
     ``ynew`` (positions unchanged; the rates of the free coordinates; 0 for the others). Returns ``(margin, pulls,
     slipped)``: ``slipped`` True when the rocking law's impulses did not fit the cone. ``v0``, ``w0``: scratch for
     the velocities before (n x 2, n)."""
-    free, AG, bG, AA, bA, G, vG, om, th, fr, M, r, x = ws
+    free, AG, bG, AA, bA, G, vG, om, th, fr, M, r, x, mo, fq = ws
     n = int(cp[CP_N])
     kinematics(cp, pat, y, ws)
     for i in range(n):
@@ -204,8 +220,7 @@ def impact(cp, pat, pat_to, y, ws, frc, zero_psi, free_corner, best, v0, w0, yne
                 vG[i, 1] = v0[i, 1]
                 om[i] = w0[i]
             if nf > 0:
-                assemble(cp, cand, y, ws, nf, 0.0, 0.0, True)
-                if not solve_small(M, r, x, nf):
+                if not solve_level(cp, cand, y, ws, nf, 0.0, True):
                     continue
             impulses(cp, cand, ws, nf, frc)
             m, pulls = pattern_margin(cp, cand, y, ws, frc, nf, zero_psi, no_s, True, y)
@@ -271,7 +286,7 @@ def project(cp, pat, pat_to, y, ws, v0, w0, ynew):
     velocity-level equations with no friction impulse: a contact that slides keeps its momentum along the slip, one
     that sticks is held). Energy never rises (a projection). Writes ``ynew``; the slip directions of ``pat_to`` are
     set from the rates after it (0: it sticks)."""
-    free, AG, bG, AA, bA, G, vG, om, th, fr, M, r, x = ws
+    free, AG, bG, AA, bA, G, vG, om, th, fr, M, r, x, mo, fq = ws
     n = int(cp[CP_N])
     kinematics(cp, pat, y, ws)
     for i in range(n):

@@ -286,19 +286,22 @@ def band_exit(seg, epar, a_lo, a_hi, t, t_end):
     """First time in [t, t_end] at which the ground acceleration leaves ``[a_lo, a_hi]`` (``a_lo < 0 < a_hi``: the
     band in which a stack at rest on the ground stays at rest; :func:`_rigid_uplift` is the symmetric case), else
     -1. Linear segments are exact; a pulse segment is cut at its turns into monotone pieces, on which the exit is
-    bisected to the last bit (the argument of :func:`_rigid_uplift`)."""
+    bisected to the last bit (the argument of :func:`_rigid_uplift`). Returns ``(t, side)``: ``side`` +1 when it
+    leaves above ``a_hi``, -1 below ``a_lo`` (``t = -1``, side 0: it stays inside)."""
     a0 = ground_at(t, seg, epar)
-    if a0 > a_hi or a0 < a_lo:
-        return t
+    if a0 > a_hi:
+        return t, 1.0
+    if a0 < a_lo:
+        return t, -1.0
     if int(seg[0]) == SEG_LINEAR:
         if seg[2] == 0.0:
-            return -1.0
+            return -1.0, 0.0
         a1 = ground_at(t_end, seg, epar)
         if a1 > a_hi:
-            return t + (a_hi - a0) / (a1 - a0) * (t_end - t)
+            return t + (a_hi - a0) / (a1 - a0) * (t_end - t), 1.0
         if a1 < a_lo:
-            return t + (a_lo - a0) / (a1 - a0) * (t_end - t)
-        return -1.0
+            return t + (a_lo - a0) / (a1 - a0) * (t_end - t), -1.0
+        return -1.0, 0.0
     turns = _pulse_turns(int(seg[0]))
     lo = t
     for k in range(5):
@@ -317,8 +320,8 @@ def band_exit(seg, epar, a_lo, a_hi, t, t_end):
                     hi = mid
                 else:
                     lo = mid
-            return hi
+            return hi, (1.0 if up else -1.0)
         if hi >= t_end:
             break
         lo = hi
-    return -1.0
+    return -1.0, 0.0

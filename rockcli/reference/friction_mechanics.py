@@ -186,13 +186,26 @@ class FrictionChain:
     def solve(self, pat, X, V, F, level="a"):
         """``(a, lam, kinds)``: accelerations (``level="a"``, ``F`` the loads) or velocity jumps (``"v"``, ``F`` =
         0 and the right-hand side ``-J V``) with the multipliers (forces or impulses) of the pattern's constraints,
-        the sliding contacts' friction added to their normal columns."""
+        the sliding contacts' friction added to their normal columns. Coulomb's law is ``|T| <= mu max(N, 0)``: a
+        sliding contact whose normal multiplier comes out negative (it pulls: a jump the model does not follow) is
+        solved again without friction."""
+        off = set()
+        a, lam, kinds = self._solve(pat, X, V, F, level, off)
+        pulling = {j for (j, kind), v in zip(kinds, lam) if kind == "n" and pat[2 * j + 1] != 0.0 and v < 0.0}
+        if pulling:
+            a, lam, kinds = self._solve(pat, X, V, F, level, pulling)
+            self.last_off = pulling
+        else:
+            self.last_off = set()
+        return a, lam, kinds
+
+    def _solve(self, pat, X, V, F, level, off):
         J, bias, kinds = self.constraints(pat, X, V)
         k = J.shape[0]
         cols = J.T.copy()
         for i, (j, kind) in enumerate(kinds):
             sl = pat[2 * j + 1]
-            if kind == "n" and sl != 0.0:
+            if kind == "n" and sl != 0.0 and j not in off:
                 Jt, _ = self.tangent_row(j, pat[2 * j], X, V)
                 cols[:, i] += -self.mu[j] * sl * Jt
         A = np.zeros((self.N + k, self.N + k))
@@ -228,7 +241,8 @@ class FrictionChain:
             out[j, {"n": 0, "t": 1, "a": 2}[kind]] = v
         for j in range(self.n):
             if pat[2 * j + 1] != 0.0:
-                out[j, 1] = -self.mu[j] * pat[2 * j + 1] * out[j, 0]
+                mu = 0.0 if j in getattr(self, "last_off", ()) else self.mu[j]
+                out[j, 1] = -mu * pat[2 * j + 1] * out[j, 0]
         return out
 
     def energy(self, X, V):
