@@ -1,4 +1,4 @@
-"""A body on a free plinth on the command line (``--on``), the friction check (``--friction``), the stack in the
+"""A body on a free plinth on the command line (``--on``), its friction demand, the stack in the
 batch path (``simulate_many``), its lift-off floor in the margin search, and the plinth in ``assess``."""
 
 from __future__ import annotations
@@ -61,8 +61,7 @@ def test_a_wide_low_plinth_gives_the_statue_on_rigid_ground_exactly(motion):
 
 
 def test_a_tall_plinth_reports_both_blocks_and_the_friction_demand():
-    d = _json("simulate", "--body", STATUE, "--record", KOBE, "--on", "plinth:height=1.0,width=0.6",
-              "--friction", "0.5")
+    d = _json("simulate", "--body", STATUE, "--record", KOBE, "--on", "plinth:height=1.0,width=0.6")
     for block in ("body", "plinth"):
         assert set(d[block]) >= {"theta_max_rad", "alpha_rad", "theta_max_over_alpha", "t_uplift_s", "n_impacts"}
     assert d["plinth"]["t_uplift_s"] is not None  # the plinth rocks (the assembly lifts first, at 0.225 g)
@@ -72,10 +71,6 @@ def test_a_tall_plinth_reports_both_blocks_and_the_friction_demand():
     assert d["plinth_model"]["mass_ratio"] == pytest.approx(1.0 * 0.6 / (1.79 * 0.5))
     assert d["plinth_model"]["assembly_uplift_g"] < d["plinth_model"]["body_uplift_g"]
     assert d["toppled"] in (None, "body", "plinth")
-    f = d["friction"]
-    assert f["mu"] == 0.5
-    assert f["exceeded"]["base"] == (fd["base"] > 0.5) and f["exceeded"]["joint"] == (fd["joint"] > 0.5)
-    assert f["exceeded_impulsive"]["base"] == (fd["base_impulsive"] > 0.5)
     assert "plain_words" in d
     _, text = _run("simulate", "--body", STATUE, "--record", KOBE, "--on", "plinth:height=1.0,width=0.6")
     assert "plinth peak" in text and "friction demand" in text and "In plain words:" in text
@@ -104,56 +99,12 @@ def test_the_history_of_a_stack(tmp_path):
     (("--on", "plinth:height=1,width=1", "--isolation", "scss:Tb=3,mu=0.05,gamma=0"), "gamma = 0"),
     (("--on", "plinth:height=1,width=1", "--cap-ratio", "0.2"), "--cap-ratio"),
     (("--on", "plinth:height=1,width=1", "--vertical-pulse", "sine:ap=0.1,Tp=0.3"), "--vertical"),
-    (("--friction", "0"), "--friction must be a friction coefficient"),
-    (("--friction", "nan"), "--friction"),
-    (("--friction", "0.5", "--isolation", "linear:Tb=3"), "give --isolation none"),
 ])
 def test_bad_plinth_and_friction_input_is_one_sentence(args, words, tmp_path):
     code, out = _run("simulate", "--body", STATUE, "--pulse", "ricker-sym:ap=0.35,Tp=1", *args)
     assert code == 2, out
     assert words in out and "Traceback" not in out
     assert len(out.strip().splitlines()) == 1
-
-
-# ---------------------------------------------------------------------------------------------------------------
-# the friction check of a single block
-# ---------------------------------------------------------------------------------------------------------------
-
-def test_a_block_that_never_lifts_has_the_record_s_peak_over_g_as_its_demand():
-    """At rest the demand is |ag|/g; on the record's own grid its peak is the scaled record's peak exactly."""
-    d = _json("simulate", "--body", STATUE, "--record", KOBE, "--scale", "0.3", "--friction", "0.25")
-    assert d["verdict"] == "no_uplift"
-    assert d["friction"]["peak_demand"] == pytest.approx(0.3 * 0.697, abs=2e-3)
-    from rockcli.records import read_record
-
-    rec = read_record(KOBE).scaled(0.3)
-    assert d["friction"]["peak_demand"] == pytest.approx(float(np.max(np.abs(rec.acc))) / G, rel=1e-12)
-    assert d["friction"]["exceeded"] is False and d["friction"]["peak_demand_impulsive"] == 0.0
-    d = _json("simulate", "--body", STATUE, "--record", KOBE, "--scale", "0.3", "--friction", "0.2")
-    assert d["friction"]["exceeded"] is True  # 0.209 > 0.2: it would slide
-
-
-def test_a_rocking_block_s_demand_and_its_impulsive_demand():
-    d = _json("simulate", "--body", STATUE, "--pulse", "ricker-sym:ap=0.35,Tp=1", "--friction", "0.3")
-    f = d["friction"]
-    alpha = math.radians(d["alpha_deg"])
-    eta = 1 - 1.5 * math.sin(alpha) ** 2
-    assert f["peak_demand_impulsive"] == pytest.approx((1 / math.tan(alpha)) * (1 - eta) / (1 + eta), rel=1e-12)
-    assert math.tan(alpha) * 0.9 < f["peak_demand"] < 0.5  # at least what lifted it, well inside the contact
-    assert f["exceeded"] == (f["peak_demand"] > 0.3)
-    d2 = _json("simulate", "--body", STATUE, "--pulse", "ricker-sym:ap=0.35,Tp=1", "--friction",
-               f"{f['peak_demand'] * 0.999:.6f}")
-    assert d2["friction"]["exceeded"] is True
-
-
-def test_free_rocking_has_impacts_and_their_impulsive_demand():
-    """Released from a tilt, the verdict is proven at once (no steps), but the block rocks and strikes: the demand
-    is read from the history run, impacts included."""
-    d = _json("simulate", "--body", STATUE, "--theta0", "0.1", "--friction", "0.3")
-    alpha = math.radians(d["alpha_deg"])
-    eta = 1 - 1.5 * math.sin(alpha) ** 2
-    assert d["friction"]["peak_demand_impulsive"] == pytest.approx((1 / math.tan(alpha)) * (1 - eta) / (1 + eta))
-    assert 0 < d["friction"]["peak_demand"] < math.tan(alpha)  # free rocking on still ground: below tan(alpha)
 
 
 # ---------------------------------------------------------------------------------------------------------------

@@ -12,6 +12,7 @@ from rockcli.cli.options import (azimuth_options, block_from_options, block_opti
                                  record_kwargs, record_options, report_option, restitution_option, scaled,
                                  simulate_vertical_component_option, stack_from_option)
 from rockcli.cli.options import GAMMA_HELP, REPORT_SUFFIXES, Command
+from rockcli.cli.simulate_friction import FRICTION_HELP
 from rockcli.cli.types import NUMBER, WHOLE
 
 
@@ -77,11 +78,7 @@ from rockcli.cli.types import NUMBER, WHOLE
                    "and lead-rubber bearings also their force-displacement loop) to an image.")
 @report_option
 @plinth_option
-@click.option("--friction", type=NUMBER, default=None, metavar="MU",
-              help="Check the no-sliding assumption: flag the run when its peak friction demand (tangential over "
-                   "normal contact force, at the base and, with --on, at the joint) exceeds MU; the impulsive "
-                   "demand at impacts is reported and flagged apart (docs/plinth.md, Friction). Rigid foundation "
-                   "only.")
+@click.option("--friction", default=None, metavar="MU|base=MU,joint=MU", help=FRICTION_HELP)
 @user_errors
 def simulate(column_name, R, alpha, height, width, name, isolation, record_source, units, dt, fmt, column,
              pulse, vertical_source, vertical_column, vertical_pulse, vertical_scale, theta0, theta_dot0, scale,
@@ -103,6 +100,7 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
           --vertical-pulse sine:ap=0.2,Tp=0.3
       rockcli simulate --body statue:height=1.79,width=0.5 --pulse ricker-sym:ap=0.35,Tp=1 \\
           --on plinth:height=1.0,width=0.6 --friction 0.5
+      rockcli simulate --body crate:height=0.5,width=1.0 --pulse sine:ap=0.5,Tp=1 --friction 0.2
     """
     import json
 
@@ -144,9 +142,13 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     moving = theta0 != 0.0 or theta_dot0 != 0.0
     stack = stack_from_option(block, plinth_spec)
     if friction is not None:
-        from rockcli.cli.simulate_plinth import check_friction_scene
+        from rockcli.cli.azimuth import wants_worst
+        from rockcli.cli.simulate_friction import check_friction_scene, parse_friction
 
-        friction = check_friction_scene(friction, foundation, cap_ratio, vertical_source, vertical_pulse)
+        friction = parse_friction(friction, stack is not None)
+        check_friction_scene(foundation, cap_ratio=cap_ratio, moving=moving, restitution=restitution, check=check,
+                             history_dt=history_dt, worst=wants_worst(),
+                             vertical=vertical_source is not None or vertical_pulse is not None)
     if stack is not None:
         from rockcli.cli.simulate_plinth import refuse_with_plinth
 
@@ -201,11 +203,21 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     if vertical is not None:
         solver["vertical"] = vertical
 
+    friction_res = None
+    if friction is not None:  # the friction run first: where nothing slides, the rocking answer below stands
+        from rockcli.cli.simulate_friction import run_friction
+
+        friction_res = run_friction(stack if stack is not None else block, foundation, excitation, label, friction,
+                                    rtol=rtol, tail=tail, horizon=horizon, history_path=history_path,
+                                    plot_path=plot_path, report_path=report_path, as_json=as_json,
+                                    pga=_pga(excitation, G), motion=None if pulse is not None else label)
+        if friction_res is None:
+            return
     if stack is not None:
         from rockcli.cli.simulate_plinth import run_plinth
 
         return run_plinth(stack, foundation, excitation, label, restitution=restitution, rtol=rtol, tail=tail,
-                          horizon=horizon, history_path=history_path, as_json=as_json, friction=friction,
+                          horizon=horizon, history_path=history_path, as_json=as_json, friction_res=friction_res,
                           pga=_pga(excitation, G), plot_path=plot_path, motion=None if pulse is not None else label,
                           report_path=report_path)
     from rockcli.solve import simulate as run
@@ -217,12 +229,6 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
             f"the integrator stopped at its safety cap of {res.steps + res.rejected_steps:,} steps at "
             f"t = {res.t_end_s:.3f} s, a numerical failure: no result is given (please report the command line)")
     checked = _check(block, foundation, excitation, res, rtol, horizon, solver) if check else None
-    friction_out = None
-    if friction is not None:
-        from rockcli.cli.simulate_plinth import single_friction
-
-        friction_out = single_friction(block, foundation, excitation, res, friction, restitution,
-                                       dict(rtol=rtol, tail=tail, horizon=horizon, **solver))
     if history_path:
         from rockcli.report.response import write_history_csv
 
@@ -257,8 +263,10 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
             out["events"] = [e.as_dict() for e in res.history.events]
         if checked:
             out.update({k: (None if isinstance(v, float) and v != v else v) for k, v in checked.items()})
-        if friction_out is not None:
-            out["friction"] = friction_out
+        if friction_res is not None:
+            from rockcli.cli.simulate_friction import friction_keys
+
+            out.update(friction_keys(friction_res, False))
         click.echo(json.dumps(out, allow_nan=False))
         return
 
@@ -287,10 +295,10 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     ]
     if checked:
         rows += _check_rows(checked, res)
-    if friction_out is not None:
-        from rockcli.cli.simulate_plinth import single_friction_row
+    if friction_res is not None:
+        from rockcli.cli.simulate_friction import no_slide_row
 
-        rows.append(single_friction_row(friction_out))
+        rows.append(no_slide_row(friction_res))
     width_ = max(len(k) for k, _ in rows)
     for k, v in rows:
         click.echo(f"{k:<{width_}}  {v}")

@@ -122,7 +122,7 @@ def _demand(x: float) -> str:
 
 
 def run_plinth(stack, foundation, excitation, label: str, *, restitution, rtol, tail, horizon, history_path,
-               as_json: bool, friction, pga: str, plot_path=None, motion=None, report_path=None):
+               as_json: bool, friction_res=None, pga: str, plot_path=None, motion=None, report_path=None):
     """``simulate --on``: one run of the body on its plinth, printed (or ``--json``), its history written, its
     figure drawn and its HTML report written (with the body alone on the same foundation beside it)."""
     from rockcli.assess.plinth_words import run_sentence
@@ -162,7 +162,6 @@ def run_plinth(stack, foundation, excitation, label: str, *, restitution, rtol, 
 
         write_report(report_path, stack_report(stack, foundation, excitation, res, alone, label=label,
                                                command=command_line(), restitution=restitution))
-    checked = stack_friction(res, friction) if friction is not None else None
     body = stack.body
     if as_json:
         d = res.as_dict()
@@ -170,7 +169,11 @@ def run_plinth(stack, foundation, excitation, label: str, *, restitution, rtol, 
         out = {"block": body.name, "R_m": body.R, "alpha_deg": body.alpha_deg, "p_radps": body.p,
                "plinth_model": plinth_dict(stack), "isolation": foundation.label, "excitation": label,
                **({"restitution": restitution} if restitution is not None else {}), **d,
-               **({"friction": checked} if checked is not None else {}), "plain_words": run_sentence(stack, res)}
+               "plain_words": run_sentence(stack, res)}
+        if friction_res is not None:  # nothing slid in the friction run (cli.simulate_friction)
+            from rockcli.cli.simulate_friction import friction_keys
+
+            out.update(friction_keys(friction_res, True))
         echo_json(out)
         return
     p = stack.plinth
@@ -211,16 +214,10 @@ def run_plinth(stack, foundation, excitation, label: str, *, restitution, rtol, 
                             + ("; a toppling block's contact unloads as it falls, so the peaks near the fall are "
                                "no demand to compare" if res.toppled else "")),
     ]
-    if checked is not None:
-        over = [k for k, v in checked["exceeded"].items() if v]
-        imp = [k for k, v in checked["exceeded_impulsive"].items() if v]
-        text = (f"EXCEEDS mu = {friction:g} at the {' and the '.join(over)}: it would slide there (the rocking-only "
-                f"model fails)" if over else f"within mu = {friction:g} at both interfaces")
-        if res.toppled and over:
-            text += " (a falling block's demand grows without bound: read the topple as the answer)"
-        if imp:
-            text += f"; at impacts above mu at the {' and the '.join(imp)}: a slip during the impact"
-        rows.append(("friction check", text))
+    if friction_res is not None:
+        from rockcli.cli.simulate_friction import no_slide_row
+
+        rows.append(no_slide_row(friction_res))
     if res.n_jumps:
         rows.append(("jumps", f"{res.n_jumps} steps or impacts where a pivot would pull: the rocking-only model "
                               f"does not describe the motion there"

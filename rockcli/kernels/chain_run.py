@@ -353,6 +353,8 @@ def simulate_chain(cp, pat0, y0, ekind, epar, acc, dt, t_begin, t_exc_end, tail,
             tu, side = band_exit(seg, epar, lo, hi, t, t_stop)
             if tu < 0.0:
                 rs[RS_T] = t_stop
+                if want_history and t_stop <= t_show_end:  # at rest through the piece: its end
+                    H, nh = _hist(H, nh, t_stop, ground_at(t_stop, seg, epar), HK_STATE, pat, W, W_Y)
                 continue
             rs[RS_T] = tu
             ag = ground_at(tu, seg, epar)  # the pattern chosen just past the band's edge (the motion that starts)
@@ -498,6 +500,8 @@ def simulate_chain(cp, pat0, y0, ekind, epar, acc, dt, t_begin, t_exc_end, tail,
             kind = HK_EVENT
         if want_history:
             H, nh = _hist(H, nh, rs[RS_T], ground_at(rs[RS_T], seg, epar), kind, pat, W, W_Y)
+    if want_history and (nh == 0 or H[nh - 1, HC_T] < rs[RS_T]):
+        H, nh = _hist(H, nh, rs[RS_T], ground_at(rs[RS_T], _seg(rs), epar), HK_END, pat, W, W_Y)
     xo[X_STATUS] = status
     xo[X_T_END] = rs[RS_T]
     xo[X_U_END] = W[W_Y, 0]

@@ -60,7 +60,9 @@ def simulate_many(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL,
 
     A job whose block is a :class:`rockcli.models.Stack` (a body on a free plinth) runs on the stack driver
     (:mod:`rockcli.solve.stack_many`, on a pool of threads) and returns a ``StackRun``, which reads like a
-    :class:`Response` (the body's peak on its plinth; either block toppling overturns the scene).
+    :class:`Response` (the body's peak on its plinth; either block toppling overturns the scene). A job whose block
+    is a :class:`rockcli.solve.slide_many.Sliding` (a body with friction) runs on the friction driver and returns a
+    ``SlideRun`` (the rocking model's own run where nothing slid: :mod:`rockcli.solve.slide_many`).
 
     Returns
     -------
@@ -71,6 +73,13 @@ def simulate_many(jobs, *, rtol: float | None = None, tail=DEFAULT_TAIL,
         (``rtol``, ``tail``, ``rest_tol``, ``horizon``) concern every job and raise.
     """
     jobs = as_jobs(jobs)
+    if jobs:  # a body with friction (a Sliding job) runs on the friction driver, or where nothing slides as without
+        from rockcli.solve.slide_many import is_slide_job, mixed_slides
+
+        if any(is_slide_job(j) for j in jobs):
+            return mixed_slides(jobs, simulate_many, rtol=rtol, tail=tail, rest_tol=rest_tol, horizon=horizon,
+                                max_steps=max_steps, early=early, progress=progress, chunk=chunk,
+                                restitution=restitution, cap_ratio=cap_ratio, vertical=vertical)
     if jobs:  # a body on a plinth (a Stack job) runs on the stack driver
         from rockcli.solve.stack_many import is_stack_job, mixed
 
@@ -118,8 +127,10 @@ def as_jobs(jobs) -> list:
     from rockcli.io.inputs import as_list, type_words
     from rockcli.models import Stack
 
+    from rockcli.solve.slide_many import Sliding
+
     items = as_list(jobs, "jobs", JOBS_EXPECTED)
-    if items and isinstance(items[0], (Block, Stack)):
+    if items and isinstance(items[0], (Block, Stack, Sliding)):
         raise RockcliInputError(f"jobs must be {JOBS_EXPECTED}, got one job's items ({type_words(items[0])}, ...): "
                                 f"give the job in a list, [(block, foundation, excitation)]")
     return items

@@ -112,7 +112,8 @@ class SlideResponse:
 
     @property
     def slides(self) -> bool:
-        return any(p.n_slips > 0 for p in self.interfaces)
+        """A contact slid, between impacts or during one."""
+        return any(p.n_slips > 0 for p in self.interfaces) or self.n_slip_impacts > 0
 
     @property
     def interfaces(self) -> tuple:
