@@ -49,6 +49,13 @@ safety margin), and the margin search (:mod:`rockcli.assess.margin`) never runs 
   :data:`STACK_LINEAR_RTOL_MAX` = 1e-5 for this floor, else 0; a damped oscillator does not amplify it); margin
   :data:`STACK_LINEAR_MARGIN` = 1e-3, far above it and a tenth of the grid's 1 % step
   (tested: at the floor nothing lifts, on random stacks, bearings and records, tests/test_plinth_floor.py).
+* A body with friction (:class:`rockcli.solve.slide_many.Sliding`, friction as a model) on a rigid foundation: it
+  fails by toppling or by sliding off its plinth, and either needs it to leave rest first. At rest its contact forces
+  are affine in ``ag`` with ``T_j/N_j = ag/g`` at every contact, so it leaves rest where ``|ag|`` first exceeds ``g``
+  times the smallest of each contact's ``mu_j`` (a slip) and ``tan(alpha_j)`` (everything above contact ``j`` tipping
+  as one body), and the friction driver scans for exactly that band (:func:`rockcli.kernels.ground.band_exit`):
+  ``M`` the peak of ``|ag|``, that threshold in place of ``g tan(alpha)``. Margin :data:`RIGID_MARGIN`. On bearings:
+  floor 0.
 * Anything else (sliding and lead-rubber bearings, a pulse on linear bearings, a scene the solver
   would refuse): floor 0, every factor may need a run.
 """
@@ -102,7 +109,10 @@ def liftoff_floor(block, foundation, motion, **solver) -> float:
     from rockcli.io.units import G
 
     from rockcli.models import Stack
+    from rockcli.solve.slide_many import Sliding
 
+    if isinstance(block, Sliding):
+        return _sliding_floor(block, foundation, motion)
     if isinstance(block, Stack):
         return _stack_floor(block, foundation, motion, **solver)
     try:
@@ -120,6 +130,23 @@ def liftoff_floor(block, foundation, motion, **solver) -> float:
         return math.inf if m == 0.0 else float(prm[_kernel().P_THR]) / m * (1.0 - LINEAR_MARGIN)
     except (RockcliInputError, TypeError, ValueError):
         return 0.0
+
+
+def _sliding_floor(sliding, foundation, motion) -> float:
+    """A body with friction on the rigid ground (module notes): ``g min_j(mu_j, tan(alpha_j)) / M``; 0 elsewhere."""
+    from rockcli.io.units import G
+    from rockcli.kernels import chain as ch
+    from rockcli.models import Rigid
+    from rockcli.solve.slide import chain_parameters
+
+    if not (foundation is None or isinstance(foundation, Rigid)):
+        return 0.0
+    cp = chain_parameters(sliding.body, sliding.mu)
+    n = int(cp[ch.CP_N])
+    thr = G * min(min(cp[ch.CP_BLK + ch.NF_BLK * j + ch.F_MU], math.tan(cp[ch.CP_BLK + ch.NF_BLK * j + ch.F_AREST]))
+                  for j in range(n))
+    peak = _peak(motion)
+    return math.inf if peak == 0.0 else thr / peak * (1.0 - RIGID_MARGIN)
 
 
 def _linear_base_peak(block, foundation, motion, **solver):

@@ -81,12 +81,14 @@ def check_scenes(columns, excitations, configurations) -> tuple[list, list, list
     """The three lists of an assessment (:func:`rockcli.assess.run_assessment`, :func:`rockcli.assess.run_fragility`)
     with the types they must hold, else one sentence naming the argument and what was given."""
     from rockcli.io.inputs import as_list, check_type
+    from rockcli.solve.slide_many import Sliding
 
-    cols = as_list(columns, "columns", "a list of Block (parse_column_spec('bassae'), ...)", one=(Block, Stack))
+    cols = as_list(columns, "columns", "a list of Block (parse_column_spec('bassae'), ...)",
+                   one=(Block, Stack, Sliding))
     exc = as_list(excitations, "excitations", "a list of Excitation (resolve_excitations(...))", one=Excitation)
     conf = as_list(configurations, "configurations", "a list of Configuration (parse_configurations(...))",
                    one=Configuration)
-    for items, kind, what, expected in ((cols, (Block, Stack), "columns", "a Block"),
+    for items, kind, what, expected in ((cols, (Block, Stack, Sliding), "columns", "a Block"),
                                         (exc, Excitation, "excitations", "an Excitation (resolve_excitations)"),
                                         (conf, Configuration, "configurations", "a Configuration "
                                                                                 "(parse_configurations)")):
@@ -142,6 +144,7 @@ def check_scale_search(scenes, grid, known=None, progress=None) -> list:
     from rockcli.records.record import Record
     from rockcli.solve import Response
     from rockcli.solve.options import check_foundation
+    from rockcli.solve.slide_many import SlideRun, Sliding
     from rockcli.solve.stack_many import StackRun
 
     expected = "a list of (block, foundation, motion) scenes, e.g. [(column('bassae'), Rigid(), record)]"
@@ -151,8 +154,8 @@ def check_scale_search(scenes, grid, known=None, progress=None) -> list:
             raise RockcliInputError(f"scenes: scene {i} must be a (block, foundation, motion) tuple, got "
                                     f"{type_words(scene)}")
         block, foundation, motion = scene
-        check_type(block, (Block, Stack), f"scenes: scene {i}: the block", "a Block (column('bassae'), "
-                                                                           "Block(R, alpha)) or a Stack")
+        check_type(block, (Block, Stack, Sliding), f"scenes: scene {i}: the block",
+                   "a Block (column('bassae'), Block(R, alpha)), a Stack or a Sliding")
         check_foundation(foundation, f"scenes: scene {i}: the foundation")
         check_type(motion, (Record, Pulse), f"scenes: scene {i}: the motion", "a Record (read_record) or a pulse "
                                                                             "(make_pulse)")
@@ -169,7 +172,7 @@ def check_scale_search(scenes, grid, known=None, progress=None) -> list:
         if len(known) != len(scenes):
             raise RockcliInputError(f"known must hold one Response per scene: {len(known)} for {len(scenes)} scenes")
         for r in known:
-            check_type(r, (Response, StackRun), "known: each item", "a Response (simulate(...))")
+            check_type(r, (Response, StackRun, SlideRun), "known: each item", "a Response (simulate(...))")
     if progress is not None and not callable(progress):
         raise RockcliInputError(f"progress must be None or a function progress(n), got {type_words(progress)}")
     return scenes

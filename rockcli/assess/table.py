@@ -83,6 +83,14 @@ class AssessmentRow:
     plinth_theta_max_over_alpha_asm: float = math.nan
     friction_demand_base: float = math.nan
     friction_demand_joint: float = math.nan
+    #: friction as a model (``--friction``): the coefficients (``mu=0.5``, ``base=0.5,joint=0.7``), the peak and the
+    #: residual slip of the body's own contact (on the floor, or on its plinth) and of the plinth on the floor [m]
+    #: (0 where nothing slid: then the row is the rocking model's); verdict ``slid_off``: the body slid off its plinth
+    friction: str = ""
+    slide_max_m: float = math.nan
+    slide_residual_m: float = math.nan
+    plinth_slide_max_m: float = math.nan
+    plinth_slide_residual_m: float = math.nan
 
 
 #: CSV column order (every field of :class:`AssessmentRow`).
@@ -151,7 +159,8 @@ def _base_row(block: Block, x: Excitation, conf: Configuration) -> AssessmentRow
         record=x.label, excitation=x.kind, source=x.source, pga_g=x.pga_g, a_p_g=x.a_p_g, T_p_s=x.T_p_s,
         isolation=conf.label, configuration=conf.header, Tb_s=_nan(getattr(f, "T_b", None)),
         xi=_nan(getattr(f, "xi", None)), mu=_nan(getattr(f, "mu", None)), gamma=float(getattr(f, "gamma", 0.0)),
-        error=x.error, azimuth_deg=x.azimuth_deg, plinth=_plinth_label(block))
+        error=x.error, azimuth_deg=x.azimuth_deg, plinth=_plinth_label(block),
+        friction=getattr(block, "friction_label", ""))
 
 
 def _plinth_label(block) -> str:
@@ -174,6 +183,18 @@ def _plinth_fields(row: AssessmentRow, r) -> None:
     row.plinth_theta_max_over_alpha_asm = st.plinth.theta_max / st.alpha_asm
     row.friction_demand_base = st.friction_base
     row.friction_demand_joint = st.friction_joint
+
+
+def _slide_fields(row: AssessmentRow, r) -> None:
+    """A friction run's own results (``r`` a :class:`rockcli.solve.slide_many.SlideRun`; where nothing slid the
+    rocking run's fields stand, and the slips are 0)."""
+    row.slide_max_m, row.slide_residual_m = r.slide_max_m, r.slide_residual_m
+    row.plinth_slide_max_m, row.plinth_slide_residual_m = r.plinth_slide_max_m, r.plinth_slide_residual_m
+    st = r.slide
+    if r.slid and st.joint is not None:  # a body on its plinth that slid: the plinth's answer from the friction run
+        row.toppled = st.toppled or ""
+        row.plinth_theta_max_over_alpha_asm = st.base.psi_max / st.base.alpha
+        row.friction_demand_base = row.friction_demand_joint = math.nan
 
 
 def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
@@ -289,6 +310,8 @@ def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
         row.base_disp_max_m = r.base_disp_max_m
         if hasattr(r, "stack"):
             _plinth_fields(row, r)
+        if hasattr(r, "slide"):
+            _slide_fields(row, r)
     ok = [i for i, r in enumerate(responses) if r.verdict != VERDICT_ERROR]
     groups = _orientation_groups(run_rows, orientations)
     if margin:

@@ -7,6 +7,7 @@ from functools import partial
 
 import click
 
+from rockcli.cli.assess_friction import friction_option, with_friction
 from rockcli.cli.errors import InputError, user_errors
 from rockcli.cli.options import (QuietSpellingOption, alias_option, azimuth_options, cap_ratio_option, check_outputs, command_line, custom_block_options,
                                  echo_json, given_azimuth, given_component, given_gain, given_suite, horizon_option,
@@ -241,10 +242,11 @@ def _columns(names, R, alpha, height, width, name):
 @restitution_option
 @cap_ratio_option
 @plinth_option
+@friction_option
 @user_errors
 def column(names, R, alpha, height, width, name, records, units, dt, excitation, isolation, margin, neighbourhood,
            csv_path, hist_dir, plot_dir, check_tolerance, scheduler, report_path, as_json, horizon, restitution,
-           cap_ratio, plinth_spec):
+           cap_ratio, plinth_spec, friction):
     """Do the columns NAME... survive the records, on a rigid base and on isolators?
 
     NAME is a preset (bassae, nemea) or a custom block NAME:R=<m>,alpha=<deg> or
@@ -281,6 +283,11 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
         columns, configurations, plinth_note = with_plinth(
             columns, configurations, plinth_spec, isolation_given=bool(isolation), cap_ratio=cap_ratio,
             refused=(("--history-dir", hist_dir), ("--plot-dir", plot_dir)))
+    columns, configurations, friction_note = with_friction(
+        columns, configurations, friction, isolation_given=bool(isolation),
+        refused=(("--restitution", restitution is not None), ("--cap-ratio", bool(cap_ratio)),
+                 ("--history-dir", hist_dir), ("--plot-dir", plot_dir), ("--check-tolerance", check_tolerance)))
+    plinth_note = " ".join(n for n in (plinth_note, friction_note) if n)
     solver.update(_cap_ratio_kw(cap_ratio))
     check_outputs((csv_path, "--csv", False), (report_path, "--report", REPORT_SUFFIXES),
                   folders=((hist_dir, "--history-dir"), (plot_dir, "--plot-dir")))
@@ -500,9 +507,10 @@ def _write_histories(result, hist_dir, plot_dir, as_json=False):
 @horizon_option
 @restitution_option
 @plinth_option
+@friction_option
 @user_errors
 def fragility(names, R, alpha, height, width, name, records, units, dt, isolation, im, n_boot, seed, csv_path,
-              plot_path, scheduler, report_path, as_json, horizon, restitution, plinth_spec):
+              plot_path, scheduler, report_path, as_json, horizon, restitution, plinth_spec, friction):
     """Fragility curves of overturning: P(the body overturns | IM) from a suite of records.
 
     NAME is a body as in 'assess column' (a preset column, or a custom block). Each record is
@@ -538,6 +546,10 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
         columns, configurations, plinth_note = with_plinth(columns, configurations, plinth_spec,
                                                            isolation_given=bool(isolation),
                                                            refused=(("--scheduler", scheduler),))
+    columns, configurations, friction_note = with_friction(
+        columns, configurations, friction, isolation_given=bool(isolation),
+        refused=(("--restitution", restitution is not None),))
+    plinth_note = " ".join(n for n in (plinth_note, friction_note) if n)
     check_outputs((csv_path, "--csv", False), (plot_path, "--plot", True),
                   (report_path, "--report", REPORT_SUFFIXES))
     if scheduler is not None:

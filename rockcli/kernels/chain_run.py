@@ -32,8 +32,10 @@ import math
 import numpy as np
 
 from rockcli.kernels.chain import (BASE_RIGID, CP_BASE, CP_CB, CP_G, CP_KB, CP_MB, CP_N, CP_P2MAX, CP_REST,
-                                   CP_TOL, F_AREST, F_B, F_MU, col_psi, col_s, energy, fld, free_coordinates,
+                                   CP_TOL, F_AREST, F_B, F_M, F_MU, col_psi, col_s, energy, fld, free_coordinates,
                                    workspace)
+from rockcli.kernels.chain_rest import rest_interval
+from rockcli.kernels.linear_base import coefficients
 from rockcli.kernels.chain_step import (EVC_FACE_OPENS, EVC_IMPACT, EVC_NONE, EVC_SLIDE_OFF, EVC_SLIP_STARTS,
                                         EVC_SLIP_STOP, EVC_TOPPLE, _rhs, dp5, force_events, peaks, restep,
                                         state_events)
@@ -329,6 +331,20 @@ def simulate_chain(cp, pat0, y0, ekind, epar, acc, dt, t_begin, t_exc_end, tail,
     stall = 0
     t_last_event = -math.inf
     x_u = X_U_MAX if not rigid else -1
+    band_ok = False  # the rest band on the bearings, computed once each time the chain comes to rest
+    blo = -math.inf
+    bhi = math.inf
+    wb = 0.0
+    xib = 0.0
+    coef = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    if not rigid:
+        mtot = cp[CP_MB]
+        for j in range(n):
+            mtot += fld(cp, j, F_M)
+        wb = math.sqrt(cp[CP_KB] / mtot)
+        xib = cp[CP_CB] / (2.0 * mtot * wb)
+        if ekind == EXC_RECORD:
+            coef = coefficients(wb, xib, dt)
     while True:
         _advance_segment(rs, ekind, epar, acc, dt, t_begin)
         t = rs[RS_T]
@@ -374,6 +390,38 @@ def simulate_chain(cp, pat0, y0, ekind, epar, acc, dt, t_begin, t_exc_end, tail,
             if _all_stuck(pat, n):  # the threshold met without crossing it (a tangency): go on past it
                 rs[RS_T] = min(t_stop, tu + 1e-9 * max(1.0, tu))
             continue
+        if not rigid and ekind == EXC_RECORD and _all_stuck(pat, n):
+            # at rest on the bearings under a record: the base in closed form (kernels.chain_rest)
+            if not band_ok:
+                blo, bhi = rest_band(cp, W[W_Y], ws, frc, best)
+                band_ok = True
+            t_stop = min(t_stop, t + dt)  # after the record (one endless zero segment): a sample interval at a time
+            seg_t0 = seg[3]
+            a0 = seg[1] + seg[2] * (t - seg_t0)
+            tau, u1, v1, upk = rest_interval(wb, xib, coef, dt, W[W_Y, 0], W[W_Y, 1], a0, seg[2], t_stop - t, blo,
+                                             bhi)
+            W[W_Y, 0] = u1
+            W[W_Y, 1] = v1
+            if upk > xo[X_U_MAX]:
+                xo[X_U_MAX] = upk
+                xo[X_T_U_MAX] = t + tau
+            rs[RS_T] = t + tau if tau < t_stop - t else t_stop
+            rs[RS_FRESH] = 1.0
+            if tau < t_stop - t:  # the chain leaves rest here: the pattern the contact law picks
+                t_ev = t + tau
+                for j in range(n):
+                    zero_psi[j] = True
+                    zero_s[j] = True
+                choose_pattern(cp, pat, W[W_Y], ground_at(t_ev, seg, epar), ws, frc, zero_psi, zero_s, best)
+                _switch(xo, pat, best, n, t_ev, t_exc_end)
+                rs[RS_H] = 0.0
+                band_ok = False
+                if want_history:
+                    H, nh = _hist(H, nh, t_ev, ground_at(t_ev, seg, epar), HK_EVENT, pat, W, W_Y)
+            elif want_history and rs[RS_T] <= t_show_end:
+                H, nh = _hist(H, nh, rs[RS_T], ground_at(rs[RS_T], seg, epar), HK_STATE, pat, W, W_Y)
+            continue
+        band_ok = False
         # one step of the free coordinates
         nfc = free_coordinates(cp, pat, fcols)
         if rs[RS_FRESH] != 0.0:

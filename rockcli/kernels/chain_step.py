@@ -25,9 +25,10 @@ from rockcli.kernels.ground import ground_at
 from rockcli.kernels.jit import kernel
 from rockcli.kernels.layout import W_EV, W_FEV, W_RE, W_TMP, W_Y, W_YNEW
 from rockcli.kernels.polynomials import _first_down, _poly
-from rockcli.kernels.chain import accelerations
+from rockcli.kernels.chain import accelerations, contact_forces, kinematics
 
 CP_SC_U, CP_SC_UD = 12, 13  # error scales of the base's u [m] and u' [m/s]
+W_DRATE = W_RE + W_TMP  # scratch row: the dense output's derivative at a sample (free until a step is retaken)
 
 EVC_NONE, EVC_IMPACT, EVC_TOPPLE, EVC_SLIP_STOP, EVC_SLIDE_OFF, EVC_FACE_OPENS, EVC_SLIP_STARTS = 0, 1, 2, 3, 4, 5, 6
 N_SAMPLES = 16
@@ -114,6 +115,25 @@ def dense_at(W, hs, sig, dst):
 
 
 @kernel
+def dense_rate_at(W, hs, sig, dst):
+    """The time derivative of every state column's dense output at fraction ``sig`` of the last step into row
+    ``dst`` (for a rate column: the acceleration the dense output carries)."""
+    ny = W.shape[1]
+    for i in range(ny):
+        c1 = 0.0
+        c2 = 0.0
+        c3 = 0.0
+        c4 = 0.0
+        for jj in range(7):
+            k = W[jj, i]
+            c1 += k * _P[jj][0]
+            c2 += k * _P[jj][1]
+            c3 += k * _P[jj][2]
+            c4 += k * _P[jj][3]
+        W[dst, i] = c1 + sig * (2.0 * c2 + sig * (3.0 * c3 + sig * 4.0 * c4))
+
+
+@kernel
 def quartic(W, hs, i, sign, shift):
     """``sign * (state i) + shift`` over the last step as a quartic in sigma."""
     c1 = 0.0
@@ -168,13 +188,18 @@ def _force_margins(cp, pat, W, hs, sig, t, seg, epar, ws, frc, mg):
     ``mg[2 j]`` interface ``j``'s face (its smaller corner force), ``mg[2 j + 1]`` its cone while it sticks (``mu N -
     |T|``); ``inf`` where the condition does not apply. Returns the pivots that pull (-1: a singular system)."""
     dense_at(W, hs, sig, W_TMP)
+    dense_rate_at(W, hs, sig, W_DRATE)
     ag = ground_at(t + sig * hs, seg, epar)
-    nf = solve_pattern(cp, pat, W[W_TMP], ag, ws, frc)
+    # the forces from the dense output's accelerations (no solve: the step's own accelerations, to its accuracy)
+    nf = kinematics(cp, pat, W[W_TMP], ws)
+    free = ws[0]
+    x = ws[12]
+    for k in range(nf):
+        x[k] = W[W_DRATE, free[k] + 1]
+    contact_forces(cp, pat, ws, nf, ag, frc)
     n = int(cp[CP_N])
     for k in range(2 * n):
         mg[k] = math.inf
-    if nf < 0:
-        return -1
     pulls = 0
     for j in range(n):
         c = pat[2 * j]

@@ -40,7 +40,9 @@ def format_cell(row, margin: bool, neighbourhood: bool = False) -> str:
     ``ERROR``."""
     if row.error:
         return "ERROR"
-    if row.overturned:
+    if row.overturned and row.verdict == "slid_off":
+        text = "SLIDES OFF"
+    elif row.overturned:
         text = "OVERTURNS" + (f" {row.toppled}" if row.toppled else "")
     elif row.proven is False:
         text = f"NOT PROVEN {row.theta_max_over_alpha:.2f}"
@@ -50,6 +52,8 @@ def format_cell(row, margin: bool, neighbourhood: bool = False) -> str:
         text = f"survives {peak_text(row.theta_max_over_alpha)}"
         if row.plinth:  # a body on a plinth: the plinth's peak over alpha_asm too
             text += f" p{peak_text(row.plinth_theta_max_over_alpha_asm)}"
+    if not row.overturned and row.friction and row.slide_max_m > 0:  # it slid: how far, in cm
+        text += f" s{100 * row.slide_max_m:.1f}cm"
     if margin:
         if not math.isnan(row.overturn_scale):
             text += f" x{row.overturn_scale:.2f}"
@@ -197,6 +201,9 @@ AZIMUTH_COLUMNS = ("azimuth_deg", "overturning_azimuths", "azimuths_run", "base_
 #: Columns of an assessment with ``--on`` (a body on a plinth; empty on the rows of a body alone).
 PLINTH_COLUMNS = ("plinth", "toppled", "plinth_theta_max_over_alpha_asm", "friction_demand_base",
                   "friction_demand_joint")
+#: Columns of an assessment with ``--friction`` (friction as a model): the coefficients, and how far the body's own
+#: contact (on the floor, or on its plinth) and the plinth's slid (0 where nothing slid: the rocking answer).
+FRICTION_COLUMNS = ("friction", "slide_max_m", "slide_residual_m", "plinth_slide_max_m", "plinth_slide_residual_m")
 CHECK_COLUMNS = ("tight_rtol_verdict", "tight_rtol_peak_change", "ulp_verdicts", "ulp_peak_change", "ill_conditioned")
 
 
@@ -211,6 +218,9 @@ def extra_columns(assessment, check=None) -> dict:
             cols[key] = [getattr(r, key) for r in rows]
     if any(r.plinth for r in rows):  # --on: each block's answer and the friction demands
         for key in PLINTH_COLUMNS:
+            cols[key] = [getattr(r, key) for r in rows]
+    if any(r.friction for r in rows):  # --friction: how far each contact slid
+        for key in FRICTION_COLUMNS:
             cols[key] = [getattr(r, key) for r in rows]
     for key in ("restitution", "cap_ratio"):
         if assessment.solver.get(key):
