@@ -37,7 +37,7 @@ from rockcli.kernels.chain import (BASE_RIGID, CP_BASE, CP_CB, CP_G, CP_KB, CP_M
 from rockcli.kernels.chain_rest import rest_interval
 from rockcli.kernels.linear_base import coefficients
 from rockcli.kernels.chain_step import (EVC_FACE_OPENS, EVC_IMPACT, EVC_NONE, EVC_SLIDE_OFF, EVC_SLIP_STARTS,
-                                        EVC_SLIP_STOP, EVC_TOPPLE, _rhs, dp5, force_events, peaks, restep,
+                                        EVC_SLIP_STOP, EVC_TOPPLE, EVC_WRONG_SIDE, _rhs, dp5, force_events, peaks, restep,
                                         state_events)
 from rockcli.kernels.contact import (choose_pattern, face_corners, impact, project, rest_moments, restoring_rate,
                                      solve_pattern)
@@ -533,12 +533,15 @@ def simulate_chain(cp, pat0, y0, ekind, epar, acc, dt, t_begin, t_exc_end, tail,
             if code == EVC_SLIP_STOP:
                 y[col_s(who) + 1] = 0.0
                 zero_s[who] = True
-            elif code == EVC_FACE_OPENS:
+            elif code == EVC_FACE_OPENS or code == EVC_WRONG_SIDE:
                 zero_psi[who] = True
                 zero_s[who] = pat[2 * who + 1] == 0.0
             else:  # a stuck contact reaches the cone
                 zero_s[who] = True
                 zero_psi[who] = pat[2 * who] == 0.0
+            for j in range(n):  # a pivot still at angle and rate 0 may turn either way, or close again
+                if pat[2 * j] != 0.0 and y[col_psi(j)] == 0.0 and y[col_psi(j) + 1] == 0.0:
+                    zero_psi[j] = True
             if stall > MAX_STALL:
                 xo[X_N_STALL] += 1.0
             m, pulls = choose_pattern(cp, pat, y, ground_at(t_ev, seg, epar), ws, frc, zero_psi, zero_s, best)

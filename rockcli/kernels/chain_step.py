@@ -31,6 +31,7 @@ CP_SC_U, CP_SC_UD = 12, 13  # error scales of the base's u [m] and u' [m/s]
 W_DRATE = W_RE + W_TMP  # scratch row: the dense output's derivative at a sample (free until a step is retaken)
 
 EVC_NONE, EVC_IMPACT, EVC_TOPPLE, EVC_SLIP_STOP, EVC_SLIDE_OFF, EVC_FACE_OPENS, EVC_SLIP_STARTS = 0, 1, 2, 3, 4, 5, 6
+EVC_WRONG_SIDE = 7
 N_SAMPLES = 16
 
 
@@ -162,9 +163,14 @@ def state_events(cp, pat, W, hs, sig_lim):
         sl = pat[2 * j + 1]
         if c != 0.0:
             ci = col_psi(j)
-            sg = _first_down(quartic(W, hs, ci, c, 0.0), 0.0, 0.0, best)
+            q = quartic(W, hs, ci, c, 0.0)
+            sg = _first_down(q, 0.0, 0.0, best)
             if sg >= 0.0 and (sg < best or code == EVC_NONE):
                 best, code, who = sg, EVC_IMPACT, j
+            elif sg < 0.0 and q[0] == 0.0 and _poly(q, best) < 0.0:
+                # a pivot entered at angle 0 that turns the wrong way (into the surface: the pattern could not
+                # hold, e.g. at a tie of thresholds): the pattern is chosen again at the start of the step
+                return EVC_WRONG_SIDE, j, 0.0
             sg = _first_down(quartic(W, hs, ci, -c, halfpi), 0.0, 0.0, best)
             if sg >= 0.0 and (sg < best or code == EVC_NONE):
                 best, code, who = sg, EVC_TOPPLE, j

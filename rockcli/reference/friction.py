@@ -388,11 +388,23 @@ class _Run:
                 self.s_max[j] = max(self.s_max[j], abs(self.q[1 + 2 * j]))
                 self.done = True
                 return False
+            zero_psi, zero_s = [False] * self.n, [False] * self.n
             if kind == "impact":
+                k = free.index(2 + 2 * j)
+                c = pat[2 * j]
+                tt = np.linspace(t0, self.t, 65)
+                if y0[k] == 0.0 and c * y0[nfr + k] <= 0.0 and max(c * sol.sol(x)[k] for x in tt[1:-1]) <= 0.0:
+                    # entered at angle 0, it turned into the surface (the pattern could not hold): chosen again
+                    self.q[2 + 2 * j] = 0.0
+                    self.t = t0
+                    self.q, self.qd = unpack(y0)
+                    zero_psi[j] = True
+                    zero_s[j] = pat[2 * j + 1] == 0.0
+                    self._switch(self._choose(self.q, self.qd, self.ag(self.t), zero_psi, zero_s))
+                    return True
                 self.q[2 + 2 * j] = 0.0
                 self._impact(j)
                 return True
-            zero_psi, zero_s = [False] * self.n, [False] * self.n
             if kind == "stop":
                 self.qd[1 + 2 * j] = 0.0
                 zero_s[j] = True
@@ -402,6 +414,9 @@ class _Run:
             else:  # the cone
                 zero_s[j] = True
                 zero_psi[j] = pat[2 * j] == 0.0
+            for i in range(self.n):  # a pivot still at angle and rate 0 may turn either way, or close again
+                if pat[2 * i] != 0.0 and self.q[2 + 2 * i] == 0.0 and self.qd[2 + 2 * i] == 0.0:
+                    zero_psi[i] = True
             self._switch(self._choose(self.q, self.qd, self.ag(self.t), zero_psi, zero_s))
             return True
         return True
