@@ -282,12 +282,15 @@ class _Run:
             self.t += 1e-9 * max(1.0, self.t)
         return True
 
-    def _base_settled(self) -> bool:
+    def _free_bound(self, u, ud) -> float:
+        """The largest acceleration the free base can still reach (its energy never grows)."""
         mb, kb, cb = self.ch.base
         M = mb + self.ch.m.sum()
-        u, ud = self.q[0], self.qd[0]
         E = 0.5 * M * ud * ud + 0.5 * kb * u * u
-        amax = (kb * math.sqrt(2 * E / kb) + cb * math.sqrt(2 * E / M)) / M
+        return (kb * math.sqrt(2 * E / kb) + cb * math.sqrt(2 * E / M)) / M
+
+    def _base_settled(self) -> bool:
+        amax = self._free_bound(self.q[0], self.qd[0])
         lo, hi = self._band(self.q)
         return -amax > lo and amax < hi
 
@@ -359,6 +362,10 @@ class _Run:
                 watched = True
         if ch.nb:
             add(lambda tt, yy: yy[nfr], "upeak", -1, terminal=False, direction=0, guard=False)
+            if _all_stuck(pat) and t0 >= self.t_exc_end:  # at rest on the free base: settled once it cannot move
+                lo, hi = self._band(self.q)
+                lim = min(-lo, hi)
+                add(lambda tt, yy: self._free_bound(yy[0], yy[nfr]) - lim, "settled", -1, guard=False)
         t_end = self.t_exc_end if t0 < self.t_exc_end else self.t_max_end
         max_step = min(self.max_step, 0.02 / self.pmax) if (watched or ch.nb) else self.max_step
         sol = self.work.ivp(rhs, (t0, t_end), y0, max_step=max_step, events=events, dense_output=True)
@@ -381,6 +388,10 @@ class _Run:
             if kind == "topple":
                 self.toppled, self.t_fail = j, self.t
                 self.psi_max[j] = math.pi / 2
+                self.done = True
+                return False
+            if kind == "settled":
+                self.settled = True
                 self.done = True
                 return False
             if kind == "off":
