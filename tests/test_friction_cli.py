@@ -80,11 +80,19 @@ def test_the_statue_on_its_plinth_under_kobe_slides_at_the_base():
     assert d["friction"]["mu"] == [0.5, 0.3] and d["joint"]["n_slips"] > 0
 
 
-def test_a_sliding_run_writes_its_history_and_figure(tmp_path):
-    h, png = tmp_path / "h.csv", tmp_path / "h.png"
+def test_a_sliding_run_writes_its_history_figure_and_report(tmp_path):
+    """Issue 44's "friction reaches the committee": the report of a run that slides says so on its first screen
+    (the card: how far the statue slid on its plinth and how close it came to the edge) and the friction assumed in
+    its assumptions."""
+    h, png, rep = tmp_path / "h.csv", tmp_path / "h.png", tmp_path / "r.html"
     code, out = _run("simulate", "--body", STATUE, "--pulse", "ricker-sym:ap=0.6,Tp=0.6", "--on", PLINTH,
-                     "--friction", "0.3", "--history", str(h), "--plot", str(png))
+                     "--friction", "base=0.5,joint=0.25", "--history", str(h), "--plot", str(png), "--report",
+                     str(rep))
     assert code == 0, out
+    html = rep.read_text()
+    card = html[html.index('<div class="card'):html.index("</div>", html.index('<div class="card'))]
+    assert "slides" in card and "plinth" in card and "edge" in card
+    assert "Coulomb" in html and "mu = 0.25" in html and "<img" in html
     assert "sliding" in out and "In plain words:" in out
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     head = h.read_text().splitlines()[0].split(",")
