@@ -28,8 +28,11 @@ the kernels are imported on the first run. Read it in this order:
                    :class:`StackResponse`
 ``stack_many``     the stack jobs of :func:`simulate_many` (on a pool of threads: the stack drivers release the
                    GIL), read back as a ``StackRun`` that answers to a :class:`Response`'s names
-``friction``       the friction check of a run (``simulate --friction``): the single block's peak demand from
-                   its history and the judgement "exceeds MU" (docs/plinth.md)
+``friction``       the single block's friction demand of a rocking run from its history (docs/plinth.md)
+``slide``          :func:`simulate_friction`: Coulomb friction as a model (docs/physics-sliding.md), one body or
+                   a body on its plinth, on the ground or on linear bearings; :class:`SlideResponse`
+``slide_many``     the :class:`Sliding` jobs of :func:`simulate_many`, read back as a ``SlideRun``; where nothing
+                   slid, the rocking model's own run (bit for bit the answer without friction)
 =================  =====================================================================================
 
 Every public name (and the private helpers tests reach for) is importable from ``rockcli.solve``.
@@ -101,3 +104,7 @@ __all__ = ["DEFAULT_HORIZON", "DEFAULT_MAX_STEPS", "DEFAULT_REST_TOL", "DEFAULT_
            "record_impulse_table", "simulate", "simulate_many", "simulate_verdicts", "validate_options",
            "vertical_label", "with_vertical"]
 __all__ += ["BlockPeak", "StackHistory", "StackResponse", "friction_demand_single", "simulate_stack"]
+from rockcli.solve.slide import InterfacePeak, SlideResponse, simulate_friction  # noqa: E402
+from rockcli.solve.slide_many import SlideRun, Sliding  # noqa: E402
+
+__all__ += ["InterfacePeak", "SlideResponse", "SlideRun", "Sliding", "simulate_friction"]
