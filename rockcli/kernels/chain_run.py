@@ -460,7 +460,8 @@ def simulate_chain(cp, pat0, y0, ekind, epar, acc, dt, t_begin, t_exc_end, tail,
         xo[X_STEPS] = steps + 1.0
         t_new = t_stop if last else t + hs
         code, who, sig = state_events(cp, pat, W, hs, 1.0)
-        fcode, fwho, fsig, pulled = force_events(cp, pat, W, hs, t, seg, epar, ws, frc, sig, mg0, mg1, mg2)
+        fcode, fwho, fsig, pulled = force_events(cp, pat, W, hs, t, seg, epar, ws, frc, sig, mg0, mg1, mg2, fcols,
+                                                 nfc)
         if pulled:
             xo[X_N_JUMP] += 1.0
         if fcode != EVC_NONE and (fsig <= sig or code == EVC_NONE):

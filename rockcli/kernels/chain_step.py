@@ -18,7 +18,8 @@ import math
 
 import numpy as np
 
-from rockcli.kernels.chain import (CP_N, CP_RTOL, F_EDGE, F_MU, F_P, F_SC_PSI, F_SC_S, col_psi, col_s, fld)
+from rockcli.kernels.chain import (BASE_RIGID, CP_BASE, CP_N, CP_RTOL, F_EDGE, F_MU, F_P, F_SC_PSI, F_SC_S, col_psi,
+                                   col_s, fld)
 from rockcli.kernels.contact import face_corners, solve_pattern
 from rockcli.kernels.dopri import _A, _C, _E, _P
 from rockcli.kernels.ground import ground_at
@@ -102,36 +103,53 @@ def dense_at(W, hs, sig, dst):
     """The dense-output state at fraction ``sig`` of the last step into row ``dst`` of ``W``."""
     ny = W.shape[1]
     for i in range(ny):
-        c1 = 0.0
-        c2 = 0.0
-        c3 = 0.0
-        c4 = 0.0
-        for jj in range(7):
-            k = W[jj, i]
-            c1 += k * _P[jj][0]
-            c2 += k * _P[jj][1]
-            c3 += k * _P[jj][2]
-            c4 += k * _P[jj][3]
-        W[dst, i] = W[W_Y, i] + sig * hs * (c1 + sig * (c2 + sig * (c3 + sig * c4)))
+        W[dst, i] = _dense_col(W, hs, sig, i)
+
+
+@kernel(inline='always')
+def _dense_col(W, hs, sig, i):
+    c1 = 0.0
+    c2 = 0.0
+    c3 = 0.0
+    c4 = 0.0
+    for jj in range(7):
+        k = W[jj, i]
+        c1 += k * _P[jj][0]
+        c2 += k * _P[jj][1]
+        c3 += k * _P[jj][2]
+        c4 += k * _P[jj][3]
+    return W[W_Y, i] + sig * hs * (c1 + sig * (c2 + sig * (c3 + sig * c4)))
+
+
+@kernel(inline='always')
+def _dense_rate_col(W, sig, i):
+    c1 = 0.0
+    c2 = 0.0
+    c3 = 0.0
+    c4 = 0.0
+    for jj in range(7):
+        k = W[jj, i]
+        c1 += k * _P[jj][0]
+        c2 += k * _P[jj][1]
+        c3 += k * _P[jj][2]
+        c4 += k * _P[jj][3]
+    return c1 + sig * (2.0 * c2 + sig * (3.0 * c3 + sig * 4.0 * c4))
 
 
 @kernel
-def dense_rate_at(W, hs, sig, dst):
-    """The time derivative of every state column's dense output at fraction ``sig`` of the last step into row
-    ``dst`` (for a rate column: the acceleration the dense output carries)."""
+def dense_free_at(W, hs, sig, dst, ddst, fcols, nfc):
+    """The dense-output state at fraction ``sig`` into row ``dst`` and the accelerations of the free coordinates
+    into row ``ddst`` (the time derivative of their rates' dense output), for the free coordinates only (state
+    columns ``fcols[:nfc]`` of their positions): the others do not move in the pattern, their rows keep the step's
+    start."""
     ny = W.shape[1]
     for i in range(ny):
-        c1 = 0.0
-        c2 = 0.0
-        c3 = 0.0
-        c4 = 0.0
-        for jj in range(7):
-            k = W[jj, i]
-            c1 += k * _P[jj][0]
-            c2 += k * _P[jj][1]
-            c3 += k * _P[jj][2]
-            c4 += k * _P[jj][3]
-        W[dst, i] = c1 + sig * (2.0 * c2 + sig * (3.0 * c3 + sig * 4.0 * c4))
+        W[dst, i] = W[W_Y, i]
+    for q in range(nfc):
+        c = fcols[q]
+        W[dst, c] = _dense_col(W, hs, sig, c)
+        W[dst, c + 1] = _dense_col(W, hs, sig, c + 1)
+        W[ddst, c + 1] = _dense_rate_col(W, sig, c + 1)
 
 
 @kernel
@@ -189,12 +207,11 @@ def state_events(cp, pat, W, hs, sig_lim):
 
 
 @kernel
-def _force_margins(cp, pat, W, hs, sig, t, seg, epar, ws, frc, mg):
+def _force_margins(cp, pat, W, hs, sig, t, seg, epar, ws, frc, mg, fcols, nfc):
     """The pattern's force conditions at fraction ``sig`` of the step, relative to each contact's normal force:
     ``mg[2 j]`` interface ``j``'s face (its smaller corner force), ``mg[2 j + 1]`` its cone while it sticks (``mu N -
     |T|``); ``inf`` where the condition does not apply. Returns the pivots that pull (-1: a singular system)."""
-    dense_at(W, hs, sig, W_TMP)
-    dense_rate_at(W, hs, sig, W_DRATE)
+    dense_free_at(W, hs, sig, W_TMP, W_DRATE, fcols, nfc)
     ag = ground_at(t + sig * hs, seg, epar)
     # the forces from the dense output's accelerations (no solve: the step's own accelerations, to its accuracy)
     nf = kinematics(cp, pat, W[W_TMP], ws)
@@ -223,6 +240,21 @@ def _force_margins(cp, pat, W, hs, sig, t, seg, epar, ws, frc, mg):
 
 
 @kernel
+def _forces_constant(cp, pat, fcols, nfc):
+    """True when no force condition of the pattern can change along a step: every contact a pivot that slides (no
+    condition but the pull, which is counted only), or the whole chain sliding as one body on the rigid ground (the
+    only free coordinate the bottom slip: every acceleration is the same horizontal one, so every force is the weight
+    times a constant ratio and each condition's relative margin is constant; e.g. a crate sliding on the floor)."""
+    n = int(cp[CP_N])
+    if cp[CP_BASE] == BASE_RIGID and nfc == 1 and fcols[0] == col_s(0) and pat[0] == 0.0:
+        return True
+    for j in range(n):
+        if pat[2 * j] == 0.0 or pat[2 * j + 1] == 0.0:
+            return False
+    return True
+
+
+@kernel
 def _crossing(mg0, mg, n2):
     """The smallest margin among the conditions that were positive at ``mg0`` and are not at ``mg``, and which:
     ``(value, k)``; ``(inf, -1)`` when none crossed."""
@@ -236,7 +268,7 @@ def _crossing(mg0, mg, n2):
 
 
 @kernel
-def force_events(cp, pat, W, hs, t, seg, epar, ws, frc, sig_lim, mg0, mg1, mg2):
+def force_events(cp, pat, W, hs, t, seg, epar, ws, frc, sig_lim, mg0, mg1, mg2, fcols, nfc):
     """The first force event of the step in ``(0, sig_lim]``: a condition that is positive and then is not (16
     samples, then bisection between the last sample where every crossing condition held and the first where one
     failed). A condition that does not hold at the start of the step (a tangency: the pattern was entered at its
@@ -244,11 +276,13 @@ def force_events(cp, pat, W, hs, t, seg, epar, ws, frc, sig_lim, mg0, mg1, mg2):
     normal force was negative at a sample before it. ``mg0``, ``mg1``, ``mg2``: scratch (2 n)."""
     n2 = 2 * int(cp[CP_N])
     pulled = False
-    _force_margins(cp, pat, W, hs, 0.0, t, seg, epar, ws, frc, mg0)
+    if _forces_constant(cp, pat, fcols, nfc):
+        return EVC_NONE, -1, sig_lim, pulled
+    _force_margins(cp, pat, W, hs, 0.0, t, seg, epar, ws, frc, mg0, fcols, nfc)
     prev = 0.0
     for m in range(1, N_SAMPLES + 1):
         sg = sig_lim * m / N_SAMPLES
-        pulls = _force_margins(cp, pat, W, hs, sg, t, seg, epar, ws, frc, mg1)
+        pulls = _force_margins(cp, pat, W, hs, sg, t, seg, epar, ws, frc, mg1, fcols, nfc)
         if pulls > 0:
             pulled = True
         v, k = _crossing(mg0, mg1, n2)
@@ -259,7 +293,7 @@ def force_events(cp, pat, W, hs, t, seg, epar, ws, frc, sig_lim, mg0, mg1, mg2):
                 mid = 0.5 * (lo + hi)
                 if mid <= lo or mid >= hi:
                     break
-                _force_margins(cp, pat, W, hs, mid, t, seg, epar, ws, frc, mg2)
+                _force_margins(cp, pat, W, hs, mid, t, seg, epar, ws, frc, mg2, fcols, nfc)
                 vm, km = _crossing(mg0, mg2, n2)
                 if km >= 0:
                     hi = mid

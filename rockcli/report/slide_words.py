@@ -40,9 +40,12 @@ def slide_sentence(body, res) -> str:
     ground = "the isolated base" if math.isfinite(res.u_max) else "the ground"
     if res.verdict == "slid off":
         p = res.joint
-        return (f"{Who} slides off {plinth} at {res.t_fail:.2f} s: its base reaches the {body.plinth.name}'s edge, "
+        text = (f"{Who} slides off {plinth} at {res.t_fail:.2f} s: its base reaches the {body.plinth.name}'s edge, "
                 f"{cm(p.edge_m)} from centred (from there the model of flat faces no longer holds; read it as a "
-                f"fall).")
+                f"fall)")
+        if res.base.psi_max >= res.base.alpha:
+            text += f", as the {body.plinth.name} itself tilts past its tipping point"
+        return text + "."
     if res.verdict == "overturned":
         if res.toppled == "plinth":
             head = f"The {body.plinth.name} topples at {res.t_fail:.2f} s, and {who} with it"

@@ -53,7 +53,7 @@ def format_cell(row, margin: bool, neighbourhood: bool = False) -> str:
         if row.plinth:  # a body on a plinth: the plinth's peak over alpha_asm too
             text += f" p{peak_text(row.plinth_theta_max_over_alpha_asm)}"
     if not row.overturned and row.friction and row.slide_max_m > 0:  # it slid: how far, in cm
-        text += f" s{100 * row.slide_max_m:.1f}cm"
+        text += " s<0.1cm" if row.slide_max_m < 5e-4 else f" s{100 * row.slide_max_m:.1f}cm"
     if margin:
         if not math.isnan(row.overturn_scale):
             text += f" x{row.overturn_scale:.2f}"
