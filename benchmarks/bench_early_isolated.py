@@ -1,4 +1,4 @@
-"""The early stops of an isolated base (P9, P9s in ``rockcli.kernels.driver.simulate_core``): what they save,
+"""The early stops of an isolated base (P9, P9s in ``rockcli.kernels.driver_end``): what they save,
 and the larger checks that are too slow for the test suite. Prints figures, asserts nothing.
 
 ``--jobs FILE``: the verdict-only early runs that the margin search of the main job

@@ -1,7 +1,7 @@
 """Verdict-only speed: a 200 x 200 rigid-foundation pulse grid through ``simulate_many``.
 
 Prints wall time and right-hand-side evaluations with and without the early stop during the
-excitation (P4 in ``rockcli.kernels.simulate_core``) and checks that the verdicts agree. Figures
+excitation (P4 in ``rockcli.kernels.rigid``) and checks that the verdicts agree. Figures
 only, no assertions on time. Run: ``python benchmarks/bench_verdict.py [--n 200]``.
 """
 

@@ -1,5 +1,5 @@
 """The early stops of an isolated base during the excitation (P9 on linear bearings, P9s on sliding and
-lead-rubber bearings, in :func:`rockcli.kernels.driver.simulate_core`): a block at rest on its base that no
+lead-rubber bearings, in :mod:`rockcli.kernels.driver_end`): a block at rest on its base that no
 later base acceleration can lift ends a verdict-only ``early`` run.
 
 Every shortcut is a theorem: the bounds are checked against the motion itself, and early, verdict-only and

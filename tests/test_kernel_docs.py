@@ -1,5 +1,5 @@
-"""The kernels' package and module docstrings list the proofs that :func:`rockcli.kernels.driver.simulate_core`
-states for isolated bases (P9, P9s were added without the lists: polish of issue 33). Read from the sources, no
+"""The kernels' package and module docstrings list the proofs that :mod:`rockcli.kernels.driver_end` states for
+isolated bases (P9, P9s were added without the lists: polish of issue 33). Read from the sources, no
 import (nothing compiles)."""
 
 from __future__ import annotations
@@ -24,7 +24,7 @@ def _stated(doc: str) -> set:
 
 
 def test_the_lists_name_every_proof_of_the_isolated_base():
-    isolated = _stated(_docstring("driver.py", "simulate_core"))
+    isolated = _stated(_docstring("driver_end.py"))
     assert {"P3", "P3s", "P5", "P8", "P9", "P9s"} <= isolated
     package = " ".join(_docstring("__init__.py").split())
     listing = package[package.index("``driver``"):package.index("``batch``")]

@@ -13,7 +13,8 @@ import pytest
 from rockcli.models import Block, Plinth, Stack
 from rockcli.pulses import OneSine, RickerAntisymmetric, RickerSymmetric
 from rockcli.records import Record
-from rockcli.reference.stack import choose_post, reference_plinth, stack_blocks
+from rockcli.reference.stack import reference_plinth, stack_blocks
+from rockcli.reference.stack_impact import choose_post
 from rockcli.reference.stack_mechanics import StackModel
 from rockcli.solve import simulate
 from rockcli.solve.stack import simulate_stack, stack_parameters

@@ -346,7 +346,7 @@ def test_the_free_base_bound_is_conservative_for_every_damping():
 def _decoupled_bound(xi, w, u, ud, *, R=1.0, alpha=0.2, theta=0.0, theta_dot=0.0, s=1.0):
     """The kernel's P8 energy bound for one state (the compiled function itself)."""
     from rockcli.kernels import layout as L
-    from rockcli.kernels.driver import _decoupled_energy_bound
+    from rockcli.kernels.driver_end import _decoupled_energy_bound
 
     prm = np.zeros(L.N_PRM)
     prm[L.P_XI], prm[L.P_W], prm[L.P_R], prm[L.P_G] = xi, w, R, G

@@ -21,7 +21,7 @@ safety margin), and the margin search (:mod:`rockcli.assess.margin`) never runs 
   inside every sample interval, and after the record P3's bound, which bounds every later ``|a|``);
   P3 proves the run (``s`` times its bound is below ``g tan(alpha)`` from ``t_proof`` on) when
   ``t_proof`` lies before the horizon, else the floor is 0. The solver's stuck phase on linear
-  bearings under a record is the same solution (:func:`rockcli.kernels.driver._linear_stuck_step`:
+  bearings under a record is the same solution (:func:`rockcli.kernels.driver_phases._linear_stuck_step`:
   the same coefficients, the same arithmetic, ``s`` times the samples), so the run at ``s`` differs
   from ``s`` times the run at 1 by rounding only: a relative ``n eps`` at most after ``n`` steps of a
   recurrence that never amplifies (the transition matrix's energy norm is at most 1), about 1e-11

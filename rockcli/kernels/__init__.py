@@ -22,18 +22,26 @@ Files (data flows down this list):
                           events of a rocking step in theta, impact bookkeeping
 ``rigid``                 :func:`simulate_rigid`: a block on a rigid foundation (two states; the
                           end-of-run proofs P1, P2, P4, P6, P7 in its notes)
+``driver_phases``         the isolated-base driver's step and phases (stuck, rocking, the impact), the anchor
+                          of the hysteretic elements in the run record
+``driver_end``            the end of a run on an isolated base: the rule and the theorems it checks
 ``driver``                :func:`simulate_core`: a block on an isolated base as a loop over phases
                           (proofs P3, P3s, P5, P8, and the early stops P9, P9s during the
-                          excitation, in its docstring)
+                          excitation, stated in ``driver_end``)
 ``stack_physics``         a body on a free plinth: the equations of both rocking, contact forces, impacts
+``stack_step``            what the stack driver reads along a step: its record ``xo``, the faces' corner
+                          forces, impacts ahead, peaks, the friction demand
+``stack_patterns``        the stack driver's changes of pattern and rest rules
 ``stack``                 :func:`simulate_stack`: the body on its plinth on a rigid foundation (the
                           rigid driver's code for one rocking body, the 2x2 system for both)
 ``stack_linear_physics``  the body on its plinth on bearings (linear, sliding, lead-rubber): every
                           pattern's equations with the base, impacts in maximal coordinates with the
                           base (a small KKT system)
+``stack_linear_step``     one step of the stack driver on bearings: Dormand-Prince on six states, its
+                          continuous extension, the events on it, what is read along it
 ``stack_linear``          :func:`rockcli.kernels.stack_linear.simulate_stack_linear`: the body on its
-                          plinth on bearings (Dormand-Prince on six states, the hysteretic elements
-                          along the path of u, events on the continuous extension)
+                          plinth on bearings (the hysteretic elements along the path of u, impacts,
+                          rest rules, the end of the run)
 ``batch``                 :func:`simulate_batch_rigid`, :func:`simulate_batch`,
                           :func:`simulate_batch_rigid_vertical`: many verdict-only scenes in
                           parallel, one entry per driver (and one for a vertical motion);

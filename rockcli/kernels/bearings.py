@@ -379,7 +379,7 @@ def initial_anchor(fkind, prm):
 def free_force_bound(fkind, prm, hy, u, ud):
     """Upper bound of ``|F|`` over the whole future of a free hysteretic base (ground still, block
     stuck): ``sqrt(F^2 + K ud^2)``, ``K`` the tangent stiffness in the direction of motion (P3s in
-    :func:`rockcli.kernels.driver.simulate_core`)."""
+    :mod:`rockcli.kernels.driver_end`)."""
     F = base_force(fkind, prm, u, ud, hy)
     if ud == 0.0:
         return abs(F)

@@ -36,7 +36,7 @@ is not an uplift).
 an upper bound of ``|a|`` at all times while the block stands (the margin search's lift-off factor,
 :mod:`rockcli.assess.liftoff`). :func:`linear_base_table` is the same solution at unit scale with a
 norm :func:`base_norm` that bounds the base's later accelerations (the early stop P9 of
-:func:`rockcli.kernels.driver.simulate_core`).
+:mod:`rockcli.kernels.driver_end`).
 """
 
 from __future__ import annotations
@@ -318,12 +318,12 @@ def stuck_peak(w, xi, acc, dt, scale, t_limit, slack, tol):
 
 # ---------------------------------------------------------------------------------------------
 # A norm that the free base never increases, and the base's response to a whole record (the early stop P9
-# of rockcli.kernels.driver.simulate_core)
+# of rockcli.kernels.driver_end)
 # ---------------------------------------------------------------------------------------------
 @kernel
 def base_norm(xi):
     """``(c, k_a, k_u)`` of the norm ``S = sqrt(v^2 + 2 c v y + y^2)`` (``v = u'``, ``y = w u``) of a
-    linear base ``u'' + 2 xi w u' + w^2 u = -ag`` (P9 in :func:`rockcli.kernels.driver.simulate_core`).
+    linear base ``u'' + 2 xi w u' + w^2 u = -ag`` (P9 in :mod:`rockcli.kernels.driver_end`).
 
     ``c = xi`` for ``xi <= 1/2``, ``xi/(1 + xi^2)`` above (P8's choice: ``0 <= c < 1`` and the free
     base's ``dS^2/dt = -w Q`` with ``Q >= 0``), so S never grows with the ground still and grows at

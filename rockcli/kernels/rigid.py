@@ -8,7 +8,7 @@ the rigid foundation compiles only this (and :mod:`rockcli.kernels.steps`, ``dop
 
 End of the run: the proofs P1, P2, P4, P6, P7 (re-proved under a vertical motion in PV; the general
 rule, and P3, P3s, P5, P8 for isolated bases with their early stops P9, P9s during the excitation, are stated in
-:func:`rockcli.kernels.driver.simulate_core`):
+:func:`rockcli.kernels.driver.simulate_core` and :mod:`rockcli.kernels.driver_end`):
 
 P1 (ground still, block stuck). With ``ag = 0`` and theta = 0 the uplift condition
    ``|ag| > g tan(alpha)`` can never hold again.

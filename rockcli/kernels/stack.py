@@ -10,11 +10,10 @@ plinth cannot move the run is the single block's, bit for bit; P is the same cod
 (``prm_asm``: ``p_asm``, ``alpha_asm``, ``eta_asm``); BP integrates the 2x2 Lagrange system
 (:mod:`rockcli.kernels.stack_physics`). What the stack adds is watched on every step: in B the base's corner forces
 (the plinth lifts when one reaches 0), in P the joint's (the body lifts off the plinth), each located on the step's
-dense output by sampling 16 sub-intervals and bisection; at every impact the pattern after it is chosen by
+dense output by sampling 16 sub-intervals and bisection (:mod:`rockcli.kernels.stack_step`, what is read along a
+step, with the peaks and the friction demand); at every impact the pattern after it is chosen by
 :func:`rockcli.kernels.stack_physics.choose_after_impact`, and where the plinth (or the body on it) stays, the
-single block's map is used. The friction demand is read where the contact forces are: in B and P at the samples of
-the face check, in BP at 17 points of every step and the vertex of the parabola through the largest
-(:func:`_bp_demand`), at rest ``|ag|/g`` (its largest on the interval).
+single block's map is used (:mod:`rockcli.kernels.stack_patterns`, the changes of pattern and the rest rules).
 
 End of the run: P1 (at rest once the ground is still) and P2S, the single block's P2 for the body on the still
 plinth when the plinth provably cannot lift again: the ground still, ``|psi| < alpha1``, the body's energy ``En``
@@ -37,209 +36,27 @@ import numpy as np
 
 from rockcli.kernels.dopri import _dense, _dp5_step, _restep_rows, _shift_event, _state_at
 from rockcli.kernels.events import _count_uplift, _hist_push, comes_to_rest, impact_map
-from rockcli.kernels.ground import _pulse_turns, _rigid_uplift, ground_at
+from rockcli.kernels.ground import _rigid_uplift, ground_at
 from rockcli.kernels.jit import kernel
-from rockcli.kernels.layout import (E_T0, E_TP, EXC_RECORD, FK_RIGID, HK_IMPACT, HK_IMPACT_AFTER, HK_OVERTURN, HK_REST,
-                                    HK_STATE, HK_UPLIFT, J_BASE, J_JOINT,
-                                    O_N_IMPACTS, O_N_IMPACTS_ALL, O_N_RESTS, O_T_EXCEED, O_T_OVERTURN, O_UPLIFTED,
-                                    O_T_SETTLED, O_T_THETA_MAX, P_ALPHA, P_COSA, P_ETA, P_G, P_P2, P_THR, PHASE_ROCKING,
-                                    PHASE_STUCK, RS_FRESH, RS_H, RS_NRHS, RS_PHASE,
-                                    RS_S, RS_SEG_END, RS_SETTLED, RS_STATUS, RS_T, RS_THMAX,
-                                    SEG_LINEAR, STATUS_MAX_STEPS, STATUS_OVERTURNED, W_EV, W_FEV, W_RE, W_TMP, W_Y,
-                                    W_YNEW)
-from rockcli.kernels.polynomials import _first_down, _golden_max, _poly
+from rockcli.kernels.layout import (EXC_RECORD, E_TP, FK_RIGID, HK_IMPACT, HK_IMPACT_AFTER, HK_OVERTURN, HK_REST,
+                                    HK_STATE, HK_UPLIFT, J_BASE, J_JOINT, O_N_IMPACTS, O_N_IMPACTS_ALL, O_T_EXCEED,
+                                    O_T_OVERTURN, O_T_SETTLED, O_T_THETA_MAX, O_UPLIFTED, PHASE_ROCKING, PHASE_STUCK,
+                                    P_ALPHA, P_COSA, P_ETA, P_G, P_P2, P_THR, RS_FRESH, RS_H, RS_NRHS, RS_PHASE, RS_S,
+                                    RS_SEG_END, RS_SETTLED, RS_STATUS, RS_T, RS_THMAX, STATUS_MAX_STEPS,
+                                    STATUS_OVERTURNED, W_EV, W_FEV, W_RE, W_TMP, W_Y, W_YNEW)
+from rockcli.kernels.polynomials import _first_down
 from rockcli.kernels.rigid import _NO_HY, _restep_rigid, _stuck_rigid, _substep_stop, _take_step_rigid
-from rockcli.kernels.stack_physics import (S_A1REST, S_AAREST, S_B1, S_B2, S_G, S_H1, S_H2, S_M2, S_R1,
-                                           S_REST, _dot, _rhs_bp_into, bp_acc, choose_after_impact, fields, forces,
-                                           forces_b, forces_p, max_velocities, project)
-from rockcli.kernels.steps import (EV_FAILED, EV_IMPACT, EV_OVERTURN, _accept_step, _advance_segment, _bounce,
-                                   _finish, _out_of_time, _rocking_events, _seg, _start, _to_impact, _to_overturn,
-                                   _to_step_end)
-
-PAT_R, PAT_B, PAT_P, PAT_BP = 0.0, 1.0, 2.0, 3.0
-
-# the stack's own record and outputs ``xo``
-X_PAT, X_S, X_K = 0, 1, 2  # the pattern, the base corner, the joint corner (0: a face)
-X_PL_MAX, X_PL_T_MAX, X_PL_T_EXCEED = 3, 4, 5  # the plinth's peak |theta2|, when, first |theta2| >= alpha_asm
-X_PL_T_UPLIFT, X_PL_N_IMP, X_PL_N_IMP_ALL = 6, 7, 8  # the plinth's first uplift, impacts while the ground moves, all
-X_TILT_MAX = 9  # the body's peak absolute tilt |theta1|
-X_TOPPLED = 10  # -1 none, 0 the plinth, 1 the body
-X_FR_B, X_FR_J, X_FRI_B, X_FRI_J = 11, 12, 13, 14  # friction demand |T|/N: base, joint; at impacts: base, joint
-X_N_JUMP, X_N_INCONS = 15, 16  # steps or impacts where a pivot would pull; impacts with no consistent pattern
-X_N_SWITCH, X_STEPS_BP, X_P2S = 17, 18, 19  # pattern changes, steps of pattern BP, 1 when P2S ended the run
-X_PL_N_RESTS = 20
-X_N_PLASTIC = 21  # impacts where a given restitution could not be carried: the plastic law instead
-N_XO = 22
-
-HALF_PI = 0.5 * math.pi
-N_DEMAND = 16  # sub-intervals of a BP step at which the friction demand is read (as the faces of B and P are watched)
-
-
-# ---------------------------------------------------------------------------------------------
-# Friction demand and contact checks along a step
-# ---------------------------------------------------------------------------------------------
-@kernel
-def _max_abs_ag(seg, epar, t0, t1):
-    """The largest ``|ag|`` on ``[t0, t1]`` inside one segment (linear: its ends; a pulse: its ends and turns)."""
-    a = max(abs(ground_at(t0, seg, epar)), abs(ground_at(t1, seg, epar)))
-    if int(seg[0]) != SEG_LINEAR:
-        turns = _pulse_turns(int(seg[0]))
-        for i in range(4):
-            tk = epar[E_T0] + turns[i] * epar[E_TP]
-            if t0 < tk < t1:
-                a = max(a, abs(ground_at(tk, seg, epar)))
-    return a
-
-
-@kernel(inline='always')
-def _demand(xo, NB, TB, NJ, TJ):
-    if NB > 0.0:
-        xo[X_FR_B] = max(xo[X_FR_B], abs(TB) / NB)
-    if NJ > 0.0:
-        xo[X_FR_J] = max(xo[X_FR_J], abs(TJ) / NJ)
-
-
-@kernel(inline='always')
-def _bp_forces(s, k, sp, q0, q1, q2, q3, sig, tt, seg, epar):
-    """Normal and tangential forces ``(NB, TB, NJ, TJ)`` of pattern BP at the base and at the joint at fraction
-    ``sig`` of the last step (``q0..q3`` its quartics of ``psi, psi', theta2, theta2'``, ``tt`` the time there)."""
-    psi = _poly(q0, sig)
-    psid = _poly(q1, sig)
-    th2 = _poly(q2, sig)
-    thd2 = _poly(q3, sig)
-    ag = ground_at(tt, seg, epar)
-    pdd, tdd = bp_acc(s, k, sp, th2, psi, thd2, psid, ag)
-    NB, TB, _, _, NJ, TJ, _, _ = forces(s, k, sp, th2, psi, thd2, psid, tdd, pdd, ag)
-    return NB, TB, NJ, TJ
-
-
-@kernel(inline='always')
-def _ratio(T, N):
-    """The friction demand ``|T|/N``, or -1 where the normal force ``N`` is not positive."""
-    return abs(T) / N if N > 0.0 else -1.0
-
-
-@kernel(inline='always')
-def _vertex(left, best, right, i):
-    """Where the parabola through ``(i - 1, left), (i, best), (i + 1, right)`` peaks (in sample units), or -1 when
-    the largest sample ``best`` is not interior or a neighbour has no demand (a normal force not positive)."""
-    curv = left - 2.0 * best + right
-    if left < 0.0 or right < 0.0 or not curv < 0.0:
-        return -1.0
-    return i + 0.5 * (left - right) / curv
-
-
-@kernel
-def _bp_demand(s, k, sp, W, hs, sig_end, t, seg, epar, xo):
-    """The peak friction demand of the last BP step over ``[0, sig_end]`` (its dense output), at both interfaces:
-    read at ``N_DEMAND + 1`` equally spaced fractions (both ends included), then at the vertex of the parabola
-    through each interface's largest sample and the two beside it (the peak of a smooth demand between samples;
-    the larger reading is kept, so the refinement never lowers the sampled peak). Returns True when a pivot pulls
-    (a normal force below 0) at the middle or the end of the step (samples ``N_DEMAND/2`` and ``N_DEMAND``)."""
-    q0 = _dense(W, hs, np.int64(0), 1.0)
-    q1 = _dense(W, hs, np.int64(1), 1.0)
-    q2 = _dense(W, hs, np.int64(2), 1.0)
-    q3 = _dense(W, hs, np.int64(3), 1.0)
-    bb = bj = lb = lj = rb = rj = pb = pj = -1.0  # largest samples, their neighbours, the previous samples
-    ib = ij = -2
-    pull = False
-    for m in range(N_DEMAND + 1):
-        sg = sig_end * m / N_DEMAND
-        NB, TB, NJ, TJ = _bp_forces(s, k, sp, q0, q1, q2, q3, sg, t + sg * hs, seg, epar)
-        db = _ratio(TB, NB)
-        dj = _ratio(TJ, NJ)
-        if (m == N_DEMAND // 2 or m == N_DEMAND) and (NB < 0.0 or NJ < 0.0):
-            pull = True
-        if db > bb:
-            bb, ib, lb, rb = db, m, pb, -1.0
-        elif m == ib + 1:
-            rb = db
-        if dj > bj:
-            bj, ij, lj, rj = dj, m, pj, -1.0
-        elif m == ij + 1:
-            rj = dj
-        pb, pj = db, dj
-    vb = _vertex(lb, bb, rb, ib)
-    vj = _vertex(lj, bj, rj, ij)
-    for v, which in ((vb, 0), (vj, 1)):
-        if v >= 0.0:
-            sg = sig_end * v / N_DEMAND
-            NB, TB, NJ, TJ = _bp_forces(s, k, sp, q0, q1, q2, q3, sg, t + sg * hs, seg, epar)
-            if which == 0:
-                bb = max(bb, _ratio(TB, NB))
-            else:
-                bj = max(bj, _ratio(TJ, NJ))
-    xo[X_FR_B] = max(xo[X_FR_B], bb)
-    xo[X_FR_J] = max(xo[X_FR_J], bj)
-    return pull
-
-
-@kernel(inline='always')
-def _one_forces(pat, s, k, sp, prm, c0, c1, sig, tt, seg, epar, xo):
-    """B or P at fraction ``sig`` of the step (``c0``, ``c1`` its quartics of the angle and rate): the smaller corner
-    force of the watched face (the base in B, the joint in P), the corner that keeps pressing, whether the pivot
-    pulls; the friction demand is noted while the face holds (past its opening the pattern is not the motion)."""
-    a = _poly(c0, sig)
-    ad = _poly(c1, sig)
-    ag = ground_at(tt, seg, epar)
-    A = prm[P_ALPHA] * (k if pat == PAT_B else s) - a
-    add = -prm[P_P2] * (math.sin(A) + ag / prm[P_G] * math.cos(A))  # Eq (3) with the pattern's p, alpha
-    if pat == PAT_B:
-        NB, TB, PR, PL, NJ, TJ = forces_b(k, sp, a, ad, add, ag)
-        pull = NJ < 0.0
-    else:
-        NB, TB, NJ, TJ, PR, PL = forces_p(s, sp, a, ad, add, ag)
-        pull = NB < 0.0
-    f = min(PR, PL)
-    if f > 0.0:
-        _demand(xo, NB, TB, NJ, TJ)
-    return f, (1.0 if PR > PL else -1.0), pull
-
-
-@kernel
-def _face_opens(pat, s, k, sp, prm, W, hs, t, seg, epar, xo, sig_lim):
-    """First fraction in ``(0, sig_lim]`` of the last step of B or P at which the watched face's smaller corner
-    force reaches 0 (16 samples, then bisection): ``(sigma, corner that keeps pressing)``, else ``(-1, 0)``. The
-    friction demand is read at the samples."""
-    c0 = _dense(W, hs, np.int64(0), 1.0)
-    c1 = _dense(W, hs, np.int64(1), 1.0)
-    jump = False
-    for m in range(1, 17):
-        sg = sig_lim * m / 16.0
-        f, side, pull = _one_forces(pat, s, k, sp, prm, c0, c1, sg, t + sg * hs, seg, epar, xo)
-        jump = jump or pull
-        if f <= 0.0:
-            lo = sig_lim * (m - 1) / 16.0
-            hi = sg
-            for _ in range(60):
-                mid = 0.5 * (lo + hi)
-                if mid <= lo or mid >= hi:
-                    break
-                fm, sd, _p = _one_forces(pat, s, k, sp, prm, c0, c1, mid, t + mid * hs, seg, epar, xo)
-                if fm <= 0.0:
-                    hi = mid
-                    side = sd
-                else:
-                    lo = mid
-            if jump:
-                xo[X_N_JUMP] += 1.0
-            return hi, side
-    if jump:
-        xo[X_N_JUMP] += 1.0
-    return -1.0, 0.0
-
-
-@kernel(inline='always')
-def _impact_ahead(W, hs, col, c):
-    """Fraction of the last step at which the angle in column ``col`` (corner ``c``) comes back to 0, else 1."""
-    e1 = c * W[W_YNEW, col]
-    d0 = c * W[W_Y, col + 1]
-    d1 = c * W[W_YNEW, col + 1]
-    if e1 <= 0.0 or (d0 < 0.0 and d1 > 0.0):
-        sg = _first_down(_dense(W, hs, np.int64(col), c), 0.0, 0.0, 1.0)
-        if sg >= 0.0:
-            return sg
-    return 1.0
+from rockcli.kernels.stack_patterns import _after_impact, _plinth_lifts, _set_pattern
+from rockcli.kernels.stack_physics import (S_B1, S_B2, S_G, S_H1, S_H2, S_M2, S_R1, _rhs_bp_into, choose_after_impact,
+                                           max_velocities)
+from rockcli.kernels.stack_step import (HALF_PI, PAT_B, PAT_BP, PAT_P, PAT_R, _abs_max, _bp_demand, _bp_peaks,
+                                        _face_opens, _impact_ahead, _max_abs_ag)
+from rockcli.kernels.stack_step import (N_XO, X_FR_B, X_FR_J, X_FRI_B, X_FRI_J, X_K, X_N_INCONS,  # noqa: F401
+                                        X_N_JUMP, X_N_PLASTIC, X_N_SWITCH, X_P2S, X_PAT, X_PL_MAX, X_PL_N_IMP,
+                                        X_PL_N_IMP_ALL, X_PL_N_RESTS, X_PL_T_EXCEED, X_PL_T_MAX, X_PL_T_UPLIFT, X_S,
+                                        X_STEPS_BP, X_TILT_MAX, X_TOPPLED)  # the record xo, read by rockcli.solve.stack
+from rockcli.kernels.steps import (EV_FAILED, EV_IMPACT, EV_OVERTURN, _accept_step, _advance_segment, _bounce, _finish,
+                                   _out_of_time, _rocking_events, _seg, _start, _to_impact, _to_overturn, _to_step_end)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -281,189 +98,6 @@ def _take_step_bp(sp, ekind, epar, max_steps, rs, W, t_stop):
 def _restep_bp(code, sp, seg, epar, t, h, W):
     _restep_rows(W)
     _dp5_bp(code, sp, seg, epar, t, h, W, np.int64(W_RE))
-
-
-@kernel
-def _abs_max(c, sig_end):
-    """The largest ``|poly(c)|`` on ``[0, sig_end]`` (17 samples, golden section about the largest)."""
-    m = 0.0
-    im = 0
-    for i in range(17):
-        v = abs(_poly(c, sig_end * i / 16.0))
-        if v > m:
-            m, im = v, i
-    sg = 1.0 if _poly(c, sig_end * im / 16.0) > 0.0 else -1.0
-    lo = sig_end * max(im - 1, 0) / 16.0
-    hi = sig_end * min(im + 1, 16) / 16.0
-    return max(m, abs(_poly(c, _golden_max(c, sg, lo, hi))))
-
-
-@kernel
-def _bp_peaks(rs, out, xo, sp, W, hs, sig_end):
-    """Peaks of ``|psi|``, ``|theta2|`` and ``|theta1|`` over ``[0, sig_end]`` of the last BP step, and the first
-    time ``|psi|`` reaches alpha1 and ``|theta2|`` alpha_asm."""
-    t = rs[RS_T]
-    for col in (0, 2):
-        c = _dense(W, hs, np.int64(col), 1.0)
-        v_end = abs(_poly(c, sig_end))
-        best, sbest = v_end, sig_end
-        d = _dense(W, hs, np.int64(col + 1), 1.0)
-        for sgn in (1.0, -1.0):
-            dd = (sgn * d[0], sgn * d[1], sgn * d[2], sgn * d[3], sgn * d[4])
-            sp_ = _first_down(dd, 0.0, 0.0, sig_end)
-            if sp_ >= 0.0 and abs(_poly(c, sp_)) > best:
-                best, sbest = abs(_poly(c, sp_)), sp_
-        if col == 0:
-            if best > rs[RS_THMAX]:
-                rs[RS_THMAX] = best
-                out[O_T_THETA_MAX] = t + sbest * hs
-            if math.isnan(out[O_T_EXCEED]) and rs[RS_THMAX] >= sp[S_A1REST]:
-                out[O_T_EXCEED] = t + sbest * hs
-        else:
-            if best > xo[X_PL_MAX]:
-                xo[X_PL_MAX] = best
-                xo[X_PL_T_MAX] = t + sbest * hs
-            if math.isnan(xo[X_PL_T_EXCEED]) and xo[X_PL_MAX] >= sp[S_AAREST]:
-                xo[X_PL_T_EXCEED] = t + sbest * hs
-    a = _dense(W, hs, np.int64(0), 1.0)
-    b = _dense(W, hs, np.int64(2), 1.0)
-    c1 = (a[0] + b[0], a[1] + b[1], a[2] + b[2], a[3] + b[3], a[4] + b[4])
-    xo[X_TILT_MAX] = max(xo[X_TILT_MAX], _abs_max(c1, sig_end))
-
-
-# ---------------------------------------------------------------------------------------------
-# Changes of pattern
-# ---------------------------------------------------------------------------------------------
-@kernel
-def _set_pattern(rs, W, xo, s, k, psi, psid, th2, thd2):
-    """Enter the pattern of corners ``(s, k)`` (0: a face) with these states."""
-    for i in range(4):
-        W[W_Y, i] = 0.0
-    if s == 0.0 and k == 0.0:
-        pat = PAT_R
-        rs[RS_PHASE] = PHASE_STUCK
-        rs[RS_S] = 0.0
-    elif s == 0.0:
-        pat = PAT_B
-        rs[RS_PHASE] = PHASE_ROCKING
-        rs[RS_S] = k
-        W[W_Y, 0] = psi
-        W[W_Y, 1] = psid
-    elif k == 0.0:
-        pat = PAT_P
-        rs[RS_PHASE] = PHASE_ROCKING
-        rs[RS_S] = s
-        W[W_Y, 0] = th2
-        W[W_Y, 1] = thd2
-    else:
-        pat = PAT_BP
-        rs[RS_PHASE] = PHASE_ROCKING
-        rs[RS_S] = 2.0 * s + k
-        W[W_Y, 0] = psi
-        W[W_Y, 1] = psid
-        W[W_Y, 2] = th2
-        W[W_Y, 3] = thd2
-    if pat != xo[X_PAT]:
-        xo[X_N_SWITCH] += 1.0
-    xo[X_PAT] = pat
-    xo[X_S] = s
-    xo[X_K] = k
-    rs[RS_FRESH] = 1.0
-
-
-@kernel
-def _plinth_lifts(xo, t):
-    if math.isnan(xo[X_PL_T_UPLIFT]):
-        xo[X_PL_T_UPLIFT] = t
-
-
-@kernel
-def _rest_check(j, s, k, sp, th2, psi, V, ag):
-    """The rest rule after an impact that leaves pivot ``j`` (0 base, 1 joint) of ``(s, k)`` turning: True (stick it,
-    momentum kept along the rest) when the relative accelerations that pull it back on both corners are positive and
-    the rotation it could still reach against the smaller is below ``rest_tol`` times its slenderness. Returns
-    ``(stick, rates of the stuck pattern (theta2', psi'))``."""
-    e2, e1 = fields(s if j == 1 else 0.0, k if j == 0 else 0.0, sp, th2, psi)
-    q2, q1 = project(sp, e2, e1, V)
-    ag_ = ag
-    rest = math.inf
-    for sg in (1.0, -1.0):
-        if j == 1:
-            pdd, _ = bp_acc(s, sg, sp, th2, 0.0, q2, 0.0, ag_)
-            rest = min(rest, -sg * pdd)
-        else:
-            _, tdd = bp_acc(sg, k, sp, 0.0, psi, 0.0, q1, ag_)
-            rest = min(rest, -sg * tdd)
-    rate = V[5] - V[2] if j == 1 else V[2]
-    alpha = sp[S_A1REST] if j == 1 else sp[S_AAREST]
-    stick = rest > 0.0 and rate * rate < 2.0 * rest * sp[S_REST] * alpha
-    return stick, q2, q1
-
-
-@kernel
-def _stack_rests(sp, V, ag):
-    """The rest rule of the whole stack, both angles at 0 after an impact: nothing could lift it from rest under
-    ``ag`` (each interface's restoring moment ``M_j`` at rest positive: ``g b1 - |ag| h1`` for the body,
-    ``(1 + m2)(g b2 - |ag| y_c)`` for the assembly, per unit body mass) and the kinetic energy is below
-    ``rest_tol min_j alpha_j M_j``. For one block this is the single block's rule exactly (``J theta'^2/2 <
-    rest_tol alpha m (g b - |a| h)`` is ``theta'^2/(2 p^2 cos(alpha)(tan(alpha) - |a|/g)) < rest_tol alpha``); it
-    ends the cascades where each impact of the body kicks the plinth off its face by a little (the note)."""
-    g = sp[S_G]
-    b1, h1, b2, h2, m2 = sp[S_B1], sp[S_H1], sp[S_B2], sp[S_H2], sp[S_M2]
-    yc = (m2 * h2 + 2.0 * h2 + h1) / (1.0 + m2)
-    a = abs(ag)
-    M1 = g * b1 - a * h1
-    M0 = (1.0 + m2) * (g * b2 - a * yc)
-    if M1 <= 0.0 or M0 <= 0.0:
-        return False
-    return 0.5 * _dot(sp, V, V) < sp[S_REST] * min(sp[S_A1REST] * M1, sp[S_AAREST] * M0)
-
-
-@kernel
-def _after_impact(j, s, k, sp, prm, prm_asm, th2, psi, V, rs, W, out, xo, t, ag):
-    """The pattern after an impact at ``j`` from ``(s, k)`` (generic: any pattern may follow), and the rest rule
-    (the single block's, with the body's or the assembly's parameters, when one body rocks after the impact)."""
-    s1, k1, V1, margin, jump, db, dj, plastic = choose_after_impact(s, k, j, sp, th2, psi, V)
-    if margin < -1e-9:
-        xo[X_N_INCONS] += 1.0
-    if plastic:
-        xo[X_N_PLASTIC] += 1.0
-    if jump:
-        xo[X_N_JUMP] += 1.0
-    xo[X_FRI_B] = max(xo[X_FRI_B], db)
-    xo[X_FRI_J] = max(xo[X_FRI_J], dj)
-    if s1 != 0.0 and th2 == 0.0:
-        _plinth_lifts(xo, t)
-    if k1 != 0.0 and k == 0.0 and out[O_UPLIFTED] == 0.0:
-        _count_uplift(out, t)
-    psid = V1[5] - V1[2]
-    thd2 = V1[2]
-    if th2 == 0.0 and psi == 0.0 and (s1 != 0.0 or k1 != 0.0) and _stack_rests(sp, V1, ag):
-        _set_pattern(rs, W, xo, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
-        xo[X_PL_N_RESTS] += 1.0
-        return
-    if (j == 0 and s1 != 0.0) or (j == 1 and k1 != 0.0):
-        if j == 1 and s1 == 0.0:  # the body alone rocks on the still plinth: its own rule
-            if comes_to_rest(prm, ag, psid, prm[P_THR], prm[P_ALPHA]):
-                _set_pattern(rs, W, xo, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
-                out[O_N_RESTS] += 1.0
-                return
-        elif j == 0 and k1 == 0.0:  # the assembly rocks as one block
-            if comes_to_rest(prm_asm, ag, thd2, prm_asm[P_THR], prm_asm[P_ALPHA]):
-                _set_pattern(rs, W, xo, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
-                xo[X_PL_N_RESTS] += 1.0
-                return
-        else:
-            stick, q2, q1 = _rest_check(j, s1, k1, sp, th2, psi, V1, ag)
-            if stick:
-                if j == 0:
-                    _set_pattern(rs, W, xo, 0.0, k1, psi, q1, 0.0, 0.0)
-                    xo[X_PL_N_RESTS] += 1.0
-                else:
-                    _set_pattern(rs, W, xo, s1, 0.0, 0.0, 0.0, th2, q2)
-                    out[O_N_RESTS] += 1.0
-                return
-    _set_pattern(rs, W, xo, s1, k1, psi, psid, th2, thd2)
 
 
 # ---------------------------------------------------------------------------------------------

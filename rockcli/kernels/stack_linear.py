@@ -10,10 +10,11 @@ watched face's smaller corner force down to 0 (R: the bearing's force reaching t
 plinth's base; P: the joint), and the step is taken again to the first of them (so that no step crosses an event).
 While a face is watched the steps stay below ``0.32/p`` and ``1.6/omega_b`` (16 samples each ``0.02/p`` and
 ``0.1/omega_b`` apart, the reference's resolution). Impacts, the pattern after them and the rest rules are those of
-the reference (:mod:`rockcli.kernels.stack_linear_physics`). The run ends at rest once the free base provably
+the reference (:mod:`rockcli.kernels.stack_linear_physics`); the step, its events and what is read along it are
+in :mod:`rockcli.kernels.stack_linear_step`. The run ends at rest once the free base provably
 cannot lift the stack again (after the excitation; linear bearings: P3, the free oscillator's energy bounds ``|F|``;
 hysteretic bearings: P3s, ``sqrt(F^2 + K u'^2)`` bounds every later ``|F|``, both stated in
-:func:`rockcli.kernels.driver.simulate_core`: the stack at rest on the base is one rigid mass on the bearings,
+:mod:`rockcli.kernels.driver_end`: the stack at rest on the base is one rigid mass on the bearings,
 exactly the single block's stuck base; the base then followed for its later peak, two periods, on hysteretic
 bearings only until its energy bound of ``|u|`` is below the peak), when a block topples, or at the horizon. No
 early stop during the excitation: verdict-only and history runs take the same steps. On hysteretic bearings the
@@ -41,335 +42,25 @@ from rockcli.kernels.bearings import (free_disp_bound, free_force_bound, initial
                                       motion_direction, reanchor, z_sensitivity)
 from rockcli.kernels.ground import ground_at
 from rockcli.kernels.jit import kernel
-from rockcli.kernels.layout import FOUNDATION_LINEAR, J_BASE, J_JOINT, N_OUT
-from rockcli.kernels.polynomials import _first_down, _poly
+from rockcli.kernels.layout import FOUNDATION_LINEAR, J_BASE, J_JOINT, N_OUT, RS_SEG_END, RS_T
 from rockcli.kernels.stack_linear_physics import (L_AASM, L_PMAX, L_RTOL, L_SC, L_THR1, L_THRA, L_WB, L_XI, accel,
-                                                  bearing, choose_post, force, impact_into, kinetic_relative,
-                                                  mass_diag, rel_rates, rest_moments, restoring, rhs, velocities)
-from rockcli.kernels.stack_physics import S_A1, S_E, S_G, S_M2, S_REST, S_TOL, forces
+                                                  choose_post, force, impact_into, kinetic_relative, mass_diag,
+                                                  rel_rates, rest_moments, restoring, rhs, velocities)
+from rockcli.kernels.stack_linear_step import (C_BODY, C_PLINTH, HALF_PI, V_IMPACT, V_OVERTURN, _dense, _dp5,
+                                               _face_kind, _face_value, _first_fall, _held_push, _may_cross,
+                                               _rest_bounds, _rest_bounds_hysteretic, _reversal, _scan,
+                                               _unresolved_fall)
+from rockcli.kernels.stack_linear_step import (N_Z, Z_FR0, Z_FR1, Z_FRI0, Z_FRI1, Z_INCONS, Z_JUMPS,  # noqa: F401
+                                               Z_NIMP0, Z_NIMP1, Z_NIMPALL0, Z_NIMPALL1, Z_NPLASTIC, Z_NRESTS, Z_NRHS,
+                                               Z_PEAK0, Z_PEAK1, Z_REJ, Z_SETTLED, Z_STATUS, Z_STEPS, Z_TEX0, Z_TEX1,
+                                               Z_TILT, Z_TOPPLED, Z_TUP0, Z_TUP1, Z_T_END, Z_T_OVER, Z_T_SETTLED,
+                                               Z_UMAX)  # the outputs z, read by rockcli.solve.stack
+from rockcli.kernels.stack_physics import S_A1, S_E, S_G, S_REST, S_TOL, forces
 from rockcli.kernels.steps import _advance_segment, _seg, _start
-from rockcli.kernels.layout import RS_SEG_END, RS_T
-
-# outputs ``z``
-Z_STATUS, Z_TOPPLED, Z_T_OVER, Z_PEAK0, Z_PEAK1, Z_TILT, Z_UMAX = 0, 1, 2, 3, 4, 5, 6
-Z_TUP0, Z_TUP1, Z_NIMP0, Z_NIMP1, Z_NIMPALL0, Z_NIMPALL1 = 7, 8, 9, 10, 11, 12
-Z_FR0, Z_FR1, Z_FRI0, Z_FRI1, Z_JUMPS, Z_INCONS, Z_SETTLED = 13, 14, 15, 16, 17, 18, 19
-Z_T_END, Z_STEPS, Z_REJ, Z_NRHS, Z_TEX0, Z_TEX1, Z_NPLASTIC, Z_T_SETTLED, Z_NRESTS = 20, 21, 22, 23, 24, 25, 26, 27, 28
-N_Z = 29
 
 # history rows: t, ag, psi, psi', theta2, theta2', u, u', pattern (0 R, 1 B, 2 P, 3 BP), event
 ZH_N = 10
 EVH_STATE, EVH_UPLIFT, EVH_IMPACT, EVH_REST, EVH_OVERTURN = 0.0, 1.0, 2.0, 3.0, 4.0
-
-HALF_PI = 0.5 * math.pi
-# the events of :func:`_value` (2 and above: a face, :func:`_face_kind`, which reads no column) and the pivots' angle
-# columns of ``y`` (the body's psi, the plinth's theta2): int64 values, as the codes of rockcli.kernels.layout
-V_IMPACT, V_OVERTURN = np.int64(0), np.int64(1)
-C_BODY, C_PLINTH = np.int64(0), np.int64(2)
-
-_C = (0.0, 0.2, 0.3, 0.8, 8.0 / 9.0, 1.0)
-_A = ((0.0, 0.0, 0.0, 0.0, 0.0),
-      (0.2, 0.0, 0.0, 0.0, 0.0),
-      (3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0),
-      (44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0),
-      (19372.0 / 6561.0, -25360.0 / 2187.0, 64448.0 / 6561.0, -212.0 / 729.0, 0.0),
-      (9017.0 / 3168.0, -355.0 / 33.0, 46732.0 / 5247.0, 49.0 / 176.0, -5103.0 / 18656.0))
-_B = (35.0 / 384.0, 0.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0)
-_E = (-71.0 / 57600.0, 0.0, 71.0 / 16695.0, -71.0 / 1920.0, 17253.0 / 339200.0, -22.0 / 525.0, 1.0 / 40.0)
-_P = ((1.0, -8048581381.0 / 2820520608.0, 8663915743.0 / 2820520608.0, -12715105075.0 / 11282082432.0),
-      (0.0, 0.0, 0.0, 0.0),
-      (0.0, 131558114200.0 / 32700410799.0, -68118460800.0 / 10900136933.0, 87487479700.0 / 32700410799.0),
-      (0.0, -1754552775.0 / 470086768.0, 14199869525.0 / 1410260304.0, -10690763975.0 / 1880347072.0),
-      (0.0, 127303824393.0 / 49829197408.0, -318862633887.0 / 49829197408.0, 701980252875.0 / 199316789632.0),
-      (0.0, -282668133.0 / 205662961.0, 2019193451.0 / 616988883.0, -1453857185.0 / 822651844.0),
-      (0.0, 40617522.0 / 29380423.0, -110615467.0 / 29380423.0, 69997945.0 / 29380423.0))
-
-
-@kernel
-def _dp5(s, k, sp, lp, bb, seg, epar, t, h, y, K, ynew):
-    """One Dormand-Prince step from ``y`` (``K[0] = f(t, y)`` given) into ``ynew``, ``K[6] = f(t + h, ynew)``:
-    the error norm (<= 1: accepted)."""
-    yt = np.empty(6)
-    for st in range(1, 6):
-        for i in range(6):
-            acc = 0.0
-            for j in range(st):
-                acc += _A[st][j] * K[j, i]
-            yt[i] = y[i] + h * acc
-        rhs(s, k, sp, lp, bb, yt, ground_at(t + _C[st] * h, seg, epar), K[st])
-    for i in range(6):
-        acc = 0.0
-        for j in range(6):
-            acc += _B[j] * K[j, i]
-        ynew[i] = y[i] + h * acc
-    rhs(s, k, sp, lp, bb, ynew, ground_at(t + h, seg, epar), K[6])
-    err = 0.0
-    rtol = lp[L_RTOL]
-    # on a hysteretic bearing the error of u passes to its Bouc-Wen elements, |dz/du| <= gz: the tolerance of u is
-    # rtol / (1/max(|u|, scale) + gz), as for the single block (rockcli.kernels.dopri)
-    gz = 0.0 if bb[0] == FOUNDATION_LINEAR else z_sensitivity(bb[0], bb[1], bb[2])
-    for i in range(6):
-        e = 0.0
-        for j in range(7):
-            e += _E[j] * K[j, i]
-        if i == 4 and gz > 0.0:
-            sc = rtol / (1.0 / max(lp[L_SC + i], abs(y[i]), abs(ynew[i])) + gz)
-        else:
-            sc = rtol * max(lp[L_SC + i], abs(y[i]), abs(ynew[i]))
-        err = max(err, abs(h * e) / sc)
-    return err
-
-
-@kernel(inline='always')
-def _dense(y, K, h, sig, out):
-    s2 = sig * sig
-    w = np.empty(7)
-    for j in range(7):
-        w[j] = _P[j][0] * sig + _P[j][1] * s2 + _P[j][2] * s2 * sig + _P[j][3] * s2 * s2
-    for i in range(6):
-        acc = 0.0
-        for j in range(7):
-            acc += w[j] * K[j, i]
-        out[i] = y[i] + h * acc
-
-
-@kernel
-def _value(kind, c, sgn, s, k, sp, lp, bb, seg, epar, t, h, y, K, sg, yy):
-    """The value whose first fall to 0 is the event, at fraction ``sg`` of the step: ``kind`` 0 an impact of the
-    pivot in column ``c`` on corner ``sgn``, 1 its block's overturn, 2 the watched face (:func:`_face_value`; 3 and
-    4: at rest with the joint, the base held, :func:`_face_kind`)."""
-    _dense(y, K, h, sg, yy)
-    if kind == 0:
-        return sgn * yy[c]
-    if kind == 1:
-        return HALF_PI - sgn * yy[c]
-    return _face_value(s, k, sp, lp, bb, yy, ground_at(t + sg * h, seg, epar), kind)
-
-
-@kernel
-def _first_fall(kind, c, sgn, s, k, sp, lp, bb, seg, epar, t, h, y, K, sig_lim):
-    """First fraction in ``(0, sig_lim]`` of the step where the event value is <= 0 (16 samples, bisection;
-    the start counts as above 0), else 2."""
-    yy = np.empty(6)
-    lo = 0.0
-    for m in range(1, 17):
-        sg = sig_lim * m / 16.0
-        if _value(kind, c, sgn, s, k, sp, lp, bb, seg, epar, t, h, y, K, sg, yy) <= 0.0:
-            hi = sg
-            for _ in range(60):
-                mid = 0.5 * (lo + hi)
-                if mid <= lo or mid >= hi:
-                    break
-                if _value(kind, c, sgn, s, k, sp, lp, bb, seg, epar, t, h, y, K, mid, yy) <= 0.0:
-                    hi = mid
-                else:
-                    lo = mid
-            return hi
-        lo = sg
-    return 2.0
-
-
-@kernel
-def _face_value(s, k, sp, lp, bb, yy, ag, kind):
-    """R: the lower uplift threshold less the bearing's force (``kind`` 3: the joint held, the plinth's threshold;
-    4: the base held, the body's); B: the plinth's smaller base corner force over its load; P: the joint's over the
-    body's weight."""
-    if s == 0.0 and k == 0.0:
-        thr = lp[L_THRA] if kind == 3 else (lp[L_THR1] if kind == 4 else min(lp[L_THR1], lp[L_THRA]))
-        return thr - abs(force(lp, bb, yy[4], yy[5]))
-    pdd, tdd, ab = accel(s, k, sp, lp, bb, yy, ag)
-    f = forces(s, k, sp, yy[2], yy[0], yy[3], yy[1], tdd, pdd, ab)
-    if s == 0.0:
-        return min(f[2], f[3]) / ((1.0 + sp[S_M2]) * sp[S_G])
-    return min(f[6], f[7]) / sp[S_G]
-
-
-@kernel(inline='always')
-def _face_kind(s, k, held):
-    """The face the driver watches in pattern ``(s, k)`` with interface ``held`` held shut (-1: none): -1 none, 2 the
-    pattern's own (R: the lower threshold), 3 at rest with the joint held (the plinth's threshold), 4 with the base
-    held (the body's)."""
-    if s != 0.0 and k != 0.0:
-        return -1
-    if held < 0:
-        return 2
-    if s == 0.0 and k == 0.0:
-        return 3 if held == 1 else 4
-    return -1  # P or B: its only face is the held one
-
-
-@kernel
-def _unresolved_fall(c, sgn, lp, y, K, h, sig):
-    """The hair-lift test (docs/physics-plinth.md, "A lift below the tolerance"): the pivot in column ``c`` (corner
-    ``sgn``) started the step just opened (angle and rate exactly 0), and its angle, back at 0 at fraction ``sig``,
-    never rose above its error floor ``rtol scale`` on ``[0, sig]`` (17 samples of the continuous extension), its
-    rate there below its own floor: the lift is below what the integration resolves."""
-    if y[c] != 0.0 or y[c + 1] != 0.0:
-        return False
-    eps = lp[L_RTOL] * lp[L_SC + c]
-    yy = np.empty(6)
-    for m in range(17):
-        _dense(y, K, h, sig * m / 16.0, yy)
-        if sgn * yy[c] > eps:
-            return False
-    return abs(yy[c + 1]) <= lp[L_RTOL] * lp[L_SC + c + 1]
-
-
-@kernel
-def _held_push(held, hc, s, k, sp, lp, bb, seg, epar, t, h, y, K):
-    """The largest opening acceleration the held interface would have over the step (17 samples): its pivot on
-    corner ``hc`` at angle 0 with no rate, the rest of the stack as it is."""
-    yy = np.empty(6)
-    amax = 0.0
-    s1 = hc if held == 0 else s
-    k1 = hc if held == 1 else k
-    for m in range(17):
-        sg = m / 16.0
-        _dense(y, K, h, sg, yy)
-        pdd, tdd, _ = accel(s1, k1, sp, lp, bb, yy, ground_at(t + sg * h, seg, epar))
-        amax = max(amax, hc * (pdd if held == 1 else tdd))
-    return amax
-
-
-@kernel
-def _rest_bounds(lp, y, K, h):
-    """At rest (pattern R): bounds over the step of ``|F|`` (the bearing's force) and of ``|u|``, from the
-    continuous extension's quartics ``sum_m c_m sigma^m`` (``|p(sigma)| <= sum |c_m|`` on ``[0, 1]``)."""
-    w = lp[L_WB]
-    cf = 2.0 * lp[L_XI] * w
-    fb = abs(bearing(lp, y[4], y[5]))
-    ub = abs(y[4])
-    for m in range(4):
-        cu = 0.0
-        cv = 0.0
-        for j in range(7):
-            cu += _P[j][m] * K[j, 4]
-            cv += _P[j][m] * K[j, 5]
-        fb += h * abs(w * w * cu + cf * cv)
-        ub += h * abs(cu)
-    return fb, ub
-
-
-@kernel
-def _coeffs(y, K, h, i):
-    """The quartic ``sum_m c_m sigma^m`` of state ``i`` over the step (the continuous extension)."""
-    c = [y[i], 0.0, 0.0, 0.0, 0.0]
-    for m in range(4):
-        acc = 0.0
-        for j in range(7):
-            acc += _P[j][m] * K[j, i]
-        c[m + 1] = h * acc
-    return (c[0], c[1], c[2], c[3], c[4])
-
-
-@kernel
-def _rest_bounds_hysteretic(lp, bb, y, K, h):
-    """:func:`_rest_bounds` on a hysteretic bearing: ``|u(sigma) - u(0)| <= span = sum_m>0 |c_m|``, and on the
-    step's branch (the step ends at a reversal of u) ``F`` is a decreasing function of ``u`` alone, so ``|F| <=
-    max(|F(u0 - span)|, |F(u0 + span)|)`` over the step (the single block's quick test,
-    :func:`rockcli.kernels.events.hysteretic_uplift`)."""
-    c = _coeffs(y, K, h, np.int64(4))
-    span = abs(c[1]) + abs(c[2]) + abs(c[3]) + abs(c[4])
-    fb = max(abs(force(lp, bb, y[4] - span, 0.0)), abs(force(lp, bb, y[4] + span, 0.0)))
-    return fb, abs(y[4]) + span
-
-
-@kernel
-def _reversal(y, K, h, d, tol):
-    """Did the base keep moving in direction ``d`` through the step (a hysteretic bearing's elements follow ``u``
-    exactly only while it moves one way)? ``(code, sigma)``, as the single block's
-    :func:`rockcli.kernels.events.reversal_check`: 1 ``d u'`` falls to 0 at ``sigma`` after the base moved forward by
-    more than ``tol`` (the step is cut there); 2 the base moved back by more than ``tol`` before moving forward (a
-    start at ``u' = 0`` whose direction was guessed wrong: retake the step on the other branch); else 0."""
-    cv = _coeffs(y, K, h, np.int64(5))
-    cu = _coeffs(y, K, h, np.int64(4))
-    cv = (d * cv[0], d * cv[1], d * cv[2], d * cv[3], d * cv[4])
-    cu = (d * cu[0], d * cu[1], d * cu[2], d * cu[3], d * cu[4])
-    sr = _first_down(cv, 0.0, 0.0, 1.0)
-    if sr >= 0.0 and _poly(cu, sr) - cu[0] > tol:
-        return 1, sr
-    for m in range(1, 17):
-        D = _poly(cu, m / 16.0) - cu[0]
-        if D < -tol:
-            return 2, 0.0
-        if D > tol:
-            break
-    return 0, 1.0
-
-
-@kernel(inline='always')
-def _may_cross(c, a0, r0, a1, r1, kind):
-    """Whether a pivot's angle (corner ``c``, from ``a0``, rate ``r0`` to ``a1``, ``r1`` over the step) may reach
-    0 (``kind`` 0) or pi/2 (1) inside the step: its end is there, or the angle turned inside it (a minimum, or a
-    maximum above 1 rad), or the pivot has just started from 0 (a fresh uplift that may fall straight back)."""
-    if kind == 0:
-        return c * a1 <= 0.0 or (c * r0 < 0.0 and c * r1 > 0.0) or a0 == 0.0
-    return c * a1 >= HALF_PI or (c * r0 > 0.0 and c * r1 < 0.0 and max(c * a0, c * a1) > 1.0)
-
-
-@kernel
-def _scan(s, k, sp, lp, bb, seg, epar, t, h, y, K, sig_end, z):
-    """Peaks, first exceedances and the friction demand over ``[0, sig_end]`` of the step (17 samples, the
-    largest of each peak refined by golden section); counts a step where a pivot's normal force is below 0."""
-    yy = np.empty(6)
-    best = np.zeros(4)
-    arg = np.zeros(4, dtype=np.int64)
-    jump = False
-    for m in range(17):
-        sg = sig_end * m / 16.0
-        _dense(y, K, h, sg, yy)
-        vals = (abs(yy[2]), abs(yy[0]), abs(yy[0] + yy[2]), abs(yy[4]))
-        for q in range(4):
-            if vals[q] > best[q]:
-                best[q] = vals[q]
-                arg[q] = m
-        if s == 0.0 and k == 0.0:  # at rest: both interfaces carry the weight and |a_b| of it sideways
-            fr = abs(force(lp, bb, yy[4], yy[5])) / sp[S_G]
-            z[Z_FR0] = max(z[Z_FR0], fr)
-            z[Z_FR1] = max(z[Z_FR1], fr)
-            continue
-        ag = ground_at(t + sg * h, seg, epar)
-        pdd, tdd, ab = accel(s, k, sp, lp, bb, yy, ag)
-        f = forces(s, k, sp, yy[2], yy[0], yy[3], yy[1], tdd, pdd, ab)
-        if f[0] > 0.0 and (s != 0.0 or min(f[2], f[3]) > 0.0):
-            z[Z_FR0] = max(z[Z_FR0], abs(f[1]) / f[0])
-        if f[4] > 0.0 and (k != 0.0 or min(f[6], f[7]) > 0.0):
-            z[Z_FR1] = max(z[Z_FR1], abs(f[5]) / f[4])
-        if (s != 0.0 and f[0] < 0.0) or (k != 0.0 and f[4] < 0.0):
-            jump = True
-        if math.isnan(z[Z_TEX0]) and abs(yy[2]) >= lp[L_AASM]:
-            z[Z_TEX0] = t + sg * h
-        if math.isnan(z[Z_TEX1]) and abs(yy[0]) >= sp[S_A1]:
-            z[Z_TEX1] = t + sg * h
-    cols = (2, 0, -1, 4)
-    record = (z[Z_PEAK0], z[Z_PEAK1], z[Z_TILT], z[Z_UMAX])
-    for q in range(4):
-        m = arg[q]
-        if best[q] == 0.0 or best[q] < 0.9 * record[q]:
-            # a sampled maximum below 0.9 of the peak so far cannot raise it (between samples 1/16 of a step apart,
-            # a smooth maximum exceeds the samples by (w dt)^2/8 relatively: below 2e-3 with the steps' caps)
-            continue
-        a = sig_end * max(m - 1, 0) / 16.0
-        b = sig_end * min(m + 1, 16) / 16.0
-        gr = 0.5 * (math.sqrt(5.0) - 1.0)
-        for _ in range(40):
-            x1 = b - gr * (b - a)
-            x2 = a + gr * (b - a)
-            _dense(y, K, h, x1, yy)
-            f1 = abs(yy[0] + yy[2]) if cols[q] < 0 else abs(yy[cols[q]])
-            _dense(y, K, h, x2, yy)
-            f2 = abs(yy[0] + yy[2]) if cols[q] < 0 else abs(yy[cols[q]])
-            best[q] = max(best[q], f1, f2)
-            if f1 > f2:
-                b = x2
-            else:
-                a = x1
-    z[Z_PEAK0] = max(z[Z_PEAK0], best[0])
-    z[Z_PEAK1] = max(z[Z_PEAK1], best[1])
-    z[Z_TILT] = max(z[Z_TILT], best[2])
-    z[Z_UMAX] = max(z[Z_UMAX], best[3])
-    if jump:
-        z[Z_JUMPS] += 1.0
 
 
 @kernel
@@ -535,7 +226,7 @@ def simulate_stack_linear(sp, lp, fk, bp, ekind, epar, acc, dt, t_begin, t_exc_e
         _advance_segment(rs, ekind, epar, acc, dt, t_begin)
         seg = _seg(rs)
         if s == 0.0 and k == 0.0 and not settled and t >= t_exc_end:
-            # the stack at rest rides the free base: P3 (linear) or P3s (hysteretic, rockcli.kernels.driver) bounds
+            # the stack at rest rides the free base: P3 (linear) or P3s (hysteretic, rockcli.kernels.driver_end) bounds
             # every later |F| of the base; below the lower uplift threshold nothing lifts again
             if hyst:
                 fbound = free_force_bound(fk, bp, hy, y[4], y[5])

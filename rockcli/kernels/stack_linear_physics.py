@@ -31,7 +31,7 @@ from rockcli.kernels.bearings import hysteretic_force
 from rockcli.kernels.jit import kernel
 from rockcli.kernels.layout import FOUNDATION_LINEAR
 from rockcli.kernels.stack_physics import (S_A1, S_A2, S_B1, S_B2, S_G, S_H1, S_H2, S_I1, S_I2, S_M2, S_R1, S_R2,
-                                           bp_acc)
+                                           _rot, bp_acc)
 
 # the tuple ``lp`` of the bearings (per unit body mass)
 L_P1SQ, L_PASQ, L_AASM, L_RE, L_ETA = 0, 1, 2, 3, 4  # p1^2, p_asm^2, alpha_asm, R_e of as_block(), eta_asm
@@ -129,13 +129,6 @@ def rhs(s, k, sp, lp, bb, y, ag, dy):
 # ---------------------------------------------------------------------------------------------
 # Impacts in maximal coordinates (plinth x, y, theta; body x, y, theta; base x)
 # ---------------------------------------------------------------------------------------------
-@kernel(inline='always')
-def _rot(t, x, y):
-    c = math.cos(t)
-    sn = math.sin(t)
-    return c * x + sn * y, -sn * x + c * y
-
-
 @kernel
 def mass_diag(sp, lp):
     m2 = sp[S_M2]

@@ -32,7 +32,9 @@ What is where, in reading order (every name is importable from ``rockcli.referen
   samples as break points.
 * :mod:`~rockcli.reference.stack` and :mod:`~rockcli.reference.stack_mechanics`: a stack of rocking blocks on
   the ground or on linear bearings (a body on its plinth), from the separate bodies' Newton-Euler equations with
-  the contact constraints (:func:`reference_stack`, :func:`reference_plinth`; docs/physics-plinth.md).
+  the contact constraints (:func:`reference_stack`, :func:`reference_plinth`; docs/physics-plinth.md); its run
+  (:mod:`~rockcli.reference.stack_run`), the pattern after an impact (:mod:`~rockcli.reference.stack_impact`) and
+  the hysteretic bearings (:mod:`~rockcli.reference.stack_hysteretic`).
 
 The test suite's ``tests/naive.py`` and ``tests/naive_sliding.py`` re-export this package.
 """

@@ -22,7 +22,7 @@ import math
 import numpy as np
 
 from rockcli.reference.hysteretic import Bearing
-from rockcli.reference.stack import _Run
+from rockcli.reference.stack_run import _Run
 
 
 def hysteretic_base(stack, isolation):
@@ -36,7 +36,7 @@ def hysteretic_base(stack, isolation):
 
 
 class HystRun(_Run):
-    """:class:`rockcli.reference.stack._Run` on a hysteretic bearing ``brg`` (set before the run starts)."""
+    """:class:`rockcli.reference.stack_run._Run` on a hysteretic bearing ``brg`` (set before the run starts)."""
 
     brg: Bearing = None
 

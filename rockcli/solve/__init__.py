@@ -70,7 +70,7 @@ Solver contract
   (overturned; after the excitation, a block at rest that the still ground, or the free base,
   can no longer lift; on a rigid foundation a block with ``|theta| < alpha`` whose energy is below
   the energy needed to reach alpha). The proofs are stated in
-  :func:`rockcli.kernels.simulate_core`. A history run then goes on to ``t_exc_end + tail`` to
+  :mod:`rockcli.kernels.rigid` and :mod:`rockcli.kernels.driver_end`. A history run then goes on to ``t_exc_end + tail`` to
   show the free motion. A run still unproven ``horizon`` seconds after the excitation ends there
   with ``settled = False`` and says so (e.g. an undamped base that keeps lifting the block).
   ``early=True`` (verdict-only sweeps) also stops during the excitation once survival is proven

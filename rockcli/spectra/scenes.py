@@ -11,7 +11,7 @@ every cell on one reference block, ``R = REFERENCE_R = 1 m`` (``p = 2.712 rad/s`
 otherwise, and sets ``T_p = 2 pi / (x p)`` for each column; ``tests/test_spectra.py`` checks that
 another ``R`` gives the same map. The solver's tolerances are scaled by ``alpha``, ``p alpha`` and
 ``g tan(alpha) / max(omega_b, p)^2`` and its first step by ``1/p`` and ``T_p``, and a verdict-only run
-ends when its verdict is proven (the theorems of :func:`rockcli.kernels.simulate_core`), which does not
+ends when its verdict is proven (the theorems of :mod:`rockcli.kernels.rigid` and :mod:`rockcli.kernels.driver_end`), which does not
 depend on the block size either: the dimensionless result is the same to rounding. (A run still
 unproven at the solver's horizon, 600 s after the pulse, would end there: such cells are counted and
 reported as "still moving", ``settled`` False.)
