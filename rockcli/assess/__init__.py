@@ -23,12 +23,15 @@ The library behind ``rockcli assess`` (no click, no pandas). Read it in this ord
 :mod:`rockcli.assess.table`
     ``assess column``: every scene verdict-only, with its margin -> :class:`Assessment` rows.
 :mod:`rockcli.assess.verdicts`
-    The answer in plain words: one sentence per body and configuration (``survives: it rocks to
-    39 % of its overturning angle; a record 1.60 times stronger would topple it``), in words that
-    fit the body, with the stroke the isolation bearings must allow.
+    The answer in plain words as ``assess column`` prints it (:func:`format_verdicts`): one sentence per body and
+    configuration (``survives: it rocks to 39 % of its overturning angle; a record 1.60 times stronger would
+    topple it``), in words that fit the body, with the stroke the isolation bearings must allow. The words are
+    made in :mod:`rockcli.report.words` and :mod:`rockcli.report.verdicts` (the report never imports this
+    package) and re-exported here.
 :mod:`rockcli.assess.plinth_words`
-    A body on a free plinth in words: how each block rocked (``nothing lifts: the statue stays put on its
-    plinth and the plinth does not rock``), one run of ``simulate --on``, and "Does the plinth help?".
+    A body on a free plinth in words (:mod:`rockcli.report.plinth_words`, re-exported): how each block rocked
+    (``nothing lifts: the statue stays put on its plinth and the plinth does not rock``), one run of
+    ``simulate --on``, and "Does the plinth help?".
 :mod:`rockcli.assess.fragility`
     ``assess fragility``: each record's overturning capacity (smallest overturning scale x the
     record's intensity measure) and a lognormal fragility per column x configuration fitted by

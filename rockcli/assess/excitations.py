@@ -21,6 +21,8 @@ from rockcli.assess.manifest import MANIFEST_COLUMNS, is_manifest, read_manifest
 from rockcli.errors import RockcliInputError
 from rockcli.io.inputs import format_number
 from rockcli.io.units import G
+from rockcli.records.unavailable import Duplicate, Skipped, Unavailable  # noqa: F401 (re-exported)
+from rockcli.report.words import unavailable_notes  # noqa: F401 (re-exported)
 
 EXCITATION_RECORD = "record"
 EXCITATION_PULSE = "pulse"
@@ -70,39 +72,6 @@ class Excitation:
     #: them and keeps the most adverse (:mod:`rockcli.assess.azimuth`): ``motion``, the projection onto 0 deg, is
     #: no row's run by itself. Empty: ``motion`` is what runs.
     azimuths: tuple = ()
-
-
-@dataclass(frozen=True)
-class Unavailable:
-    """A record asked for (or in the default set) that cannot be run: neither file nor pulse."""
-
-    label: str
-    reason: str
-
-
-@dataclass(frozen=True)
-class Skipped(Unavailable):
-    """A file of a folder suite that is not a record by its content (no reader recognises it)."""
-
-
-@dataclass(frozen=True)
-class Duplicate(Unavailable):
-    """A source that names a record the suite holds already (a symbolic link, a second spelling of a
-    component): run once (:mod:`rockcli.assess.suite`); ``reason`` names the one kept."""
-
-
-def unavailable_notes(unavailable) -> list[str]:
-    """Sentences for the notes: the skipped files of folder suites, counted, the records named twice, then
-    what is not available."""
-    skipped = [u for u in unavailable if isinstance(u, Skipped)]
-    lines = []
-    if skipped:
-        lines.append(f"Skipped {len(skipped)} file(s) of the folder(s) that are not records (no reader recognises "
-                     f"their content): {', '.join(u.label for u in skipped)}.")
-    lines += [f"Counted once: {u.label} is {u.reason}." for u in unavailable if isinstance(u, Duplicate)]
-    lines += [f"Not available: {u.label} ({u.reason})." for u in unavailable
-              if not isinstance(u, (Skipped, Duplicate))]
-    return lines
 
 
 def _pulse_excitation(entry) -> Excitation:

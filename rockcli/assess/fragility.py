@@ -167,6 +167,16 @@ class FragilityCurve:
     ratio_ci: tuple = (math.nan, math.nan)
     note: str = ""
 
+    def probability(self, im):
+        """The fitted fragility ``P(overturn)`` at the intensities ``im`` (an array, the IM's units):
+        :func:`rockcli.assess.lognormal.fragility_probability` with this curve's median and beta."""
+        return fragility_probability(im, self.median, self.beta)
+
+    def boot_probabilities(self, im):
+        """``P(overturn)`` at ``im`` of every bootstrap resample that has a fit: an array, one row per resample."""
+        ok = np.isfinite(self.boot_median)
+        return fragility_probability(np.asarray(im)[None, :], self.boot_median[ok, None], self.boot_beta[ok, None])
+
 
 @dataclass
 class Fragility:
@@ -194,6 +204,14 @@ class Fragility:
 
     def rows_of(self, column: str, configuration: str) -> list:
         return [r for r in self.rows if r.column == column and r.configuration == configuration]
+
+    def plotting_points(self, column: str, configuration: str) -> tuple[list, list]:
+        """``(exact, censored)``: the records' ``(capacity, probability)`` of a column (name) and configuration
+        (header) at their Kaplan-Meier plotting positions (:func:`empirical_points`), the right-censored ones
+        (no overturning up to the grid's top) apart, at their bound."""
+        pts = empirical_points(self.rows_of(column, configuration))
+        return ([(v, p) for v, p, cen in pts if cen != CENSORED_RIGHT],
+                [(v, p) for v, p, cen in pts if cen == CENSORED_RIGHT])
 
     def to_dataframe(self):
         """The rows as a pandas DataFrame, the columns of the CSV (``assess fragility --csv``; docs/fragility.md),

@@ -11,14 +11,15 @@ every combination. This module turns what the user wrote into those three lists:
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Sequence
 
 from rockcli.assess.excitations import (EXCITATION_MODES, EXCITATION_PULSE, EXCITATION_RECORD,  # noqa: F401
                                        MANIFEST_COLUMNS, Excitation, Skipped, Unavailable, is_manifest,
                                        read_manifest, resolve_excitations, table_ii_entries, unavailable_notes)
 from rockcli.errors import RockcliInputError
-from rockcli.models import COLUMN_PRESETS, Block, Rigid, Stack, build_block, column, parse_isolation_spec
+from rockcli.models import Block, Rigid, Stack, build_block, column, parse_isolation_spec
+from rockcli.models.spec import Configuration, _short_header  # noqa: F401 (Configuration re-exported)
+from rockcli.report.words import column_title  # noqa: F401 (re-exported)
 
 #: The paper's Table III configurations: rigid foundation and linear bearings with
 #: T_b = 2, 2.5, 3 s and xi_b = 0.1 (gamma = rockcli.models.DEFAULT_GAMMA = 0.01).
@@ -63,14 +64,6 @@ def custom_column(name: str, R=None, alpha=None, height=None, width=None, *, lab
     """
     return build_block(R=R, alpha_deg=alpha, height=height, width=width, name=name, labels=labels,
                        allow_preset=False, context="" if labels else f"column {name!r}")
-
-
-def column_title(block: Block) -> str:
-    """``Temple of Apollo at Bassae (bassae): R = 3.03 m, alpha = 10.56 deg, h/b = 5.36``."""
-    preset = COLUMN_PRESETS.get(block.name)
-    head = f"{preset[2]} ({block.name})" if preset else block.name
-    return (f"{head}: R = {block.R:.2f} m, alpha = {block.alpha_deg:.2f} deg, h/b = {block.h / block.b:.2f}, "
-            f"height {block.height:.2f} m, width {block.width:.2f} m")
 
 
 # --------------------------------------------------------------------------------------------------
@@ -176,33 +169,6 @@ def check_scale_search(scenes, grid, known=None, progress=None) -> list:
     if progress is not None and not callable(progress):
         raise RockcliInputError(f"progress must be None or a function progress(n), got {type_words(progress)}")
     return scenes
-
-
-@dataclass(frozen=True)
-class Configuration:
-    """A foundation and how the user wrote it."""
-
-    spec: str
-    foundation: object
-    header: str
-
-    @property
-    def label(self) -> str:
-        return self.foundation.label
-
-    @property
-    def isolated(self) -> bool:
-        return not isinstance(self.foundation, Rigid)
-
-
-def _short_header(foundation, spec: str) -> str:
-    if isinstance(foundation, Rigid):
-        return "none"
-    T_b = getattr(foundation, "T_b", None)
-    if T_b is None:
-        return spec
-    family = foundation.label.partition(":")[0]
-    return f"Tb={T_b:g}s" if family == "linear" else f"{family} Tb={T_b:.3g}s"
 
 
 def parse_configurations(specs: Sequence[str] | None = None) -> list[Configuration]:

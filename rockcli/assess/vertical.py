@@ -22,6 +22,7 @@ from typing import Sequence
 
 from rockcli.assess.excitations import EXCITATION_PULSE, Excitation
 from rockcli.errors import RockcliInputError
+from rockcli.report.tables import vertical_labels  # noqa: F401 (re-exported: the labels are words of the report)
 
 
 def _record_path(x: Excitation):
@@ -106,9 +107,3 @@ def attach_verticals(excitations: Sequence[Excitation], *, component: str | None
         out.append(replace(x, motion=with_vertical(x.motion, vertical, what)))
     return out
 
-
-def vertical_labels(excitations) -> dict:
-    """``{record label: its vertical motion}`` of the excitations that carry one (empty: none does)."""
-    from rockcli.solve import vertical_label
-
-    return {x.label: vertical_label(x.motion) for x in excitations if vertical_label(x.motion)}

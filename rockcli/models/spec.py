@@ -1,6 +1,10 @@
-"""Isolation specs: ``parse_isolation_spec("scss:Tb=3,mu=0.05")`` -> a foundation (the CLI's ``--isolation``)."""
+"""Isolation specs: ``parse_isolation_spec("scss:Tb=3,mu=0.05")`` -> a foundation (the CLI's ``--isolation``); a
+:class:`Configuration`, a foundation with how the user wrote it and its short header (:func:`configuration_of` for
+one spec; :func:`rockcli.assess.parse_configurations` for the list of an assessment)."""
 
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 from rockcli.errors import RockcliInputError
 from rockcli.models.foundations import DoubleConcaveSliding, LeadRubber, LinearIsolation, Rigid, SingleConcaveSliding
@@ -67,3 +71,37 @@ def parse_isolation_spec(text: str):
         return DoubleConcaveSliding(**values)
     except RockcliInputError as exc:
         raise RockcliInputError(f"isolation {raw!r}: {exc}") from None
+
+
+@dataclass(frozen=True)
+class Configuration:
+    """A foundation and how the user wrote it."""
+
+    spec: str
+    foundation: object
+    header: str
+
+    @property
+    def label(self) -> str:
+        return self.foundation.label
+
+    @property
+    def isolated(self) -> bool:
+        return not isinstance(self.foundation, Rigid)
+
+
+def _short_header(foundation, spec: str) -> str:
+    if isinstance(foundation, Rigid):
+        return "none"
+    T_b = getattr(foundation, "T_b", None)
+    if T_b is None:
+        return spec
+    family = foundation.label.partition(":")[0]
+    return f"Tb={T_b:g}s" if family == "linear" else f"{family} Tb={T_b:.3g}s"
+
+
+def configuration_of(spec: str) -> Configuration:
+    """The :class:`Configuration` of one isolation spec alone (its short header: ``none``, ``Tb=2.5s``), as
+    :func:`rockcli.assess.parse_configurations` gives it for a list of one."""
+    foundation = parse_isolation_spec(spec)
+    return Configuration(spec.strip(), foundation, _short_header(foundation, spec.strip()))

@@ -23,9 +23,9 @@ def _ci(ci, spec=".3g") -> str:
 
 
 def _noun(fr) -> str:
-    """The bodies in words: ``the cabinet`` (:func:`rockcli.assess.body_noun`) when they all take the same one
+    """The bodies in words: ``the cabinet`` (:func:`rockcli.report.words.body_noun`) when they all take the same one
     (``the column`` for the temple presets), else ``the body``."""
-    from rockcli.assess.verdicts import body_noun
+    from rockcli.report.words import body_noun
 
     nouns = {body_noun(b) for b in fr.columns}
     return nouns.pop() if len(nouns) == 1 else "the body"
@@ -82,7 +82,7 @@ def format_fragility_notes(fr) -> str:
         lines.append(f"{len(unproven)} capacities include scaled runs still moving at the solver's horizon, counted "
                      "as surviving (the capacity is then an upper estimate; margin_note in the CSV; --horizon "
                      "follows them longer).")
-    from rockcli.assess.scenes import unavailable_notes
+    from rockcli.report.words import unavailable_notes
 
     lines += unavailable_notes(fr.unavailable)
     failed = fr.failed
@@ -192,7 +192,6 @@ def plot_fragility(fr, path: str | os.PathLike, *, dpi: int = 90) -> Path:
     """
     import numpy as np
 
-    from rockcli.assess.fragility import CENSORED_RIGHT, empirical_points, fragility_probability
     from rockcli.report.figures import block_text, footnote, new_figure, pyplot, split_labels, title
 
     path = check_output(path, image=True)
@@ -222,16 +221,13 @@ def plot_fragility(fr, path: str | os.PathLike, *, dpi: int = 90) -> Path:
                     k_iso += 1
                 color = colors[k_iso] if c.isolated else "k"
                 style = "-" if c.isolated else "--"
-                pts = empirical_points(fr.rows_of(b.name, c.header))
-                ex = [(v, p) for v, p, cen in pts if cen != CENSORED_RIGHT]
-                ce = [(v, p) for v, p, cen in pts if cen == CENSORED_RIGHT and x[0] <= v <= x[-1]]
+                ex, ce = fr.plotting_points(b.name, c.header)
+                ce = [(v, p) for v, p in ce if x[0] <= v <= x[-1]]
                 if math.isfinite(curve.median):
                     label = (f"{legend[c.foundation.label]}: median {curve.median:.3g} {im.units}, $\\beta$ = {curve.beta:.2f}")
-                    ax.plot(x, fragility_probability(x, curve.median, curve.beta), style, color=color, lw=1.8,
-                            label=label)
+                    ax.plot(x, curve.probability(x), style, color=color, lw=1.8, label=label)
                     if curve.boot_median is not None and curve.n_boot_ok >= 2:
-                        ok = np.isfinite(curve.boot_median)
-                        P = fragility_probability(x[None, :], curve.boot_median[ok, None], curve.boot_beta[ok, None])
+                        P = curve.boot_probabilities(x)
                         q = (100 * (1 - fr.level) / 2, 100 * (1 + fr.level) / 2)
                         lo, hi = np.percentile(P, q, axis=0)
                         ax.fill_between(x, lo, hi, color=color, alpha=0.12, lw=0)

@@ -175,7 +175,7 @@ def plural(n: int, word: str) -> str:
 def body_section(blocks, *, restitution: float | None = None, cap_ratio: float = 0.0) -> str:
     """Dimensions, R, alpha and p of every body, with what they mean; ``e`` as the run's impacts use it: Housner's
     rule, a given coefficient of restitution, a capped colonnade's ratio, or a body on a plinth's two-block law."""
-    from rockcli.assess.verdicts import body_noun
+    from rockcli.report.words import body_noun
     from rockcli.io.units import G
     from rockcli.models.colonnade import impact_ratio_on_base
     from rockcli.models.impact import impact_ratio
@@ -219,7 +219,7 @@ def body_section(blocks, *, restitution: float | None = None, cap_ratio: float =
 
 def configurations_section(configurations) -> str:
     """Every configuration with all its parameters."""
-    from rockcli.assess.verdicts import configuration_words
+    from rockcli.report.words import configuration_words
 
     rows = []
     for c in configurations:

@@ -20,8 +20,8 @@ from __future__ import annotations
 
 import math
 
-from rockcli.assess.verdicts import SURVIVES, TOPPLES, UNDECIDED, body_noun, configuration_words, outcome
 from rockcli.report.html import esc, figure
+from rockcli.report.words import SURVIVES, TOPPLES, UNDECIDED, body_noun, configuration_words, outcome
 
 
 #: At most this many records per configuration get a response figure (the most severe first: the smallest
@@ -231,7 +231,7 @@ def stack_runs(assessment, stack) -> list:
 
 
 def _stack_caption(x, c, stack, run, alone) -> str:
-    from rockcli.assess.plinth_words import plinth_name
+    from rockcli.report.plinth_words import plinth_name
 
     name = plinth_name(stack)
     noun = body_noun(stack.body)

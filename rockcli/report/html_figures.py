@@ -165,7 +165,7 @@ def _scale_axis(ax, limits, ticks) -> None:
 
 
 def _verdict_text(configuration, response) -> str:
-    from rockcli.assess.verdicts import configuration_words
+    from rockcli.report.words import configuration_words
 
     where = configuration_words(configuration)
     if response.verdict == "overturned":
@@ -289,7 +289,7 @@ def margins_png(rows, records, configurations, title: str) -> bytes | None:
     topples are drawn to 4 with an arrow. Each bar is labelled with its factor and the configuration's
     short name; its colour is the outcome (red topples, green survives, amber undecided).
     """
-    from rockcli.assess.verdicts import outcome
+    from rockcli.report.words import outcome
 
     by = {(r.record, r.configuration): r for r in rows}
     if not any(math.isfinite(getattr(r, "overturn_scale", math.nan)) or
@@ -363,8 +363,8 @@ def stroke_png(rows, records, configurations, title: str) -> bytes | None:
     """Bars: the peak base displacement [m] of every record on every isolated configuration; the runs in
     which the body toppled are hatched and labelled as such (a displacement until the fall, not a stroke
     to design the bearings for). With ``--azimuth worst`` a pair's bar is its stroke over the orientations in
-    which the body survives (:func:`rockcli.assess.verdicts.stroke_m`), hatched only when it survives in none."""
-    from rockcli.assess.verdicts import TOPPLES, outcome, stroke_m
+    which the body survives (:func:`rockcli.report.words.stroke_m`), hatched only when it survives in none."""
+    from rockcli.report.words import TOPPLES, outcome, stroke_m
 
     iso = [c for c in configurations if c.isolated]
     by = {(r.record, r.configuration): r for r in rows}

@@ -12,15 +12,16 @@ from __future__ import annotations
 import math
 from types import SimpleNamespace
 
-from rockcli.assess.verdicts import (PLINTH_QUESTION, SURVIVES, TOPPLES, body_noun, body_words, configuration_words,
-                                     isolation_summary, outcome, plinth_help_parts, question, scene_sentence, stroke_m,
-                                     survivor_stroke, verdict_lines)
 from rockcli.report.html import (assumptions_section, body_section, breakable, card, configurations_section, esc,
                                  figure, num, page, plural, reproduce_section, table)
 from rockcli.report.html_deciding import orientation_words, response_figures, stack_figures
 from rockcli.report.html_records import records_section
 from rockcli.report.figures import block_text
 from rockcli.report.html_figures import margins_png, png_of, share_png, stroke_png
+from rockcli.report.plinth_words import PLINTH_QUESTION, plinth_help_parts
+from rockcli.report.verdicts import isolation_summary, question, verdict_lines
+from rockcli.report.words import (SURVIVES, TOPPLES, body_noun, body_words, configuration_words, outcome,
+                                  scene_sentence, stroke_m, survivor_stroke)
 
 MARGIN_WORDS = (
     "<p>The <b>toppling factor</b> is the smallest number the record must be multiplied by for the body to "
@@ -181,14 +182,14 @@ def _stroke_cell(r, word: str) -> str:
 
 
 def _not_available(unavailable) -> list:
-    from rockcli.assess.excitations import Skipped
+    from rockcli.records.unavailable import Skipped
 
     return [u for u in unavailable if not isinstance(u, Skipped)]
 
 
 def _stroke_fact(assessment, block, c, many: bool) -> tuple:
     """The stroke the bearings of ``c`` must allow: the largest base displacement of the runs the body
-    survives (:func:`rockcli.assess.verdicts.survivor_stroke`); the runs in which it topples are left out
+    survives (:func:`rockcli.report.words.survivor_stroke`); the runs in which it topples are left out
     and said to be."""
     rows = [assessment.row(block.name, x.label, c.header) for x in assessment.excitations if x.motion is not None]
     rows = [r for r in rows if not r.error]
@@ -403,10 +404,10 @@ def simulate_report(block, foundation, excitation, response, *, label: str, chec
                     command: str = "", restitution: float | None = None, cap_ratio: float = 0.0) -> str:
     """The HTML report of ``rockcli simulate`` (``response`` with its history; ``checked``: the
     ``check_*`` results of ``--check-tolerance``)."""
-    from rockcli.assess.scenes import parse_configurations
+    from rockcli.models.spec import configuration_of
     from rockcli.report.html_figures import responses_png
 
-    conf = parse_configurations([foundation.label])[0]
+    conf = configuration_of(foundation.label)
     row = SimpleNamespace(error="", overturned=response.overturned,
                           proven=bool(response.overturned or response.settled),
                           verdict=response.verdict, theta_max_over_alpha=response.theta_max_over_alpha,

@@ -226,7 +226,7 @@ def records_section(excitations, unavailable=(), projections=None) -> str:
                      + table(("name", "shape", "amplitude a_p", "period T_p", "source"), pulses, numeric=(2, 3)))
     if bad:
         parts.append("<p>Could not be used:</p><ul>" + "".join(bad) + "</ul>")
-    from rockcli.assess.excitations import Skipped
+    from rockcli.records.unavailable import Skipped
 
     missing = [u for u in unavailable if not isinstance(u, Skipped)]
     skipped = [u for u in unavailable if isinstance(u, Skipped)]

@@ -3,19 +3,18 @@ alone on the same foundation (:func:`stack_report`).
 
 The sections of :mod:`rockcli.report.html`; the figure is :func:`rockcli.report.stack.plot_stack_response` (the
 figure of ``simulate --on --plot`` and of the ``assess column --on`` report); the words are
-:mod:`rockcli.assess.plinth_words`'s, the same as the printout's.
+:mod:`rockcli.report.plinth_words`'s, the same as the printout's.
 """
 
 from __future__ import annotations
 
 import math
 
-from rockcli.assess.plinth_words import plinth_name, run_sentence
-from rockcli.assess.verdicts import (SURVIVES, TOPPLES, UNDECIDED, body_noun, body_words, configuration_words,
-                                     past_words)
 from rockcli.report.html import (assumptions_section, body_section, card, configurations_section, esc, figure, num,
                                  page, reproduce_section, table)
 from rockcli.report.html_records import records_section
+from rockcli.report.plinth_words import plinth_name, run_sentence
+from rockcli.report.words import SURVIVES, TOPPLES, UNDECIDED, body_noun, body_words, configuration_words, past_words
 
 
 def _demand(x: float) -> str:
@@ -27,13 +26,13 @@ def stack_report(stack, foundation, excitation, run, alone, *, label: str, comma
     """The HTML report of ``rockcli simulate --on``: ``run`` a :class:`rockcli.solve.StackResponse` with its
     history, ``alone`` a :class:`rockcli.solve.Response` with history of ``stack.body`` on ``foundation`` (or
     None)."""
-    from rockcli.assess.scenes import parse_configurations
     from rockcli.io.units import G
+    from rockcli.models.spec import configuration_of
     from rockcli.report.html_figures import DPI, png_of
     from rockcli.report.html_pages import _list, stroke_facts
     from rockcli.report.stack import plot_stack_response
 
-    conf = parse_configurations([foundation.label])[0]
+    conf = configuration_of(foundation.label)
     where = configuration_words(conf)
     noun, name = body_noun(stack.body), plinth_name(stack)
     word = TOPPLES if run.toppled else SURVIVES if run.settled else UNDECIDED

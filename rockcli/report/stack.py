@@ -49,13 +49,13 @@ def plot_stack_response(response, stack, path: str | os.PathLike, *, excitation=
     (the stack's, and the body alone's in grey). Dotted lines at +-1 mark each block's tipping point; a red line
     the instant a block of the stack topples, named on its panel; a grey one the instant the body alone does. The
     legends give each run's outcome and peak; the title names the body, the plinth, the motion, the foundation and
-    the verdict (:func:`rockcli.assess.plinth_words.run_sentence`). The stack's curves are drawn through its
+    the verdict (:func:`rockcli.report.plinth_words.run_sentence`). The stack's curves are drawn through its
     history rows (every step end and event of the run). Time runs until the motion has died out (every curve
     under 5 % of its peak) or the last block has toppled, within ``t_end`` [s] when given. Fonts of at least
     8 pt at the report's scale (:func:`rockcli.report.html_figures.readability_problems`).
     """
-    from rockcli.assess.plinth_words import plinth_name, run_sentence
-    from rockcli.assess.verdicts import body_noun
+    from rockcli.report.plinth_words import plinth_name, run_sentence
+    from rockcli.report.words import body_noun
     from rockcli.io.files import check_output, save_figure
     from rockcli.report.figures import block_text, foundation_text, motion_text, new_figure, plain, pyplot, title
     from rockcli.report.html_figures import FIGURE_WIDTH_IN, _rc

@@ -70,7 +70,7 @@ def format_matrix(assessment) -> str:
     """The assessment as aligned text: per column, records x configurations, then the counts."""
     margin = assessment.margin
     blocks = []
-    from rockcli.assess import column_title
+    from rockcli.report.words import column_title
 
     xs = assessment.excitations
     confs = assessment.configurations
@@ -168,7 +168,7 @@ def format_notes(assessment) -> str:
         lines.append("Idealised (record file not found; its catalogued Ricker pulse was run instead): "
                      + ", ".join(assessment.idealised) + ". A single pulse lacks the record's other cycles: "
                      "with the paper's records it misses many overturns, above all on isolators (see README).")
-    from rockcli.assess.scenes import unavailable_notes
+    from rockcli.report.words import unavailable_notes
 
     lines += unavailable_notes(assessment.unavailable)
     for x in assessment.failed:
@@ -278,10 +278,15 @@ def write_assessment_csv(assessment, path: str | os.PathLike, check=None) -> Pat
     return write_text(path, text)
 
 
+def vertical_labels(excitations) -> dict:
+    """``{record label: its vertical motion}`` of the excitations that carry one (empty: none does)."""
+    from rockcli.solve import vertical_label
+
+    return {x.label: vertical_label(x.motion) for x in excitations if vertical_label(x.motion)}
+
+
 def _vertical_column(cols: dict, result) -> None:
     """``vertical``: the vertical motion each row's record ran under (only when one did)."""
-    from rockcli.assess.vertical import vertical_labels
-
     labels = vertical_labels(result.excitations)
     if labels:
         cols["vertical"] = [labels.get(r.record, "none") for r in result.rows]
