@@ -15,8 +15,9 @@ output vectors (``out`` and ``xo`` of the rigid driver, ``z`` of the bearings'),
 through :func:`rockcli.solve.simulate_many` (the path of the margin search) and its results kept.
 
 ``--compare`` prints the number of runs and values compared, the first differences, and exits 1 on one.
-``--except friction`` leaves out the friction demands (``xo[11:13]``, the two non-impulsive ``friction_*`` fields),
-which a change of where the demand is read moves on purpose; it prints their largest change instead. Also printed
+``--except friction`` leaves out the friction demands (``xo[11:13]`` of the rigid driver, ``z[13:15]`` of the one on
+bearings, the two non-impulsive ``friction_*`` fields, and the output slots a version adds after the old ones), which a
+change of where the demand is read moves on purpose; it prints their largest change instead. Also printed
 on ``--write``: the CPU time of the runs and how many runs had steps of each pattern (coverage of the scenes).
 """
 
@@ -41,7 +42,8 @@ from rockcli.io.units import G  # noqa: E402
 from rockcli.models import LinearIsolation  # noqa: E402
 from rockcli.pulses import OneSine, RickerAntisymmetric, RickerSymmetric  # noqa: E402
 
-FRICTION_XO = (11, 12)  # X_FR_B, X_FR_J of rockcli.kernels.stack
+FRICTION_XO = (11, 12)  # X_FR_B, X_FR_J of rockcli.kernels.stack (the record xo: raw[1] of a rigid run)
+FRICTION_Z = (13, 14)  # Z_FR0, Z_FR1 of rockcli.kernels.stack_linear (the outputs z: raw[0] of a run on bearings)
 FRICTION_FIELDS = ("friction_base", "friction_joint")
 
 
@@ -164,12 +166,17 @@ def compare(a: Path, b: Path, skip_friction: bool) -> int:
     for i, (ra, rb) in enumerate(zip(A["runs"], B["runs"])):
         for j, (xa, xb) in enumerate(zip(ra["raw"], rb["raw"])):
             xa, xb = xa.copy(), xb.copy()
-            if skip_friction and xa.size > max(FRICTION_XO) and len(ra["raw"]) == 2 and j == 1:
-                for q in FRICTION_XO:
-                    moved.append((i, f"xo[{q}]", xa[q], xb[q]))
+            slots = (FRICTION_XO if len(ra["raw"]) == 2 and j == 1 else FRICTION_Z if len(ra["raw"]) == 1 else ())
+            if skip_friction and slots and xa.size > max(slots):
+                n = min(xa.size, xb.size)  # slots added after the old ones (the demands read inside) are left out
+                xa, xb = xa[:n], xb[:n]
+                for q in slots:
+                    moved.append((i, f"{'xo' if j else 'z'}[{q}]", xa[q], xb[q]))
                     xa[q] = xb[q] = 0.0
             values += xa.size
-            if not _same(xa, xb):
+            if xa.shape != xb.shape:
+                bad.append((i, f"raw[{j}]", f"{xa.size} values against {xb.size}"))
+            elif not _same(xa, xb):
                 bad.append((i, f"raw[{j}]", np.flatnonzero(xa.view(np.int64) != xb.view(np.int64)).tolist()))
         for name in ra["fields"]:
             if skip_friction and name in FRICTION_FIELDS:

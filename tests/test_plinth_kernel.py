@@ -195,7 +195,7 @@ def test_random_scenes_agree_with_the_reference():
 
 def test_the_friction_demand_while_both_rock_is_the_reference_s():
     """Where both blocks rock (pattern BP) the driver reads the demand at 17 points of each step and the vertex of
-    the parabola through the largest (kernels/stack.py, _bp_demand); the reference at its own steps (rtol 1e-9),
+    the parabola through the largest (kernels/stack_step.py, _bp_demand); the reference at its own steps (rtol 1e-9),
     8 points a phase and the midpoints between all these. Random scenes that pass through BP under short pulses,
     followed 0.3 s: the peak demand at both interfaces within 2e-3 relatively below 2 (measured: within 8.6e-4 on
     20 scenes, the reference's sampling the larger part), both above 2 otherwise (a normal force falling to 0).

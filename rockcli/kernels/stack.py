@@ -50,11 +50,12 @@ from rockcli.kernels.stack_patterns import _after_impact, _plinth_lifts, _set_pa
 from rockcli.kernels.stack_physics import (S_B1, S_B2, S_G, S_H1, S_H2, S_M2, S_R1, _rhs_bp_into, choose_after_impact,
                                            max_velocities)
 from rockcli.kernels.stack_step import (HALF_PI, PAT_B, PAT_BP, PAT_P, PAT_R, _abs_max, _bp_demand, _bp_peaks,
-                                        _face_opens, _impact_ahead, _max_abs_ag)
-from rockcli.kernels.stack_step import (N_XO, X_FR_B, X_FR_J, X_FRI_B, X_FRI_J, X_K, X_N_INCONS,  # noqa: F401
-                                        X_N_JUMP, X_N_PLASTIC, X_N_SWITCH, X_P2S, X_PAT, X_PL_MAX, X_PL_N_IMP,
-                                        X_PL_N_IMP_ALL, X_PL_N_RESTS, X_PL_T_EXCEED, X_PL_T_MAX, X_PL_T_UPLIFT, X_S,
-                                        X_STEPS_BP, X_TILT_MAX, X_TOPPLED)  # the record xo, read by rockcli.solve.stack
+                                        _face_opens, _impact_ahead, _jump_demand, _max_abs_ag, _rest_demand)
+from rockcli.kernels.stack_step import (N_XO, X_FR_B, X_FR_B_IN, X_FR_J, X_FR_J_IN, X_FRI_B, X_FRI_J, X_K,  # noqa: F401
+                                        X_N_INCONS, X_N_JUMP, X_N_PLASTIC, X_N_SWITCH, X_P2S, X_PAT, X_PL_MAX,
+                                        X_PL_N_IMP, X_PL_N_IMP_ALL, X_PL_N_RESTS, X_PL_T_EXCEED, X_PL_T_MAX,
+                                        X_PL_T_UPLIFT, X_S, X_STEPS_BP, X_TILT_MAX,
+                                        X_TOPPLED)  # the record xo, read by rockcli.solve.stack
 from rockcli.kernels.steps import (EV_FAILED, EV_IMPACT, EV_OVERTURN, _accept_step, _advance_segment, _bounce, _finish,
                                    _out_of_time, _rocking_events, _seg, _start, _to_impact, _to_overturn, _to_step_end)
 
@@ -172,6 +173,7 @@ def simulate_stack(prm, prm_asm, sp, ekind, epar, acc, jtab, dt, t_begin, t_exc_
     t_show_end = t_exc_end + tail
     t_horizon = t_exc_end + max(horizon, tail)
     body_first = prm[P_THR] <= prm_asm[P_THR]
+    thr = min(prm[P_THR], prm_asm[P_THR])  # the ground acceleration the stack at rest carries, at most
     if want_history:
         H, nh = _hist(H, nh, rs, epar, W, xo, HK_STATE)
 
@@ -209,8 +211,14 @@ def simulate_stack(prm, prm_asm, sp, ekind, epar, acc, jtab, dt, t_begin, t_exc_
                     _set_pattern(rs, W, xo, su, 0.0, 0.0, 0.0, 0.0, 0.0)
                     _plinth_lifts(xo, tu)
             aa = _max_abs_ag(seg, epar, t0, rs[RS_T]) / prm[P_G]
-            xo[X_FR_B] = max(xo[X_FR_B], aa)
-            xo[X_FR_J] = max(xo[X_FR_J], aa)
+            a1 = ground_at(t0, seg, epar)
+            if xo[X_PAT] != PAT_R and rs[RS_T] == t0 and abs(a1) > thr:
+                # a jump out of rest (stack_step's notes): at rest the stack carries the acceleration up to its
+                # threshold only; past it, the demand of the pattern it enters, at zero state
+                aa = thr / prm[P_G]
+                _jump_demand(xo[X_PAT], xo[X_S], xo[X_K], sp, prm if xo[X_PAT] == PAT_B else prm_asm,
+                             thr if a1 > 0.0 else -thr, a1, xo)
+            _rest_demand(xo, aa)
             if want_history:
                 H, nh = _hist(H, nh, rs, epar, W, xo, HK_UPLIFT if xo[X_PAT] != PAT_R else HK_STATE)
             continue
@@ -439,5 +447,8 @@ def simulate_stack(prm, prm_asm, sp, ekind, epar, acc, jtab, dt, t_begin, t_exc_
         if want_history:
             H, nh = _hist(H, nh, rs, epar, W, xo, HK_STATE)
 
+    if xo[X_TOPPLED] >= 0.0:  # a run that topples: its demand read while both blocks were inside (stack_step)
+        xo[X_FR_B] = xo[X_FR_B_IN]
+        xo[X_FR_J] = xo[X_FR_J_IN]
     _finish(rs, W, out)
     return H[:nh]

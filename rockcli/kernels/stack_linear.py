@@ -50,8 +50,9 @@ from rockcli.kernels.stack_linear_step import (C_BODY, C_PLINTH, HALF_PI, V_IMPA
                                                _face_kind, _face_value, _first_fall, _held_push, _may_cross,
                                                _rest_bounds, _rest_bounds_hysteretic, _reversal, _scan,
                                                _unresolved_fall)
-from rockcli.kernels.stack_linear_step import (N_Z, Z_FR0, Z_FR1, Z_FRI0, Z_FRI1, Z_INCONS, Z_JUMPS,  # noqa: F401
-                                               Z_NIMP0, Z_NIMP1, Z_NIMPALL0, Z_NIMPALL1, Z_NPLASTIC, Z_NRESTS, Z_NRHS,
+from rockcli.kernels.stack_linear_step import (N_Z, Z_FR0, Z_FR0_IN, Z_FR1, Z_FR1_IN, Z_FRI0, Z_FRI1,  # noqa: F401
+                                               Z_INCONS, Z_JUMPS, Z_NIMP0, Z_NIMP1, Z_NIMPALL0, Z_NIMPALL1, Z_NPLASTIC,
+                                               Z_NRESTS, Z_NRHS,
                                                Z_PEAK0, Z_PEAK1, Z_REJ, Z_SETTLED, Z_STATUS, Z_STEPS, Z_TEX0, Z_TEX1,
                                                Z_TILT, Z_TOPPLED, Z_TUP0, Z_TUP1, Z_T_END, Z_T_OVER, Z_T_SETTLED,
                                                Z_UMAX)  # the outputs z, read by rockcli.solve.stack
@@ -366,7 +367,7 @@ def simulate_stack_linear(sp, lp, fk, bp, ekind, epar, acc, dt, t_begin, t_exc_e
             sg = _first_fall(fkind, C_BODY, 0.0, s, k, sp, lp, bb, seg, epar, t, hs, y, K, min(sig, 1.0))
             if sg <= sig:
                 sig, ev = sg, 4  # the watched face opens
-        if not rest or ev >= 0 or ub > z[Z_UMAX] or fb > min(z[Z_FR0], z[Z_FR1]) * sp[S_G]:
+        if not rest or ev >= 0 or ub > z[Z_UMAX] or fb > min(z[Z_FR0_IN], z[Z_FR1_IN]) * sp[S_G]:
             _scan(s, k, sp, lp, bb, seg, epar, t, hs, y, K, sig, z)
         if ev >= 0 and sig < 1.0:  # retake the step to the event
             _dp5(s, k, sp, lp, bb, seg, epar, t, sig * hs, y, K, ynew)
@@ -445,6 +446,9 @@ def simulate_stack_linear(sp, lp, fk, bp, ekind, epar, acc, dt, t_begin, t_exc_e
         s, k = _open(s, k, sp, lp, bb, y, ag, body_first, z, t)
         if want_history:
             H, nh = _hist(H, nh, t, ag, y, s, k, EVH_UPLIFT)
+    if z[Z_TOPPLED] >= 0.0:  # a run that topples: its demand read while both blocks were inside (notes)
+        z[Z_FR0] = z[Z_FR0_IN]
+        z[Z_FR1] = z[Z_FR1_IN]
     z[Z_SETTLED] = 1.0 if (settled or z[Z_TOPPLED] >= 0.0) else 0.0
     z[Z_T_END] = t
     z[Z_STEPS] = steps

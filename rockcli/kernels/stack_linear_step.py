@@ -34,7 +34,8 @@ Z_STATUS, Z_TOPPLED, Z_T_OVER, Z_PEAK0, Z_PEAK1, Z_TILT, Z_UMAX = 0, 1, 2, 3, 4,
 Z_TUP0, Z_TUP1, Z_NIMP0, Z_NIMP1, Z_NIMPALL0, Z_NIMPALL1 = 7, 8, 9, 10, 11, 12
 Z_FR0, Z_FR1, Z_FRI0, Z_FRI1, Z_JUMPS, Z_INCONS, Z_SETTLED = 13, 14, 15, 16, 17, 18, 19
 Z_T_END, Z_STEPS, Z_REJ, Z_NRHS, Z_TEX0, Z_TEX1, Z_NPLASTIC, Z_T_SETTLED, Z_NRESTS = 20, 21, 22, 23, 24, 25, 26, 27, 28
-N_Z = 29
+Z_FR0_IN, Z_FR1_IN = 29, 30  # the friction demand read while both blocks are inside their slenderness (notes)
+N_Z = 31
 
 HALF_PI = 0.5 * math.pi
 # the events of :func:`_value` (2 and above: a face, :func:`_face_kind`, which reads no column) and the pivots' angle
@@ -268,7 +269,9 @@ def _may_cross(c, a0, r0, a1, r1, kind):
 @kernel
 def _scan(s, k, sp, lp, bb, seg, epar, t, h, y, K, sig_end, z):
     """Peaks, first exceedances and the friction demand over ``[0, sig_end]`` of the step (17 samples, the
-    largest of each peak refined by golden section); counts a step where a pivot's normal force is below 0."""
+    largest of each peak refined by golden section; the demand also where both blocks are inside their
+    slenderness, ``Z_FR*_IN``: the reading of a run that topples); counts a step where a pivot's normal force is
+    below 0."""
     yy = np.empty(6)
     best = np.zeros(4)
     arg = np.zeros(4, dtype=np.int64)
@@ -283,16 +286,21 @@ def _scan(s, k, sp, lp, bb, seg, epar, t, h, y, K, sig_end, z):
                 arg[q] = m
         if s == 0.0 and k == 0.0:  # at rest: both interfaces carry the weight and |a_b| of it sideways
             fr = abs(force(lp, bb, yy[4], yy[5])) / sp[S_G]
-            z[Z_FR0] = max(z[Z_FR0], fr)
-            z[Z_FR1] = max(z[Z_FR1], fr)
+            for i in (Z_FR0, Z_FR1, Z_FR0_IN, Z_FR1_IN):
+                z[i] = max(z[i], fr)
             continue
         ag = ground_at(t + sg * h, seg, epar)
         pdd, tdd, ab = accel(s, k, sp, lp, bb, yy, ag)
         f = forces(s, k, sp, yy[2], yy[0], yy[3], yy[1], tdd, pdd, ab)
+        inside = abs(yy[0]) <= sp[S_A1] and abs(yy[2]) <= lp[L_AASM]  # both blocks inside their slenderness
         if f[0] > 0.0 and (s != 0.0 or min(f[2], f[3]) > 0.0):
             z[Z_FR0] = max(z[Z_FR0], abs(f[1]) / f[0])
+            if inside:
+                z[Z_FR0_IN] = max(z[Z_FR0_IN], abs(f[1]) / f[0])
         if f[4] > 0.0 and (k != 0.0 or min(f[6], f[7]) > 0.0):
             z[Z_FR1] = max(z[Z_FR1], abs(f[5]) / f[4])
+            if inside:
+                z[Z_FR1_IN] = max(z[Z_FR1_IN], abs(f[5]) / f[4])
         if (s != 0.0 and f[0] < 0.0) or (k != 0.0 and f[4] < 0.0):
             jump = True
         if math.isnan(z[Z_TEX0]) and abs(yy[2]) >= lp[L_AASM]:

@@ -5,7 +5,28 @@ sub-intervals and bisection (:func:`_face_opens`); an impact ahead; the peaks of
 
 The friction demand is read where the contact forces are: in B and P at the samples of the face check, in BP at 17
 points of every step and the vertex of the parabola through the largest (:func:`_bp_demand`), at rest ``|ag|/g``
-(its largest on the interval, :func:`_max_abs_ag`).
+(its largest on the interval, :func:`_max_abs_ag`). Two edges (docs/plinth.md, "Friction"):
+
+* **A jump of the ground acceleration** (a one-cosine pulse starts at ``a_p``; a record whose first sample is not 0).
+  At a jump the state does not move and the contact forces jump with ``ag``: the demand is the limit of the same
+  excitation ramped in over a time that tends to 0, along which the stack passes through the forces of every ``ag``
+  between the two sides at zero state (angles and rates 0). At rest it carries ``ag`` only up to its lower uplift
+  threshold ``thr = g min(tan alpha1, tan alpha_asm)``: a jump out of rest (the stack at rest before it, past the
+  threshold after it) is read ``thr/g`` at rest, not ``|ag|/g``, and the stack then moves in pattern B or P, whose
+  forces at zero state are affine in ``ag``: each ratio ``|T|/N`` is monotone on every interval where ``N > 0``,
+  so its largest over ``[thr, |ag|]`` is at an end: at ``thr`` it is the rest's, at the other end it is read by
+  :func:`_jump_demand`: at the ``ag`` after the jump, or where the watched face stops holding before it (a corner
+  force reaching 0, exactly, the forces being affine), where BP takes over with the same forces, BP's first step
+  then reading the ``ag`` after the jump (sample 0 of :func:`_bp_demand`). On bearings ``ag`` does not enter the
+  contact forces (the base's absolute acceleration, the bearings' force, does not jump): nothing to do there.
+* **A run that topples.** As a block falls its contact unloads and ``|T|/N`` grows without bound: the demand of
+  the fall says nothing (the topple is the answer). The demand is therefore also read where both blocks are
+  inside their slenderness, ``|psi| <= alpha1`` (the body on the plinth) and ``|theta2| <= alpha_asm`` (the plinth
+  carrying the body) (``X_FR_B_IN``, ``X_FR_J_IN``; at rest and at a jump out of rest always), and a run that
+  topples reports that reading, as the single block reads its own while ``|theta| <= alpha`` only
+  (:mod:`rockcli.solve.friction`). A run that survives reports every reading (a block past its slenderness that
+  the shaking brought back was still carried by its contact). The impulsive demands are read at the impacts as
+  before.
 """
 
 from __future__ import annotations
@@ -35,7 +56,8 @@ X_N_JUMP, X_N_INCONS = 15, 16  # steps or impacts where a pivot would pull; impa
 X_N_SWITCH, X_STEPS_BP, X_P2S = 17, 18, 19  # pattern changes, steps of pattern BP, 1 when P2S ended the run
 X_PL_N_RESTS = 20
 X_N_PLASTIC = 21  # impacts where a given restitution could not be carried: the plastic law instead
-N_XO = 22
+X_FR_B_IN, X_FR_J_IN = 22, 23  # the friction demand read while both blocks are inside their slenderness (notes)
+N_XO = 24
 
 HALF_PI = 0.5 * math.pi
 N_DEMAND = 16  # sub-intervals of a BP step at which the friction demand is read (as the faces of B and P are watched)
@@ -58,11 +80,58 @@ def _max_abs_ag(seg, epar, t0, t1):
 
 
 @kernel(inline='always')
-def _demand(xo, NB, TB, NJ, TJ):
+def _demand(xo, NB, TB, NJ, TJ, inside):
+    """Note the demand ``|T|/N`` of both interfaces (where ``N > 0``); ``inside``: both blocks inside their
+    slenderness there (the reading that counts for a run that topples, module notes)."""
     if NB > 0.0:
         xo[X_FR_B] = max(xo[X_FR_B], abs(TB) / NB)
+        if inside:
+            xo[X_FR_B_IN] = max(xo[X_FR_B_IN], abs(TB) / NB)
     if NJ > 0.0:
         xo[X_FR_J] = max(xo[X_FR_J], abs(TJ) / NJ)
+        if inside:
+            xo[X_FR_J_IN] = max(xo[X_FR_J_IN], abs(TJ) / NJ)
+
+
+@kernel(inline='always')
+def _rest_demand(xo, a):
+    """At rest both interfaces carry the ground acceleration: the demand ``a = |ag|/g`` at both (inside)."""
+    for i in (X_FR_B, X_FR_J, X_FR_B_IN, X_FR_J_IN):
+        xo[i] = max(xo[i], a)
+
+
+@kernel(inline='always')
+def _zero_state(pat, s, k, sp, prm, ag):
+    """The forces ``(NB, TB, NJ, TJ, PR, PL)`` of pattern B or P at zero state (angle and rate 0) under ``ag``
+    (``PR``, ``PL``: the watched face's corners); affine in ``ag``."""
+    A = prm[P_ALPHA] * (k if pat == PAT_B else s)
+    add = -prm[P_P2] * (math.sin(A) + ag / prm[P_G] * math.cos(A))  # Eq (3) with the pattern's p, alpha
+    if pat == PAT_B:
+        NB, TB, PR, PL, NJ, TJ = forces_b(k, sp, 0.0, 0.0, add, ag)
+    else:
+        NB, TB, NJ, TJ, PR, PL = forces_p(s, sp, 0.0, 0.0, add, ag)
+    return NB, TB, NJ, TJ, PR, PL
+
+
+@kernel
+def _jump_demand(pat, s, k, sp, prm, a_thr, a1, xo):
+    """The demand of a jump out of rest (module notes, "A jump of the ground acceleration"): the stack has just
+    entered pattern B or P at zero state, the ground acceleration past its threshold ``a_thr`` (signed) at ``a1``.
+    Along ``a`` from ``a_thr`` to ``a1`` the forces are affine in ``a``: the demand is read where the watched face
+    stops holding (a corner force reaching 0, found exactly; BP starts there with the same forces and its first
+    step reads ``a1``), else at ``a1``."""
+    NB, TB, NJ, TJ, PR0, PL0 = _zero_state(pat, s, k, sp, prm, a_thr)
+    if min(PR0, PL0) <= 0.0:  # the face does not hold even at the threshold: the rest reading is all
+        return
+    NB, TB, NJ, TJ, PR1, PL1 = _zero_state(pat, s, k, sp, prm, a1)
+    f = 1.0
+    if PR1 <= 0.0:
+        f = min(f, PR0 / (PR0 - PR1))
+    if PL1 <= 0.0:
+        f = min(f, PL0 / (PL0 - PL1))
+    if f < 1.0:
+        NB, TB, NJ, TJ, _, _ = _zero_state(pat, s, k, sp, prm, a_thr + f * (a1 - a_thr))
+    _demand(xo, NB, TB, NJ, TJ, True)
 
 
 @kernel(inline='always')
@@ -95,25 +164,37 @@ def _vertex(left, best, right, i):
     return i + 0.5 * (left - right) / curv
 
 
+@kernel(inline='always')
+def _inside_bp(sp, q0, q2, sg):
+    """Both blocks inside their slenderness at fraction ``sg`` of a BP step: ``|psi| <= alpha1`` (the body on the
+    plinth), ``|theta2| <= alpha_asm`` (the plinth carrying the body)."""
+    return abs(_poly(q0, sg)) <= sp[S_A1REST] and abs(_poly(q2, sg)) <= sp[S_AAREST]
+
+
 @kernel
 def _bp_demand(s, k, sp, W, hs, sig_end, t, seg, epar, xo):
     """The peak friction demand of the last BP step over ``[0, sig_end]`` (its dense output), at both interfaces:
     read at ``N_DEMAND + 1`` equally spaced fractions (both ends included), then at the vertex of the parabola
     through each interface's largest sample and the two beside it (the peak of a smooth demand between samples;
-    the larger reading is kept, so the refinement never lowers the sampled peak). Returns True when a pivot pulls
-    (a normal force below 0) at the middle or the end of the step (samples ``N_DEMAND/2`` and ``N_DEMAND``)."""
+    the larger reading is kept, so the refinement never lowers the sampled peak); the readings where both blocks
+    are inside their slenderness also go to ``X_FR_*_IN`` (module notes). Returns True when a pivot pulls (a normal
+    force below 0) at the middle or the end of the step (samples ``N_DEMAND/2`` and ``N_DEMAND``)."""
     q0 = _dense(W, hs, np.int64(0), 1.0)
     q1 = _dense(W, hs, np.int64(1), 1.0)
     q2 = _dense(W, hs, np.int64(2), 1.0)
     q3 = _dense(W, hs, np.int64(3), 1.0)
     bb = bj = lb = lj = rb = rj = pb = pj = -1.0  # largest samples, their neighbours, the previous samples
     ib = ij = -2
+    bb_in = bj_in = -1.0  # the largest readings with both blocks inside their slenderness
     pull = False
     for m in range(N_DEMAND + 1):
         sg = sig_end * m / N_DEMAND
         NB, TB, NJ, TJ = _bp_forces(s, k, sp, q0, q1, q2, q3, sg, t + sg * hs, seg, epar)
         db = _ratio(TB, NB)
         dj = _ratio(TJ, NJ)
+        if _inside_bp(sp, q0, q2, sg):
+            bb_in = max(bb_in, db)
+            bj_in = max(bj_in, dj)
         if (m == N_DEMAND // 2 or m == N_DEMAND) and (NB < 0.0 or NJ < 0.0):
             pull = True
         if db > bb:
@@ -131,12 +212,19 @@ def _bp_demand(s, k, sp, W, hs, sig_end, t, seg, epar, xo):
         if v >= 0.0:
             sg = sig_end * v / N_DEMAND
             NB, TB, NJ, TJ = _bp_forces(s, k, sp, q0, q1, q2, q3, sg, t + sg * hs, seg, epar)
+            inside = _inside_bp(sp, q0, q2, sg)
             if which == 0:
                 bb = max(bb, _ratio(TB, NB))
+                if inside:
+                    bb_in = max(bb_in, _ratio(TB, NB))
             else:
                 bj = max(bj, _ratio(TJ, NJ))
+                if inside:
+                    bj_in = max(bj_in, _ratio(TJ, NJ))
     xo[X_FR_B] = max(xo[X_FR_B], bb)
     xo[X_FR_J] = max(xo[X_FR_J], bj)
+    xo[X_FR_B_IN] = max(xo[X_FR_B_IN], bb_in)
+    xo[X_FR_J_IN] = max(xo[X_FR_J_IN], bj_in)
     return pull
 
 
@@ -158,7 +246,7 @@ def _one_forces(pat, s, k, sp, prm, c0, c1, sig, tt, seg, epar, xo):
         pull = NB < 0.0
     f = min(PR, PL)
     if f > 0.0:
-        _demand(xo, NB, TB, NJ, TJ)
+        _demand(xo, NB, TB, NJ, TJ, abs(a) <= prm[P_ALPHA])
     return f, (1.0 if PR > PL else -1.0), pull
 
 

@@ -37,7 +37,11 @@ shut after the excitation (then the base's later peak is read over two periods).
 
 Friction demand ``|T|/N`` is read on each rocking phase's dense output at its steps, ``demand_points`` equally
 spaced times and the midpoints between all of these, and while at rest it is ``|ag|/g`` (on the rest scan's
-grid); the impulsive demand is ``|T|/N`` of the impulses of each impact.
+grid); the impulsive demand is ``|T|/N`` of the impulses of each impact. The two edges of docs/plinth.md
+("Friction") as the kernel reads them: at rest the stack carries ``ag`` up to its threshold only, and a jump past it
+(an excitation that starts with one) is read along the patterns the stack passes through at zero state, where each
+face stops holding and at the acceleration after the jump (the limit of a ramp); a run that topples reports the
+demand read while every pivot was inside its slenderness (``|psi_i| <= alpha_i``).
 
 Where (in reading order): this module, the entry (:func:`reference_stack`, :func:`reference_plinth`, the blocks
 and the base of a :class:`rockcli.models.Stack`); :mod:`~rockcli.reference.stack_run`, the run (its result and

@@ -72,6 +72,7 @@ class _Run:
         self.peak, self.theta_peak = [0.0] * n, [0.0] * n
         self.t_uplift, self.n_imp = [math.nan] * n, [0] * n
         self.fric, self.fric_imp = [0.0] * n, [0.0] * n
+        self.fric_in = [0.0] * n  # the demand read while every block is inside its slenderness (a toppled run's)
         self.toppled, self.t_over = -1, math.nan
         self.n_jumps = self.n_incons = 0
         self.impacts, self.patterns = [], [(0.0, tuple(self.st))]
@@ -89,10 +90,44 @@ class _Run:
         if math.isnan(self.t_uplift[i]):
             self.t_uplift[i] = self.t
 
-    def _demand(self, forces):
+    def _demand(self, forces, inside=True):
+        """Note ``|T|/N`` of every interface (``N > 0``); ``inside``: every pivot inside its slenderness there,
+        ``|psi_i| <= alpha_i`` (the reading a run that topples reports, docs/plinth.md "Friction")."""
         for i, (N, T, _, _) in enumerate(forces):
             if N > 0:
                 self.fric[i] = max(self.fric[i], abs(T) / N)
+                if inside:
+                    self.fric_in[i] = max(self.fric_in[i], abs(T) / N)
+
+    def _rest_demand(self, a):
+        """At rest every interface carries the support's acceleration: the demand ``a = |ag|/g`` at each."""
+        self.fric = [max(f, a) for f in self.fric]
+        self.fric_in = [max(f, a) for f in self.fric_in]
+
+    def _jump_demand(self, a0, a1):
+        """A jump out of rest (docs/plinth.md, "Friction"): the stack, at rest up to its threshold ``a0`` (signed),
+        has entered the pattern ``self.st`` under ``a1`` past it. The limit of a ramp from ``a0`` to ``a1``: at zero
+        state the forces are linear in ``ag``; follow the patterns the stack passes through (a face opening about its
+        other corner where a corner force reaches 0), reading the demand where each face stops holding and at
+        ``a1``."""
+        M, z = self.M, np.zeros(self.M.n)
+        st, a = list(self.st), a0
+        for _ in range(2 * M.n):
+            fa = M.dynamics(st, z, z, a)[1]
+            fb = M.dynamics(st, z, z, a1)[1]
+            best, which = 1.0, None
+            for i in range(M.n):
+                if st[i] != 0:
+                    continue
+                for c, sigma in ((2, -1), (3, +1)):  # the right corner unloads: pivot left; the left: right
+                    if fb[i][c] < 0.0 < fa[i][c] and fa[i][c] / (fa[i][c] - fb[i][c]) < best:
+                        best, which = fa[i][c] / (fa[i][c] - fb[i][c]), (i, sigma)
+            if which is None:
+                self._demand(fb)
+                return
+            a = a + best * (a1 - a)
+            self._demand(M.dynamics(st, z, z, a)[1])
+            st[which[0]] = which[1]
 
     def _peaks(self, q):
         th = np.cumsum(q)
@@ -200,7 +235,7 @@ class _Run:
         hit = np.nonzero((vals > up) | (vals < lo))[0]
         k = hit[0] if hit.size else grid.size
         if k:
-            self.fric = [max(f, float(np.max(np.abs(vals[:k]))) / G) for f in self.fric]
+            self._rest_demand(float(np.max(np.abs(vals[:k]))) / G)
         if not hit.size:
             self.t = self.t_exc_end
             return False
@@ -210,8 +245,11 @@ class _Run:
             return ag(x) - up if above else lo - ag(x)
 
         self.t = grid[0] if k == 0 else brentq(excess, grid[k - 1], grid[k], xtol=1e-14)
-        self.fric = [max(f, abs(ag(self.t)) / G) for f in self.fric]
+        a1, lim = ag(self.t), (up if above else -lo)
+        self._rest_demand(min(abs(a1), lim) / G)  # at rest the stack carries ag up to its threshold only
         self._open(*(which_up if above else which_lo))
+        if abs(a1) > lim:  # a jump out of rest (k = 0: the ground acceleration already past it)
+            self._jump_demand(math.copysign(lim, a1), a1)
         return True
 
     def _rhs_factory(self, piv):
@@ -329,7 +367,8 @@ class _Run:
         ts = np.union1d(sol.t, np.linspace(t0, sol.t[-1], self.npts))
         ts = np.union1d(ts, 0.5 * (ts[1:] + ts[:-1]))
         for tt in ts:
-            self._demand(dyn(tt, sol.sol(tt))[1])
+            yy = sol.sol(tt)
+            self._demand(dyn(tt, yy)[1], inside=bool(np.all(np.abs(unpack(yy)[0]) <= M.alpha)))
         self.t = float(sol.t[-1])
         self.q, self.qd = unpack(sol.y[:, -1])
         if nb:
@@ -458,8 +497,9 @@ class _Run:
             settled = self.done or self._base_settled(self.u, self.ud)
             if settled:
                 self._base_tail()
+        fric = self.fric_in if self.toppled >= 0 else self.fric  # a run that topples: read while inside
         out = StackRefResult(verdict, self.toppled, list(self.peak), list(self.theta_peak), list(self.t_uplift),
-                              self.t_over, list(self.n_imp), list(self.fric), list(self.fric_imp), self.n_jumps,
+                              self.t_over, list(self.n_imp), list(fric), list(self.fric_imp), self.n_jumps,
                               self.n_incons, settled, self.t, self.impacts, self.patterns, self.work.steps,
                               self.work.nfev)
         out.base_disp_max = self.u_max if self.M.nb else math.nan

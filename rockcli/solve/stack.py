@@ -73,7 +73,8 @@ class StackHistory:
 class StackResponse:
     """Outcome of :func:`simulate_stack` (SI). ``toppled`` is None, ``"body"`` or ``"plinth"`` (the body falls
     with it); ``friction_*`` the peak friction demand ``|T|/N`` at the base and at the joint (``_impulsive``: of the
-    impacts' impulses); ``n_jumps`` the steps and impacts where a pivot would pull (the rocking-only model fails
+    impacts' impulses; a run that topples: read while both blocks were inside their slenderness, docs/plinth.md
+    "Friction"); ``n_jumps`` the steps and impacts where a pivot would pull (the rocking-only model fails
     there); ``n_inconsistent`` impacts with no consistent pattern after them."""
 
     verdict: str
@@ -346,11 +347,18 @@ def friction_demand_single(block, theta, theta_dot, ag):
     """The friction demand ``|F_x|/F_y`` of a single block rocking on the ground at the states ``theta`` [rad],
     ``theta_dot`` [rad/s] under ``ag`` [m/s^2] (arrays; a history's rows): docs/physics-plinth.md, "Friction
     demand". At rest (``theta = theta_dot = 0``) it is ``|ag|/g``; where ``F_y <= 0`` (the block would jump) it is
-    inf. The peak over a history is a sampled one (its rows)."""
+    inf. The peak over a history is a sampled one (its rows).
+
+    A row at ``theta = theta_dot = 0`` under ``|ag| > g tan(alpha)`` is no rest (docs/plinth.md, "Friction"): the
+    ground acceleration jumped past the uplift threshold there (a one-cosine pulse starts at ``a_p``), and the block
+    rocks from zero state on the corner ``-sign(ag)``: its demand there, which grows with ``|ag|`` from ``tan(alpha)``
+    at the threshold, is the limit of the same jump ramped in over a time that tends to 0."""
     theta = np.asarray(theta, float)
     theta_dot = np.asarray(theta_dot, float)
     ag = np.asarray(ag, float)
     s = np.where(theta > 0, 1.0, np.where(theta < 0, -1.0, 0.0))
+    lifted = (s == 0) & (theta_dot == 0) & (np.abs(ag) > G * math.tan(block.alpha))
+    s = np.where(lifted, -np.sign(ag), s)
     A = s * block.alpha - theta
     Rthdd = -0.75 * (G * np.sin(A) + ag * np.cos(A))  # R theta'' from Eq (3), R p^2 = 3 g/4
     fx = np.where(s == 0, ag, Rthdd * np.cos(A) + block.R * theta_dot ** 2 * np.sin(A) + ag)
