@@ -27,13 +27,13 @@ FRICTION_ASSUMPTIONS = (
 def slide_report(body, foundation, excitation, res, *, label: str, command: str) -> str:
     """The page for ``res`` (a :class:`rockcli.solve.slide.SlideResponse` with its history) of ``body`` (a Block or a
     Stack) on ``foundation`` under ``excitation``."""
-    from rockcli.assess.scenes import parse_configurations
+    from rockcli.models.spec import configuration_of
     from rockcli.report.html_figures import png_of
     from rockcli.report.html_records import records_section
     from rockcli.report.slide import plot_slide_response
     from rockcli.report.slide_words import slide_sentence
 
-    conf = parse_configurations([foundation.label])[0]
+    conf = configuration_of(foundation.label)
     stacked = res.joint is not None
     blk = body.body if stacked else body
     name = blk.name
