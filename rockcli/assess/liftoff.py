@@ -141,7 +141,7 @@ def _sliding_floor(sliding, foundation, motion) -> float:
 
     if not (foundation is None or isinstance(foundation, Rigid)):
         return 0.0
-    cp = chain_parameters(sliding.body, sliding.mu)
+    cp = chain_parameters(sliding.subject, sliding.mu)
     n = int(cp[ch.CP_N])
     thr = G * min(min(cp[ch.CP_BLK + ch.NF_BLK * j + ch.F_MU], math.tan(cp[ch.CP_BLK + ch.NF_BLK * j + ch.F_AREST]))
                   for j in range(n))

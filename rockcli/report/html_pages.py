@@ -61,6 +61,15 @@ def _facts(facts) -> str:
                                                + "</div>" for f in facts) + "</div>")
 
 
+def _friction_assumptions(blocks) -> tuple:
+    """The friction model's assumptions when a column has friction (``--friction``), else none."""
+    if not any(getattr(b, "friction_label", "") for b in blocks):
+        return ()
+    from rockcli.report.html_slide import FRICTION_ASSUMPTIONS
+
+    return FRICTION_ASSUMPTIONS
+
+
 def _list(items) -> str:
     return "<ul>" + "".join(f"<li>{i}</li>" for i in items) + "</ul>"
 
@@ -254,6 +263,12 @@ def assessment_report(assessment, *, check=None, command: str = "") -> str:
     n_ran = sum(x.motion is not None for x in assessment.excitations)
     missing = _not_available(assessment.unavailable)
     facts.append(("ground motions", f"{n_ran}", *([f"{len(missing)} more not available"] if missing else [])))
+    frictions = sorted({getattr(b, "friction_label", "") for b in blocks} - {""})
+    if frictions:  # friction as a model: said on the first screen
+        slid = sum(1 for r in assessment.rows if r.friction and (r.verdict in ("slid", "slid_off")
+                                                                  or (r.slide_max_m or 0.0) > 0.0))
+        facts.append(("friction (Coulomb)", ", ".join(frictions),
+                      f"every contact may slide; it slides in {slid} of {len(assessment.rows)} runs"))
     if assessment.unproven:  # a card of "0" undecided runs on the first screen reads as an alarm: none then
         facts.append(("runs not proven", f"{len(assessment.unproven)}", "still rocking when the computation stopped: "
                                                                        "not counted as surviving (see 'How sure is "
@@ -261,7 +276,11 @@ def assessment_report(assessment, *, check=None, command: str = "") -> str:
     first.append(_facts(facts))
     figs = []
     for b in blocks:
-        if getattr(b, "plinth", None) is None:  # the response figures draw a single block's rocking
+        if getattr(b, "friction_label", ""):  # friction as a model: the friction runs, with their slips
+            from rockcli.report.html_slide import slide_figures
+
+            figs.append(slide_figures(assessment, b))
+        elif getattr(b, "plinth", None) is None:  # the response figures draw a single block's rocking
             figs.append(response_figures(assessment, b))
         else:  # a body on its plinth: both blocks, beside the body alone
             figs.append(stack_figures(assessment, b))
@@ -293,7 +312,7 @@ def assessment_report(assessment, *, check=None, command: str = "") -> str:
                     + "\n".join(_verdict_table(assessment, b) for b in blocks),
         "figures": "\n".join(f for f in figs if f) or "<p>No run to draw.</p>",
         "certainty": _certainty(assessment, check),
-        "assumptions": assumptions_section(margins=assessment.margin),
+        "assumptions": assumptions_section(_friction_assumptions(blocks), margins=assessment.margin),
         "reproduce": reproduce_section(command),
     }
     return page(_title(blocks), "rockcli assess column: rocking and overturning of free-standing bodies "

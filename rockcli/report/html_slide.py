@@ -92,3 +92,41 @@ def _body_text(body, stacked: bool) -> str:
                  f"its mass); its base may slide {body.b2 - body.b1:.3f} m either way before it reaches the "
                  f"{p.name}'s edge.")
     return text
+
+
+def slide_figures(assessment, sliding) -> str:
+    """The time histories of a body with friction (a :class:`rockcli.solve.slide_many.Sliding` column) under the
+    records that decide its verdicts: each rerun with its history, by the friction model (where nothing slides the
+    run is the rocking model's: the figure draws it all the same, the slips at 0)."""
+    from rockcli.report.html_deciding import MAX_DECIDING, _why_words, deciding_records
+    from rockcli.report.html_figures import DPI, png_of
+    from rockcli.report.slide import plot_slide_response
+    from rockcli.report.words import body_noun
+    from rockcli.models import Rigid
+    from rockcli.solve.slide import simulate_friction
+
+    noun = body_noun(sliding.subject)
+    confs = {c.header: c for c in assessment.configurations}
+    options = {k: v for k, v in assessment.solver.items() if k in ("rtol", "tail", "rest_tol", "horizon")
+               and v is not None}
+    out = []
+    for header, (why, rows) in deciding_records(assessment, sliding).items():
+        c = confs[header]
+        for r in rows[:MAX_DECIDING]:
+            x = assessment.excitation_of(r)
+            head = f"<h3>{esc(x.label)}: the record that {esc(_why_words(why, c, noun))}</h3>"
+            iso = None if isinstance(c.foundation, Rigid) else c.foundation
+            run = simulate_friction(sliding.subject, x.motion, sliding.mu, iso, history=True, **options)
+            if run.status < 0:
+                out.append(head + "<p class='note'>The rerun with its history failed: no figure.</p>")
+                continue
+            png = png_of(lambda path: plot_slide_response(run, sliding.subject, path, excitation=x.motion,
+                                                          motion=x.label, foundation=c.foundation, dpi=DPI))
+            out.append(head + figure(png, f"{x.label}, {header}: the ground acceleration; each contact's rotation "
+                                          f"over its slenderness and its slip, shaded where it slides (friction "
+                                          f"{sliding.friction_label})."))
+    if not out:
+        return ""
+    return (f"<p>For each configuration, the records that decide the verdict of {esc(noun)} with friction "
+            f"({esc(sliding.friction_label)}): every record that topples it or slides it off its plinth (at most "
+            f"{MAX_DECIDING}), else the closest call.</p>" + "".join(out))

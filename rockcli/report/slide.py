@@ -110,7 +110,9 @@ def plot_slide_response(res, body, path: str | os.PathLike, *, excitation=None, 
         mus = ", ".join(f"{p.name} mu = {m:g}" for p, m in zip(res.interfaces, res.mu))
         head = f"{plain(body.name)}: friction {mus}" + (f"; {plain(motion)}" if motion else "")
         fig.suptitle(head + "\n" + plain(_wrap(slide_sentence(body, res), 110)), fontsize=9)
-        fig.subplots_adjust(left=0.11, right=0.98, bottom=0.06, top=1.0 - 0.9 / fig.get_figheight(), hspace=0.35)
+        if fig.get_layout_engine() is None:  # (the report's figures lay themselves out)
+            fig.subplots_adjust(left=0.11, right=0.98, bottom=0.06, top=1.0 - 0.9 / fig.get_figheight(),
+                                hspace=0.35)
         return save_figure(fig, path, dpi=dpi)
 
 

@@ -133,7 +133,10 @@ def scene_sentence(row, *, isolated: bool = False, stroke: bool = True) -> str:
             parts += [fall] if fall else []
         else:
             parts.append(f"topples: {fall or 'it overturns'}")
-        if getattr(row, "toppled", "") == "plinth":
+        if row.verdict == "slid_off":
+            parts[0] = parts[0].replace("topples:", "slides off its plinth:", 1).replace("it falls", "it slides off")
+            parts.append("its base reaches the plinth's edge (read as a fall)")
+        elif getattr(row, "toppled", "") == "plinth":
             parts.append("the plinth topples, and the body with it")
         elif getattr(row, "toppled", "") == "body":
             parts.append("the body topples off its plinth")
@@ -151,6 +154,8 @@ def scene_sentence(row, *, isolated: bool = False, stroke: bool = True) -> str:
                     "angle so far; not counted as surviving")
         elif stacked:
             head = f"survives: {words}"
+        elif row.verdict == "slid":
+            head = "survives: it does not rock"
         elif row.verdict == "no_uplift":
             head = "survives: it does not even lift off its base"
         elif r < 0.005:
@@ -158,6 +163,11 @@ def scene_sentence(row, *, isolated: bool = False, stroke: bool = True) -> str:
         else:
             head = f"survives: it rocks to {_pct(r)} of its overturning angle{past_words(r)}"
         parts.append(head)
+        slide = getattr(row, "slide_max_m", math.nan)
+        if getattr(row, "friction", "") and math.isfinite(slide) and slide > 0.0:  # friction as a model: it slid
+            on = "on its plinth" if stacked else ("on the isolated base" if isolated else "on the ground")
+            parts.append(f"it slides {slide_cm(slide)} {on} (friction {row.friction}), ending "
+                         f"{slide_cm(abs(row.slide_residual_m))} from where it stood")
         if math.isfinite(s) and s > 1:
             parts.append(f"a record {_x(s)} times stronger would topple it")
         elif math.isfinite(s):
@@ -171,6 +181,14 @@ def scene_sentence(row, *, isolated: bool = False, stroke: bool = True) -> str:
     if math.isfinite(share):
         parts.append(_share_words(share))
     return "; ".join(parts)
+
+
+def slide_cm(x: float) -> str:
+    """A slip [m] for a sentence: centimetres (1 decimal under 10 cm), under 1 mm in mm."""
+    x = abs(float(x))
+    if x < 1e-3:
+        return f"{x * 1000:.1f} mm" if x >= 5e-5 else "less than 0.1 mm"
+    return f"{x * 100:.1f} cm" if x < 0.1 else f"{x * 100:.0f} cm"
 
 
 def stroke_words(row) -> str:

@@ -29,25 +29,26 @@ from rockcli.solve.response import JobError
 class Sliding:
     """A body (:class:`rockcli.models.Block`, or a :class:`rockcli.models.Stack`: the body on its plinth) with Coulomb
     friction ``mu`` at every contact (one coefficient, or one per contact bottom to top: ``(base, joint)``). A job's
-    first item in :func:`rockcli.solve.simulate_many`, and a column of an assessment: it reads as its body does
-    (``name``, ``alpha``, ...)."""
+    first item in :func:`rockcli.solve.simulate_many`, and a column of an assessment: ``subject`` is the body (or the
+    body on its plinth), and the wrapper reads as it does (``name``, ``alpha``, a stack's ``body`` and ``plinth``)."""
 
-    body: Any
+    subject: Any
     mu: Any
 
     def __post_init__(self):
         from rockcli.models import Block, Stack
         from rockcli.solve.slide import _mus
 
-        if not isinstance(self.body, (Block, Stack)):
-            raise RockcliInputError(f"Sliding: the body must be a Block or a Stack, got {type(self.body).__name__}")
-        n = 2 if isinstance(self.body, Stack) else 1
+        if not isinstance(self.subject, (Block, Stack)):
+            raise RockcliInputError(f"Sliding: the body must be a Block or a Stack, got "
+                                    f"{type(self.subject).__name__}")
+        n = 2 if isinstance(self.subject, Stack) else 1
         object.__setattr__(self, "mu", _mus(self.mu, n))
 
     def __getattr__(self, name):
         if name.startswith("__"):
             raise AttributeError(name)
-        return getattr(self.__dict__["body"], name)
+        return getattr(self.__dict__["subject"], name)
 
     @property
     def friction_label(self) -> str:
@@ -190,7 +191,7 @@ def run_slide(sliding: Sliding, foundation, motion, scale: float = 1.0, **solver
     solver.pop("early", None)
     if scale != 1.0:
         motion = motion.scaled(scale)
-    return simulate_friction(sliding.body, motion, sliding.mu, None if isinstance(foundation, Rigid) else foundation,
+    return simulate_friction(sliding.subject, motion, sliding.mu, None if isinstance(foundation, Rigid) else foundation,
                              **solver)
 
 
@@ -239,7 +240,7 @@ def mixed_slides(jobs, many, *, progress=None, **options) -> list:
             out[i] = SlideRun(s)
         else:  # nothing slid: the rocking model's own run of the same scene (module notes)
             job = jobs[i]
-            rock_jobs.append((job[0].body, *job[1:]))
+            rock_jobs.append((job[0].subject, *job[1:]))
             rock_at.append(i)
     others = [i for i in range(len(jobs)) if not is_slide_job(jobs[i])]
     todo = [jobs[i] for i in others] + rock_jobs
