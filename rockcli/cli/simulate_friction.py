@@ -60,6 +60,19 @@ def check_friction_scene(foundation, *, cap_ratio, vertical, moving, restitution
                                 f"not taken with --friction yet")
 
 
+def _rocking_falls(body, foundation, excitation, **solver) -> bool:
+    """Does the rocking model's run of the scene topple?"""
+    from rockcli.models import Stack
+
+    if isinstance(body, Stack):
+        from rockcli.solve.stack_many import run_stack
+
+        return run_stack(body, foundation, excitation, **solver).toppled is not None
+    from rockcli.solve import simulate
+
+    return simulate(body, foundation, excitation, **solver).overturned
+
+
 def friction_keys(res, stacked: bool) -> dict:
     """The keys ``--friction`` adds to the JSON: the slips (``slide_max_m``, ``slide_residual_m`` at the top for a
     single block, under ``base`` and ``joint`` for a body on its plinth) and ``friction`` (the coefficients, whether
@@ -67,9 +80,9 @@ def friction_keys(res, stacked: bool) -> dict:
     def num(x):
         return None if not math.isfinite(x) else x
 
-    slid = res.slides
+    slid = res.slides and not res.falls_only
     out = {"friction": {"mu": list(res.mu), "slides": slid, "model": "Coulomb, static = kinetic",
-                        "rocking_answer": not slid}}
+                        "rocking_answer": not slid, **({"slides_in_its_fall": True} if res.falls_only else {})}}
     per = {p.name: {"slide_max_m": p.slide_max_m if slid else 0.0,
                     "slide_residual_m": p.slide_residual_m if slid else 0.0,
                     "t_slide_s": num(p.t_slide) if slid else None, "n_slips": p.n_slips if slid else 0,
@@ -81,6 +94,9 @@ def friction_keys(res, stacked: bool) -> dict:
 
 def no_slide_row(res) -> tuple[str, str]:
     mus = " and ".join(f"{p.name} mu = {m:g}" for p, m in zip(res.interfaces, res.mu))
+    if res.falls_only:
+        return ("friction", f"{mus} (Coulomb): a contact slides only as the body falls (its contact unloads), so the "
+                            f"rocking answer above stands as it is (docs/physics-sliding.md)")
     return ("friction", f"{mus} (Coulomb): no contact slides, so the rocking answer above stands as it is "
                         f"(docs/physics-sliding.md)")
 
@@ -105,6 +121,8 @@ def run_friction(body, foundation, excitation, label: str, mu, *, rtol, tail, ho
     if not res.slides:
         return res
     stacked = res.joint is not None
+    if res.falls_only and _rocking_falls(body, foundation, excitation, rtol=rtol, tail=tail, horizon=horizon):
+        return res  # it slid only as it fell, and the rocking run falls too: the rocking answer (slide_many's notes)
     if history_path:
         from rockcli.report.slide import write_slide_history_csv
 

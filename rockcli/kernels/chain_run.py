@@ -54,6 +54,7 @@ STATUS_SLID_OFF = 2
 X_STATUS, X_TOPPLED, X_SLIDOFF, X_T_END, X_T_FAIL, X_STEPS, X_REJ, X_NRHS = 0, 1, 2, 3, 4, 5, 6, 7
 X_N_JUMP, X_N_INCONS, X_N_SLIP_IMPACTS, X_SETTLED, X_T_SETTLED = 8, 9, 10, 11, 12
 X_U_MAX, X_T_U_MAX, X_N_SWITCH, X_U_END, X_T_FIRST, X_N_STALL = 13, 14, 15, 16, 17, 18
+X_N_SLIP_IN = 19  # slips that start while every block is inside its slenderness (not during a fall)
 N_XG = 20
 # per interface
 J_PSI_MAX, J_T_PSI_MAX, J_T_EXCEED, J_S_MAX, J_T_S_MAX, J_TILT = 0, 1, 2, 3, 4, 5
@@ -147,8 +148,13 @@ def _base_settled(cp, y, ws, frc, scratch):
 
 
 @kernel
-def _switch(xo, pat, new, n, t, t_exc_end):
-    """Enter the pattern ``new``: the bookkeeping of uplifts and slips."""
+def _switch(xo, pat, new, n, t, cp, y):
+    """Enter the pattern ``new`` at the state ``y``: the bookkeeping of uplifts and slips (a slip that starts while
+    every block leans less than its slenderness, ``|psi_j| <= alpha_j``, counted apart: not during a fall)."""
+    inside = True
+    for j in range(n):
+        if abs(y[col_psi(j)]) > fld(cp, j, F_AREST):
+            inside = False
     changed = False
     for j in range(n):
         o = N_XG + NX_J * j
@@ -161,6 +167,8 @@ def _switch(xo, pat, new, n, t, t_exc_end):
             if math.isnan(xo[o + J_T_SLIDE]):
                 xo[o + J_T_SLIDE] = t
             xo[o + J_N_SLIPS] += 1.0
+            if inside:
+                xo[X_N_SLIP_IN] += 1.0
             if math.isnan(xo[X_T_FIRST]):
                 xo[X_T_FIRST] = t
         if pat[2 * j] != new[2 * j] or pat[2 * j + 1] != new[2 * j + 1]:
@@ -207,7 +215,7 @@ def _after_impact(cp, pat, y, j, t, t_exc_end, ag, xo, ws, frc, best, v0, w0, yn
         xo[X_N_SLIP_IMPACTS] += 1.0
     for i in range(y.shape[0]):
         y[i] = ynew[i]
-    _switch(xo, pat, best, n, t, t_exc_end)
+    _switch(xo, pat, best, n, t, cp, y)
     # rest rules
     all_zero = True
     for i in range(n):
@@ -243,7 +251,7 @@ def _after_impact(cp, pat, y, j, t, t_exc_end, ag, xo, ws, frc, best, v0, w0, yn
         project(cp, pat, pat_to, y, ws, v0, w0, ynew)
         for i in range(y.shape[0]):
             y[i] = ynew[i]
-        _switch(xo, pat, pat_to, n, t, t_exc_end)
+        _switch(xo, pat, pat_to, n, t, cp, y)
 
 
 @kernel
@@ -382,7 +390,7 @@ def simulate_chain(cp, pat0, y0, ekind, epar, acc, dt, t_begin, t_exc_end, tail,
                 zero_psi[j] = True
                 zero_s[j] = True
             choose_pattern(cp, pat, W[W_Y], ag, ws, frc, zero_psi, zero_s, best)
-            _switch(xo, pat, best, n, tu, t_exc_end)
+            _switch(xo, pat, best, n, tu, cp, W[W_Y])
             rs[RS_FRESH] = 1.0
             rs[RS_H] = 0.0
             if want_history:
@@ -413,7 +421,7 @@ def simulate_chain(cp, pat0, y0, ekind, epar, acc, dt, t_begin, t_exc_end, tail,
                     zero_psi[j] = True
                     zero_s[j] = True
                 choose_pattern(cp, pat, W[W_Y], ground_at(t_ev, seg, epar), ws, frc, zero_psi, zero_s, best)
-                _switch(xo, pat, best, n, t_ev, t_exc_end)
+                _switch(xo, pat, best, n, t_ev, cp, W[W_Y])
                 rs[RS_H] = 0.0
                 band_ok = False
                 if want_history:
@@ -548,7 +556,7 @@ def simulate_chain(cp, pat0, y0, ekind, epar, acc, dt, t_begin, t_exc_end, tail,
             m, pulls = choose_pattern(cp, pat, y, ground_at(t_ev, seg, epar), ws, frc, zero_psi, zero_s, best)
             if m < -cp[CP_TOL]:
                 xo[X_N_INCONS] += 1.0
-            _switch(xo, pat, best, n, t_ev, t_exc_end)
+            _switch(xo, pat, best, n, t_ev, cp, y)
             kind = HK_EVENT
         if want_history:
             H, nh = _hist(H, nh, rs[RS_T], ground_at(rs[RS_T], seg, epar), kind, pat, W, W_Y)

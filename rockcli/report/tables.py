@@ -40,7 +40,7 @@ def format_cell(row, margin: bool, neighbourhood: bool = False) -> str:
     ``ERROR``."""
     if row.error:
         return "ERROR"
-    if row.overturned and row.verdict == "slid_off":
+    if row.overturned and getattr(row, "verdict", "") == "slid_off":
         text = "SLIDES OFF"
     elif row.overturned:
         text = "OVERTURNS" + (f" {row.toppled}" if row.toppled else "")
@@ -52,8 +52,9 @@ def format_cell(row, margin: bool, neighbourhood: bool = False) -> str:
         text = f"survives {peak_text(row.theta_max_over_alpha)}"
         if row.plinth:  # a body on a plinth: the plinth's peak over alpha_asm too
             text += f" p{peak_text(row.plinth_theta_max_over_alpha_asm)}"
-    if not row.overturned and row.friction and row.slide_max_m > 0:  # it slid: how far, in cm
-        text += " s<0.1cm" if row.slide_max_m < 5e-4 else f" s{100 * row.slide_max_m:.1f}cm"
+    slide = getattr(row, "slide_max_m", 0.0)
+    if not row.overturned and getattr(row, "friction", "") and slide > 0:  # it slid: how far, in cm
+        text += " s<0.1cm" if slide < 5e-4 else f" s{100 * slide:.1f}cm"
     if margin:
         if not math.isnan(row.overturn_scale):
             text += f" x{row.overturn_scale:.2f}"
@@ -111,6 +112,11 @@ def format_notes(assessment) -> str:
                            ("0", "0: it does not lift (a body on a plinth that rocks)")) if t in shown]
     if tiny:
         lines[0] += " " + "; ".join(tiny) + "."
+    frictions = sorted({r.friction for r in assessment.rows if getattr(r, "friction", "")})
+    if frictions:
+        lines.append(f"Friction as a model ({', '.join(frictions)}; docs/physics-sliding.md): sX: the body slid X at "
+                     "most on its own contact (the floor, or its plinth); SLIDES OFF: its base reached the plinth's "
+                     "edge (a fall); a run where nothing slides is the rocking model's.")
     if assessment.unproven:
         from rockcli.solve import DEFAULT_HORIZON
 

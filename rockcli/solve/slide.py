@@ -95,6 +95,7 @@ class SlideResponse:
     n_jumps: int
     n_inconsistent: int
     n_slip_impacts: int
+    n_slips_inside: int  # slips that started while every block leaned less than its slenderness (not in a fall)
     settled: bool
     t_end: float
     steps: int
@@ -114,6 +115,13 @@ class SlideResponse:
     def slides(self) -> bool:
         """A contact slid, between impacts or during one."""
         return any(p.n_slips > 0 for p in self.interfaces) or self.n_slip_impacts > 0
+
+    @property
+    def falls_only(self) -> bool:
+        """It topples, and its contacts slid only during the fall (every slip started with a block past its
+        slenderness): the rocking model's fall, whose contact unloads as it goes (docs/physics-sliding.md, "Where
+        nothing slides")."""
+        return self.verdict == "overturned" and self.slides and self.n_slips_inside == 0
 
     @property
     def interfaces(self) -> tuple:
@@ -282,5 +290,5 @@ def _response(cp, xo, H, names) -> SlideResponse:
         slid_off=status == cr.STATUS_SLID_OFF, t_fail=float(xo[cr.X_T_FAIL]),
         u_max=float(xo[cr.X_U_MAX]) if cp[ch.CP_BASE] != ch.BASE_RIGID else math.nan,
         n_jumps=int(xo[cr.X_N_JUMP]), n_inconsistent=int(xo[cr.X_N_INCONS]),
-        n_slip_impacts=int(xo[cr.X_N_SLIP_IMPACTS]), settled=bool(xo[cr.X_SETTLED]), t_end=float(xo[cr.X_T_END]),
+        n_slip_impacts=int(xo[cr.X_N_SLIP_IMPACTS]), n_slips_inside=int(xo[cr.X_N_SLIP_IN]), settled=bool(xo[cr.X_SETTLED]), t_end=float(xo[cr.X_T_END]),
         steps=int(xo[cr.X_STEPS]), nrhs=int(xo[cr.X_NRHS]), history=H)

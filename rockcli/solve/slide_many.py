@@ -9,7 +9,10 @@ throughout: every pattern it entered sticks, and the rocking model's choice of p
 model's when the forces and impulses stay inside Coulomb's cone (docs/physics-sliding.md, "Where nothing slides").
 Its answer is therefore the rocking model's, and the rocking model's own run of the scene (the same job without
 friction, through the same path: the batch of single blocks or the stack driver) is returned for it, so that an
-assessment with a friction nothing reaches gives the assessment without friction bit for bit. The two runs are the
+assessment with a friction nothing reaches gives the assessment without friction bit for bit. The same holds for a
+run that topples and whose contacts slid only during the fall (every slip starting with a block past its
+slenderness: the contact of a falling block unloads, its force ratio grows without bound, and what fails there is the
+model's "no flight", not friction), provided the rocking run topples too: the fall is the rocking model's. The two runs are the
 same solution computed by two codes: they differ only at the solvers' tolerance, and where the friction run's
 largest force ratio comes within that tolerance of ``mu`` the rocking run's could cross it; tests compare both paths
 (``tests/test_friction_assess.py``).
@@ -71,6 +74,7 @@ class SlideRun:
 
     @property
     def slid(self) -> bool:
+        """The friction run's answer stands (a contact slid before any fall)."""
         return self.rock is None
 
     def __getattr__(self, name):
@@ -236,9 +240,9 @@ def mixed_slides(jobs, many, *, progress=None, **options) -> list:
     for i, s in zip(slide_idx, slides):
         if isinstance(s, JobError):
             out[i] = s
-        elif s.slides:
+        elif s.slides and not s.falls_only:
             out[i] = SlideRun(s)
-        else:  # nothing slid: the rocking model's own run of the same scene (module notes)
+        else:  # nothing slid (or only in its fall): the rocking model's own run of the same scene (module notes)
             job = jobs[i]
             rock_jobs.append((job[0].subject, *job[1:]))
             rock_at.append(i)
@@ -250,7 +254,13 @@ def mixed_slides(jobs, many, *, progress=None, **options) -> list:
             out[i] = r
         slide_at = dict(zip(slide_idx, slides))
         for i, r in zip(rock_at, done[len(others):]):
-            out[i] = r if isinstance(r, JobError) else SlideRun(slide_at[i], rock=r)
+            s = slide_at[i]
+            if isinstance(r, JobError):
+                out[i] = r
+            elif s.falls_only and not r.overturned:  # the rocking run does not fall: the friction run's answer
+                out[i] = SlideRun(s)
+            else:
+                out[i] = SlideRun(s, rock=r)
     return out
 
 
