@@ -65,10 +65,9 @@ def pair_sources(text, option: str = "--records"):
     """``(A, B)`` of a pair of horizontal components written ``A+B`` (each a file, ``FILE@DEG`` or a catalogue id);
     None for a source with no ``+`` or one that exists as written (a file named ``a+b.txt``). A pair that lacks a
     file (``A+``, ``+B``) or names more than two is refused in one sentence naming ``option``."""
-    from rockcli.records.reader import path_exists
 
     s = str(text)
-    if "+" not in s or path_exists(s):
+    if "+" not in s or _is_there(s):
         return None
     first, _, second = s.partition("+")
     if not first.strip() or not second.strip():
@@ -79,6 +78,17 @@ def pair_sources(text, option: str = "--records"):
         raise RockcliInputError(f"{option} {s}: a pair of horizontal components is written A+B, two files or "
                                 f"catalogue ids; this one names {s.count('+') + 1} files")
     return first, second
+
+
+def _is_there(text: str) -> bool:
+    """A file or folder of that very name is there (one that cannot be looked at, in a folder without permission,
+    is not taken for one: its ``+`` is then read as a pair's, and the reader names the file it cannot read)."""
+    from pathlib import Path
+
+    try:
+        return Path(text).exists()
+    except (OSError, ValueError):
+        return False
 
 
 def refuse_pair_without_azimuth(text, option: str = "--records") -> None:
