@@ -112,7 +112,7 @@ def test_sliding_off_the_plinth_is_a_failure_in_the_margin():
 
 
 @pytest.mark.parametrize("args, words", [
-    (("--friction", "0.5", "--restitution", "0.9"), "--restitution"),
+    (("--friction", "0.5", "--restitution", "0.9"), "a single block on bearings"),
     (("--friction", "0.5", "--isolation", "scss:Tb=3,mu=0.05"), "not on scss"),
     (("--friction", "base=0.5,joint=0.2"), "a body alone has one contact"),
 ])

@@ -104,7 +104,7 @@ def test_a_sliding_run_writes_its_history_figure_and_report(tmp_path):
     (("--friction", "nan"), "--friction"),
     (("--friction", "base=0.5,joint=0.5"), "a body alone has one contact"),
     (("--friction", "0.5", "--isolation", "scss:Tb=3,mu=0.05"), "not on sliding or lead-rubber bearings"),
-    (("--friction", "0.5", "--restitution", "0.9"), "--restitution"),
+    (("--friction", "0.5", "--restitution", "0.9", "--isolation", "linear:Tb=3"), "a single block on bearings"),
     (("--friction", "0.5", "--theta0", "0.1"), "--theta0"),
     (("--friction", "base=0.5", "--on", PLINTH), "missing: joint"),
 ])

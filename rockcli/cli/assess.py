@@ -284,8 +284,8 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
             columns, configurations, plinth_spec, isolation_given=bool(isolation), cap_ratio=cap_ratio,
             refused=(("--history-dir", hist_dir), ("--plot-dir", plot_dir)))
     columns, configurations, friction_note = with_friction(
-        columns, configurations, friction, isolation_given=bool(isolation),
-        refused=(("--restitution", restitution is not None), ("--cap-ratio", bool(cap_ratio)),
+        columns, configurations, friction, isolation_given=bool(isolation), restitution=restitution,
+        refused=(("--cap-ratio", bool(cap_ratio)),
                  ("--history-dir", hist_dir), ("--plot-dir", plot_dir), ("--check-tolerance", check_tolerance)))
     plinth_note = " ".join(n for n in (plinth_note, friction_note) if n)
     solver.update(_cap_ratio_kw(cap_ratio))
@@ -547,8 +547,7 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
                                                            isolation_given=bool(isolation),
                                                            refused=(("--scheduler", scheduler),))
     columns, configurations, friction_note = with_friction(
-        columns, configurations, friction, isolation_given=bool(isolation),
-        refused=(("--restitution", restitution is not None),))
+        columns, configurations, friction, isolation_given=bool(isolation), restitution=restitution)
     plinth_note = " ".join(n for n in (plinth_note, friction_note) if n)
     check_outputs((csv_path, "--csv", False), (plot_path, "--plot", True),
                   (report_path, "--report", REPORT_SUFFIXES))

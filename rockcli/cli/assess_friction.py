@@ -20,7 +20,7 @@ def friction_option(func):
     return click.option("--friction", default=None, metavar="MU|base=MU,joint=MU", help=FRICTION_ASSESS_HELP)(func)
 
 
-def with_friction(columns, configurations, friction, *, isolation_given: bool, refused=()):
+def with_friction(columns, configurations, friction, *, isolation_given: bool, refused=(), restitution=None):
     """``(columns, configurations, note)``: every column with friction (module notes), the configurations the
     friction model runs on (the rigid foundation and linear bearings with gamma > 0: a default set keeps those with a
     note, one given with --isolation is refused in one sentence), the note."""
@@ -49,6 +49,11 @@ def with_friction(columns, configurations, friction, *, isolation_given: bool, r
         return isinstance(f, Rigid) or (isinstance(f, LinearIsolation) and f.gamma > 0)
 
     kept = [c for c in configurations if runs(c)]
+    if restitution is not None and any(not isinstance(c, Stack) for c in columns) and \
+            any(not isinstance(c.foundation, Rigid) for c in kept):
+        raise RockcliInputError("--friction with --restitution runs on the ground, or for a body on its plinth: a "
+                                "single block on bearings reads the restitution another way (docs/simulate.md); "
+                                "give --isolation none")
     note = ""
     if len(kept) < len(configurations):
         dropped = [c.header for c in configurations if not runs(c)]

@@ -147,7 +147,7 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
 
         friction = parse_friction(friction, stack is not None)
         check_friction_scene(foundation, cap_ratio=cap_ratio, moving=moving, restitution=restitution, check=check,
-                             history_dt=history_dt, worst=wants_worst(),
+                             history_dt=history_dt, worst=wants_worst(), stacked=stack is not None,
                              vertical=vertical_source is not None or vertical_pulse is not None)
     if stack is not None:
         from rockcli.cli.simulate_plinth import refuse_with_plinth
@@ -210,7 +210,8 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
         friction_res = run_friction(stack if stack is not None else block, foundation, excitation, label, friction,
                                     rtol=rtol, tail=tail, horizon=horizon, history_path=history_path,
                                     plot_path=plot_path, report_path=report_path, as_json=as_json,
-                                    pga=_pga(excitation, G), motion=None if pulse is not None else label)
+                                    pga=_pga(excitation, G), motion=None if pulse is not None else label,
+                                    restitution=restitution)
         if friction_res is None:
             return
     if stack is not None:

@@ -43,20 +43,23 @@ def parse_friction(text, stacked: bool):
 
 
 def check_friction_scene(foundation, *, cap_ratio, vertical, moving, restitution, check, history_dt,
-                         worst: bool) -> None:
+                         worst: bool, stacked: bool = False) -> None:
     """What ``--friction`` does not take (yet), each refused in one sentence."""
     from rockcli.models import LinearIsolation, Rigid
 
+    if restitution is not None and not stacked and not isinstance(foundation, Rigid):
+        raise RockcliInputError("--friction with --restitution runs on the ground, or for a body on its plinth (--on): "
+                                "a single block on bearings reads the restitution another way (docs/simulate.md)")
     if not (isinstance(foundation, Rigid) or (isinstance(foundation, LinearIsolation) and foundation.gamma > 0)):
         raise RockcliInputError("--friction runs on the ground (--isolation none) and on linear bearings with a base "
                                 "of finite mass (gamma > 0); not on sliding or lead-rubber bearings yet")
     refused = [name for name, given in (("--cap-ratio", cap_ratio), ("--vertical/--vertical-pulse", vertical),
-                                        ("--theta0/--theta-dot0", moving), ("--restitution", restitution is not None),
+                                        ("--theta0/--theta-dot0", moving),
                                         ("--check-tolerance", check), ("--history-dt", history_dt is not None),
                                         ("--azimuth worst", worst)) if given]
     if refused:
         raise RockcliInputError(f"--friction runs a body from rest under the horizontal ground motion, with the "
-                                f"plastic impact law: {', '.join(refused)} {'is' if len(refused) == 1 else 'are'} "
+                                f"law of its impacts: {', '.join(refused)} {'is' if len(refused) == 1 else 'are'} "
                                 f"not taken with --friction yet")
 
 
@@ -102,7 +105,7 @@ def no_slide_row(res) -> tuple[str, str]:
 
 
 def run_friction(body, foundation, excitation, label: str, mu, *, rtol, tail, horizon, history_path, plot_path,
-                 report_path, as_json: bool, pga: str, motion=None):
+                 report_path, as_json: bool, pga: str, motion=None, restitution=None):
     """The friction run of ``body`` (a Block or a Stack). Returns the :class:`rockcli.solve.slide.SlideResponse`
     when nothing slid (the caller then prints the rocking answer, with :func:`no_slide_row` and
     :func:`friction_keys`); else prints (or ``--json``) the friction run's answer, writes its history, figure and
@@ -114,14 +117,17 @@ def run_friction(body, foundation, excitation, label: str, mu, *, rtol, tail, ho
         raise RockcliInputError("--friction runs a body under a ground motion: give --record or --pulse")
     iso = None if isinstance(foundation, Rigid) else foundation
     want = bool(history_path or plot_path or report_path)
-    res = simulate_friction(body, excitation, mu, iso, rtol=rtol, tail=tail, horizon=horizon, history=want)
+    res = simulate_friction(body, excitation, mu, iso, rtol=rtol, tail=tail, horizon=horizon, history=want,
+                            restitution=restitution)
     if res.status < 0:
         raise click.ClickException(f"the integrator stopped at its safety cap of {res.steps:,} steps: no result is "
                                    f"given (please report the command line)")
     if not res.slides:
         return res
     stacked = res.joint is not None
-    if res.falls_only and _rocking_falls(body, foundation, excitation, rtol=rtol, tail=tail, horizon=horizon):
+    solver = {} if restitution is None else {"restitution": restitution}
+    if res.falls_only and _rocking_falls(body, foundation, excitation, rtol=rtol, tail=tail, horizon=horizon,
+                                         **solver):
         return res  # it slid only as it fell, and the rocking run falls too: the rocking answer (slide_many's notes)
     if history_path:
         from rockcli.report.slide import write_slide_history_csv

@@ -31,10 +31,11 @@ import math
 
 import numpy as np
 
-from rockcli.kernels.chain import (BASE_RIGID, CP_BASE, CP_CB, CP_G, CP_KB, CP_MB, CP_N, CP_P2MAX, CP_REST,
+from rockcli.kernels.chain import (BASE_RIGID, CP_BASE, CP_CB, CP_E, CP_G, CP_KB, CP_MB, CP_N, CP_P2MAX, CP_REST,
                                    CP_TOL, F_AREST, F_B, F_M, F_MU, col_psi, col_s, energy, fld, free_coordinates,
                                    workspace)
 from rockcli.kernels.chain_rest import rest_interval
+from rockcli.kernels.contact_restitution import restitution_impact
 from rockcli.kernels.linear_base import coefficients
 from rockcli.kernels.chain_step import (EVC_FACE_OPENS, EVC_IMPACT, EVC_NONE, EVC_SLIDE_OFF, EVC_SLIP_STARTS,
                                         EVC_SLIP_STOP, EVC_TOPPLE, EVC_WRONG_SIDE, _rhs, dp5, force_events, peaks, restep,
@@ -55,7 +56,8 @@ X_STATUS, X_TOPPLED, X_SLIDOFF, X_T_END, X_T_FAIL, X_STEPS, X_REJ, X_NRHS = 0, 1
 X_N_JUMP, X_N_INCONS, X_N_SLIP_IMPACTS, X_SETTLED, X_T_SETTLED = 8, 9, 10, 11, 12
 X_U_MAX, X_T_U_MAX, X_N_SWITCH, X_U_END, X_T_FIRST, X_N_STALL = 13, 14, 15, 16, 17, 18
 X_N_SLIP_IN = 19  # slips that start while every block is inside its slenderness (not during a fall)
-N_XG = 20
+X_N_PLASTIC = 20  # impacts where a given restitution could not be carried (its impulses left the cone): plastic
+N_XG = 24
 # per interface
 J_PSI_MAX, J_T_PSI_MAX, J_T_EXCEED, J_S_MAX, J_T_S_MAX, J_TILT = 0, 1, 2, 3, 4, 5
 J_T_UPLIFT, J_N_IMP, J_N_IMP_ALL, J_N_RESTS, J_T_SLIDE, J_N_SLIPS, J_S_END, J_PSI_END = 6, 7, 8, 9, 10, 11, 12, 13
@@ -206,7 +208,16 @@ def _after_impact(cp, pat, y, j, t, t_exc_end, ag, xo, ws, frc, best, v0, w0, yn
         zero_psi[i] = i == j or pat[2 * i] == 0.0
         free_corner[i] = zero_psi[i]
     pat_to = pat.copy()
-    m, pulls, slipped = impact(cp, pat, pat_to, y, ws, frc, zero_psi, free_corner, best, v0, w0, ynew)
+    restituted = False
+    if cp[CP_E] >= 0.0:  # a coefficient of restitution: the energetic rule where its impulses fit the cone
+        restituted = restitution_impact(cp, pat, zero_psi, y, ws, frc, j, cp[CP_E], v0, w0, best, ynew, ytmp,
+                                        y.copy())
+        if restituted:
+            m, pulls, slipped = 0.0, 0, False
+        else:
+            xo[X_N_PLASTIC] += 1.0
+    if not restituted:
+        m, pulls, slipped = impact(cp, pat, pat_to, y, ws, frc, zero_psi, free_corner, best, v0, w0, ynew)
     if m < -tol:
         xo[X_N_INCONS] += 1.0
     if pulls > 0:

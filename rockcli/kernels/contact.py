@@ -171,7 +171,7 @@ def choose_pattern(cp, pat, y, ag, ws, frc, zero_psi, zero_s, best):
 
 
 @kernel
-def impact(cp, pat, pat_to, y, ws, frc, zero_psi, free_corner, best, v0, w0, ynew):
+def impact(cp, pat, pat_to, y, ws, frc, zero_psi, free_corner, best, v0, w0, ynew, stick_only=False):
     """Moreau's plastic impact with Coulomb's law at the state ``y`` (the interfaces with ``zero_psi`` at angle 0,
     the impacting one among them) from the pattern ``pat`` before it. Candidates: the interfaces with
     ``free_corner`` a face or either pivot (the others keep the corner of ``pat_to``), every interface sticking or
@@ -179,7 +179,8 @@ def impact(cp, pat, pat_to, y, ws, frc, zero_psi, free_corner, best, v0, w0, yne
     condition; else all. Writes the pattern after into ``best`` and the state after into
     ``ynew`` (positions unchanged; the rates of the free coordinates; 0 for the others). Returns ``(margin, pulls,
     slipped)``: ``slipped`` True when the rocking law's impulses did not fit the cone. ``v0``, ``w0``: scratch for
-    the velocities before (n x 2, n)."""
+    the velocities before (n x 2, n). ``stick_only``: the rocking law's candidates only (the best of them, whether or
+    not it meets every condition)."""
     free, AG, bG, AA, bA, G, vG, om, th, fr, M, r, x, mo, fq = ws
     n = int(cp[CP_N])
     kinematics(cp, pat, y, ws)
@@ -198,7 +199,7 @@ def impact(cp, pat, pat_to, y, ws, frc, zero_psi, free_corner, best, v0, w0, yne
             nz += 1
     for stage in range(2):  # 0: every contact sticks; 1: every tangential choice
         if stage == 1:
-            if best_m >= -cp[CP_TOL]:
+            if best_m >= -cp[CP_TOL] or stick_only:
                 break
             slipped = True
             best_m = -math.inf

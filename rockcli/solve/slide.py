@@ -96,6 +96,7 @@ class SlideResponse:
     n_inconsistent: int
     n_slip_impacts: int
     n_slips_inside: int  # slips that started while every block leaned less than its slenderness (not in a fall)
+    n_plastic: int  # impacts where a given restitution's impulses left the cone: the plastic impact instead
     settled: bool
     t_end: float
     steps: int
@@ -161,7 +162,8 @@ def _mus(mu, n: int) -> tuple:
     return tuple([check_mu(mu, "friction")] * n)
 
 
-def chain_parameters(body, mu, foundation=None, *, rtol=None, rest_tol: float = DEFAULT_REST_TOL) -> np.ndarray:
+def chain_parameters(body, mu, foundation=None, *, rtol=None, rest_tol: float = DEFAULT_REST_TOL,
+                     restitution=None) -> np.ndarray:
     """The friction driver's parameter array ``cp`` (:mod:`rockcli.kernels.chain`) of ``body`` (a Block or a Stack)
     with friction ``mu`` (one number, or one per contact bottom to top) on ``foundation`` (None, Rigid or a
     LinearIsolation with gamma > 0)."""
@@ -176,7 +178,7 @@ def chain_parameters(body, mu, foundation=None, *, rtol=None, rest_tol: float = 
     cp[ch.CP_G] = G
     cp[ch.CP_RTOL] = _rtol(foundation if foundation is not None else Rigid(), rtol)
     cp[ch.CP_REST] = float(rest_tol)
-    cp[ch.CP_E] = -1.0
+    cp[ch.CP_E] = -1.0 if restitution is None else float(restitution)
     cp[ch.CP_TOL] = CONTACT_TOL
     p2max = 0.0
     for i, (b, h, m) in enumerate(blocks):
@@ -225,13 +227,17 @@ def chain_parameters(body, mu, foundation=None, *, rtol=None, rest_tol: float = 
 
 def simulate_friction(body, excitation, mu, foundation=None, *, rtol: float | None = None, history: bool = False,
                       tail: float = DEFAULT_TAIL, rest_tol: float = DEFAULT_REST_TOL,
-                      horizon: float = DEFAULT_HORIZON, max_steps: int = DEFAULT_MAX_STEPS) -> SlideResponse:
+                      horizon: float = DEFAULT_HORIZON, max_steps: int = DEFAULT_MAX_STEPS,
+                      restitution: float | None = None) -> SlideResponse:
     """Rocking and sliding of ``body`` (a :class:`rockcli.models.Block`, or a :class:`rockcli.models.Stack`: the body
     on its plinth) under ``excitation`` (a record or a pulse), with Coulomb friction ``mu`` at every contact (one
     coefficient, or one per contact bottom to top: the base, then the joint), on ``foundation`` (None or
     :class:`rockcli.models.Rigid`, or :class:`rockcli.models.LinearIsolation` with ``gamma > 0``).
 
-    The options are those of :func:`rockcli.solve.simulate`. Returns a :class:`SlideResponse`.
+    The options are those of :func:`rockcli.solve.simulate`; ``restitution`` (``0 < E <= 1``) the rocking model's
+    energetic rule at every impact whose impulses fit Coulomb's cone (else the plastic impact with Coulomb's law):
+    on the ground, and for a body on its plinth on bearings (the rule the plinth uses there); a single block on
+    bearings reads ``E`` another way (:mod:`rockcli.models.impact`) and is refused. Returns a :class:`SlideResponse`.
     """
     from rockcli.kernels import chain_run as cr
     from rockcli.solve.excitation import _excitation_arrays, attached_vertical
@@ -244,7 +250,15 @@ def simulate_friction(body, excitation, mu, foundation=None, *, rtol: float | No
     validate_options(rtol, tail, rest_tol, horizon, max_steps)
     blocks, names = _blocks(body)
     n = len(blocks)
-    cp = chain_parameters(body, mu, foundation, rtol=rtol, rest_tol=float(rest_tol))
+    if restitution is not None:
+        from rockcli.models.impact import check_restitution
+
+        restitution = check_restitution(restitution)
+        if not isinstance(body, Stack) and foundation is not None and not isinstance(foundation, Rigid):
+            raise RockcliInputError("friction with a restitution runs on the ground, or for a body on its plinth: a "
+                                    "single block on bearings reads the restitution with the base's impulsive couple "
+                                    "(docs/simulate.md), which the friction model does not")
+    cp = chain_parameters(body, mu, foundation, rtol=rtol, rest_tol=float(rest_tol), restitution=restitution)
     ekind, epar, acc, jtab, dt, t_begin, t_exc_end = _excitation_arrays(excitation)
     xo = np.zeros(cr.n_out(n))
     H = cr.simulate_chain(cp, np.zeros(2 * n), np.zeros(2 + 4 * n), ekind, np.asarray(epar, float), acc, dt,
@@ -290,5 +304,6 @@ def _response(cp, xo, H, names) -> SlideResponse:
         slid_off=status == cr.STATUS_SLID_OFF, t_fail=float(xo[cr.X_T_FAIL]),
         u_max=float(xo[cr.X_U_MAX]) if cp[ch.CP_BASE] != ch.BASE_RIGID else math.nan,
         n_jumps=int(xo[cr.X_N_JUMP]), n_inconsistent=int(xo[cr.X_N_INCONS]),
-        n_slip_impacts=int(xo[cr.X_N_SLIP_IMPACTS]), n_slips_inside=int(xo[cr.X_N_SLIP_IN]), settled=bool(xo[cr.X_SETTLED]), t_end=float(xo[cr.X_T_END]),
+        n_slip_impacts=int(xo[cr.X_N_SLIP_IMPACTS]), n_slips_inside=int(xo[cr.X_N_SLIP_IN]),
+        n_plastic=int(xo[cr.X_N_PLASTIC]), settled=bool(xo[cr.X_SETTLED]), t_end=float(xo[cr.X_T_END]),
         steps=int(xo[cr.X_STEPS]), nrhs=int(xo[cr.X_NRHS]), history=H)

@@ -184,11 +184,11 @@ def is_slide_job(job) -> bool:
 
 def run_slide(sliding: Sliding, foundation, motion, scale: float = 1.0, **solver):
     """One :func:`rockcli.solve.slide.simulate_friction` run of ``sliding`` on ``foundation`` under ``scale`` times
-    ``motion``; ``solver`` its keywords (``restitution``, ``cap_ratio``, ``vertical`` refused when given)."""
+    ``motion``; ``solver`` its keywords (``cap_ratio``, ``vertical`` refused when given)."""
     from rockcli.models import Rigid
     from rockcli.solve.slide import simulate_friction
 
-    for key in ("restitution", "cap_ratio", "vertical"):
+    for key in ("cap_ratio", "vertical"):
         value = solver.pop(key, None)
         if value:
             raise RockcliInputError(f"friction as a model runs without {key} (docs/physics-sliding.md)")
