@@ -376,3 +376,42 @@ def test_a_restitution_with_a_large_friction_is_the_rocking_models():
             q = simulate_stack(st, p, restitution=E)
             assert r.joint.psi_max == pytest.approx(q.body.theta_max, abs=1e-6 * statue.alpha)
             assert r.base.psi_max == pytest.approx(q.plinth.theta_max, abs=1e-6 * st.alpha_asm)
+
+
+def test_the_single_block_closed_form_is_the_general_solve():
+    """A single block on a rigid ground takes its accelerations from a closed
+    form (kernels.chain.accelerations_one); it must be the general
+    complementarity solve on every contact pattern, stuck or slipping, resting
+    or rocking, over random blocks, frictions, states and ground
+    accelerations."""
+    from rockcli.kernels import chain as ch
+    from rockcli.solve.slide import chain_parameters
+
+    rng = np.random.default_rng(0)
+    worst = 0.0
+    for _ in range(4000):
+        block = Block.from_dimensions(rng.uniform(0.2, 3), rng.uniform(0.2, 1.5))
+        cp = chain_parameters(block, rng.uniform(0.05, 2))
+        ws = ch.workspace(1)
+        corner = rng.choice([-1.0, 0.0, 1.0])
+        slip = rng.choice([-1.0, 0.0, 1.0])
+        y = np.zeros(6)
+        if corner:
+            y[4] = corner * rng.uniform(0, 1.5)
+            y[5] = rng.normal() * 3
+        if slip:
+            y[3] = slip * abs(rng.normal())
+        pattern = np.array([corner, slip])
+        ag = rng.normal() * 5
+        closed, general = np.zeros(6), np.zeros(6)
+        ch.accelerations_one(cp, pattern, y, ag, closed)
+        nf = ch.kinematics(cp, pattern, y, ws)
+        for k in range(nf):
+            general[ws[0][k]] = y[ws[0][k] + 1]
+        if nf:
+            ch.solve_level(cp, pattern, y, ws, nf, ag, False)
+            for k in range(nf):
+                general[ws[0][k] + 1] = ws[12][k]
+        scale = max(1.0, float(np.max(np.abs(general))))
+        worst = max(worst, float(np.max(np.abs(closed - general))) / scale)
+    assert worst < 1e-11

@@ -322,6 +322,8 @@ def assemble(cp, pat, y, ws, nf, ex, ey, level_v):
 def accelerations(cp, pat, y, ag, ws, ydot):
     """The pattern's right-hand side at the state ``y`` (a row): ``ydot`` (same layout; 0 for the coordinates the
     pattern holds). Returns False when the pattern's system is singular (then ``ydot`` holds no accelerations)."""
+    if int(cp[CP_N]) == 1 and cp[CP_BASE] == BASE_RIGID:
+        return accelerations_one(cp, pat, y, ag, ydot)
     free, AG, bG, AA, bA, G, vG, om, th, fr, M, r, x, mo, fq = ws
     nf = kinematics(cp, pat, y, ws)
     ny = ydot.shape[0]
@@ -335,6 +337,53 @@ def accelerations(cp, pat, y, ag, ws, ydot):
     for k in range(nf):
         ydot[free[k] + 1] = x[k] if ok else 0.0
     return ok
+
+
+@kernel
+def accelerations_one(cp, pat, y, ag, ydot):
+    """:func:`accelerations` of one block on the rigid ground in closed form (the hot loop of a single body; the
+    general solve gives the same numbers to rounding: tests/test_friction_model.py). With ``r = rot(psi)(-c b, h)``
+    the centre from the pivot, Newton and Euler about the centre with the corner force ``(T, N)``:
+    ``m (s'' + psi'' r_y - psi'^2 r_x + ag) = T``, ``m (g - psi'' r_x - psi'^2 r_y) = N``, ``I psi'' = N r_x - T r_y``;
+    sticking, ``s'' = 0``; sliding, ``T = -mu sl N`` (``mu`` 0 where ``N`` would pull), so ``psi'' = m (g - psi'^2
+    r_y) k / (I + m r_x k)``, ``k = r_x + mu sl r_y``."""
+    for i in range(ydot.shape[0]):
+        ydot[i] = 0.0
+    c = pat[0]
+    sl = pat[1]
+    g = cp[CP_G]
+    o = CP_BLK
+    b, h, m, I, mu = cp[o + F_B], cp[o + F_H], cp[o + F_M], cp[o + F_I], cp[o + F_MU]
+    sd = y[3]
+    ps = y[4]
+    psd = y[5]
+    if c == 0.0:
+        if sl != 0.0:  # a face sliding on the ground: N = m g
+            ydot[2] = sd
+            ydot[3] = -ag - mu * sl * g
+        return True
+    cs = math.cos(ps)
+    sn = math.sin(ps)
+    rx = -c * b * cs + h * sn
+    ry = c * b * sn + h * cs
+    ydot[4] = psd
+    if sl == 0.0:  # Eq (3): I_O psi'' = m (g r_x - ag r_y) about the still corner
+        ydot[5] = m * (g * rx - ag * ry) / (I + m * (rx * rx + ry * ry))
+        return True
+    k = rx + mu * sl * ry
+    pdd = m * (g - psd * psd * ry) * k / (I + m * rx * k)
+    N = m * (g - pdd * rx - psd * psd * ry)
+    if N < 0.0:  # it pulls: no friction (solve_level's rule)
+        k = rx
+        pdd = m * (g - psd * psd * ry) * k / (I + m * rx * k)
+        N = m * (g - pdd * rx - psd * psd * ry)
+        T = 0.0
+    else:
+        T = -mu * sl * N
+    ydot[2] = sd
+    ydot[3] = T / m - ag - pdd * ry + psd * psd * rx
+    ydot[5] = pdd
+    return True
 
 
 @kernel

@@ -106,11 +106,15 @@ def rest_band(cp, y, ws, frc, scratch):
     n = int(cp[CP_N])
     for i in range(2 * n):
         scratch[i] = 0.0
-    cq = cp.copy()
-    cq[CP_BASE] = BASE_RIGID  # on bearings: the chain riding the base, ``ag`` read as the base's acceleration
-    solve_pattern(cq, scratch, y, 0.0, ws, frc)
-    f0 = frc.copy()
-    solve_pattern(cq, scratch, y, 1.0, ws, frc)
+    base = cp[CP_BASE]
+    cp[CP_BASE] = BASE_RIGID  # on bearings: the chain riding the base, ``ag`` read as the base's acceleration
+    solve_pattern(cp, scratch, y, 0.0, ws, frc)
+    f0 = ws[14]  # (scratch forces)
+    for j in range(n):
+        for q in range(3):
+            f0[j, q] = frc[j, q]
+    solve_pattern(cp, scratch, y, 1.0, ws, frc)
+    cp[CP_BASE] = base
     lo = -math.inf
     hi = math.inf
     for j in range(n):
@@ -384,7 +388,10 @@ def simulate_chain(cp, pat0, y0, ekind, epar, acc, dt, t_begin, t_exc_end, tail,
         if settled:
             t_stop = min(t_stop, t_show_end)
         if rigid and _all_stuck(pat, n):
-            lo, hi = rest_band(cp, W[W_Y], ws, frc, best)
+            if not band_ok:  # computed once each time the chain comes to rest (the slips fix it)
+                blo, bhi = rest_band(cp, W[W_Y], ws, frc, best)
+                band_ok = True
+            lo, hi = blo, bhi
             tu, side = band_exit(seg, epar, lo, hi, t, t_stop)
             if tu < 0.0:
                 rs[RS_T] = t_stop
@@ -402,6 +409,7 @@ def simulate_chain(cp, pat0, y0, ekind, epar, acc, dt, t_begin, t_exc_end, tail,
                 zero_s[j] = True
             choose_pattern(cp, pat, W[W_Y], ag, ws, frc, zero_psi, zero_s, best)
             _switch(xo, pat, best, n, tu, cp, W[W_Y])
+            band_ok = False
             rs[RS_FRESH] = 1.0
             rs[RS_H] = 0.0
             if want_history:
