@@ -415,3 +415,42 @@ def test_the_single_block_closed_form_is_the_general_solve():
         scale = max(1.0, float(np.max(np.abs(general))))
         worst = max(worst, float(np.max(np.abs(closed - general))) / scale)
     assert worst < 1e-11
+
+
+def test_the_single_block_forces_in_closed_form_are_the_general_ones():
+    """The friction driver reads a single block's contact forces on the rigid ground in closed form
+    (kernels.chain.forces_one) when it watches its force conditions; they must be the general path's
+    (kinematics and contact_forces) on every pattern, over random blocks, states, accelerations and grounds."""
+    from rockcli.kernels import chain as ch
+    from rockcli.solve.slide import chain_parameters
+
+    rng = np.random.default_rng(1)
+    worst = 0.0
+    for _ in range(4000):
+        block = Block.from_dimensions(rng.uniform(0.2, 3), rng.uniform(0.2, 1.5))
+        cp = chain_parameters(block, rng.uniform(0.05, 2))
+        ws = ch.workspace(1)
+        corner = rng.choice([-1.0, 0.0, 1.0])
+        slip = rng.choice([-1.0, 0.0, 1.0])
+        y = np.zeros(6)
+        y[2] = rng.normal() * 0.1
+        if corner:
+            y[4] = corner * rng.uniform(0, 1.5)
+            y[5] = rng.normal() * 3
+        if slip:
+            y[3] = slip * abs(rng.normal())
+        pattern = np.array([corner, slip])
+        sdd = rng.normal() * 5 if slip else 0.0
+        pdd = rng.normal() * 5 if corner else 0.0
+        ag = rng.normal() * 5
+        closed, general = np.zeros((1, 3)), np.zeros((1, 3))
+        ch.forces_one(cp, pattern, y, sdd, pdd, ag, closed)
+        nf = ch.kinematics(cp, pattern, y, ws)
+        for k in range(nf):
+            ws[12][k] = sdd if ws[0][k] == 2 else pdd
+        ch.contact_forces(cp, pattern, ws, nf, ag, general)
+        if corner:  # a pivot's couple about its own corner is not read
+            closed[0, 2] = general[0, 2] = 0.0
+        scale = max(1.0, float(np.max(np.abs(general))))
+        worst = max(worst, float(np.max(np.abs(closed - general))) / scale)
+    assert worst < 1e-11

@@ -36,7 +36,7 @@ import math
 
 import numpy as np
 
-from rockcli.kernels.jit import kernel
+from rockcli.kernels.jit import hot, kernel
 
 # the chain's parameters ``cp``
 CP_N, CP_G, CP_RTOL, CP_REST, CP_E, CP_BASE, CP_MB, CP_KB, CP_CB, CP_TOL = 0, 1, 2, 3, 4, 5, 6, 7, 8, 9
@@ -107,7 +107,7 @@ def workspace(n):
     return free, AG, bG, AA, bA, G, vG, om, th, fr, M, r, x, mo, fq
 
 
-@kernel
+@hot
 def free_coordinates(cp, pat, free):
     """The free coordinates of the pattern (state columns of their positions, in the order u, then per interface
     s, psi); their number."""
@@ -126,7 +126,7 @@ def free_coordinates(cp, pat, free):
     return nf
 
 
-@kernel
+@hot
 def kinematics(cp, pat, y, ws):
     """Positions, velocities and the affine accelerations of every block at the state ``y`` (a row of the work
     array) in the pattern ``pat``: fills ``ws``; returns the number of free coordinates."""
@@ -227,7 +227,7 @@ def kinematics(cp, pat, y, ws):
     return nf
 
 
-@kernel
+@hot
 def solve_small(M, r, x, nf):
     """``x[:nf] = M[:nf, :nf]^-1 r[:nf]`` by Gaussian elimination with partial pivoting (``M``, ``r`` are
     overwritten); False when the matrix is singular."""
@@ -258,7 +258,7 @@ def solve_small(M, r, x, nf):
     return True
 
 
-@kernel
+@hot
 def assemble(cp, pat, y, ws, nf, ex, ey, level_v):
     """The linear system of the pattern for its free coordinates: Kane's rows (Coulomb's law in the rows of the
     sliding slips). ``level_v`` False: accelerations, the effective load of block ``i`` being ``b_G + (ex, ey)``
@@ -318,7 +318,7 @@ def assemble(cp, pat, y, ws, nf, ex, ey, level_v):
         r[k] = rr
 
 
-@kernel
+@hot
 def accelerations(cp, pat, y, ag, ws, ydot):
     """The pattern's right-hand side at the state ``y`` (a row): ``ydot`` (same layout; 0 for the coordinates the
     pattern holds). Returns False when the pattern's system is singular (then ``ydot`` holds no accelerations)."""
@@ -339,7 +339,7 @@ def accelerations(cp, pat, y, ag, ws, ydot):
     return ok
 
 
-@kernel
+@hot
 def accelerations_one(cp, pat, y, ag, ydot):
     """:func:`accelerations` of one block on the rigid ground in closed form (the hot loop of a single body; the
     general solve gives the same numbers to rounding: tests/test_friction_model.py). With ``r = rot(psi)(-c b, h)``
@@ -386,7 +386,34 @@ def accelerations_one(cp, pat, y, ag, ydot):
     return True
 
 
-@kernel
+@hot
+def forces_one(cp, pat, y, sdd, pdd, ag, out):
+    """:func:`contact_forces` of one block on the rigid ground in closed form, for the accelerations ``s''``
+    (``sdd``) and ``psi''`` (``pdd``) at the state ``y``: ``out[0] = (N, T, Mc)``, from the equations of
+    :func:`accelerations_one` (a face: ``N = m g``, ``T = m (s'' + ag)``, ``Mc = T h`` about its centre). The
+    general path gives the same numbers to rounding (tests/test_friction_model.py)."""
+    c = pat[0]
+    g = cp[CP_G]
+    o = CP_BLK
+    b, h, m = cp[o + F_B], cp[o + F_H], cp[o + F_M]
+    if c == 0.0:
+        T = m * (sdd + ag)
+        out[0, 0] = m * g
+        out[0, 1] = T
+        out[0, 2] = T * h
+        return
+    ps = y[4]
+    psd = y[5]
+    cs = math.cos(ps)
+    sn = math.sin(ps)
+    rx = -c * b * cs + h * sn
+    ry = c * b * sn + h * cs
+    out[0, 0] = m * (g - pdd * rx - psd * psd * ry)
+    out[0, 1] = m * (sdd + pdd * ry - psd * psd * rx + ag)
+    out[0, 2] = 0.0
+
+
+@hot
 def solve_level(cp, pat, y, ws, nf, ag, level_v):
     """Assemble and solve the pattern's system (accelerations, or at an impact the rates after it: ``level_v``) into
     ``ws``'s ``x``, with Coulomb's law as ``|T| <= mu max(N, 0)``: a sliding contact whose normal force (impulse)
@@ -420,7 +447,7 @@ def solve_level(cp, pat, y, ws, nf, ag, level_v):
     return solve_small(M, r, x, nf)
 
 
-@kernel
+@hot
 def contact_forces(cp, pat, ws, nf, ag, out):
     """The contact forces of every interface for the accelerations ``x[:nf]`` of the last solve (``ws`` at the same
     state): ``out[j] = (N, T, Mc)``, the force the block below exerts on everything above interface ``j`` in the frame
@@ -457,7 +484,7 @@ def contact_forces(cp, pat, ws, nf, ag, out):
         out[j, 2] = Mt - Fx * Py + Fy * Px
 
 
-@kernel
+@hot
 def impulses(cp, pat, ws, nf, out):
     """The impulses of every interface for the velocities after an impact ``x[:nf]`` of the last velocity-level
     solve, the velocities before being ``ws``'s ``vG``, ``om`` (as :func:`contact_forces`, with the velocity jumps

@@ -78,3 +78,22 @@ def rest_interval(w, xi, coef, dt, u, v, a0, b, h, lo, hi):
     if v * v1 < 0.0:  # a reversal of the base inside: its displacement there
         peak = max(peak, abs(velocity_zero(w, xi, u, v, a0, b, tau)))
     return tau, u1, v1, peak
+
+
+@kernel
+def quiet_until(acc, rscale, j, lo, hi, t_cap, dt):
+    """Where a chain at rest on the rigid ground under a record, inside its rest band ``[lo, hi]`` through the
+    end of segment ``j`` (from ``j dt`` to ``(j + 1) dt``, samples ``j`` and ``j + 1``), next needs a look: the
+    index of the last segment the run may skip to (its start ``k dt``), every segment between lying inside the
+    band at both its samples (the ground is linear on a segment, so inside throughout), the skip never passing
+    ``t_cap`` (the end of the excitation or the horizon: the run's own checks happen there) nor the record's last
+    segment. ``j + 1`` when nothing can be skipped. The same segments the run would otherwise take one at a time,
+    and the same times: exact."""
+    nrec = acc.shape[0]
+    k = j + 1
+    while k + 1 < nrec - 1 and (k + 1) * dt <= t_cap:
+        a = rscale * acc[k + 1]
+        if a > hi or a < lo:
+            break
+        k += 1
+    return k

@@ -34,7 +34,7 @@ import numpy as np
 from rockcli.kernels.chain import (BASE_RIGID, CP_BASE, CP_CB, CP_E, CP_G, CP_KB, CP_MB, CP_N, CP_P2MAX, CP_REST,
                                    CP_TOL, F_AREST, F_B, F_M, F_MU, col_psi, col_s, energy, fld, free_coordinates,
                                    workspace)
-from rockcli.kernels.chain_rest import rest_interval
+from rockcli.kernels.chain_rest import quiet_until, rest_interval
 from rockcli.kernels.contact_restitution import restitution_impact
 from rockcli.kernels.linear_base import coefficients
 from rockcli.kernels.chain_step import (EVC_FACE_OPENS, EVC_IMPACT, EVC_NONE, EVC_SLIDE_OFF, EVC_SLIP_STARTS,
@@ -397,6 +397,11 @@ def simulate_chain(cp, pat0, y0, ekind, epar, acc, dt, t_begin, t_exc_end, tail,
                 rs[RS_T] = t_stop
                 if want_history and t_stop <= t_show_end:  # at rest through the piece: its end
                     H, nh = _hist(H, nh, t_stop, ground_at(t_stop, seg, epar), HK_STATE, pat, W, W_Y)
+                elif ekind == EXC_RECORD and t_stop == rs[RS_SEG_END]:  # the quiet samples after it, at once
+                    k = quiet_until(acc, epar[E_AP], int(rs[RS_J]), lo, hi, min(t_exc_end, t_horizon), dt)
+                    if k > int(rs[RS_J]) + 1:
+                        rs[RS_J] = k - 1
+                        rs[RS_T] = k * dt
                 continue
             rs[RS_T] = tu
             ag = ground_at(tu, seg, epar)  # the pattern chosen just past the band's edge (the motion that starts)

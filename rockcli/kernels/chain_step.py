@@ -23,10 +23,10 @@ from rockcli.kernels.chain import (BASE_RIGID, CP_BASE, CP_N, CP_RTOL, F_EDGE, F
 from rockcli.kernels.contact import face_corners, solve_pattern
 from rockcli.kernels.dopri import _A, _C, _E, _P
 from rockcli.kernels.ground import ground_at
-from rockcli.kernels.jit import kernel
+from rockcli.kernels.jit import hot, kernel
 from rockcli.kernels.layout import W_EV, W_FEV, W_RE, W_TMP, W_Y, W_YNEW
 from rockcli.kernels.polynomials import _first_down, _poly
-from rockcli.kernels.chain import accelerations, contact_forces, kinematics
+from rockcli.kernels.chain import accelerations, contact_forces, forces_one, kinematics
 
 CP_SC_U, CP_SC_UD = 12, 13  # error scales of the base's u [m] and u' [m/s]
 W_DRATE = W_RE + W_TMP  # scratch row: the dense output's derivative at a sample (free until a step is retaken)
@@ -41,7 +41,7 @@ def _rhs(cp, pat, seg, epar, t, W, src, dst, ws):
     accelerations(cp, pat, W[src], ground_at(t, seg, epar), ws, W[dst])
 
 
-@kernel
+@hot
 def scale_of(cp, col):
     """The error scale of state column ``col``."""
     if col == 0:
@@ -54,7 +54,7 @@ def scale_of(cp, col):
     return sc * fld(cp, j, F_P) if k % 2 == 1 else sc
 
 
-@kernel
+@hot
 def dp5(cp, pat, seg, epar, t, h, W, r0, ws, fcols, nfc):
     """One Dormand-Prince 5(4) step of every state column from ``(t, W[r0 + W_Y])``, ``W[r0] = f(t, y)`` given;
     the stage derivatives in ``W[r0 + 1 .. r0 + 6]`` (``W[r0 + 6] = f(t + h, ynew)``), the new state in ``W[r0 +
@@ -87,7 +87,7 @@ def dp5(cp, pat, seg, epar, t, h, W, r0, ws, fcols, nfc):
     return math.sqrt(tot / cnt)
 
 
-@kernel
+@hot
 def restep(cp, pat, seg, epar, t, h, W, ws, fcols, nfc):
     """The last step retaken to ``t + h`` (an event inside it) in rows ``W_RE + ..``; its end state is ``W[W_EV]``
     and ``W[W_FEV]`` its derivative there."""
@@ -98,7 +98,7 @@ def restep(cp, pat, seg, epar, t, h, W, ws, fcols, nfc):
     dp5(cp, pat, seg, epar, t, h, W, np.int64(W_RE), ws, fcols, nfc)
 
 
-@kernel
+@hot
 def dense_at(W, hs, sig, dst):
     """The dense-output state at fraction ``sig`` of the last step into row ``dst`` of ``W``."""
     ny = W.shape[1]
@@ -136,7 +136,7 @@ def _dense_rate_col(W, sig, i):
     return c1 + sig * (2.0 * c2 + sig * (3.0 * c3 + sig * 4.0 * c4))
 
 
-@kernel
+@hot
 def dense_free_at(W, hs, sig, dst, ddst, fcols, nfc):
     """The dense-output state at fraction ``sig`` into row ``dst`` and the accelerations of the free coordinates
     into row ``ddst`` (the time derivative of their rates' dense output), for the free coordinates only (state
@@ -152,7 +152,7 @@ def dense_free_at(W, hs, sig, dst, ddst, fcols, nfc):
         W[ddst, c + 1] = _dense_rate_col(W, sig, c + 1)
 
 
-@kernel
+@hot
 def quartic(W, hs, i, sign, shift):
     """``sign * (state i) + shift`` over the last step as a quartic in sigma."""
     c1 = 0.0
@@ -168,7 +168,7 @@ def quartic(W, hs, i, sign, shift):
     return (sign * W[W_Y, i] + shift, sign * hs * c1, sign * hs * c2, sign * hs * c3, sign * hs * c4)
 
 
-@kernel
+@hot
 def state_events(cp, pat, W, hs, sig_lim):
     """The first event of the step on the quartics of the states in ``(0, sig_lim]``: ``(code, j, sigma)``."""
     n = int(cp[CP_N])
@@ -206,7 +206,7 @@ def state_events(cp, pat, W, hs, sig_lim):
     return code, who, best
 
 
-@kernel
+@hot
 def _force_margins(cp, pat, W, hs, sig, t, seg, epar, ws, frc, mg, fcols, nfc):
     """The pattern's force conditions at fraction ``sig`` of the step, relative to each contact's normal force:
     ``mg[2 j]`` interface ``j``'s face (its smaller corner force), ``mg[2 j + 1]`` its cone while it sticks (``mu N -
@@ -214,13 +214,18 @@ def _force_margins(cp, pat, W, hs, sig, t, seg, epar, ws, frc, mg, fcols, nfc):
     dense_free_at(W, hs, sig, W_TMP, W_DRATE, fcols, nfc)
     ag = ground_at(t + sig * hs, seg, epar)
     # the forces from the dense output's accelerations (no solve: the step's own accelerations, to its accuracy)
-    nf = kinematics(cp, pat, W[W_TMP], ws)
-    free = ws[0]
-    x = ws[12]
-    for k in range(nf):
-        x[k] = W[W_DRATE, free[k] + 1]
-    contact_forces(cp, pat, ws, nf, ag, frc)
     n = int(cp[CP_N])
+    if n == 1 and cp[CP_BASE] == BASE_RIGID:
+        sdd = W[W_DRATE, 3] if pat[1] != 0.0 else 0.0  # the row holds the free coordinates' only
+        pdd = W[W_DRATE, 5] if pat[0] != 0.0 else 0.0
+        forces_one(cp, pat, W[W_TMP], sdd, pdd, ag, frc)
+    else:
+        nf = kinematics(cp, pat, W[W_TMP], ws)
+        free = ws[0]
+        x = ws[12]
+        for k in range(nf):
+            x[k] = W[W_DRATE, free[k] + 1]
+        contact_forces(cp, pat, ws, nf, ag, frc)
     for k in range(2 * n):
         mg[k] = math.inf
     pulls = 0
@@ -239,7 +244,7 @@ def _force_margins(cp, pat, W, hs, sig, t, seg, epar, ws, frc, mg, fcols, nfc):
     return pulls
 
 
-@kernel
+@hot
 def _forces_constant(cp, pat, fcols, nfc):
     """True when no force condition of the pattern can change along a step: every contact a pivot that slides (no
     condition but the pull, which is counted only), or the whole chain sliding as one body on the rigid ground (the
@@ -254,7 +259,7 @@ def _forces_constant(cp, pat, fcols, nfc):
     return True
 
 
-@kernel
+@hot
 def _crossing(mg0, mg, n2):
     """The smallest margin among the conditions that were positive at ``mg0`` and are not at ``mg``, and which:
     ``(value, k)``; ``(inf, -1)`` when none crossed."""
@@ -267,7 +272,7 @@ def _crossing(mg0, mg, n2):
     return best, who
 
 
-@kernel
+@hot
 def force_events(cp, pat, W, hs, t, seg, epar, ws, frc, sig_lim, mg0, mg1, mg2, fcols, nfc):
     """The first force event of the step in ``(0, sig_lim]``: a condition that is positive and then is not (16
     samples, then bisection between the last sample where every crossing condition held and the first where one
@@ -309,7 +314,7 @@ def force_events(cp, pat, W, hs, t, seg, epar, ws, frc, sig_lim, mg0, mg1, mg2, 
     return EVC_NONE, -1, sig_lim, pulled
 
 
-@kernel
+@hot
 def _abs_peak(c, d, sig_end):
     """``(max |poly(c)| on [0, sig_end], its sigma)``: at the end and at the roots of its rate ``d``."""
     best = abs(_poly(c, sig_end))
@@ -328,7 +333,7 @@ def _abs_peak(c, d, sig_end):
     return best, sbest
 
 
-@kernel
+@hot
 def peaks(cp, pat, W, hs, t, sig_end, xo, x_psi, x_s, x_tilt, x_u, nx_j, alpha_rest):
     """Peaks of ``|psi_j|``, ``|s_j|``, the blocks' absolute tilts and ``|u|`` over ``[0, sig_end]`` of the last step,
     and the first time ``|psi_j|`` reaches the slenderness ``alpha_rest[j]``. ``x_*`` the indices of the fields in

@@ -38,7 +38,7 @@ import numpy as np
 
 from rockcli.kernels.chain import (BASE_RIGID, CP_BASE, CP_BLK, CP_N, CP_TOL, F_B, F_M, F_MU, NF_BLK, assemble, col_psi, col_s, solve_level,
                                    contact_forces, fld, impulses, kinematics, solve_small)
-from rockcli.kernels.jit import kernel
+from rockcli.kernels.jit import hot, kernel
 
 
 @kernel(inline='always')
@@ -48,7 +48,7 @@ def face_corners(N, Mc, b):
     return 0.5 * N - 0.5 * Mc / b, 0.5 * N + 0.5 * Mc / b
 
 
-@kernel
+@hot
 def pattern_margin(cp, pat, y, ws, frc, nf, zero_psi, zero_s, level_v, y_before):
     """How well the pattern's solution (``ws``'s ``x[:nf]`` after a solve; ``frc`` its forces or impulses per
     interface) meets the contact conditions: the smallest relative margin (negative: a condition fails), and
@@ -105,7 +105,7 @@ def _rate_of(free, x, nf, col):
     return 0.0
 
 
-@kernel
+@hot
 def solve_pattern(cp, pat, y, ag, ws, frc):
     """The accelerations of the pattern at the state ``y`` (``ws``'s ``x``) and its contact forces ``frc``; the
     number of free coordinates, or -1 when its system is singular."""
