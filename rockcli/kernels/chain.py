@@ -50,7 +50,8 @@ F_EDGE = 6  # the slip at which the block's base passes the edge of the top belo
 F_SC_S = 7  # the error scale of the slip s [m]
 F_SC_PSI = 8  # the error scale of psi [rad]
 F_P = 9  # sqrt(3 g / (4 R)) of the block [1/s]: the scale of the rates
-NF_BLK = 10
+F_BLOW = 10  # the half width of the top below (inf on the ground or the base): where the overlap of the faces ends
+NF_BLK = 11
 
 BASE_RIGID, BASE_LINEAR = 0.0, 1.0
 
@@ -77,6 +78,18 @@ def col_psi(j):
 def fld(cp, i, f):
     """Field ``f`` of block ``i``."""
     return cp[CP_BLK + NF_BLK * i + f]
+
+
+@kernel(inline='always')
+def overlap_ends(cp, j, s):
+    """``(e_R, e_L)``: the ends of interface ``j``'s contact from the centre of block ``j``'s base, at the slip ``s``:
+    the block's corners ``+-b``, or the corner of the top below (half width ``b_below``) where the block's corner
+    overhangs it."""
+    b = fld(cp, j, F_B)
+    bl = fld(cp, j, F_BLOW)
+    e_r = b if s + b <= bl else bl - s
+    e_l = -b if s - b >= -bl else -bl - s
+    return e_r, e_l
 
 
 @kernel
@@ -160,29 +173,49 @@ def kinematics(cp, pat, y, ws):
         ty = -math.sin(thL)
         nx = -ty
         ny = tx
-        d = s + c * b
-        Px = Tx + d * tx
-        Py = Ty + d * ty
-        fr[j, 0] = Px
-        fr[j, 1] = Py
-        fr[j, 2] = tx
-        fr[j, 3] = ty
-        fr[j, 4] = nx
-        fr[j, 5] = ny
-        vPx = vTx - omL * d * nx + sd * tx
-        vPy = vTy - omL * d * ny + sd * ty
-        # affine acceleration of P: a_T - alpha_L d n - 2 omega_L s' n - omega_L^2 d t + s'' t
-        bPx = bTx - bAL * d * nx - 2.0 * omL * sd * nx - omL * omL * d * tx
-        bPy = bTy - bAL * d * ny - 2.0 * omL * sd * ny - omL * omL * d * ty
         thj = thL + ps
         omj = omL + psd
         cth = math.cos(thj)
         sth = math.sin(thj)
-        # r_G = rot(thj)(-c b, h), r_T = rot(thj)(-c b, 2 h); clockwise rotation (x cos + y sin, -x sin + y cos)
-        rGx = -c * b * cth + h * sth
-        rGy = c * b * sth + h * cth
-        rTx = -c * b * cth + 2.0 * h * sth
-        rTy = c * b * sth + 2.0 * h * cth
+        # the pivot: the block's own corner on the top below (e = c b, "kind A"), or, where that corner overhangs the
+        # top below (a drum slid past the edge of the one under it), the corner of the top below under the block's
+        # base ("kind B": e = c b_below - s from the base's centre, the block's base sliding over that corner)
+        kind_b = c != 0.0 and c * s + b > fld(cp, j, F_BLOW)
+        if kind_b:
+            e = c * fld(cp, j, F_BLOW) - s
+            d = c * fld(cp, j, F_BLOW)
+            Px = Tx + d * tx
+            Py = Ty + d * ty
+            vPx = vTx - omL * d * nx
+            vPy = vTy - omL * d * ny
+            bPx = bTx - bAL * d * nx - omL * omL * d * tx
+            bPy = bTy - bAL * d * ny - omL * omL * d * ty
+            # the slip runs along the block's own base: G gains s' t_U (and 2 omega s' perp(t_U) = -2 omega s' n_U)
+            fr[j, 2] = cth
+            fr[j, 3] = -sth
+            fr[j, 4] = sth
+            fr[j, 5] = cth
+        else:
+            e = c * b
+            d = s + e
+            Px = Tx + d * tx
+            Py = Ty + d * ty
+            vPx = vTx - omL * d * nx + sd * tx
+            vPy = vTy - omL * d * ny + sd * ty
+            # affine acceleration of P: a_T - alpha_L d n - 2 omega_L s' n - omega_L^2 d t + s'' t
+            bPx = bTx - bAL * d * nx - 2.0 * omL * sd * nx - omL * omL * d * tx
+            bPy = bTy - bAL * d * ny - 2.0 * omL * sd * ny - omL * omL * d * ty
+            fr[j, 2] = tx
+            fr[j, 3] = ty
+            fr[j, 4] = nx
+            fr[j, 5] = ny
+        fr[j, 0] = Px
+        fr[j, 1] = Py
+        # r_G = rot(thj)(-e, h), r_T = rot(thj)(-e, 2 h); clockwise rotation (x cos + y sin, -x sin + y cos)
+        rGx = -e * cth + h * sth
+        rGy = e * sth + h * cth
+        rTx = -e * cth + 2.0 * h * sth
+        rTy = e * sth + 2.0 * h * cth
         G[j, 0] = Px + rGx
         G[j, 1] = Py + rGy
         th[j] = thj
@@ -193,6 +226,11 @@ def kinematics(cp, pat, y, ws):
         bA[j] = bAL
         bG[j, 0] = bPx + bAL * rGy - omj * omj * rGx
         bG[j, 1] = bPy - bAL * rGx - omj * omj * rGy
+        if kind_b:
+            vG[j, 0] += sd * cth
+            vG[j, 1] -= sd * sth
+            bG[j, 0] -= 2.0 * omj * sd * sth
+            bG[j, 1] -= 2.0 * omj * sd * cth
         for k in range(nf):
             col = free[k]
             # the support's top and its angular acceleration: the block below (or the base)
@@ -207,8 +245,12 @@ def kinematics(cp, pat, y, ws):
             aPx = aTx - aAL * d * nx
             aPy = aTy - aAL * d * ny
             if col == col_s(j):
-                aPx += tx
-                aPy += ty
+                if kind_b:
+                    aPx += cth
+                    aPy -= sth
+                else:
+                    aPx += tx
+                    aPy += ty
             aA = aAL + (1.0 if col == col_psi(j) else 0.0)
             AA[j, k] = aA
             AG[j, 0, k] = aPx + aA * rGy
@@ -218,6 +260,9 @@ def kinematics(cp, pat, y, ws):
         Ty = Py + rTy
         vTx = vPx + omj * rTy
         vTy = vPy - omj * rTx
+        if kind_b:
+            vTx += sd * cth
+            vTy -= sd * sth
         rTLx = rTx - rGx  # the top's centre from the centre of mass of block j
         rTLy = rTy - rGy
         bTx = bG[j, 0] + bAL * rTLy - omj * omj * rTLx

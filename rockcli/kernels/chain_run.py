@@ -32,12 +32,13 @@ import math
 import numpy as np
 
 from rockcli.kernels.chain import (BASE_RIGID, CP_BASE, CP_CB, CP_E, CP_G, CP_KB, CP_MB, CP_N, CP_P2MAX, CP_REST,
-                                   CP_TOL, F_AREST, F_B, F_M, F_MU, col_psi, col_s, energy, fld, free_coordinates,
+                                   CP_TOL, F_AREST, F_B, F_BLOW, F_M, F_MU, col_psi, col_s, energy, fld, free_coordinates,
                                    workspace)
+from rockcli.kernels.chain_kind import kind_switch
 from rockcli.kernels.chain_rest import quiet_until, rest_interval
 from rockcli.kernels.contact_restitution import restitution_impact
 from rockcli.kernels.linear_base import coefficients
-from rockcli.kernels.chain_step import (EVC_FACE_OPENS, EVC_IMPACT, EVC_NONE, EVC_SLIDE_OFF, EVC_SLIP_STARTS,
+from rockcli.kernels.chain_step import (EVC_FACE_OPENS, EVC_IMPACT, EVC_KIND, EVC_NONE, EVC_SLIDE_OFF, EVC_SLIP_STARTS,
                                         EVC_SLIP_STOP, EVC_TOPPLE, EVC_WRONG_SIDE, _rhs, dp5, force_events, peaks, restep,
                                         state_events)
 from rockcli.kernels.contact import (choose_pattern, face_corners, impact, project, rest_moments, restoring_rate,
@@ -122,8 +123,8 @@ def rest_band(cp, y, ws, frc, scratch):
         mu = fld(cp, j, F_MU)
         N0, T0, M0 = f0[j, 0], f0[j, 1], f0[j, 2]
         N1, T1, M1 = frc[j, 0] - N0, frc[j, 1] - T0, frc[j, 2] - M0
-        pr0, pl0 = face_corners(N0, M0, b)
-        pr1, pl1 = face_corners(N1, M1, b)
+        pr0, pl0 = face_corners(cp, j, y[col_s(j)], N0, M0)
+        pr1, pl1 = face_corners(cp, j, y[col_s(j)], N1, M1)
         for c0, c1 in ((pr0, pr1), (pl0, pl1), (mu * N0 - T0, mu * N1 - T1), (mu * N0 + T0, mu * N1 + T1)):
             # c0 + c1 ag >= 0
             if c1 > 0.0:
@@ -548,6 +549,20 @@ def simulate_chain(cp, pat0, y0, ekind, epar, acc, dt, t_begin, t_exc_end, tail,
             if want_history:
                 H, nh = _hist(H, nh, t_ev, ground_at(t_ev, seg, epar), HK_END, pat, W, W_Y)
             break
+        elif code == EVC_KIND:
+            # the pivot passes the edge of the top below (kernels.chain.kinematics): the state goes on, the equations
+            # change; the slip set on the far side of the switch, by a hair, so that the next step starts there
+            kind_switch(cp, pat, y, who, ws, v0, w0)
+            if y[col_s(who) + 1] * pat[2 * who + 1] <= 0.0:  # the plastic map stopped the slip: stick or turn
+                for j in range(n):
+                    zero_psi[j] = False
+                    zero_s[j] = False
+                zero_s[who] = True
+                y[col_s(who) + 1] = 0.0
+                choose_pattern(cp, pat, y, ground_at(t_ev, seg, epar), ws, frc, zero_psi, zero_s, best)
+                _switch(xo, pat, best, n, t_ev, cp, y)
+            rs[RS_T] = t_ev
+            kind = HK_EVENT
         elif code == EVC_SLIDE_OFF:
             rs[RS_T] = t_ev
             status = STATUS_SLID_OFF

@@ -18,7 +18,7 @@ import math
 
 import numpy as np
 
-from rockcli.kernels.chain import (BASE_RIGID, CP_BASE, CP_N, CP_RTOL, F_EDGE, F_MU, F_P, F_SC_PSI, F_SC_S, col_psi,
+from rockcli.kernels.chain import (BASE_RIGID, CP_BASE, CP_N, CP_RTOL, F_B, F_BLOW, F_EDGE, F_MU, F_P, F_SC_PSI, F_SC_S, col_psi,
                                    col_s, fld)
 from rockcli.kernels.contact import face_corners, solve_pattern
 from rockcli.kernels.dopri import _A, _C, _E, _P
@@ -33,6 +33,7 @@ W_DRATE = W_RE + W_TMP  # scratch row: the dense output's derivative at a sample
 
 EVC_NONE, EVC_IMPACT, EVC_TOPPLE, EVC_SLIP_STOP, EVC_SLIDE_OFF, EVC_FACE_OPENS, EVC_SLIP_STARTS = 0, 1, 2, 3, 4, 5, 6
 EVC_WRONG_SIDE = 7
+EVC_KIND = 8  # a drum's sliding pivot passes the edge of the top below: its pivot moves to that edge (same state)
 N_SAMPLES = 16
 
 
@@ -197,6 +198,13 @@ def state_events(cp, pat, W, hs, sig_lim):
             sg = _first_down(quartic(W, hs, cs + 1, sl, 0.0), 0.0, 0.0, best)
             if sg >= 0.0 and (sg < best or code == EVC_NONE):
                 best, code, who = sg, EVC_SLIP_STOP, j
+            blow = fld(cp, j, F_BLOW)
+            if c != 0.0 and math.isfinite(blow):
+                sw = c * (blow - fld(cp, j, F_B))  # kernels.chain.kinematics: kind A below, kind B past it
+                for d in (1.0, -1.0):
+                    sg = _first_down(quartic(W, hs, cs, -d, d * sw), 0.0, 0.0, best)
+                    if sg >= 0.0 and (sg < best or code == EVC_NONE):
+                        best, code, who = sg, EVC_KIND, j
             edge = fld(cp, j, F_EDGE)
             if math.isfinite(edge):
                 for d in (1.0, -1.0):
@@ -235,7 +243,7 @@ def _force_margins(cp, pat, W, hs, sig, t, seg, epar, ws, frc, mg, fcols, nfc):
         N = frc[j, 0]
         scale = max(abs(N), 1e-300)
         if c == 0.0:
-            pr, pl = face_corners(N, frc[j, 2], fld(cp, j, 0))
+            pr, pl = face_corners(cp, j, W[W_TMP, col_s(j)], N, frc[j, 2])
             mg[2 * j] = min(pr, pl) / scale
         elif N < 0.0:
             pulls += 1

@@ -36,16 +36,23 @@ import math
 
 import numpy as np
 
-from rockcli.kernels.chain import (BASE_RIGID, CP_BASE, CP_BLK, CP_N, CP_TOL, F_B, F_M, F_MU, NF_BLK, assemble, col_psi, col_s, solve_level,
+from rockcli.kernels.chain import (BASE_RIGID, overlap_ends, CP_BASE, CP_BLK, CP_N, CP_TOL, F_B, F_M, F_MU, NF_BLK, assemble, col_psi, col_s, solve_level,
                                    contact_forces, fld, impulses, kinematics, solve_small)
 from rockcli.kernels.jit import hot, kernel
 
 
 @kernel(inline='always')
-def face_corners(N, Mc, b):
-    """``(P_right, P_left)``: a face's normal force ``N`` and couple ``Mc`` (clockwise on the block above, about the
-    face's centre) as the forces at its two corners, ``b`` the half width of the contact."""
-    return 0.5 * N - 0.5 * Mc / b, 0.5 * N + 0.5 * Mc / b
+def face_corners(cp, j, s, N, Mc):
+    """``(P_right, P_left)``: the normal force ``N`` and couple ``Mc`` (clockwise on the block above, about the centre
+    of its base) of interface ``j``'s face, at the slip ``s``, as the forces at the two ends of the contact: the
+    block's corners, or where a corner overhangs the top below (a drum slid past the one under it), that top's
+    corner (:func:`rockcli.kernels.chain.overlap_ends`). ``e_R P_right + e_L P_left = -Mc``."""
+    b = fld(cp, j, F_B)
+    e_r, e_l = overlap_ends(cp, j, s)
+    if e_r == b and e_l == -b:
+        return 0.5 * N - 0.5 * Mc / b, 0.5 * N + 0.5 * Mc / b
+    w = e_r - e_l
+    return (-Mc - N * e_l) / w, (N * e_r + Mc) / w
 
 
 @hot
@@ -74,7 +81,7 @@ def pattern_margin(cp, pat, y, ws, frc, nf, zero_psi, zero_s, level_v, y_before)
         T = frc[j, 1]
         b = fld(cp, j, F_B)
         if c == 0.0:
-            pr, pl = face_corners(N, frc[j, 2], b)
+            pr, pl = face_corners(cp, j, y[col_s(j)], N, frc[j, 2])
             worst = min(worst, pr / fs, pl / fs)
         else:
             if zero_psi[j]:
@@ -253,7 +260,7 @@ def rest_moments(cp, pat, y, ag, ws, frc):
         pat[2 * j + 1] = 0.0
     solve_pattern(cp, pat, y, ag, ws, frc)
     for j in range(n):
-        pr, pl = face_corners(frc[j, 0], frc[j, 2], fld(cp, j, F_B))
+        pr, pl = face_corners(cp, j, y[col_s(j)], frc[j, 0], frc[j, 2])
         frc[j, 0] = 2.0 * fld(cp, j, F_B) * min(pr, pl)
 
 

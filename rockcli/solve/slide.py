@@ -147,6 +147,10 @@ class SlideResponse:
 
 def _blocks(body) -> tuple[list, list]:
     """``([(b, h, m), ...] bottom to top, names)`` of a Block or a Stack (masses per unit body mass)."""
+    from rockcli.models.drums import DrumColumn
+
+    if isinstance(body, DrumColumn):
+        return body.blocks(), body.joint_names()
     if isinstance(body, Stack):
         return [(body.b2, body.h2, body.m2), (body.b1, body.h1, 1.0)], ["base", "joint"]
     if isinstance(body, Block):
@@ -170,9 +174,12 @@ def chain_parameters(body, mu, foundation=None, *, rtol=None, rest_tol: float = 
     from rockcli.kernels import chain as ch
     from rockcli.kernels import chain_step as cs
 
+    from rockcli.models.drums import DrumColumn
+
     blocks, _ = _blocks(body)
     n = len(blocks)
     mus = _mus(mu, n)
+    drums = isinstance(body, DrumColumn)
     cp = np.zeros(ch.cp_size(n))
     cp[ch.CP_N] = n
     cp[ch.CP_G] = G
@@ -196,8 +203,18 @@ def chain_parameters(body, mu, foundation=None, *, rtol=None, rest_tol: float = 
         for (bb, hh, mm) in blocks[i:]:
             ym += mm * (y0 + hh)
             y0 += 2.0 * hh
-        cp[o + ch.F_AREST] = math.atan2(b * mass, ym)
-        cp[o + ch.F_EDGE] = math.inf if i == 0 else blocks[i - 1][0] - b
+        if drums:
+            # a drum keeps the overlap of its base with the top below as its contact (kernels.chain: the pivot at
+            # the end of the overlap) and falls off only when no overlap is left
+            bl = math.inf if i == 0 else blocks[i - 1][0]
+            cp[o + ch.F_AREST] = math.atan2(min(b, bl) * mass, ym)
+            cp[o + ch.F_BLOW] = bl
+            cp[o + ch.F_EDGE] = bl + b
+        else:
+            # the body on its plinth falls once its base reaches the plinth's edge (docs/physics-sliding.md)
+            cp[o + ch.F_AREST] = math.atan2(b * mass, ym)
+            cp[o + ch.F_BLOW] = math.inf
+            cp[o + ch.F_EDGE] = math.inf if i == 0 else blocks[i - 1][0] - b
         cp[o + ch.F_SC_S] = b
         cp[o + ch.F_SC_PSI] = cp[o + ch.F_AREST]
         cp[o + ch.F_P] = p

@@ -1,0 +1,188 @@
+"""Columns of drums (issue "Columns as they stand"): the chain's kinematics where a drum has slid past the edge of the
+one below (its pivot the corner of the top below, "kind B"), checked against finite differences of the positions;
+the faces' corner forces at the ends of the overlap; the static thresholds of each joint against their closed forms;
+a column of one drum as the single block and of drums that cannot open as the monolith."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from rockcli.errors import RockcliInputError
+from rockcli.io.units import G
+from rockcli.models import Block
+from rockcli.models.drums import DrumColumn
+
+
+def _chain(column, mu=0.7):
+    from rockcli.kernels import chain as ch
+    from rockcli.solve.slide import chain_parameters
+
+    cp = chain_parameters(column, mu)
+    return ch, cp
+
+
+def _random_column(rng, n):
+    drums = []
+    w = rng.uniform(0.6, 1.6)
+    for _ in range(n):
+        drums.append((rng.uniform(0.3, 1.2), w * rng.uniform(0.85, 1.15)))
+    return DrumColumn(tuple(drums))
+
+
+def _positions(ch, cp, pat, y, ws):
+    ch.kinematics(cp, pat, y, ws)
+    return ws[5].copy(), ws[8].copy()  # G, th
+
+
+def test_kinematics_of_drums_slid_past_each_other_are_the_derivatives_of_their_positions():
+    """For random columns of 2-5 drums, every joint a pivot that slides (so every coordinate moves), at slips on both
+    sides of the switch between the block's own corner and the corner below: the velocities the kinematics give are
+    the time derivatives of its positions along q(t) = q + q' t + q'' t^2 / 2, and its affine accelerations ``AG q''
+    + bG`` (``AA q'' + bA``) the derivatives of those velocities (central differences, step 1e-5 s)."""
+    rng = np.random.default_rng(46)
+    n_kind_b = 0
+    worst_v = worst_a = 0.0
+    for trial in range(400):
+        n = int(rng.integers(2, 6))
+        col = _random_column(rng, n)
+        ch, cp = _chain(col)
+        ws = ch.workspace(n)
+        pat = np.zeros(2 * n)
+        y = np.zeros(ch.n_states(n))
+        for j in range(n):
+            c = float(rng.choice([-1.0, 1.0]))
+            pat[2 * j] = c
+            pat[2 * j + 1] = float(rng.choice([-1.0, 1.0]))
+            b = cp[ch.CP_BLK + ch.NF_BLK * j + ch.F_B]
+            bl = cp[ch.CP_BLK + ch.NF_BLK * j + ch.F_BLOW]
+            sw = c * (bl - b) if math.isfinite(bl) else 0.0
+            y[ch.col_s(j)] = sw + rng.uniform(-0.3, 0.3) * b
+            y[ch.col_s(j) + 1] = rng.normal() * 0.3
+            y[ch.col_psi(j)] = c * rng.uniform(0.0, 0.3)
+            y[ch.col_psi(j) + 1] = rng.normal() * 0.5
+            if math.isfinite(bl) and c * y[ch.col_s(j)] + b > bl:
+                n_kind_b += 1
+        nf = ch.kinematics(cp, pat, y, ws)
+        free = ws[0][:nf].copy()
+        qdd = rng.normal(size=nf)
+        AG, bG, AA, bA, vG, om = ws[1].copy(), ws[2].copy(), ws[3].copy(), ws[4].copy(), ws[6].copy(), ws[7].copy()
+        aG = np.einsum("ijk,k->ij", AG[:, :, :nf], qdd) + bG
+        aA = AA[:, :nf] @ qdd + bA
+
+        def state(t):
+            z = y.copy()
+            for k, col in enumerate(free):
+                z[col] = y[col] + y[col + 1] * t + 0.5 * qdd[k] * t * t
+                z[col + 1] = y[col + 1] + qdd[k] * t
+            return z
+
+        hs = 1e-5
+        Gp, thp = _positions(ch, cp, pat, state(hs), ws)
+        Gm, thm = _positions(ch, cp, pat, state(-hs), ws)
+        scale_v = 1.0 + np.abs(vG).max()
+        worst_v = max(worst_v, np.abs((Gp - Gm) / (2 * hs) - vG).max() / scale_v,
+                      np.abs((thp - thm) / (2 * hs) - om).max() / (1.0 + np.abs(om).max()))
+        ch.kinematics(cp, pat, state(hs), ws)
+        vp, op = ws[6].copy(), ws[7].copy()
+        ch.kinematics(cp, pat, state(-hs), ws)
+        vm, omm = ws[6].copy(), ws[7].copy()
+        scale_a = 1.0 + np.abs(aG).max()
+        worst_a = max(worst_a, np.abs((vp - vm) / (2 * hs) - aG).max() / scale_a,
+                      np.abs((op - omm) / (2 * hs) - aA).max() / (1.0 + np.abs(aA).max()))
+    assert n_kind_b > 200  # the corner of the top below was the pivot in many joints
+    assert worst_v < 1e-7, worst_v
+    assert worst_a < 1e-6, worst_a
+
+
+def test_the_pivot_moves_continuously_to_the_corner_below():
+    """At the switch (the block's corner exactly over the corner below) both descriptions give the same positions at
+    any tilt, and the same velocities when the drum stands upright on the joint (``psi = 0``: the top below and the
+    drum's base are parallel). Tilted, the corner that slid along the top below would leave the top's level at once:
+    the switch's plastic map (``kernels.chain_kind.kind_switch``) keeps the new contact and never adds energy."""
+    from rockcli.kernels.chain_kind import kind_switch
+
+    rng = np.random.default_rng(7)
+    gains = []
+    for _ in range(300):
+        n = int(rng.integers(2, 4))
+        ch, cp = _chain(_random_column(rng, n))
+        ws = ch.workspace(n)
+        j = int(rng.integers(1, n))
+        c = float(rng.choice([-1.0, 1.0]))
+        pat = np.zeros(2 * n)
+        pat[2 * j], pat[2 * j + 1] = c, float(rng.choice([-1.0, 1.0]))
+        y = np.zeros(ch.n_states(n))
+        tilt = c * rng.uniform(0, 0.4)
+        y[ch.col_psi(j) + 1] = rng.normal()
+        y[ch.col_s(j) + 1] = pat[2 * j + 1] * abs(rng.normal())
+        b = cp[ch.CP_BLK + ch.NF_BLK * j + ch.F_B]
+        bl = cp[ch.CP_BLK + ch.NF_BLK * j + ch.F_BLOW]
+        sw = c * (bl - b)
+        for psi in (0.0, tilt):
+            y[ch.col_psi(j)] = psi
+            out = []
+            for eps in (-1e-13, 1e-13):
+                y[ch.col_s(j)] = sw + eps
+                ch.kinematics(cp, pat, y, ws)
+                out.append((ws[5].copy(), ws[6].copy()))
+            assert np.allclose(out[0][0], out[1][0], atol=1e-11)
+            if psi == 0.0:
+                assert np.allclose(out[0][1], out[1][1], atol=1e-10)
+        # the plastic map at the switch: energy never rises; the new contact's normal velocity is 0 after it
+        y[ch.col_s(j)] = sw
+        y_before = y.copy()
+        y_before[ch.col_s(j)] = sw - np.sign(y[ch.col_s(j) + 1]) * 1e-12 * bl
+        e0 = sum(ch.energy(cp, pat, y_before, ws))
+        kind_switch(cp, pat, y, j, ws, np.zeros((n, 2)), np.zeros(n))
+        e1 = sum(ch.energy(cp, pat, y, ws))
+        gains.append((e1 - e0) / max(e0, 1e-12))
+    assert max(gains) < 1e-9, max(gains)
+    assert min(gains) < -1e-4  # tilted drums lose energy at the switch
+
+
+def test_face_corner_forces_at_the_ends_of_the_overlap():
+    """A face's corner forces balance its normal force and its couple about the base's centre, with the forces at the
+    ends of the overlap (``P_R + P_L = N``, ``e_R P_R + e_L P_L = -Mc``), and equal the centred formula where the
+    block's corners are the ends."""
+    from rockcli.kernels.contact import face_corners
+
+    rng = np.random.default_rng(3)
+    for _ in range(500):
+        ch, cp = _chain(_random_column(rng, 2))
+        j = 1
+        b = cp[ch.CP_BLK + ch.NF_BLK * j + ch.F_B]
+        bl = cp[ch.CP_BLK + ch.NF_BLK * j + ch.F_BLOW]
+        s = rng.uniform(-1.5, 1.5) * b
+        N, Mc = rng.uniform(0, 10), rng.normal() * 3
+        pr, pl = face_corners(cp, j, s, N, Mc)
+        er = min(b, bl - s)
+        el = max(-b, -bl - s)
+        assert pr + pl == pytest.approx(N, rel=1e-12, abs=1e-12)
+        assert er * pr + el * pl == pytest.approx(-Mc, rel=1e-10, abs=1e-10)
+
+
+def test_static_thresholds_of_each_joint():
+    """Each joint of a centred column at rest opens at ``g tan(alpha_j)``, ``alpha_j`` the slenderness of everything
+    above it about its corner: for equal drums ``b (N - j) / (sum of the heights of the centres above)``, which for
+    equal drums of height ``2 h`` is ``b / (h (N - j))``. The bottom joint is the monolith's ``b / h_total``."""
+    col = DrumColumn.uniform(5.95, 1.11, 7)
+    th = col.static_thresholds()
+    b = 1.11 / 2
+    hd = 5.95 / 7 / 2
+    for j, t in enumerate(th):
+        k = 7 - j  # drums above the joint
+        assert t == pytest.approx(b / (hd * k), rel=1e-12)
+    assert th[0] == pytest.approx(math.tan(col.monolith.alpha), rel=1e-12)
+    assert th == sorted(th)  # the base opens first
+
+
+def test_a_drum_column_refuses_bad_drums():
+    with pytest.raises(RockcliInputError, match="drum 2: width"):
+        DrumColumn(((1.0, 0.5), (1.0, -0.5)))
+    with pytest.raises(RockcliInputError, match="1 to"):
+        DrumColumn(())
+    with pytest.raises(RockcliInputError, match="whole number"):
+        DrumColumn.uniform(5.0, 1.0, 2.5)
