@@ -20,13 +20,14 @@ rows of ``B^-1`` are independent, so the choice is unique, the basis never repea
 ``z0`` is among the rows tied on the ratio itself it leaves at once (the path ends with a solution).
 
 Tolerances (floating point; the rule above holds for exact ties). A row is eligible as pivot when its entry in the
-entering column exceeds ``PIVOT_TOL = 1e-12`` times the largest magnitude in that column. Two ratios of the same
-component ``k`` are tied when they differ by at most ``TIE_TOL = 1e-11`` times the larger of the smallest ratio's
-magnitude and the column's typical ratio ``max|T[:, k]| / max|c|``. After every pivot, basic values below zero
-(rounding only: the ratio test keeps them >= 0 in exact arithmetic) are set to zero, so that degenerate rows tie
-exactly. At the end the basic values get one step of iterative refinement against the original ``M`` and ``q``,
-``z`` is clipped at zero and ``w = M z + q`` is computed from ``z`` (not from the tableau): check it with
-:func:`lcp_residual`.
+entering column exceeds ``PIVOT_TOL = 1e-12`` times the largest magnitude in that column. Ratios of one component
+within ``TIE_TOL = 1e-11`` of the smallest (relative to it) are tied; ratios of a zero tie only exactly. So that
+zeros are exact where they should be, a pivot's update of a basic value or of an entry of ``B^-1`` that leaves less
+than ``CANCEL_TOL = 1e-13`` of the entry is taken as a cancellation to zero, and basic values below zero (rounding:
+the ratio test keeps them >= 0 in exact arithmetic) are set to zero. These tests compare quantities of one row and
+one column, so they do not change when ``M`` and ``q`` are scaled. At the end the basic values get one step of
+iterative refinement against the original ``M`` and ``q``, ``z`` is clipped at zero and ``w = M z + q`` is computed
+from ``z`` (not from the tableau): check it with :func:`lcp_residual`.
 
 Termination guarantees. With the lexicographic rule Lemke always stops, within the finitely many bases. When ``M``
 is a P-matrix (all principal minors positive: positive definite, diagonally dominant with a positive diagonal) it
@@ -56,22 +57,24 @@ LCP_MAXITER = 2  #: max_iter pivots without an end
 LCP_NONFINITE = 3  #: NaN or infinity in M, q, or an overflow in the tableau
 
 PIVOT_TOL = 1e-12  #: a pivot entry must exceed this times the entering column's largest magnitude
-TIE_TOL = 1e-11  #: ratios this close (relative, see the module notes) are tied and compared lexicographically
+TIE_TOL = 1e-11  #: ratios this close (relative) are tied and compared lexicographically
+CANCEL_TOL = 1e-13  #: a tableau update this small relative to the entry it changes is a cancellation to zero
 MAX_ITER_PER_ROW = 50  #: the default max_iter is this times m
 
 
 @kernel
 def lcp_workspace(m_max):
-    """The arrays of :func:`lemke` for ``m <= m_max``: ``(T, basis, cand, info, r)``. ``T`` the tableau (``m_max x
+    """The arrays of :func:`lemke` for ``m <= m_max``: ``(T, basis, cand, info, r, nz)``. ``T`` the tableau (``m_max x
     (2 m_max + 2)``), ``basis[i]`` the variable basic in row ``i`` (``w_j``: ``j``, ``z_j``: ``m + j``, ``z0``:
     ``2m``), ``cand`` rows tied in the ratio test, ``info[0]`` the pivots of the last solve, ``r`` the residual of
-    the refinement."""
+    the refinement, ``nz`` the columns a pivot updates."""
     T = np.zeros((m_max, 2 * m_max + 2))
     basis = np.zeros(m_max, dtype=np.int64)
     cand = np.zeros(m_max, dtype=np.int64)
     info = np.zeros(2, dtype=np.int64)
     r = np.zeros(m_max)
-    return T, basis, cand, info, r
+    nz = np.zeros(2 * m_max + 2, dtype=np.int64)
+    return T, basis, cand, info, r, nz
 
 
 @kernel
@@ -98,17 +101,14 @@ def _setup(M, q, T, basis, m):
 
 
 @hot
-def _keep_ties(T, m, col, sgn, cand, n, k, cmax):
-    """Keep, among the ``n`` rows ``cand[:n]``, those whose ratio ``T[i, k] / (sgn T[i, col])`` is (tied with) the
-    smallest; returns their number."""
+def _keep_ties(T, col, sgn, cand, n, k):
+    """Keep, among the ``n`` rows ``cand[:n]``, those whose ratio ``T[i, k] / (sgn T[i, col])`` is within ``TIE_TOL``
+    of the smallest (relative to it: a zero ties only exactly); returns their number."""
     lo = math.inf
     for a in range(n):
         i = cand[a]
         lo = min(lo, T[i, k] / (sgn * T[i, col]))
-    big = 0.0
-    for i in range(m):
-        big = max(big, abs(T[i, k]))
-    band = TIE_TOL * max(abs(lo), big / cmax)
+    band = TIE_TOL * abs(lo)
     kept = 0
     for a in range(n):
         i = cand[a]
@@ -119,48 +119,82 @@ def _keep_ties(T, m, col, sgn, cand, n, k, cmax):
 
 
 @hot
-def _leaving(T, basis, cand, m, col, sgn):
+def _z0_ends(T, q, m, col, i, j):
+    """Whether ``z0``, basic in row ``i``, reaches zero with the row ``j`` of the smallest ratio, to rounding: the
+    ratios differ by at most ``TIE_TOL`` times the sizes of the terms of both basic values (``sum_k |B^-1_ik
+    q_k|``) over their pivot entries."""
+    if not T[i, col] > 0.0:
+        return False
+    si = 0.0
+    sj = 0.0
+    for k in range(m):
+        si += abs(T[i, k] * q[k])
+        sj += abs(T[j, k] * q[k])
+    xc = 2 * m + 1
+    return T[i, xc] / T[i, col] - T[j, xc] / T[j, col] <= TIE_TOL * (si / T[i, col] + sj / T[j, col])
+
+
+@hot
+def _leaving(T, q, basis, cand, m, col, sgn):
     """The row leaving when column ``col`` enters: the lexicographic minimum ratio over the rows whose entry ``sgn
-    T[i, col]`` is positive (``sgn = -1`` for the first pivot, on ``-e``); -1 when none is (a ray)."""
+    T[i, col]`` is positive (``sgn = -1`` for the first pivot, on ``-e``), or ``z0``'s row when it reaches zero with
+    it; -1 when no entry is positive (a ray)."""
     cmax = 0.0
     for i in range(m):
         cmax = max(cmax, abs(T[i, col]))
     if not (cmax > 0.0 and math.isfinite(cmax)):
         return -1
     n = 0
+    zrow = -1
     for i in range(m):
+        if basis[i] == 2 * m:
+            zrow = i
         if sgn * T[i, col] > PIVOT_TOL * cmax:
             cand[n] = i
             n += 1
     if n == 0:
         return -1
-    n = _keep_ties(T, m, col, sgn, cand, n, 2 * m + 1, cmax)
-    for a in range(n):  # z0 tied on the ratio itself: it leaves, the path ends
-        if basis[cand[a]] == 2 * m:
-            return cand[a]
+    n = _keep_ties(T, col, sgn, cand, n, 2 * m + 1)
+    if zrow >= 0 and _z0_ends(T, q, m, col, zrow, cand[0]):  # the path ends
+        return zrow
     k = 0
     while n > 1 and k < m:  # the columns of B^-1, in order
-        n = _keep_ties(T, m, col, sgn, cand, n, k, cmax)
+        n = _keep_ties(T, col, sgn, cand, n, k)
         k += 1
     return cand[0]
 
 
 @hot
-def _pivot(T, m, r, col):
-    """Gauss-Jordan pivot on ``T[r, col]``; basic values below zero (rounding) are set to zero."""
-    ncol = 2 * m + 2
+def _pivot(T, nz, m, r, col):
+    """Gauss-Jordan pivot on ``T[r, col]``, over the columns where row ``r`` is not zero (listed in ``nz``: the
+    basic variables' columns are among the others). An entry of ``B^-1`` changed to less than ``CANCEL_TOL`` of
+    itself is a cancellation to zero, made exact; a basic value too, or one below zero (rounding)."""
+    xc = 2 * m + 1
     p = 1.0 / T[r, col]
-    for j in range(ncol):
-        T[r, j] *= p
+    nb = 0
+    na = 0
+    for j in range(xc):
+        if T[r, j] != 0.0 and j != col:
+            T[r, j] *= p
+            nz[na] = j
+            na += 1
+            nb += j < m
+    T[r, xc] *= p
     T[r, col] = 1.0
     for i in range(m):
         f = T[i, col]
-        if i != r and f != 0.0:
-            for j in range(ncol):
-                T[i, j] -= f * T[r, j]
-            T[i, col] = 0.0
-        if T[i, ncol - 1] < 0.0:
-            T[i, ncol - 1] = 0.0
+        if i == r or f == 0.0:
+            continue
+        for t in range(nb):
+            j = nz[t]
+            d = T[i, j] - f * T[r, j]
+            T[i, j] = d if abs(d) > CANCEL_TOL * abs(T[i, j]) else 0.0
+        for t in range(nb, na):
+            j = nz[t]
+            T[i, j] -= f * T[r, j]
+        d = T[i, xc] - f * T[r, xc]
+        T[i, xc] = d if d > CANCEL_TOL * abs(T[i, xc]) else 0.0
+        T[i, col] = 0.0
 
 
 @hot
@@ -203,11 +237,11 @@ def _extract(M, q, T, basis, z, w, m):
 
 
 @hot
-def _path(T, basis, cand, info, m, max_iter):
+def _path(T, q, basis, cand, info, nz, m, max_iter):
     """Lemke's complementary path from the first pivot (``z0`` in) to its end: a status."""
     z0 = 2 * m
-    r = _leaving(T, basis, cand, m, z0, -1.0)
-    _pivot(T, m, r, z0)
+    r = _leaving(T, q, basis, cand, m, z0, -1.0)
+    _pivot(T, nz, m, r, z0)
     leave = basis[r]
     basis[r] = z0
     info[0] = 1
@@ -215,10 +249,10 @@ def _path(T, basis, cand, info, m, max_iter):
         enter = leave + m if leave < m else leave - m
         if info[0] >= max_iter:
             return LCP_MAXITER
-        r = _leaving(T, basis, cand, m, enter, 1.0)
+        r = _leaving(T, q, basis, cand, m, enter, 1.0)
         if r < 0:
             return LCP_RAY
-        _pivot(T, m, r, enter)
+        _pivot(T, nz, m, r, enter)
         leave = basis[r]
         basis[r] = enter
         info[0] += 1
@@ -231,7 +265,7 @@ def lemke(M, q, z, w, ws, max_iter=-1):
     """Solve LCP(q, M) (``m = len(q)``) into ``z``, ``w`` with the workspace ``ws`` (:func:`lcp_workspace`, for ``m``
     or more): a status, ``LCP_OK``, ``LCP_RAY``, ``LCP_MAXITER`` or ``LCP_NONFINITE``. ``max_iter`` caps the pivots
     (``-1``: ``50 m``). On any status but ``LCP_OK``, ``z`` and ``w`` are zeroed. Never allocates."""
-    T, basis, cand, info, rr = ws
+    T, basis, cand, info, rr, nz = ws
     m = q.shape[0]
     info[0] = 0
     cap = max_iter if max_iter >= 0 else MAX_ITER_PER_ROW * m
@@ -243,7 +277,7 @@ def lemke(M, q, z, w, ws, max_iter=-1):
         for i in range(m):
             qmin = min(qmin, q[i])
         if qmin < 0.0:  # else z = 0 solves it
-            status = _path(T, basis, cand, info, m, cap)
+            status = _path(T, q, basis, cand, info, nz, m, cap)
             if status == LCP_OK:
                 _refine(M, q, T, basis, rr, m)
     if status == LCP_OK and not _extract(M, q, T, basis, z, w, m):
