@@ -21,13 +21,13 @@ rows of ``B^-1`` are independent, so the choice is unique, the basis never repea
 
 Tolerances (floating point; the rule above holds for exact ties). A row is eligible as pivot when its entry in the
 entering column exceeds ``PIVOT_TOL = 1e-12`` times the largest magnitude in that column. Ratios of one component
-within ``TIE_TOL = 1e-11`` of the smallest (relative to it) are tied; ratios of a zero tie only exactly. So that
-zeros are exact where they should be, a pivot's update of a basic value or of an entry of ``B^-1`` that leaves less
-than ``CANCEL_TOL = 1e-13`` of the entry is taken as a cancellation to zero, and basic values below zero (rounding:
-the ratio test keeps them >= 0 in exact arithmetic) are set to zero. These tests compare quantities of one row and
-one column, so they do not change when ``M`` and ``q`` are scaled. At the end the basic values get one step of
-iterative refinement against the original ``M`` and ``q``, ``z`` is clipped at zero and ``w = M z + q`` is computed
-from ``z`` (not from the tableau): check it with :func:`lcp_residual`.
+within ``TIE_TOL = 1e-9`` of the smallest (relative to it; a zero ties only exactly) are tied: the basic values carry
+the rounding of ``B^-1`` (about ``cond(B)`` times 1e-16), and a tie missed at the end would leave ``z0`` at 1e-16
+instead of 0 and end on a ray. A row chosen among tied ones may lose up to ``TIE_TOL`` of its basic value; basic
+values below zero are set to zero after each pivot. These tests compare quantities of one row and one column, so they
+do not change when ``M`` and ``q`` are scaled. At the end the basic values get one step of iterative refinement
+against the original ``M`` and ``q``, ``z`` is clipped at zero and ``w = M z + q`` is computed from ``z`` (not from the
+tableau): check it with :func:`lcp_residual`.
 
 Termination guarantees. With the lexicographic rule Lemke always stops, within the finitely many bases. When ``M``
 is a P-matrix (all principal minors positive: positive definite, diagonally dominant with a positive diagonal) it
@@ -57,8 +57,7 @@ LCP_MAXITER = 2  #: max_iter pivots without an end
 LCP_NONFINITE = 3  #: NaN or infinity in M, q, or an overflow in the tableau
 
 PIVOT_TOL = 1e-12  #: a pivot entry must exceed this times the entering column's largest magnitude
-TIE_TOL = 1e-11  #: ratios this close (relative) are tied and compared lexicographically
-CANCEL_TOL = 1e-13  #: a tableau update this small relative to the entry it changes is a cancellation to zero
+TIE_TOL = 1e-9  #: ratios this close (relative to the smallest) are tied and compared lexicographically
 MAX_ITER_PER_ROW = 50  #: the default max_iter is this times m
 
 
@@ -119,44 +118,25 @@ def _keep_ties(T, col, sgn, cand, n, k):
 
 
 @hot
-def _z0_ends(T, q, m, col, i, j):
-    """Whether ``z0``, basic in row ``i``, reaches zero with the row ``j`` of the smallest ratio, to rounding: the
-    ratios differ by at most ``TIE_TOL`` times the sizes of the terms of both basic values (``sum_k |B^-1_ik
-    q_k|``) over their pivot entries."""
-    if not T[i, col] > 0.0:
-        return False
-    si = 0.0
-    sj = 0.0
-    for k in range(m):
-        si += abs(T[i, k] * q[k])
-        sj += abs(T[j, k] * q[k])
-    xc = 2 * m + 1
-    return T[i, xc] / T[i, col] - T[j, xc] / T[j, col] <= TIE_TOL * (si / T[i, col] + sj / T[j, col])
-
-
-@hot
-def _leaving(T, q, basis, cand, m, col, sgn):
+def _leaving(T, basis, cand, m, col, sgn):
     """The row leaving when column ``col`` enters: the lexicographic minimum ratio over the rows whose entry ``sgn
-    T[i, col]`` is positive (``sgn = -1`` for the first pivot, on ``-e``), or ``z0``'s row when it reaches zero with
-    it; -1 when no entry is positive (a ray)."""
+    T[i, col]`` is positive (``sgn = -1`` for the first pivot, on ``-e``); -1 when none is (a ray)."""
     cmax = 0.0
     for i in range(m):
         cmax = max(cmax, abs(T[i, col]))
     if not (cmax > 0.0 and math.isfinite(cmax)):
         return -1
     n = 0
-    zrow = -1
     for i in range(m):
-        if basis[i] == 2 * m:
-            zrow = i
         if sgn * T[i, col] > PIVOT_TOL * cmax:
             cand[n] = i
             n += 1
     if n == 0:
         return -1
     n = _keep_ties(T, col, sgn, cand, n, 2 * m + 1)
-    if zrow >= 0 and _z0_ends(T, q, m, col, zrow, cand[0]):  # the path ends
-        return zrow
+    for a in range(n):  # z0 tied on the ratio itself: it leaves, the path ends
+        if basis[cand[a]] == 2 * m:
+            return cand[a]
     k = 0
     while n > 1 and k < m:  # the columns of B^-1, in order
         n = _keep_ties(T, col, sgn, cand, n, k)
@@ -167,34 +147,24 @@ def _leaving(T, q, basis, cand, m, col, sgn):
 @hot
 def _pivot(T, nz, m, r, col):
     """Gauss-Jordan pivot on ``T[r, col]``, over the columns where row ``r`` is not zero (listed in ``nz``: the
-    basic variables' columns are among the others). An entry of ``B^-1`` changed to less than ``CANCEL_TOL`` of
-    itself is a cancellation to zero, made exact; a basic value too, or one below zero (rounding)."""
+    basic variables' columns are among the others); basic values below zero (rounding) are set to zero."""
     xc = 2 * m + 1
     p = 1.0 / T[r, col]
-    nb = 0
-    na = 0
-    for j in range(xc):
+    n = 0
+    for j in range(xc + 1):
         if T[r, j] != 0.0 and j != col:
             T[r, j] *= p
-            nz[na] = j
-            na += 1
-            nb += j < m
-    T[r, xc] *= p
+            nz[n] = j
+            n += 1
     T[r, col] = 1.0
     for i in range(m):
         f = T[i, col]
         if i == r or f == 0.0:
             continue
-        for t in range(nb):
-            j = nz[t]
-            d = T[i, j] - f * T[r, j]
-            T[i, j] = d if abs(d) > CANCEL_TOL * abs(T[i, j]) else 0.0
-        for t in range(nb, na):
-            j = nz[t]
-            T[i, j] -= f * T[r, j]
-        d = T[i, xc] - f * T[r, xc]
-        T[i, xc] = d if d > CANCEL_TOL * abs(T[i, xc]) else 0.0
+        for t in range(n):
+            T[i, nz[t]] -= f * T[r, nz[t]]
         T[i, col] = 0.0
+        T[i, xc] = max(T[i, xc], 0.0)
 
 
 @hot
@@ -237,10 +207,10 @@ def _extract(M, q, T, basis, z, w, m):
 
 
 @hot
-def _path(T, q, basis, cand, info, nz, m, max_iter):
+def _path(T, basis, cand, info, nz, m, max_iter):
     """Lemke's complementary path from the first pivot (``z0`` in) to its end: a status."""
     z0 = 2 * m
-    r = _leaving(T, q, basis, cand, m, z0, -1.0)
+    r = _leaving(T, basis, cand, m, z0, -1.0)
     _pivot(T, nz, m, r, z0)
     leave = basis[r]
     basis[r] = z0
@@ -249,7 +219,7 @@ def _path(T, q, basis, cand, info, nz, m, max_iter):
         enter = leave + m if leave < m else leave - m
         if info[0] >= max_iter:
             return LCP_MAXITER
-        r = _leaving(T, q, basis, cand, m, enter, 1.0)
+        r = _leaving(T, basis, cand, m, enter, 1.0)
         if r < 0:
             return LCP_RAY
         _pivot(T, nz, m, r, enter)
@@ -277,7 +247,7 @@ def lemke(M, q, z, w, ws, max_iter=-1):
         for i in range(m):
             qmin = min(qmin, q[i])
         if qmin < 0.0:  # else z = 0 solves it
-            status = _path(T, q, basis, cand, info, nz, m, cap)
+            status = _path(T, basis, cand, info, nz, m, cap)
             if status == LCP_OK:
                 _refine(M, q, T, basis, rr, m)
     if status == LCP_OK and not _extract(M, q, T, basis, z, w, m):
