@@ -23,21 +23,27 @@ Tolerances (floating point; the rule above holds for exact ties). A row is eligi
 entering column exceeds ``PIVOT_TOL = 1e-12`` times the largest magnitude in that column. Ratios of one component
 within ``TIE_TOL = 1e-9`` of the smallest (relative to it; a zero ties only exactly) are tied: the basic values carry
 the rounding of ``B^-1`` (about ``cond(B)`` times 1e-16), and a tie missed at the end would leave ``z0`` at 1e-16
-instead of 0 and end on a ray. A row chosen among tied ones may lose up to ``TIE_TOL`` of its basic value; basic
-values below zero are set to zero after each pivot. These tests compare quantities of one row and one column, so they
-do not change when ``M`` and ``q`` are scaled. At the end the basic values get one step of iterative refinement
-against the original ``M`` and ``q``, ``z`` is clipped at zero and ``w = M z + q`` is computed from ``z`` (not from the
-tableau): check it with :func:`lcp_residual`.
+instead of 0 and end on a ray. A row chosen among tied ones may lose up to ``TIE_TOL`` of its basic value; a basic
+value of zero may come out as -1e-17 (its ratio is then the smallest, as it should be). These tests compare
+quantities of one row and one column, so they do not change when ``M`` and ``q`` are scaled. At the end the basic
+values get one step of iterative refinement against the original ``M`` and ``q``, ``z`` is clipped at zero and ``w =
+M z + q`` is computed from ``z`` (not from the tableau): check it with :func:`lcp_residual`.
 
 Termination guarantees. With the lexicographic rule Lemke always stops, within the finitely many bases. When ``M``
 is a P-matrix (all principal minors positive: positive definite, diagonally dominant with a positive diagonal) it
 ends with the unique solution. When ``M`` is copositive-plus (positive semidefinite, also non-symmetric; ``[[0, B],
 [-B^T, 0]]``; strictly copositive) a ray means that no ``z >= 0`` has ``M z + q >= 0``: the LCP has no solution at
-all. For other ``M`` (the friction LCP with a large ``mu``: Painleve's paradox) a ray says only that Lemke found no
-solution; one may still exist. What the caller must do on ``LCP_RAY``: not use ``z``, ``w`` (they are zeroed), and
-treat the contact state as undecided (an impulsive transition, a smaller step, or another formulation).
-``LCP_MAXITER`` (``max_iter`` pivots, default ``50 m``) should not happen with the lexicographic rule; treat it as a
-ray. ``LCP_NONFINITE``: ``M`` or ``q`` holds a NaN or an infinity, or the tableau overflowed.
+all. The friction LCP is neither: a ray says only that Lemke found no solution. In the tests, every friction LCP
+with a positive definite Delassus matrix and ``mu <= 1`` was solved; with a singular one (two contacts, rank 2 or 3)
+0.02 to 0.2 % of the solvable problems ended on a ray, with ``mu`` up to 5 (Painleve's paradox) 1.5 %.
+
+What the caller must do on ``LCP_RAY``: not use ``z``, ``w`` (they are zeroed). If ``M`` is copositive-plus, the
+LCP has no solution (for contacts: no consistent set of forces; an impact or another model is needed). Otherwise
+first try Lemke with another covering vector ``d > 0``: it is Lemke on ``(D^-1 M, D^-1 q)``, ``D = diag(d)``, which
+has the same ``z`` (and ``w = D w'``); in the tests, 20 random ``d`` solved 47 of 48 such cases. Then treat the
+contact state as undecided. ``LCP_MAXITER`` (``max_iter`` pivots, default ``50 m``) should not happen with the
+lexicographic rule; treat it as a ray. ``LCP_NONFINITE``: ``M`` or ``q`` holds a NaN or an infinity, or the tableau
+overflowed. Arrays of the wrong size raise ``ValueError``.
 
 The workspace (:func:`lcp_workspace`) holds every array, so that :func:`lemke` never allocates (``@hot``); one
 sized for ``m_max`` serves every ``m <= m_max``.
@@ -147,7 +153,7 @@ def _leaving(T, basis, cand, m, col, sgn):
 @hot
 def _pivot(T, nz, m, r, col):
     """Gauss-Jordan pivot on ``T[r, col]``, over the columns where row ``r`` is not zero (listed in ``nz``: the
-    basic variables' columns are among the others); basic values below zero (rounding) are set to zero."""
+    basic variables' columns are among the others)."""
     xc = 2 * m + 1
     p = 1.0 / T[r, col]
     n = 0
@@ -164,7 +170,6 @@ def _pivot(T, nz, m, r, col):
         for t in range(n):
             T[i, nz[t]] -= f * T[r, nz[t]]
         T[i, col] = 0.0
-        T[i, xc] = max(T[i, xc], 0.0)
 
 
 @hot
@@ -237,6 +242,8 @@ def lemke(M, q, z, w, ws, max_iter=-1):
     (``-1``: ``50 m``). On any status but ``LCP_OK``, ``z`` and ``w`` are zeroed. Never allocates."""
     T, basis, cand, info, rr, nz = ws
     m = q.shape[0]
+    if M.shape[0] != m or M.shape[1] != m or z.shape[0] < m or w.shape[0] < m or T.shape[0] < m:
+        raise ValueError("lemke: M must be m x m, z and w of m, the workspace for m or more")
     info[0] = 0
     cap = max_iter if max_iter >= 0 else MAX_ITER_PER_ROW * m
     status = LCP_OK
@@ -263,8 +270,8 @@ def lemke(M, q, z, w, ws, max_iter=-1):
 def lcp_residual(M, q, z, w):
     """How far ``z``, ``w`` are from solving LCP(q, M), dimensionless: the largest of ``-min(z) / max|z|``,
     ``-min(w) / W``, ``max|w - M z - q| / W`` and ``max|z_i w_i| / (max|z| W)``, where ``W = max_i (|q_i| + sum_j
-    |M_ij z_j|)`` is the size of the terms that make ``w`` (a zero scale counts as one). About ``1e-15 m`` for a
-    solution of :func:`lemke`."""
+    |M_ij z_j|)`` is the size of the terms that make ``w`` (a zero scale counts as one). A few 1e-16 for a solution
+    of :func:`lemke`."""
     m = q.shape[0]
     zs = 0.0
     ws_ = 0.0
