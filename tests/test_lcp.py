@@ -15,7 +15,7 @@ from scipy.optimize import linprog
 from rockcli.kernels.lcp import (LCP_MAXITER, LCP_NONFINITE, LCP_OK, LCP_RAY, lcp_pivots, lcp_residual,
                                  lcp_workspace, lemke)
 
-RES_TOL = 1e-10  # lcp_residual of an accepted solution (dimensionless; about 1e-15 m when all is well)
+RES_TOL = 1e-10  # lcp_residual of an accepted solution (dimensionless; a few 1e-16 when all is well)
 
 
 # ------------------------------------------------------------------------------------------
