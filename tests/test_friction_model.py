@@ -190,6 +190,7 @@ def _cp(blocks, mus, base=None):
         o = ch.CP_BLK + ch.NF_BLK * i
         cp[o + ch.F_B], cp[o + ch.F_H], cp[o + ch.F_M], cp[o + ch.F_MU] = b, h, m, mu
         cp[o + ch.F_I] = m * (b * b + h * h) / 3.0
+        cp[o + ch.F_BLOW] = math.inf  # the plinth's geometry: pivots at the block's own corners
     return cp
 
 

@@ -54,6 +54,12 @@ F_BLOW = 10  # the half width of the top below (inf on the ground or the base): 
 NF_BLK = 11
 
 BASE_RIGID, BASE_LINEAR = 0.0, 1.0
+#: a corner code ``c_j`` for the complementarity solve (kernels.contact_lcp): interface ``j`` closed (angle, rate, lift
+#: and slip rate 0) with all three relative motions free, its slip, its rotation about the centre of its base and its
+#: lift along the normal, each against its contact force (the face's corner forces and its friction)
+RELEASED = 2.0
+#: the same with the slip held (an impact whose contacts all stick: the rocking model's law)
+RELEASED_STUCK = 3.0
 
 
 def cp_size(n: int) -> int:
@@ -72,6 +78,12 @@ def col_s(j):
 @kernel(inline='always')
 def col_psi(j):
     return 4 + 4 * j
+
+
+@kernel(inline='always')
+def col_lift(j):
+    """The code of interface ``j``'s lift in a released pattern (no state column: the lift and its rate are 0)."""
+    return -1 - j
 
 
 @kernel(inline='always')
@@ -101,7 +113,7 @@ def workspace(n):
     interface ``fr`` the contact point and the frame of the surface below ``(Px, Py, tx, ty, nx, ny)``; ``M, r,
     x`` the linear system and its solution; ``mo`` per interface 1 where a sliding contact's friction is off (it
     pulls: :func:`solve_level`), ``fq`` scratch forces."""
-    nf = 2 * n + 1
+    nf = 3 * n + 1  # at most: the base, and per interface its slip, rotation and (released) lift
     free = np.zeros(nf, dtype=np.int64)
     AG = np.zeros((n, 2, nf))
     bG = np.zeros((n, 2))
@@ -130,11 +142,14 @@ def free_coordinates(cp, pat, free):
         free[0] = 0
         nf = 1
     for j in range(n):
-        if pat[2 * j + 1] != 0.0:
+        if pat[2 * j + 1] != 0.0 or pat[2 * j] == RELEASED:
             free[nf] = col_s(j)
             nf += 1
         if pat[2 * j] != 0.0:
             free[nf] = col_psi(j)
+            nf += 1
+        if pat[2 * j] >= RELEASED:
+            free[nf] = col_lift(j)
             nf += 1
     return nf
 
@@ -180,6 +195,8 @@ def kinematics(cp, pat, y, ws):
         # the pivot: the block's own corner on the top below (e = c b, "kind A"), or, where that corner overhangs the
         # top below (a drum slid past the edge of the one under it), the corner of the top below under the block's
         # base ("kind B": e = c b_below - s from the base's centre, the block's base sliding over that corner)
+        if c >= RELEASED:
+            c = 0.0
         kind_b = c != 0.0 and c * s + b > fld(cp, j, F_BLOW)
         if kind_b:
             e = c * fld(cp, j, F_BLOW) - s
@@ -244,7 +261,10 @@ def kinematics(cp, pat, y, ws):
                 aAL = AA[j - 1, k]
             aPx = aTx - aAL * d * nx
             aPy = aTy - aAL * d * ny
-            if col == col_s(j):
+            if col == col_lift(j):
+                aPx += nx
+                aPy += ny
+            elif col == col_s(j):
                 if kind_b:
                     aPx += cth
                     aPy -= sth
@@ -316,6 +336,8 @@ def assemble(cp, pat, y, ws, nf, ex, ey, level_v):
         sliding_j = -1
         if col >= 2 and (col - 2) % 4 == 0:
             sliding_j = (col - 2) // 4
+            if pat[2 * sliding_j + 1] == 0.0:  # free but not sliding: a released interface's Kane row
+                sliding_j = -1
         if sliding_j >= 0:
             # Coulomb: F_j . (t + mu sl n) = 0, F_j = sum_{i >= j} m_i (a_Gi + (ag, g))
             j = sliding_j

@@ -35,13 +35,14 @@ from rockcli.kernels.chain import (BASE_RIGID, CP_BASE, CP_CB, CP_E, CP_G, CP_KB
                                    CP_TOL, F_AREST, F_B, F_BLOW, F_M, F_MU, col_psi, col_s, energy, fld, free_coordinates,
                                    workspace)
 from rockcli.kernels.chain_kind import kind_switch
+from rockcli.kernels.contact_lcp import choose, impact_any, lcp_space
 from rockcli.kernels.chain_rest import quiet_until, rest_interval
 from rockcli.kernels.contact_restitution import restitution_impact
 from rockcli.kernels.linear_base import coefficients
 from rockcli.kernels.chain_step import (EVC_FACE_OPENS, EVC_IMPACT, EVC_KIND, EVC_NONE, EVC_SLIDE_OFF, EVC_SLIP_STARTS,
                                         EVC_SLIP_STOP, EVC_TOPPLE, EVC_WRONG_SIDE, _rhs, dp5, force_events, peaks, restep,
                                         state_events)
-from rockcli.kernels.contact import (choose_pattern, face_corners, impact, project, rest_moments, restoring_rate,
+from rockcli.kernels.contact import (face_corners, project, rest_moments, restoring_rate,
                                      solve_pattern)
 from rockcli.kernels.ground import _pulse_segment, band_exit, ground_at
 from rockcli.kernels.jit import kernel
@@ -200,7 +201,7 @@ def _rocking_energy(cp, pat, y, ws, ytmp):
 
 
 @kernel
-def _after_impact(cp, pat, y, j, t, t_exc_end, ag, xo, ws, frc, best, v0, w0, ynew, zero_psi, free_corner, ytmp):
+def _after_impact(cp, pat, y, j, t, t_exc_end, ag, xo, ws, frc, best, v0, w0, ynew, zero_psi, free_corner, ytmp, sp):
     """The impact of interface ``j`` (its angle at 0 in ``y``): the pattern and rates after it (Moreau with Coulomb),
     then the rest rules (module notes). Writes the state after into ``y`` and the pattern into ``pat``."""
     n = int(cp[CP_N])
@@ -222,7 +223,7 @@ def _after_impact(cp, pat, y, j, t, t_exc_end, ag, xo, ws, frc, best, v0, w0, yn
         else:
             xo[X_N_PLASTIC] += 1.0
     if not restituted:
-        m, pulls, slipped = impact(cp, pat, pat_to, y, ws, frc, zero_psi, free_corner, best, v0, w0, ynew)
+        m, pulls, slipped = impact_any(cp, pat, pat_to, y, ws, frc, zero_psi, free_corner, best, v0, w0, ynew, sp)
     if m < -tol:
         xo[X_N_INCONS] += 1.0
     if pulls > 0:
@@ -326,6 +327,7 @@ def simulate_chain(cp, pat0, y0, ekind, epar, acc, dt, t_begin, t_exc_end, tail,
     for i in range(ny):
         W[W_Y, i] = y0[i]
     ws = workspace(n)
+    sp = lcp_space(n)
     frc = np.zeros((n, 3))
     best = np.zeros(2 * n)
     v0 = np.zeros((n, 2))
@@ -413,7 +415,7 @@ def simulate_chain(cp, pat0, y0, ekind, epar, acc, dt, t_begin, t_exc_end, tail,
             for j in range(n):
                 zero_psi[j] = True
                 zero_s[j] = True
-            choose_pattern(cp, pat, W[W_Y], ag, ws, frc, zero_psi, zero_s, best)
+            choose(cp, pat, W[W_Y], ag, ws, frc, zero_psi, zero_s, best, sp)
             _switch(xo, pat, best, n, tu, cp, W[W_Y])
             band_ok = False
             rs[RS_FRESH] = 1.0
@@ -445,7 +447,7 @@ def simulate_chain(cp, pat0, y0, ekind, epar, acc, dt, t_begin, t_exc_end, tail,
                 for j in range(n):
                     zero_psi[j] = True
                     zero_s[j] = True
-                choose_pattern(cp, pat, W[W_Y], ground_at(t_ev, seg, epar), ws, frc, zero_psi, zero_s, best)
+                choose(cp, pat, W[W_Y], ground_at(t_ev, seg, epar), ws, frc, zero_psi, zero_s, best, sp)
                 _switch(xo, pat, best, n, t_ev, cp, W[W_Y])
                 rs[RS_H] = 0.0
                 band_ok = False
@@ -536,7 +538,7 @@ def simulate_chain(cp, pat0, y0, ekind, epar, acc, dt, t_begin, t_exc_end, tail,
             if want_history:
                 H, nh = _hist(H, nh, t_ev, ground_at(t_ev, seg, epar), HK_IMPACT, pat, W, W_Y)
             _after_impact(cp, pat, y, who, t_ev, t_exc_end, ground_at(t_ev, seg, epar), xo, ws, frc, best, v0, w0,
-                          ynew, zero_psi, free_corner, ytmp)
+                          ynew, zero_psi, free_corner, ytmp, sp)
             kind = HK_IMPACT_AFTER
         elif code == EVC_TOPPLE:
             y[col_psi(who)] = pat[2 * who] * 0.5 * math.pi
@@ -559,7 +561,7 @@ def simulate_chain(cp, pat0, y0, ekind, epar, acc, dt, t_begin, t_exc_end, tail,
                     zero_s[j] = False
                 zero_s[who] = True
                 y[col_s(who) + 1] = 0.0
-                choose_pattern(cp, pat, y, ground_at(t_ev, seg, epar), ws, frc, zero_psi, zero_s, best)
+                choose(cp, pat, y, ground_at(t_ev, seg, epar), ws, frc, zero_psi, zero_s, best, sp)
                 _switch(xo, pat, best, n, t_ev, cp, y)
             rs[RS_T] = t_ev
             kind = HK_EVENT
@@ -592,7 +594,15 @@ def simulate_chain(cp, pat0, y0, ekind, epar, acc, dt, t_begin, t_exc_end, tail,
                     zero_psi[j] = True
             if stall > MAX_STALL:
                 xo[X_N_STALL] += 1.0
-            m, pulls = choose_pattern(cp, pat, y, ground_at(t_ev, seg, epar), ws, frc, zero_psi, zero_s, best)
+            if stall > MAX_STALL and code == EVC_WRONG_SIDE and n >= 3:
+                # a pivot the contact law opens at a tangency (its opening acceleration at rounding level) turns the
+                # other way at once, again and again: it is shut (angle and rate 0 already), counted
+                for i in range(2 * n):
+                    best[i] = pat[i]
+                best[2 * who] = 0.0
+                m = -math.inf
+            else:
+                m, pulls = choose(cp, pat, y, ground_at(t_ev, seg, epar), ws, frc, zero_psi, zero_s, best, sp)
             if m < -cp[CP_TOL]:
                 xo[X_N_INCONS] += 1.0
             _switch(xo, pat, best, n, t_ev, cp, y)
