@@ -186,3 +186,58 @@ def test_a_drum_column_refuses_bad_drums():
         DrumColumn(())
     with pytest.raises(RockcliInputError, match="whole number"):
         DrumColumn.uniform(5.0, 1.0, 2.5)
+
+
+def _pulse(rng):
+    from rockcli.pulses import OneSine, RickerAntisymmetric, RickerSymmetric
+
+    kinds = (RickerSymmetric, OneSine, RickerAntisymmetric)
+    return kinds[int(rng.integers(0, 3))](rng.uniform(0.2, 0.9) * G, rng.uniform(0.3, 1.5))
+
+
+def test_one_drum_is_the_block_and_two_are_the_body_on_its_plinth_bit_for_bit():
+    """A column of one drum runs as the single block of its size, and of two drums (the upper no wider) as that body
+    on that plinth, to the last bit, wherever no slip reaches the plinth's edge (where the plinth's fall criterion
+    and the drums' overlap part: docs/physics-drums.md)."""
+    from rockcli.models import Plinth, Stack
+    from rockcli.solve.slide import simulate_friction
+
+    rng = np.random.default_rng(461)
+    same2 = 0
+    for _ in range(12):
+        h, w = rng.uniform(0.5, 3.0), rng.uniform(0.3, 1.2)
+        exc = _pulse(rng)
+        mu = float(rng.uniform(0.2, 1.0))
+        a = simulate_friction(DrumColumn(((h, w),)), exc, mu).as_dict()
+        b = simulate_friction(Block.from_dimensions(h, w), exc, mu).as_dict()
+        assert a == b
+        h2, w2 = rng.uniform(0.3, 1.4), w * rng.uniform(1.0, 1.6)
+        mus = (float(rng.uniform(0.3, 1.0)), float(rng.uniform(0.3, 1.0)))
+        c = simulate_friction(DrumColumn(((h2, w2), (h, w))), exc, mus)
+        d = simulate_friction(Stack(Block.from_dimensions(h, w), Plinth(h2, w2)), exc, mus)
+        if c.joint.slide_max_m < d.joint.edge_m and d.verdict != "slid off":
+            same2 += 1
+            cd, dd = c.as_dict(), d.as_dict()
+            for x in (cd, dd):  # the drums' names and edge (the overlap's end) are theirs
+                x["joint"].pop("edge_m"), x["joint"].pop("name")
+            assert cd == dd
+    assert same2 >= 8
+
+
+def test_drums_that_cannot_open_or_slide_are_the_monolith():
+    """Drums under a ground motion too weak to open any joint (every joint's static threshold above the peak
+    acceleration, friction above it too) rock as one: the column's base does what the monolith does, within the
+    solvers' tolerance (the stack integrates more coordinates), and no joint moves."""
+    from rockcli.pulses import RickerSymmetric
+    from rockcli.solve.drums import simulate_drums
+
+    col = DrumColumn.uniform(5.95, 1.11, 5)
+    th = col.static_thresholds()
+    ap = 0.5 * (th[0] + th[1])  # above the base's threshold (the monolith rocks), below every joint's
+    run = simulate_drums(col, RickerSymmetric(ap * G, 1.0), 1.0)
+    assert run.monolith.verdict == "survives"
+    assert run.stack.verdict == "survives"
+    assert all(p.psi_max == 0.0 and p.n_slips == 0 for p in run.stack.interfaces[1:])
+    assert run.stack.base.psi_max == pytest.approx(run.monolith.base.psi_max, abs=1e-6 * run.monolith.base.alpha)
+    assert run.stack.base.n_impacts == run.monolith.base.n_impacts
+    assert run.compared == "alike" and run.first_move[0] == "base"

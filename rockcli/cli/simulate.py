@@ -12,6 +12,7 @@ from rockcli.cli.options import (azimuth_options, block_from_options, block_opti
                                  record_kwargs, record_options, report_option, restitution_option, scaled,
                                  simulate_vertical_component_option, stack_from_option)
 from rockcli.cli.options import GAMMA_HELP, REPORT_SUFFIXES, Command
+from rockcli.cli.simulate_drums import DRUMS_HELP
 from rockcli.cli.simulate_friction import FRICTION_HELP
 from rockcli.cli.types import NUMBER, WHOLE
 
@@ -79,11 +80,12 @@ from rockcli.cli.types import NUMBER, WHOLE
 @report_option
 @plinth_option
 @click.option("--friction", default=None, metavar="MU|base=MU,joint=MU", help=FRICTION_HELP)
+@click.option("--drums", default=None, metavar="N|HxW,HxW,...", help=DRUMS_HELP)
 @user_errors
 def simulate(column_name, R, alpha, height, width, name, isolation, record_source, units, dt, fmt, column,
              pulse, vertical_source, vertical_column, vertical_pulse, vertical_scale, theta0, theta_dot0, scale,
              flip, rtol, tail, horizon, restitution, cap_ratio, check, as_json,
-             history_path, history_dt, plot_path, report_path, plinth_spec, friction):
+             history_path, history_dt, plot_path, report_path, plinth_spec, friction, drums):
     """Rocking response of one block to one ground motion, on a rigid or an isolated base.
 
     \b
@@ -126,6 +128,7 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
                               "--json": as_json, "--history": history_path, "--history-dt": history_dt,
                               "--report": report_path, "--check-tolerance": check, "--on": plinth_spec,
                               "--friction": friction, "--theta0": theta0, "--theta-dot0": theta_dot0,
+                              "--drums": drums,
                               "--vertical": vertical_source, "--vertical-pulse": vertical_pulse})
     isolation, pulse = isolation[0], (pulse[0] if pulse else None)
     foundation = parse_isolation_spec(isolation)
@@ -141,7 +144,19 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     theta0, theta_dot0 = check_initial_state(theta0, theta_dot0, ("--theta0", "--theta-dot0"))
     moving = theta0 != 0.0 or theta_dot0 != 0.0
     stack = stack_from_option(block, plinth_spec)
-    if friction is not None:
+    if drums is not None:
+        from rockcli.cli.azimuth import wants_worst
+        from rockcli.cli.simulate_drums import check_drums_scene, parse_drums
+        from rockcli.cli.simulate_friction import check_friction_scene, parse_friction
+
+        check_drums_scene(stacked=stack is not None, restitution=restitution, friction=friction, others=(
+            ("--history", history_path), ("--plot", plot_path), ("--report", report_path)))
+        drums = parse_drums(drums, block)
+        friction = parse_friction(friction, False)
+        check_friction_scene(foundation, cap_ratio=cap_ratio, moving=moving, restitution=None, check=check,
+                             history_dt=history_dt, worst=wants_worst(), stacked=False,
+                             vertical=vertical_source is not None or vertical_pulse is not None)
+    elif friction is not None:
         from rockcli.cli.azimuth import wants_worst
         from rockcli.cli.simulate_friction import check_friction_scene, parse_friction
 
@@ -203,6 +218,11 @@ def simulate(column_name, R, alpha, height, width, name, isolation, record_sourc
     if vertical is not None:
         solver["vertical"] = vertical
 
+    if drums is not None:
+        from rockcli.cli.simulate_drums import run_drums
+
+        return run_drums(drums, foundation, excitation, label, friction, as_json=as_json, rtol=rtol, tail=tail,
+                         horizon=horizon, pga=_pga(excitation, G))
     friction_res = None
     if friction is not None:  # the friction run first: where nothing slides, the rocking answer below stands
         from rockcli.cli.simulate_friction import run_friction

@@ -20,7 +20,8 @@ T``. With every relative rate at 0, the corners' normal accelerations are ``g_R'
 N``). An interface closed whose slip already moves (``zero_psi`` only) keeps its direction ``sl``: ``T = -mu sl N``
 is a row of ``A`` and only its corner forces are unknowns. An interface that pivots with its slip at rest
 (``zero_s`` only) has a bilateral normal force that is not an unknown of the problem: its three choices (stick,
-slide either way) are tried outside the solve, sticking first.
+slide either way) are tried outside the solve, every combination for up to ``KC_MAX`` such pivots, beyond that
+all sticking and each sliding alone (not exact there: a miss is counted).
 
 From the solution: a corner whose force is 0 and whose gap accelerates open lifts (the interface pivots on the other
 corner), a slip that accelerates slides. At a threshold (the event that called the choice) a force and its
@@ -51,6 +52,8 @@ ENUM_MAX = 729
 DEGENERATE = 1e-9
 #: at most this many degenerate interfaces are tried in every way (9 patterns each)
 MAX_DEGENERATE = 3
+#: the slips of at most this many pivots resting on their slip are tried in every combination (3^KC_MAX solves)
+KC_MAX = 4
 
 # the unknowns of an interface
 V_NR, V_NL, V_SIG, V_LAM = 0, 1, 2, 3
@@ -275,6 +278,24 @@ def lcp_candidate(cp, pat, y, ag, ws, zero_psi, zero_s, sp, cand, degen, level_v
 
 
 @kernel
+def _n_codes(kc):
+    """How many slip choices of ``kc`` resting pivots are tried: all ``3^kc`` up to ``KC_MAX`` pivots; beyond, every
+    pivot sticking and each one sliding alone either way (``1 + 2 kc``): not every combination, so a choice may miss
+    the consistent pattern there; the driver then counts it (``n_inconsistent``)."""
+    return 3 ** kc if kc <= KC_MAX else 1 + 2 * kc
+
+
+@kernel
+def _slip_choice(code, k, kc):
+    """The slip (0, +1, -1) of the ``k``-th resting pivot in choice ``code`` of :func:`_n_codes`."""
+    if kc <= KC_MAX:
+        d = (code // 3 ** k) % 3
+    else:
+        d = 0 if code == 0 or (code - 1) // 2 != k else 1 + (code - 1) % 2
+    return 0.0 if d == 0 else (1.0 if d == 1 else -1.0)
+
+
+@kernel
 def _pulls_off(cp, cand, y, ag, ws, sp):
     """Solve the candidate as the enumeration does (:func:`rockcli.kernels.chain.solve_level`): True when a sliding
     contact pulls there (its friction then off: ``ws``'s ``mo`` set, kept for the second solve)."""
@@ -327,15 +348,14 @@ def lcp_choose(cp, pat, y, ag, ws, frc, zero_psi, zero_s, best, sp):
         if zero_s[j] and not zero_psi[j]:
             kc += 1
     solved = False
-    for code in range(3 ** kc):
-        rest = code
+    for code in range(_n_codes(kc)):
         for i in range(2 * n):
             trial[i] = pat[i]
+        k = 0
         for j in range(n):
             if zero_s[j] and not zero_psi[j]:
-                d = rest % 3
-                rest //= 3
-                trial[2 * j + 1] = 0.0 if d == 0 else (1.0 if d == 1 else -1.0)
+                trial[2 * j + 1] = _slip_choice(code, k, kc)
+                k += 1
         if not lcp_candidate(cp, trial, y, ag, ws, zero_psi, zero_s, sp, cand, degen, False, False, sp[11], sp[16],
                              False):
             continue
@@ -466,17 +486,16 @@ def lcp_impact(cp, pat, pat_to, y, ws, frc, zero_psi, free_corner, best, v0, w0,
             for j in range(n):
                 if not free_corner[j]:
                     kc += 1
-        for code in range(3 ** kc):
-            rest = code
+        for code in range(_n_codes(kc)):
             for i in range(2 * n):
                 trial[i] = pat_to[i]
+            k = 0
             for j in range(n):
                 if stage == 0 or free_corner[j]:
                     trial[2 * j + 1] = 0.0
                 else:
-                    d = rest % 3
-                    rest //= 3
-                    trial[2 * j + 1] = 0.0 if d == 0 else (1.0 if d == 1 else -1.0)
+                    trial[2 * j + 1] = _slip_choice(code, k, kc)
+                    k += 1
             if not lcp_candidate(cp, trial, y, 0.0, ws, free_corner, all_s, sp, cand, degen, True, stage == 0,
                                  v0, w0, False):
                 continue

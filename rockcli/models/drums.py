@@ -23,6 +23,28 @@ from rockcli.models.limits import _check, _finite, _num
 #: The most drums a column may have (the complementarity solve grows with them; real columns have 1-20).
 MAX_DRUMS = 32
 
+#: The paper's two columns as stacks of equal drums: (full height [m], base drum diameter [m], drums, the source).
+#: The paper gives the height and the base drum's diameter of each column and, for Nemea, the number of drums;
+#: the drums are taken equal, of the base diameter (the shaft's taper and the capital are not in the paper: a
+#: column you have measured is given drum by drum, docs/physics-drums.md).
+DRUM_PRESETS = {
+    "nemea-drums": (10.33, 1.52, 13, "Temple of Zeus at Nemea: 13 drums (the paper: 'All columns consist of 13 "
+                                     "drums')"),
+    "bassae-drums": (5.95, 1.11, 6, "Temple of Apollo at Bassae: 6 drums, an assumption (the paper: 'The number of "
+                                    "drums in each column is not constant'; give drums=N for a column you know)"),
+}
+
+
+def drum_preset(name: str) -> "DrumColumn":
+    """A named drum column (:data:`DRUM_PRESETS`)."""
+    key = str(name).strip().lower()
+    if key not in DRUM_PRESETS:
+        from rockcli.errors import RockcliInputError
+
+        raise RockcliInputError(f"unknown drum column {name!r}: the presets are {', '.join(sorted(DRUM_PRESETS))}")
+    height, width, n, _ = DRUM_PRESETS[key]
+    return DrumColumn.uniform(height, width, n, key)
+
 
 @dataclass(frozen=True)
 class DrumColumn:
@@ -78,10 +100,12 @@ class DrumColumn:
         return Block.from_dimensions(self.height, self.width, self.name)
 
     def blocks(self) -> list:
-        """``[(b, h, m), ...]`` bottom to top: half widths, half heights, masses per unit mass of the column."""
-        areas = [h * w for h, w in self.drums]
-        total = sum(areas)
-        return [(0.5 * w, 0.5 * h, a / total) for (h, w), a in zip(self.drums, areas)]
+        """``[(b, h, m), ...]`` bottom to top: half widths, half heights, masses per unit mass of the top drum (the
+        areas' ratios), read as a body on its plinth reads them (the top drum a :class:`Block`, the others as a
+        plinth), so that one drum is that block and two are that body on that plinth, to the last bit."""
+        top = Block.from_dimensions(*self.drums[-1])
+        ref = top.height * top.width
+        return [(0.5 * w, 0.5 * h, (h * w) / ref) for h, w in self.drums[:-1]] + [(top.b, top.h, 1.0)]
 
     def joint_names(self) -> list:
         """``base`` (the bottom drum on the ground), then ``joint 1`` .. (under drum 2, 3, ...)."""

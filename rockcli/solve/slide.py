@@ -102,6 +102,7 @@ class SlideResponse:
     steps: int
     nrhs: int
     history: Any = field(default=None, repr=False)
+    all_peaks: tuple = ()  # every contact bottom to top (a column of drums: the base, then each joint)
 
     @property
     def body(self) -> InterfacePeak:
@@ -126,6 +127,8 @@ class SlideResponse:
 
     @property
     def interfaces(self) -> tuple:
+        if len(self.all_peaks) > 2:
+            return self.all_peaks
         return (self.base,) if self.joint is None else (self.base, self.joint)
 
     def as_dict(self) -> dict[str, Any]:
@@ -134,7 +137,10 @@ class SlideResponse:
 
         d = {"verdict": self.verdict, "toppled": self.toppled, "slid_off": self.slid_off,
              "t_fail_s": num(self.t_fail), "friction_mu": list(self.mu)}
-        if self.joint is None:
+        if len(self.all_peaks) > 2:
+            d["base"] = self.base.as_dict()
+            d["joints"] = [p.as_dict() for p in self.all_peaks[1:]]
+        elif self.joint is None:
             d.update(self.base.as_dict())
         else:
             d["base"] = self.base.as_dict()
@@ -155,7 +161,8 @@ def _blocks(body) -> tuple[list, list]:
         return [(body.b2, body.h2, body.m2), (body.b1, body.h1, 1.0)], ["base", "joint"]
     if isinstance(body, Block):
         return [(body.b, body.h, 1.0)], ["base"]
-    raise RockcliInputError(f"the body must be a rockcli.models.Block or Stack, got {type(body).__name__}")
+    raise RockcliInputError(f"the body must be a rockcli.models.Block, Stack or DrumColumn, got "
+                            f"{type(body).__name__}")
 
 
 def _mus(mu, n: int) -> tuple:
@@ -271,6 +278,9 @@ def simulate_friction(body, excitation, mu, foundation=None, *, rtol: float | No
         from rockcli.models.impact import check_restitution
 
         restitution = check_restitution(restitution)
+        if n > 2:
+            raise RockcliInputError("a column of drums takes the plastic impact with Coulomb's law: a restitution is "
+                                    "not taken with drums yet")
         if not isinstance(body, Stack) and foundation is not None and not isinstance(foundation, Rigid):
             raise RockcliInputError("friction with a restitution runs on the ground, or for a body on its plinth: a "
                                     "single block on bearings reads the restitution with the base's impulsive couple "
@@ -313,8 +323,10 @@ def _response(cp, xo, H, names) -> SlideResponse:
     else:
         verdict = "no motion"
     toppled = None
-    if toppled_j >= 0:
-        toppled = "body" if names[toppled_j] in ("joint",) or n == 1 else "plinth"
+    if toppled_j >= 0 and n > 2:
+        toppled = names[toppled_j]  # a column of drums: the drums above that contact fall
+    elif toppled_j >= 0:
+        toppled = "body" if toppled_j == n - 1 else "plinth"
     mus = tuple(float(cp[ch.CP_BLK + ch.NF_BLK * j + ch.F_MU]) for j in range(n))
     return SlideResponse(
         verdict=verdict, status=status, mu=mus, base=peaks[0], joint=peaks[1] if n > 1 else None, toppled=toppled,
@@ -323,4 +335,4 @@ def _response(cp, xo, H, names) -> SlideResponse:
         n_jumps=int(xo[cr.X_N_JUMP]), n_inconsistent=int(xo[cr.X_N_INCONS]),
         n_slip_impacts=int(xo[cr.X_N_SLIP_IMPACTS]), n_slips_inside=int(xo[cr.X_N_SLIP_IN]),
         n_plastic=int(xo[cr.X_N_PLASTIC]), settled=bool(xo[cr.X_SETTLED]), t_end=float(xo[cr.X_T_END]),
-        steps=int(xo[cr.X_STEPS]), nrhs=int(xo[cr.X_NRHS]), history=H)
+        steps=int(xo[cr.X_STEPS]), nrhs=int(xo[cr.X_NRHS]), history=H, all_peaks=tuple(peaks))
