@@ -42,11 +42,13 @@ def test_the_printout_names_each_joint():
     (("--drums", "2.5", "--friction", "0.6"), "whole number"),
     (("--drums", "1x1,1xa", "--friction", "0.6"), "drum 2 is '1xa'"),
     (("--drums", "0", "--friction", "0.6"), ">= 1"),
-    (("--drums", "3", "--friction", "0.6", "--plot", "out/never.png"), "--plot is not taken"),
+    (("--drums", "3", "--friction", "0.6", "--plot", "{tmp}/never.png"), "--plot is not taken"),
     (("--drums", "3", "--friction", "0.6", "--on", "plinth:height=1,width=2"), "--drums and --on"),
     (("--drums", "3", "--friction", "0.6", "--restitution", "0.8"), "restitution"),
     (("--drums", "3", "--friction", "0.6", "--isolation", "scss:Tb=3,mu=0.05"), "linear bearings"),
 ])
-def test_what_drums_refuse(args, words):
+def test_what_drums_refuse(args, words, tmp_path):
+    args = [a.replace("{tmp}", str(tmp_path)) for a in args]
     code, out = _run("simulate", "--body", "bassae", "--pulse", "sine:ap=0.5,Tp=1", *args)
     assert code == 2 and words in out and "Traceback" not in out
+    assert not any(tmp_path.iterdir())  # nothing written
