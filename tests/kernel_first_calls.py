@@ -2,7 +2,8 @@
 
 :data:`GROUPS` names the drivers' first calls in four groups that share no large kernel: the rigid foundation
 (single runs, the batch kernel, under a vertical motion), the isolated base (single runs, the batch kernel, the
-lift-off floor, a bearing's loop), the body on its plinth on a rigid foundation, and on bearings. A first call
+lift-off floor, a bearing's loop), the body on its plinth on a rigid foundation, and on bearings. The friction driver
+(one block, a plinth, drums: one kernel) is a fifth group. A first call
 compiles its driver, or loads it from numba's disk cache. ``benchmarks/bench_compile.py`` times them one after
 the other, in one process.
 
@@ -48,6 +49,7 @@ def first_calls() -> list[tuple[str, str, object]]:
     from rockcli.pulses import make_pulse
     from rockcli.records import Record
     from rockcli.solve import bearing_force_path, simulate, simulate_stack
+    from rockcli.solve.slide import simulate_friction
 
     block = Block(1.0, 0.2)
     pulse = make_pulse("sine", 2.0 * G * math.tan(0.2), 0.5)
@@ -67,12 +69,14 @@ def first_calls() -> list[tuple[str, str, object]]:
         ("isolated", "linear_base.stuck_peak", lambda: load_floor_kernel()),
         ("isolated", "bearings.force_along_path",
          lambda: bearing_force_path(SingleConcaveSliding(2.0, 0.05), np.zeros(3))),
+        ("friction", "chain_run.simulate_chain", lambda: simulate_friction(stack.body, pulse, 0.5)),
     ]
 
 
 #: The driver whose absence from the disk cache makes a group cold (module, function).
 GROUP_DRIVERS = {"rigid": ("rigid", "simulate_rigid"), "isolated": ("driver", "simulate_core"),
-                 "plinth": ("stack", "simulate_stack"), "plinth-bearings": ("stack_linear", "simulate_stack_linear")}
+                 "plinth": ("stack", "simulate_stack"), "plinth-bearings": ("stack_linear", "simulate_stack_linear"),
+                 "friction": ("chain_run", "simulate_chain")}
 
 
 def compile_group(group: str) -> None:
