@@ -448,6 +448,8 @@ def simulate_chain(cp, pat0, y0, ekind, epar, acc, dt, t_begin, t_exc_end, tail,
                 y[col_s(who) + 1] = 0.0
                 zero_s[who] = True
             elif code == EVC_FACE_OPENS or code == EVC_WRONG_SIDE:
+                if code == EVC_WRONG_SIDE and pat[2 * who] * y[col_psi(who)] < 0.0:
+                    y[col_psi(who)] = 0.0  # a rounding error on the wrong side of the surface: on it
                 zero_psi[who] = True
                 zero_s[who] = pat[2 * who + 1] == 0.0
             else:  # a stuck contact reaches the cone
