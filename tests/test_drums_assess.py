@@ -288,3 +288,18 @@ def test_the_presets_run_on_bearings_and_the_catalogue_record(find_record):
         d = res.row(f"{name}-drums", xs[0].label, "Tb=2.5s")
         assert d.drums == (6 if name == "bassae" else 13) and d.drums_vs_monolith in ("safer", "worse", "alike")
         assert math.isfinite(d.base_disp_max_m) and d.base_disp_max_m > 0
+
+
+def test_on_a_local_dask_cluster_the_same_csv_with_margins(suite, tmp_path):
+    """--scheduler local: the rows of the columns of drums and their monoliths, margins and reliability included,
+    byte for byte those of the run on this machine."""
+    pytest.importorskip("distributed")
+    args = ("assess", "column", SHAFT, "--records", suite / "r41.txt", "--records", suite / "r43.txt", "--units", "g",
+            "--dt", "0.01", "--friction", "0.6", "--isolation", "none")
+    here, there = tmp_path / "here.csv", tmp_path / "dask.csv"
+    assert _run(*args, "--csv", here)[0] == 0
+    code, out = _run(*args, "--csv", there, "--scheduler", "local")
+    assert code == 0, out
+    assert there.read_bytes() == here.read_bytes()
+    rows = list(csv.DictReader(here.open()))
+    assert any(math.isfinite(float(r["overturn_scale"] or "nan")) for r in rows)
