@@ -207,7 +207,9 @@ def _record_sentence(r, m, noun: str) -> str:
         text = f"{what(r, noun)}; {what(m, 'its monolith')}"
     if r.drums_vs_monolith:
         text += f": {r.drums_vs_monolith}"
-        if r.drums_vs_monolith in ("safer", "worse", "alike") and outcome(r) == outcome(m) == "survives":
+        if r.verdict == m.verdict == "no_uplift":
+            text += " (neither lifts off its base)"
+        elif r.drums_vs_monolith in ("safer", "worse", "alike") and outcome(r) == outcome(m) == "survives":
             text += (f" (the whole column rocks to {100 * r.theta_max_over_alpha:.0f} % of its overturning angle "
                      f"against the monolith's {100 * m.theta_max_over_alpha:.0f} %)")
     off = offset_words(r)
