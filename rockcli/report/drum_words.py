@@ -92,6 +92,11 @@ def offset_words(row) -> str:
         f"its drums are left offset by up to {_cm(x)}"
 
 
+def _share(r: float) -> str:
+    """A peak over an overturning angle in percent; ``under 1 %`` for a lift that rounds to 0 %."""
+    return "0 %" if r == 0 else "under 1 %" if r < 0.005 else f"{100 * r:.0f} %"
+
+
 def _reliable(row) -> bool:
     return getattr(row, "reliable", None) is not False
 
@@ -210,8 +215,8 @@ def _record_sentence(r, m, noun: str) -> str:
         if r.verdict == m.verdict == "no_uplift":
             text += " (neither lifts off its base)"
         elif r.drums_vs_monolith in ("safer", "worse", "alike") and outcome(r) == outcome(m) == "survives":
-            text += (f" (the whole column rocks to {100 * r.theta_max_over_alpha:.0f} % of its overturning angle "
-                     f"against the monolith's {100 * m.theta_max_over_alpha:.0f} %)")
+            text += (f" (the whole column rocks to {_share(r.theta_max_over_alpha)} of its overturning angle "
+                     f"against the monolith's {_share(m.theta_max_over_alpha)})")
     off = offset_words(r)
     if off:
         text += f"; {off}"
