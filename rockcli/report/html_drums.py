@@ -122,8 +122,11 @@ def drum_comparison(assessment, block) -> str:
 
 
 def openings_png(assessment, block) -> bytes | None:
-    """One panel per configuration: each record's peak opening of every contact (over its slenderness) up the
-    column, red where the column fails; beside it, the residual offset of each drum [cm] where it stands."""
+    """One row of panels per configuration: left, each record's peak opening of every contact (over its
+    slenderness) up the column where the column stands (green; amber: not proven), and a red cross at the contact
+    where it failed under the other records (how many beside it); right, where each drum was left [cm]."""
+    from collections import Counter
+
     from rockcli.report.html_figures import COLOURS, DPI, FIGURE_WIDTH_IN, _bytes, _rc
     from rockcli.report.figures import new_figure, plain
     from rockcli.report.words import outcome
@@ -134,33 +137,44 @@ def openings_png(assessment, block) -> bytes | None:
     if not rows:
         return None
     n = len(block.drums)
+    names = ["base"] + [f"joint {j}" for j in range(1, n)]
     with _rc():
-        fig = new_figure(FIGURE_WIDTH_IN, 1.2 + 2.6 * len(confs), dpi=DPI)
+        fig = new_figure(FIGURE_WIDTH_IN, 1.0 + 0.16 * n * len(confs) + 0.9 * len(confs), dpi=DPI)
         axes = fig.subplots(len(confs), 2, squeeze=False)
         for k, c in enumerate(confs):
             ax, bx = axes[k]
+            fell = Counter()
             for x in assessment.excitations:
                 r = rows.get((x.label, c.header))
                 if r is None:
                     continue
-                peaks = [float(v) for v in r.peak_openings_over_alpha.split()]
+                if r.overturned:
+                    fell[r.falls_at or "base"] += 1
+                    continue
                 colour = COLOURS[outcome(r)]
+                peaks = [float(v) for v in r.peak_openings_over_alpha.split()]
                 ax.plot(peaks, range(len(peaks)), marker="o", ms=3, lw=1, color=colour, alpha=0.8)
-                if not r.overturned and r.residual_offsets_m:
+                if r.residual_offsets_m:
                     offs = [100 * float(v) for v in r.residual_offsets_m.split()]
                     bx.plot(offs, range(len(offs)), marker="o", ms=3, lw=1, color=colour, alpha=0.8)
-            for a in (ax, bx):
+            for at, count in fell.items():
+                y = names.index(at) if at in names else 0
+                ax.plot([3.0], [y], marker="x", ms=7, mew=2, color=COLOURS["topples"])
+                ax.text(4.0, y, f"{count} record{'s' if count > 1 else ''}", va="center", fontsize=8.0,
+                        color=COLOURS["topples"])
+            for a, labels in ((ax, names), (bx, [f"drum {j + 1}" for j in range(n)])):
                 a.set_yticks(range(n))
-                a.set_yticklabels(["base"] + [f"joint {j}" for j in range(1, n)] if a is ax else
-                                  [f"drum {j + 1}" for j in range(n)], fontsize=7.5)
+                a.set_yticklabels(labels, fontsize=8.0)
+                a.set_ylim(-0.5, n - 0.5)
                 a.grid(True, color="0.9", lw=0.5)
             ax.axvline(1.0, color="0.4", ls=":", lw=0.8)
             ax.set_xscale("symlog", linthresh=0.01)
-            ax.set_xlim(0.0, 10.0)  # a joint about which drums fell goes to pi/2 over its slenderness
-            ax.set_title(plain(f"{c.header if c.isolated else 'on the ground'}: peak opening / slenderness"),
-                         fontsize=9, loc="left")
-            bx.set_title(plain("residual offset of each drum [cm] (where it stands)"), fontsize=9, loc="left")
-        fig.suptitle(plain(f"{block.name}: red, the column fails under that record; green, it stands"), fontsize=9.5)
+            ax.set_xlim(0.0, 60.0)
+            where = c.header if c.isolated else "on the ground"
+            ax.set_title(plain(f"{where}: peak opening / slenderness; x: where it fails"), fontsize=9, loc="left")
+            bx.set_title(plain(f"{where}: residual offset of each drum [cm]"), fontsize=9, loc="left")
+        fig.suptitle(plain(f"{block.name}: green, a record it stands; x, the contact about which it fails"),
+                     fontsize=9.5)
     return _bytes(fig)
 
 
@@ -169,10 +183,11 @@ def drum_figure(assessment, block) -> str:
     png = openings_png(assessment, block)
     if png is None:
         return ""
-    return figure(png, f"{drum_noun(block)[:1].upper() + drum_noun(block)[1:]}: how far each joint opened under "
-                       "each record (left; the dotted line at 1: the tilt at which the drums above would fall if "
-                       "everything stood still) and where each drum was left (right), bottom to top. Time "
-                       f"histories of one run: rockcli simulate --body ... --drums N --friction MU.")
+    return figure(png, f"{drum_noun(block)[:1].upper() + drum_noun(block)[1:]}: under the records it stands, how far "
+                       "each joint opened (left; the dotted line at 1: the tilt at which the drums above would fall "
+                       "if everything stood still) and where each drum was left (right), bottom to top; under the "
+                       "others, the contact about which it failed and under how many records. The time history of "
+                       "one run: rockcli simulate --drums N --friction MU.")
 
 
 __all__ = ["DRUM_ASSUMPTIONS", "caveat", "drum_certainty", "drum_comparison", "drum_figure", "drum_first_screen", "is_drums",
