@@ -81,16 +81,20 @@ def monolith_name(roles: dict, drum_name: str) -> str | None:
     return next((n for n, (kind, d) in roles.items() if kind == "monolith" and d == drum_name), None)
 
 
+def drum_row(row, column, role) -> None:
+    """Name on ``row`` the column of drums it belongs to and its drums (1 for the monolith), before any run."""
+    row.drum_column = role[1]
+    row.drums = len(_subject(column).drums) if role[0] == "drums" else 1
+
+
 def drum_fields(row, r, role) -> None:
     """What a column of drums (``r`` a :class:`rockcli.solve.drums.DrumSlideRun`) or its monolith (``r`` a
     :class:`rockcli.solve.slide_many.SlideRun`) adds to ``row`` (:class:`rockcli.assess.AssessmentRow`)."""
     from rockcli.solve.drums import first_move
 
-    kind, drum_name = role
-    row.drum_column = drum_name
+    kind = role[0]
     if kind == "drums":
         st = r.slide
-        row.drums = len(st.interfaces)
         row.falls_at = r.falls_at or ""
         fm = r.first_move
         offsets = r.residual_offsets_m
@@ -103,7 +107,6 @@ def drum_fields(row, r, role) -> None:
         row.peak_openings_over_alpha = " ".join(f"{p.psi_max_over_alpha:.4g}" for p in st.interfaces)
         row.n_inconsistent, row.n_jumps = r.n_inconsistent, r.n_jumps
     else:  # the monolith: one drum; where nothing slid its run is the rocking model's
-        row.drums = 1
         row.falls_at = "base" if r.overturned else ""
         fm = first_move(r.slide) if r.slid else (("base", r.t_uplift_s, "opens") if math.isfinite(r.t_uplift_s)
                                                  else None)
@@ -148,5 +151,5 @@ def pair_drum_rows(rows, roles: dict, margin: bool) -> None:
                                             m.theta_max_over_alpha)
 
 
-__all__ = ["UNDECIDED", "drum_fields", "drum_roles", "is_drum_column", "monolith_name", "pair_drum_rows",
+__all__ = ["UNDECIDED", "drum_fields", "drum_roles", "drum_row", "is_drum_column", "monolith_name", "pair_drum_rows",
            "with_monoliths"]

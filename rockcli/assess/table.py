@@ -294,13 +294,15 @@ def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
         return collapse(result, excitations, groups)
     timings = {}
     rows, scenes, run_rows = [], [], []
-    from rockcli.assess.drums import drum_fields, drum_roles, pair_drum_rows
+    from rockcli.assess.drums import drum_fields, drum_roles, drum_row, pair_drum_rows
 
     roles = drum_roles(columns)  # columns of drums and the monoliths beside them
     for b in columns:
         for x in excitations:
             for c in configurations:
                 row = _base_row(b, x, c)
+                if b.name in roles:  # a column of drums or its monolith, also on a row that could not run
+                    drum_row(row, b, roles[b.name])
                 rows.append(row)
                 if x.motion is not None:
                     scenes.append((b, c.foundation, x.motion))
