@@ -65,9 +65,10 @@ def drum_first_screen(assessment, block) -> str:
              "<ul class='short'>"]
     for head, sentences in drum_answer(assessment, block):
         changed = [t for word, t in sentences if word in ("safer", "worse")]
+        more = f"<li>and {len(changed) - 4} more (in 'Verdicts and margins')</li>" if len(changed) > 4 else ""
         parts.append(f"<li>{esc(head[:1].upper() + head[1:])}."
-                     + ("<ul>" + "".join(f"<li>{esc(t)}.</li>" for t in changed[:4]) + "</ul>" if changed else "")
-                     + "</li>")
+                     + ("<ul>" + "".join(f"<li>{esc(t)}.</li>" for t in changed[:4]) + more + "</ul>" if changed
+                        else "") + "</li>")
     parts.append("</ul>")
     return "".join(parts) + caveat(assessment, block)
 
