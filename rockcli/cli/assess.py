@@ -278,7 +278,8 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
           --isolation none --isolation linear:Tb=2.5 --report statue.html
 
     The margins (--margin, the default) take most of the time: --no-margin gives the verdicts alone,
-    in seconds.
+    in seconds. Columns of drums are far slower (the catalogue: minutes of CPU without margins, hours
+    with them; docs/physics-drums.md): try one record first (--records ID --no-margin).
     """
     from rockcli.assess import count_runs, parse_configurations, resolve_excitations, run_assessment
 
