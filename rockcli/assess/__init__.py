@@ -32,6 +32,10 @@ The library behind ``rockcli assess`` (no click, no pandas). Read it in this ord
     A body on a free plinth in words (:mod:`rockcli.report.plinth_words`, re-exported): how each block rocked
     (``nothing lifts: the statue stays put on its plinth and the plinth does not rock``), one run of
     ``simulate --on``, and "Does the plinth help?".
+:mod:`rockcli.assess.drums`
+    Columns of drums beside their monoliths (``assess column nemea-drums --friction MU``): the monoliths added,
+    what the drums add to each row (where the column fails, which joint moves first, the openings, the residual
+    offsets), drums against monolith record by record, and whether each answer is reliable.
 :mod:`rockcli.assess.fragility`
     ``assess fragility``: each record's overturning capacity (smallest overturning scale x the
     record's intensity measure) and a lognormal fragility per column x configuration fitted by

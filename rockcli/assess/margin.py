@@ -59,6 +59,9 @@ RTOL_FLOOR = 8 * float(np.finfo(float).eps)
 
 NOTE_NO_OVERTURN = "no overturning up to {:g}x"
 NOTE_OVERTURNS_AT_MIN = "overturns already at {:g}x, the smallest factor scanned"
+#: The runs of a search (those at or below the margin, as the unproven ones) whose contact law found no consistent
+#: pattern at some event (``n_inconsistent > 0``: a column of drums under strong shaking): the margin rests on them.
+NOTE_INCONSISTENT = "{} scaled run(s) with contact choices no pattern made consistent: not reliable"
 #: A scene of a group left out of the search (``find_overturn_scales(groups=...)``): its margin is above
 #: the group's smallest, which is at most this factor.
 NOTE_ABOVE_GROUP = "searched up to {:g}x only: it does not overturn up to there, and another orientation does"
@@ -112,7 +115,8 @@ def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL,
         already overturns; ``(NaN, NaN, "error: ...")`` when the solver refused the scene. The note
         counts the runs at or below the margin (every run when nothing overturns; the bisection's
         runs included, the factor 1 of ``known`` not) that reached the solver's horizon unproven:
-        runs of the full scan, which the search's path does not change. With ``groups``, a scene left
+        runs of the full scan, which the search's path does not change; and likewise those whose contact
+        law found no consistent pattern at some event (:data:`NOTE_INCONSISTENT`). With ``groups``, a scene left
         out (Notes, 3) gets ``(NaN, NaN, note)`` with :data:`NOTE_ABOVE_GROUP`.
 
     Notes
@@ -170,6 +174,9 @@ def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL,
     errors = {}
     unproven = np.zeros((n, m), dtype=bool)  # grid runs that reached the solver's horizon unproven
     unproven_bisection = np.zeros(n, dtype=np.int64)
+    # runs whose contact law found no consistent pattern at some event (a column of drums: not reliable)
+    inconsistent = np.zeros((n, m), dtype=bool)
+    inconsistent_bisection = np.zeros(n, dtype=np.int64)
 
     def is_unproven(r):
         return r.verdict != VERDICT_ERROR and not r.overturned and not r.settled
@@ -187,6 +194,7 @@ def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL,
     def collect(pairs, res):
         for (i, j), r in zip(pairs, res):
             unproven[i, j] = is_unproven(r)
+            inconsistent[i, j] = getattr(r, "n_inconsistent", 0) > 0
             state[i, j] = code(r)
             if state[i, j] == 4:
                 errors.setdefault(i, r.error)
@@ -283,6 +291,7 @@ def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL,
         res = simulate_many([_scaled_job(*scenes[i], mids[i]) for i in active], early=True, **solver)
         for i, r in zip(active, res):
             unproven_bisection[i] += is_unproven(r)
+            inconsistent_bisection[i] += getattr(r, "n_inconsistent", 0) > 0
             if r.verdict == VERDICT_ERROR:  # cannot happen for a scene that ran at the grid factors
                 out[i], hi[i], lo[i] = (math.nan, math.nan, f"error: {r.error}"), 1.0, 1.0
             elif r.overturned:
@@ -295,11 +304,16 @@ def find_overturn_scales(scenes, *, grid=MARGIN_GRID, rtol: float = MARGIN_RTOL,
             out[i] = (float(hi[i]), float(lo[i]), "")
         elif i in left_out:
             continue
-        count = int(np.count_nonzero(unproven[i, :m if first[i] < 0 else first[i] + 1])) + int(unproven_bisection[i])
+        upto = m if first[i] < 0 else first[i] + 1
+        count = int(np.count_nonzero(unproven[i, :upto])) + int(unproven_bisection[i])
         if count:
             hi_i, lo_i, note = out[i]
             out[i] = (hi_i, lo_i, (note + "; " if note else "") + f"{count} scaled run(s) not proven at the "
                       "solver's horizon, counted as surviving")
+        count = int(np.count_nonzero(inconsistent[i, :upto])) + int(inconsistent_bisection[i])
+        if count:
+            hi_i, lo_i, note = out[i]
+            out[i] = (hi_i, lo_i, (note + "; " if note else "") + NOTE_INCONSISTENT.format(count))
     return out
 
 

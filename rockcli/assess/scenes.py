@@ -35,18 +35,26 @@ def parse_column_spec(text: str) -> Block:
     """A column from a preset name or a custom spec.
 
     ``bassae``, ``nemea`` (presets, see :data:`rockcli.models.COLUMN_PRESETS`), or
-    ``NAME:R=<m>,alpha=<deg>`` or ``NAME:height=<m>,width=<m>`` (full height and base width).
+    ``NAME:R=<m>,alpha=<deg>`` or ``NAME:height=<m>,width=<m>`` (full height and base width). A column of
+    drums (:class:`rockcli.models.drums.DrumColumn`, :func:`rockcli.models.drums.parse_drum_spec`): ``nemea-drums``,
+    ``bassae-drums`` (presets) or ``NAME:height=<m>,width=<m>,drums=<N>``; it is assessed with friction, beside its
+    monolith (:mod:`rockcli.assess.drums`).
 
     Examples
     --------
     >>> parse_column_spec("statue:R=1.2,alpha=14").name
     'statue'
     """
+    from rockcli.models.drums import parse_drum_spec
+
+    drums = parse_drum_spec(text)
+    if drums is not None:
+        return drums
     raw = str(text).strip()
     name, colon, rest = raw.partition(":")
     name = name.strip()
     if not colon:
-        return column(name)
+        return _preset(name)
     if not name:
         raise RockcliInputError(f"column {raw!r} needs a name before ':' (e.g. statue:R=1.2,alpha=14)")
     from rockcli.io.inputs import spec_numbers
@@ -54,6 +62,25 @@ def parse_column_spec(text: str) -> Block:
     values = spec_numbers(rest, f"column {raw!r}", {"r": "R", "alpha": "alpha", "height": "height", "width": "width"},
                           "R=<m>, alpha=<deg>, height=<m>, width=<m>")
     return custom_column(name, **values)
+
+
+def _preset(name: str) -> Block:
+    """A preset column (:func:`rockcli.models.column`); an unknown name is refused naming the drum presets too."""
+    from rockcli.models.block import COLUMN_PRESETS
+    from rockcli.models.drums import DRUM_PRESETS
+
+    key = name.lower()
+    if key in COLUMN_PRESETS:
+        return column(name)
+    import difflib
+
+    close = difflib.get_close_matches(key, list(COLUMN_PRESETS) + list(DRUM_PRESETS), n=1)
+    raise RockcliInputError(
+        f"unknown body {name!r}" + (f" (did you mean {close[0]!r}?)" if close else "")
+        + f": the presets are the columns {' and '.join(sorted(COLUMN_PRESETS))} and the same as stacks of drums "
+          f"{' and '.join(sorted(DRUM_PRESETS))}; a body of your own is written NAME:R=<m>,alpha=<deg> or "
+          f"NAME:height=<m>,width=<m> (and ,drums=<N> for a column of drums), e.g. "
+          f"{key or 'statue'}:height=1.7,width=0.45")
 
 
 def custom_column(name: str, R=None, alpha=None, height=None, width=None, *, labels: dict | None = None) -> Block:

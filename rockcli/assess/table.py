@@ -91,6 +91,34 @@ class AssessmentRow:
     slide_residual_m: float = math.nan
     plinth_slide_max_m: float = math.nan
     plinth_slide_residual_m: float = math.nan
+    #: a column of drums (``assess column nemea-drums --friction MU``, :mod:`rockcli.assess.drums`) and the monolith
+    #: run beside it: the drum column's name (on both rows) and its drums (1 on the monolith's row); where it fails
+    #: (``base``: the whole column falls; ``joint k``: the drums above joint k fall, or a drum slid off there); the
+    #: first contact to move and how (``joint 3 opens``) and when; the largest opening of a joint between drums
+    #: over its slenderness and the largest slip of one [m], and where; each contact's peak opening over its
+    #: slenderness and each drum's residual offset from the footprint's axis [m], bottom to top, space-separated,
+    #: and the largest offset; on the drums' row the drums against the monolith (``safer``, ``worse``, ``alike``:
+    #: :func:`rockcli.solve.drums.compare`) with the monolith's verdict and margin; the contact law's events
+    #: without a consistent pattern and its pulling pivots; ``reliable``: no such event in the run or in the runs
+    #: its margin rests on
+    drum_column: str = ""
+    drums: int | None = None
+    falls_at: str = ""
+    first_move: str = ""
+    first_move_t_s: float = math.nan
+    joint_open_max_over_alpha: float = math.nan
+    joint_open_max_at: str = ""
+    joint_slide_max_m: float = math.nan
+    joint_slide_max_at: str = ""
+    peak_openings_over_alpha: str = ""
+    residual_offsets_m: str = ""
+    residual_offset_max_m: float = math.nan
+    drums_vs_monolith: str = ""
+    monolith_verdict: str = ""
+    monolith_overturn_scale: float = math.nan
+    n_inconsistent: int | None = None
+    n_jumps: int | None = None
+    reliable: bool | None = None
 
 
 #: CSV column order (every field of :class:`AssessmentRow`).
@@ -266,10 +294,15 @@ def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
         return collapse(result, excitations, groups)
     timings = {}
     rows, scenes, run_rows = [], [], []
+    from rockcli.assess.drums import drum_fields, drum_roles, drum_row, pair_drum_rows
+
+    roles = drum_roles(columns)  # columns of drums and the monoliths beside them
     for b in columns:
         for x in excitations:
             for c in configurations:
                 row = _base_row(b, x, c)
+                if b.name in roles:  # a column of drums or its monolith, also on a row that could not run
+                    drum_row(row, b, roles[b.name])
                 rows.append(row)
                 if x.motion is not None:
                     scenes.append((b, c.foundation, x.motion))
@@ -312,6 +345,8 @@ def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
             _plinth_fields(row, r)
         if hasattr(r, "slide"):
             _slide_fields(row, r)
+        if row.column in roles:
+            drum_fields(row, r, roles[row.column])
     ok = [i for i, r in enumerate(responses) if r.verdict != VERDICT_ERROR]
     groups = _orientation_groups(run_rows, orientations)
     if margin:
@@ -341,6 +376,7 @@ def run_assessment(columns: Sequence[Block], excitations: Sequence[Excitation],
         for i, share in zip(ok, shares):
             run_rows[i].overturn_share_pm10 = share
         timings["neighbourhood_s"] = time.perf_counter() - t0
+    pair_drum_rows(rows, roles, margin)
     return Assessment(list(columns), list(excitations), list(configurations), rows, list(unavailable), margin,
                       timings, neighbourhood, dict(solver))
 

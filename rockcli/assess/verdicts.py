@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import re
 
+from rockcli.report.drum_words import DRUM_QUESTION, drum_answer, drum_noun, is_drums  # noqa: F401
 from rockcli.report.plinth_words import PLINTH_QUESTION, plinth_help_parts, plinth_summary  # noqa: F401
 from rockcli.report.verdicts import (_factor, _fx, _key, _luck, _margin_clause, _names, _one_margin,  # noqa: F401
                                      _one_record_clause, _saved_by_luck, _smallest_factor, _suite_clause,
@@ -65,4 +66,10 @@ def format_verdicts(assessment, width: int = 100) -> str:
         if helps:
             lines.append(f"  {PLINTH_QUESTION}")
             lines += [_fill(h, width, initial_indent="  - ", subsequent_indent="    ") for h in helps]
+    for b in (b for b in assessment.columns if is_drums(b)):  # each column of drums beside its monolith
+        lines.append(f"{DRUM_QUESTION} {drum_noun(b)[:1].upper()}{drum_noun(b)[1:]}, record by record:")
+        for head, sentences in drum_answer(assessment, b):
+            lines.append(_fill(head[:1].upper() + head[1:] + ".", width, initial_indent="  ",
+                               subsequent_indent="      "))
+            lines += [_fill(t + ".", width, initial_indent="  - ", subsequent_indent="      ") for _, t in sentences]
     return "\n".join(lines)

@@ -74,6 +74,14 @@ def _with_vertical(excitations, configurations, units, dt) -> list:
     return attach_verticals(excitations, motion=motion, label=label)
 
 
+def _vertical_given() -> bool:
+    """A vertical ground motion is asked for (``--vertical``, ``--vertical-pulse`` or ``--vertical-component``)."""
+    from rockcli.cli.options import given_vertical
+
+    v = given_vertical()
+    return any(v[k] is not None for k in ("source", "pulse", "component"))
+
+
 def _vertical_note(result) -> str:
     """A line of the notes naming the vertical motion of each record (none without one)."""
     from rockcli.assess.vertical import vertical_labels
@@ -251,6 +259,9 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
 
     NAME is a preset (bassae, nemea) or a custom block NAME:R=<m>,alpha=<deg> or
     NAME:height=<m>,width=<m>; --R/--alpha or --height/--width add one more block (--name).
+    A column as a stack of drums: nemea-drums, bassae-drums or NAME:height=<m>,width=<m>,drums=<N>,
+    with --friction MU; each runs beside its monolith (docs/physics-drums.md), and the answer says,
+    record by record, whether the drums make the column safer.
     Prints, per column, a table records x configurations (survives with peak |theta|/alpha,
     or OVERTURNS; xS is the smallest scale factor of the record that overturns) and how many
     records each configuration survives, then the answer in plain words: one sentence per body and
@@ -262,11 +273,13 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
       ROCKCLI_RECORDS=../shared/records rockcli assess column bassae nemea --csv table.csv
       rockcli assess column statue:R=1.2,alpha=14 --records kobe-1995-takarazuka-000 --isolation none
       rockcli assess column nemea --records kobe-1995-takarazuka-000 --isolation linear:Tb=3 --plot-dir figs
+      rockcli assess column nemea-drums bassae-drums --friction 0.7 --report drums.html
       rockcli assess column statue:R=0.93,alpha=15.5 --records ../shared/records/RSN1119_KOBE_TAZ000.AT2 \\
           --isolation none --isolation linear:Tb=2.5 --report statue.html
 
     The margins (--margin, the default) take most of the time: --no-margin gives the verdicts alone,
-    in seconds.
+    in seconds. Columns of drums are far slower (the catalogue: minutes of CPU without margins, hours
+    with them; docs/physics-drums.md): try one record first (--records ID --no-margin).
     """
     from rockcli.assess import count_runs, parse_configurations, resolve_excitations, run_assessment
 
@@ -276,6 +289,13 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
     solver = _restitution_kw(restitution)
     columns = _columns(names, R, alpha, height, width, name)
     configurations = parse_configurations(isolation)
+    from rockcli.cli.assess_drums import with_drums  # each column of drums beside its monolith
+
+    columns = with_drums(columns, friction=friction, refused=(
+        ("--on", plinth_spec is not None), ("--restitution", restitution is not None),
+        ("--cap-ratio", bool(cap_ratio)), ("--azimuth worst", given_azimuth()["azimuth"] == "worst"),
+        ("--vertical/--vertical-pulse/--vertical-component", _vertical_given()),
+        ("--history-dir", hist_dir), ("--plot-dir", plot_dir), ("--check-tolerance", check_tolerance)))
     plinth_note = ""
     if plinth_spec is not None:  # each body alone and on the plinth (rockcli.cli.assess_plinth)
         from rockcli.cli.assess_plinth import with_plinth
@@ -308,6 +328,8 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
     _refuse_if_none_can_run(excitations)
     _add_record_inputs(excitations)
     if hist_dir or plot_dir:
+        from rockcli.cli.assess_runs import _plan_run_files
+
         _plan_run_files(columns, excitations, configurations, hist_dir, plot_dir)
 
     # with --azimuth worst, run_assessment runs every orientation of each pair (Excitation.azimuths) and keeps the
@@ -346,6 +368,8 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
         click.echo(f"Warning: {len(failed_runs)} run(s) failed; their rows carry the error (first: {r.column} / "
                    f"{r.record} / {r.configuration}: {r.error})", err=True)
     if chk is not None:
+        from rockcli.cli.assess_runs import _echo_tolerance_check
+
         _echo_tolerance_check(chk, as_json)
 
     if csv_path:
@@ -354,6 +378,8 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
         write_assessment_csv(result, csv_path, check=chk)
         click.echo(f"wrote {csv_path} ({len(result.rows)} rows)", err=as_json)
     if hist_dir or plot_dir:
+        from rockcli.cli.assess_runs import _write_histories
+
         _write_histories(result, hist_dir, plot_dir, as_json)
     if report_path:
         from rockcli.report.html import write_report
@@ -365,10 +391,11 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
 
 def _assessment_json(result, columns, configurations, check) -> dict:
     """``assess column --json``: the bodies, the configurations and one row per run (the CSV's columns)."""
+    from rockcli.cli.assess_drums import drums_json
     from rockcli.report.tables import assessment_rows
 
     return {"columns": [{"name": b.name, "R_m": b.R, "alpha_deg": b.alpha_deg, "height_m": b.height,
-                         "width_m": b.width, **_plinth_json(b)} for b in columns],
+                         "width_m": b.width, **_plinth_json(b), **drums_json(b)} for b in columns],
             "configurations": [{"header": c.header, "spec": c.spec, "isolation": c.label} for c in configurations],
             "rows": assessment_rows(result, check)}
 
@@ -380,95 +407,6 @@ def _plinth_json(b) -> dict:
     from rockcli.cli.simulate_plinth import plinth_dict
 
     return {"body": b.body.name, "plinth": plinth_dict(b)}
-
-
-def _echo_tolerance_check(chk, as_json=False):
-    from functools import partial
-
-    from rockcli.conditioning import ILL_PEAK
-
-    echo = partial(click.echo, err=as_json)
-    bases = chk.base_rtols or (chk.base_rtol,)
-    head = (f"Tolerance check: {chk.n_runs} scenes rerun at rtol {'/'.join(f'{b / 100:g}' for b in bases)} "
-            f"(100x tighter than {'/'.join(f'{b:g}' for b in bases)}"
-            + (", the defaults of rigid and linear / sliding bearings" if len(bases) > 1 else "") + "): ")
-    if not chk.changed:
-        echo(head + f"no verdict changes (largest change of a survivor's peak |theta|/alpha: "
-                          f"{chk.max_peak_change:.1e}).")
-    else:
-        echo(head + f"{len(chk.changed)} VERDICTS CHANGE (decided by the numerics; treat as a coin toss):")
-        for row, tight in chk.changed:
-            echo(f"  {row.column} / {row.record} / {row.configuration}: {row.verdict} -> {tight}")
-    head = (f"Conditioning check: the {chk.n_runs} scenes rerun on {chk.ulp_draws} copies of their motion moved by "
-            f"one ulp (the same motion to within rounding): ")
-    if not chk.ill:
-        echo(head + f"no verdict changes (largest change of a survivor's peak |theta|/alpha: "
-                          f"{chk.max_ulp_peak_change:.1e}).")
-        return chk
-    echo(head + f"{len(chk.ill)} ILL-CONDITIONED (the verdict changes, or the peak moves by more than "
-                      f"{ILL_PEAK:g} alpha: the answer is not determined by the motion at double precision; read "
-                      f"it as one sample of a spread, and look at the margin):")
-    for row, verdicts, moved in chk.ill:
-        what = f"peak moves by {moved:.2g} alpha" if moved == moved else f"{row.verdict} -> {', '.join(verdicts)}"
-        echo(f"  {row.column} / {row.record} / {row.configuration}: {what}")
-    return chk
-
-
-def _plan_run_files(columns, excitations, configurations, hist_dir, plot_dir):
-    """Declare the file of every run in --histories/--plot before any work: two runs whose names give
-    the same file name (after the unsafe characters are replaced; letter case ignored) are refused."""
-    from pathlib import Path
-
-    from rockcli.assess import safe_name
-    from rockcli.io.files import current
-
-    outputs = current()
-    seen = {}
-    for b in columns:
-        for x in (x for x in excitations if x.motion is not None):
-            for c in configurations:
-                stem = safe_name(b.name, x.label, c.header)
-                other = seen.setdefault(stem.casefold(), (b.name, x.label, c.header))
-                if other != (b.name, x.label, c.header):
-                    raise InputError(f"the runs {' / '.join(other)} and {b.name} / {x.label} / {c.header} would write "
-                                     f"the same file {stem}.*; give the columns (or records) names that differ in "
-                                     f"letters or digits")
-                for folder, option, suffix in ((hist_dir, "--history-dir", ".csv"), (plot_dir, "--plot-dir", ".png")):
-                    if folder and outputs is not None:
-                        outputs.declare(Path(folder) / f"{stem}{suffix}", option, check=False)
-
-
-def _write_histories(result, hist_dir, plot_dir, as_json=False):
-    """One history CSV and/or figure per run, staged in the command's transaction (nothing is replaced or
-    left behind unless every one of them, and the rest of the run, succeeds)."""
-    from pathlib import Path
-
-    from rockcli.assess import history_runs, safe_name
-    from rockcli.io.files import transaction
-    from rockcli.report.figures import plot_grid_dt
-    from rockcli.report.response import plot_response, write_history_csv
-    from rockcli.solve import simulate
-
-    n = 0
-    with transaction() as outputs:
-        for folder, option in ((hist_dir, "--history-dir"), (plot_dir, "--plot-dir")):
-            if folder:
-                outputs.make_folder(folder, option)
-        for row, block, conf, x, resp in history_runs(result):
-            if resp.status < 0:  # the step cap: no history to show as if it were valid
-                continue
-            stem = safe_name(row.column, row.record, row.configuration)
-            label = x.label + (" (catalogued pulse)" if x.kind == "pulse" else "")
-            if hist_dir:
-                write_history_csv(resp, block, Path(hist_dir) / f"{stem}.csv")
-            if plot_dir:  # drawn from the dense output between the steps
-                dense = simulate(block, conf.foundation, x.motion, history=True, history_dt=plot_grid_dt(x.motion),
-                                 **result.solver)
-                plot_response(dense, block, conf.foundation, Path(plot_dir) / f"{stem}.png", excitation=x.motion,
-                              motion=label)
-            n += 1
-    what = " and ".join(f"{k} in {d}" for k, d in (("histories", hist_dir), ("figures", plot_dir)) if d)
-    click.echo(f"wrote {what} ({n} runs)", err=as_json)
 
 
 @assess.command(name="fragility")
@@ -536,6 +474,9 @@ def fragility(names, R, alpha, height, width, name, records, units, dt, isolatio
     validate_options(horizon=horizon)
     solver = _restitution_kw(restitution)
     columns = _columns(names, R, alpha, height, width, name)
+    from rockcli.cli.assess_drums import refuse_drums_in_fragility
+
+    refuse_drums_in_fragility(columns)
     if not records:
         raise InputError("give the record suite with --records DIR|ID|FILE (repeatable)")
     configurations = parse_configurations(isolation)

@@ -11,9 +11,10 @@ import click
 from rockcli.errors import RockcliInputError
 
 FRICTION_ASSESS_HELP = ("Coulomb friction as a model (docs/physics-sliding.md): every contact may stick, slide, "
-                        "rock or rock while it slides; MU for every contact, or with --on base=MU,joint=MU. A "
-                        "scene where nothing slides keeps the rocking answer; the margin is the smallest factor "
-                        "that topples the body or slides it off its plinth. On the ground and on linear bearings.")
+                        "rock or rock while it slides; MU for every contact (a column of drums: one MU, required), "
+                        "or with --on base=MU,joint=MU. A scene where nothing slides keeps the rocking answer; the "
+                        "margin is the smallest factor that topples the body or slides it off its plinth. On the "
+                        "ground and on linear bearings.")
 
 
 def friction_option(func):

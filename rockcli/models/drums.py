@@ -35,6 +35,53 @@ DRUM_PRESETS = {
 }
 
 
+#: The words of a drum column's NAME on the command line (``assess column``), after ``NAME:``.
+DRUM_SPEC_KEYS = {"height": "height", "width": "width", "drums": "drums"}
+
+
+def parse_drum_spec(text) -> "DrumColumn | None":
+    """The drum column a NAME of ``assess column`` names: a preset of :data:`DRUM_PRESETS` (``nemea-drums``), or
+    ``NAME:height=<m>,width=<m>,drums=<N>`` (``N`` equal drums of the base width); None when ``text`` names no drum
+    column (a preset block, a custom block without ``drums=``), one sentence when a drum spec is wrong."""
+    from rockcli.errors import RockcliInputError
+    from rockcli.io.inputs import spec_numbers
+
+    raw = str(text).strip()
+    name, colon, rest = raw.partition(":")
+    name = name.strip()
+    if not colon:
+        return drum_preset(name) if name.lower() in DRUM_PRESETS else None
+    if "drums" not in [part.partition("=")[0].strip().lower() for part in rest.split(",")]:
+        return None
+    what = f"column {raw!r}"
+    if not name:
+        raise RockcliInputError(f"{what} needs a name before ':' (e.g. shaft:height=6,width=1.1,drums=6)")
+    values = spec_numbers(rest, what, DRUM_SPEC_KEYS, "height=<m>, width=<m>, drums=<N>")
+    missing = [k for k in DRUM_SPEC_KEYS if k not in values]
+    if missing:
+        raise RockcliInputError(f"{what}: a column of drums needs height=<m>, width=<m> and drums=<N> (missing: "
+                                f"{', '.join(missing)})")
+    n = values["drums"]
+    if not (n == int(n) and 1 <= n <= MAX_DRUMS):
+        raise RockcliInputError(f"{what}: drums must be a whole number from 1 to {MAX_DRUMS}, got {n:g}")
+    return DrumColumn.uniform(values["height"], values["width"], int(n), name)
+
+
+def monolith_beside(column: "DrumColumn") -> Block:
+    """The monolith an assessment runs beside ``column``: for a preset (``nemea-drums``) the paper's column itself
+    (:func:`rockcli.models.column`, named ``nemea``: the same height and width, the monolithic idealisation of the
+    paper); else :attr:`DrumColumn.monolith` named ``<name> monolith``."""
+    from rockcli.models.block import COLUMN_PRESETS, column as preset_column
+
+    key = column.name.lower()
+    if key in DRUM_PRESETS and key.endswith("-drums") and key[:-len("-drums")] in COLUMN_PRESETS:
+        height, width, n, _ = DRUM_PRESETS[key]
+        if column == DrumColumn.uniform(height, width, n, column.name):
+            return preset_column(key[:-len("-drums")])
+    m = column.monolith
+    return Block(m.R, m.alpha, f"{column.name} monolith")
+
+
 def drum_preset(name: str) -> "DrumColumn":
     """A named drum column (:data:`DRUM_PRESETS`)."""
     key = str(name).strip().lower()
@@ -93,6 +140,20 @@ class DrumColumn:
     def width(self) -> float:
         """The width of the bottom drum (the column's footprint)."""
         return self.drums[0][1]
+
+    @property
+    def R(self) -> float:
+        """The column's semi-diagonal as one block [m] (its monolith's)."""
+        return self.monolith.R
+
+    @property
+    def alpha(self) -> float:
+        """The column's slenderness as one block [rad] (its monolith's: the base's static threshold is ``tan``)."""
+        return self.monolith.alpha
+
+    @property
+    def alpha_deg(self) -> float:
+        return math.degrees(self.alpha)
 
     @property
     def monolith(self) -> Block:

@@ -118,7 +118,11 @@ def formula_parts(text: str) -> list[str]:
 
 
 def block_text(block) -> str:
-    """``nemea: $R$ = 5.99 m, $\\alpha$ = 9.60°, $p$ = 1.11 rad/s``."""
+    """``nemea: $R$ = 5.99 m, $\\alpha$ = 9.60°, $p$ = 1.11 rad/s``; a column of drums: ``nemea-drums: 13 drums,
+    as one block $R$ = ...``."""
+    drums = getattr(block, "drums", None)
+    if isinstance(drums, tuple):
+        return f"{plain(block.name)}: {len(drums)} drums, as one block " + block_text(block.monolith).partition(": ")[2]
     return (f"{plain(block.name)}: $R$ = {block.R:.3g} m, $\\alpha$ = {block.alpha_deg:.3g}°, "
             f"$p$ = {block.p:.3g} rad/s")
 

@@ -181,15 +181,20 @@ def body_section(blocks, *, restitution: float | None = None, cap_ratio: float =
     from rockcli.models.impact import impact_ratio
 
     def e_cell(b):
+        if isinstance(getattr(b, "drums", None), tuple):  # a column of drums: the plastic impact with Coulomb's law
+            return "plastic"
         if getattr(b, "plinth", None) is not None:
             return num(restitution, ".3f") if restitution is not None else "two-block law"
         if cap_ratio > 0.0:
             return num(impact_ratio_on_base(b.alpha, 0.0, cap_ratio, restitution), ".3f")
         return num(impact_ratio(b.alpha, 0.0, restitution), ".3f")
 
+    def one(b):  # a column of drums: its figures as one block (its monolith's), its first joint to move below
+        return b.monolith if isinstance(getattr(b, "drums", None), tuple) else b
+
     rows = [(esc(b.name), esc(body_noun(b)), num(b.height, ".3f", "m"), num(b.width, ".3f", "m"),
-             num(b.h / b.b, ".2f"), num(b.R, ".3f", "m"), num(b.alpha_deg, ".2f", "deg"), num(b.p, ".3f", "rad/s"),
-             num(b.uplift_acceleration / G, ".3f", "g"), e_cell(b))
+             num(one(b).h / one(b).b, ".2f"), num(b.R, ".3f", "m"), num(b.alpha_deg, ".2f", "deg"),
+             num(one(b).p, ".3f", "rad/s"), num(one(b).uplift_acceleration / G, ".3f", "g"), e_cell(b))
             for b in blocks]
     head = ("name", "called", "height", "width", "height / width", "R", "alpha", "p", "lifts off at", "e")
     stacks = [b for b in blocks if getattr(b, "plinth", None) is not None]
@@ -199,6 +204,12 @@ def body_section(blocks, *, restitution: float | None = None, cap_ratio: float =
         f"{s.body_uplift_acceleration / G:.3f} g and body and plinth lift together at "
         f"{s.assembly_uplift_acceleration / G:.3f} g (the smaller is in the table); they rock as two rigid blocks, "
         f"without sliding (docs/plinth.md)." for s in stacks)
+    drums = "".join(
+        f" {esc(b.name)}: {len(b.drums)} drums free at every joint (its figures in the table are the column's as one "
+        f"block; 'lifts off at' is the base's); from rest each joint would open at "
+        f"{', '.join(f'{t:.3f}' for t in b.static_thresholds())} g, bottom to top, unless it slides first (at mu g); "
+        f"impacts are plastic with Coulomb's law (docs/physics-drums.md)."
+        for b in blocks if isinstance(getattr(b, "drums", None), tuple))
     if restitution is not None:
         rule = f"the coefficient of restitution given (--restitution {restitution:g}), not Housner's rule"
     elif cap_ratio > 0.0:
@@ -210,6 +221,7 @@ def body_section(blocks, *, restitution: float | None = None, cap_ratio: float =
         rule += ("; a body on a plinth has no single e: its impacts keep both blocks' momenta (the two-block law, "
                  "docs/plinth.md)")
     return (table(head, rows, numeric=range(2, 10)) + (f"<p class='note'>{plinths.strip()}</p>" if stacks else "") +
+            (f"<p class='note'>{drums.strip()}</p>" if drums else "") +
             "<p class='note'>The body is taken as a rigid block. R: distance from its centre of mass to a corner "
             "of its base; alpha: its slenderness, atan(width/height) (the angle it must tilt to fall); p = "
             "sqrt(3g/4R): its frequency parameter (larger bodies rock more slowly and are harder to topple); "

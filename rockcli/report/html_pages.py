@@ -255,6 +255,10 @@ def assessment_report(assessment, *, check=None, command: str = "") -> str:
         if helps:
             first.append(f"<p class='short'>{esc(PLINTH_QUESTION)}</p><ul class='short'>"
                          + "".join(f"<li>{esc(h)}</li>" for h in helps) + "</ul>")
+    from rockcli.report.html_drums import (DRUM_ASSUMPTIONS, drum_certainty, drum_comparison, drum_figure,
+                                           drum_first_screen, is_drums)
+
+    first += [drum_first_screen(assessment, b) for b in blocks if is_drums(b)]  # do the drums make it safer?
     facts = []
     for b in blocks:
         for c in assessment.configurations:
@@ -276,7 +280,9 @@ def assessment_report(assessment, *, check=None, command: str = "") -> str:
     first.append(_facts(facts))
     figs = []
     for b in blocks:
-        if getattr(b, "friction_label", ""):  # friction as a model: the friction runs, with their slips
+        if is_drums(b):  # a column of drums: where its joints opened and its drums were left, every record
+            figs.append(drum_figure(assessment, b))
+        elif getattr(b, "friction_label", ""):  # friction as a model: the friction runs, with their slips
             from rockcli.report.html_slide import slide_figures
 
             figs.append(slide_figures(assessment, b))
@@ -309,10 +315,13 @@ def assessment_report(assessment, *, check=None, command: str = "") -> str:
         "configurations": configurations_section(assessment.configurations),
         "records": records_section(assessment.excitations, assessment.unavailable, _projections(assessment)),
         "verdicts": (MARGIN_WORDS if assessment.margin else NO_MARGIN_WORDS)
-                    + "\n".join(_verdict_table(assessment, b) for b in blocks),
+                    + "\n".join(_verdict_table(assessment, b) for b in blocks)
+                    + "\n".join(drum_comparison(assessment, b) for b in blocks if is_drums(b)),
         "figures": "\n".join(f for f in figs if f) or "<p>No run to draw.</p>",
-        "certainty": _certainty(assessment, check),
-        "assumptions": assumptions_section(_friction_assumptions(blocks), margins=assessment.margin),
+        "certainty": _certainty(assessment, check) + drum_certainty(assessment),
+        "assumptions": assumptions_section(_friction_assumptions(blocks)
+                                           + (DRUM_ASSUMPTIONS if any(is_drums(b) for b in blocks) else ()),
+                                           margins=assessment.margin),
         "reproduce": reproduce_section(command),
     }
     return page(_title(blocks), "rockcli assess column: rocking and overturning of free-standing bodies "

@@ -75,7 +75,15 @@ def format_matrix(assessment) -> str:
 
     xs = assessment.excitations
     confs = assessment.configurations
+    from rockcli.report.drum_words import drum_table, is_drums
+
+    beside = {r.column for r in assessment.rows if r.drum_column and r.column != r.drum_column}  # the monoliths
     for b in assessment.columns:
+        if is_drums(b):  # a column of drums: beside its monolith, in one table
+            blocks.append(drum_table(assessment, b))
+            continue
+        if b.name in beside:
+            continue
         head = ["record"] + [c.header for c in confs]
         table = [head]
         for x in xs:
@@ -117,6 +125,9 @@ def format_notes(assessment) -> str:
         lines.append(f"Friction as a model ({', '.join(frictions)}; docs/physics-sliding.md): sX: the body slid X at "
                      "most on its own contact (the floor, or its plinth); SLIDES OFF: its base reached the plinth's "
                      "edge (a fall); a run where nothing slides is the rocking model's.")
+    from rockcli.report.drum_words import drum_notes
+
+    lines += drum_notes(assessment)
     if assessment.unproven:
         from rockcli.solve import DEFAULT_HORIZON
 
@@ -210,6 +221,11 @@ PLINTH_COLUMNS = ("plinth", "toppled", "plinth_theta_max_over_alpha_asm", "frict
 #: Columns of an assessment with ``--friction`` (friction as a model): the coefficients, and how far the body's own
 #: contact (on the floor, or on its plinth) and the plinth's slid (0 where nothing slid: the rocking answer).
 FRICTION_COLUMNS = ("friction", "slide_max_m", "slide_residual_m", "plinth_slide_max_m", "plinth_slide_residual_m")
+#: Columns of an assessment with columns of drums (empty on the rows of other bodies; docs/physics-drums.md).
+DRUM_COLUMNS = ("drum_column", "drums", "falls_at", "first_move", "first_move_t_s", "joint_open_max_over_alpha",
+                "joint_open_max_at", "joint_slide_max_m", "joint_slide_max_at", "peak_openings_over_alpha",
+                "residual_offsets_m", "residual_offset_max_m", "drums_vs_monolith", "monolith_verdict",
+                "monolith_overturn_scale", "n_inconsistent", "n_jumps", "reliable")
 CHECK_COLUMNS = ("tight_rtol_verdict", "tight_rtol_peak_change", "ulp_verdicts", "ulp_peak_change", "ill_conditioned")
 
 
@@ -227,6 +243,9 @@ def extra_columns(assessment, check=None) -> dict:
             cols[key] = [getattr(r, key) for r in rows]
     if any(r.friction for r in rows):  # --friction: how far each contact slid
         for key in FRICTION_COLUMNS:
+            cols[key] = [getattr(r, key) for r in rows]
+    if any(r.drum_column for r in rows):  # columns of drums beside their monoliths
+        for key in DRUM_COLUMNS:
             cols[key] = [getattr(r, key) for r in rows]
     for key in ("restitution", "cap_ratio"):
         if assessment.solver.get(key):
@@ -268,6 +287,10 @@ def assessment_table(assessment, check=None):
         df[key] = values
     if check is not None:
         df["ill_conditioned"] = df["ill_conditioned"].astype("boolean")
+    if "drums" in df:  # columns of drums: counts with gaps (the other bodies' rows), a flag with gaps
+        for key in ("drums", "n_inconsistent", "n_jumps"):
+            df[key] = df[key].astype("Int64")
+        df["reliable"] = df["reliable"].astype("boolean")
     return df
 
 
@@ -278,7 +301,8 @@ def write_assessment_csv(assessment, path: str | os.PathLike, check=None) -> Pat
 
     columns = {k: [getattr(r, k) for r in assessment.rows] for k in CSV_COLUMNS}
     columns.update(extra_columns(assessment, check))
-    text = csv_text(columns, {"overturned": BOOLEAN, "n_impacts": INT64, "ill_conditioned": BOOLEAN})
+    text = csv_text(columns, {"overturned": BOOLEAN, "n_impacts": INT64, "ill_conditioned": BOOLEAN,
+                              "drums": INT64, "n_inconsistent": INT64, "n_jumps": INT64, "reliable": BOOLEAN})
     if text is None:
         text = assessment_table(assessment, check).to_csv(index=False, float_format="%.6g", lineterminator="\n")
     return write_text(path, text)

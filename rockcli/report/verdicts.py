@@ -310,11 +310,16 @@ def question(assessment) -> str:
         who = (f"{body_noun(bodies[0])}, alone or on its {plinths[0].plinth.name.replace('_', ' ')}," if
                len(bodies) == 1 else f"these {len(bodies)} bodies, alone or on a plinth,")
         nouns = [who]
+    drums = [b for b in assessment.columns if isinstance(getattr(b, "drums", None), tuple)]
+    if drums and len(assessment.columns) == 2 * len(drums):  # each column of drums beside its monolith
+        who = (f"{body_noun(drums[0])} and its monolith" if len(drums) == 1 else
+               f"these {len(drums)} columns of drums and their monoliths")
+        plinths = []
     xs = [x for x in assessment.excitations if x.motion is not None]
     what = f"the record {xs[0].label}" if len(xs) == 1 else f"{len(xs)} records"
     iso = any(c.isolated for c in assessment.configurations)
     rigid = any(not c.isolated for c in assessment.configurations)
     where = ("standing on the ground or on isolation bearings" if iso and rigid else
              "on isolation bearings" if iso else "standing on the ground")
-    one = len(assessment.columns) == 1 or (len(plinths) == 1 and len(assessment.columns) == 2)
+    one = (len(assessment.columns) == 1 or (len(plinths) == 1 and len(assessment.columns) == 2)) and not drums
     return f"{'Does' if one else 'Do'} {who} topple under {what}, {where}?"

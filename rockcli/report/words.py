@@ -39,6 +39,10 @@ TOPPLES, SURVIVES, UNDECIDED, FAILED = "topples", "survives", "undecided", "not 
 def body_noun(block) -> str:
     """``the column`` (a temple preset), ``the statue`` (a block named statue) or ``the block`` (unnamed); a body
     on a plinth (:class:`rockcli.models.Stack`): ``the statue on its plinth``."""
+    from rockcli.report.drum_words import drum_noun, is_drums
+
+    if is_drums(block):  # a column of drums (docs/physics-drums.md)
+        return drum_noun(block)
     plinth = getattr(block, "plinth", None)
     if plinth is not None:
         return f"{body_noun(block.body)} on its {plinth.name.replace('_', ' ')}"
@@ -52,6 +56,10 @@ def body_noun(block) -> str:
 
 def body_words(block) -> str:
     """``The statue, 1.79 m tall and 0.50 m wide (R = 0.93 m, alpha = 15.5 deg)``; a preset names its temple."""
+    from rockcli.report.drum_words import drum_words, is_drums
+
+    if is_drums(block):
+        return drum_words(block)
     plinth = getattr(block, "plinth", None)
     if plinth is not None:
         return (f"{body_words(block.body)}, on a free {plinth.name.replace('_', ' ')} {plinth.height:.2f} m tall and "
@@ -125,6 +133,7 @@ def scene_sentence(row, *, isolated: bool = False, stroke: bool = True) -> str:
     s = getattr(row, "overturn_scale", math.nan)
     note = getattr(row, "margin_note", "") or ""
     parts = []
+    drummed = (getattr(row, "drums", None) or 0) > 1  # a column of drums: where it fails, how far its drums moved
     if what == TOPPLES:
         fall = f"as recorded, it falls after {row.t_overturn_s:.1f} s" if math.isfinite(row.t_overturn_s) else ""
         if math.isfinite(s):
@@ -133,7 +142,12 @@ def scene_sentence(row, *, isolated: bool = False, stroke: bool = True) -> str:
             parts += [fall] if fall else []
         else:
             parts.append(f"topples: {fall or 'it overturns'}")
-        if row.verdict == "slid_off":
+        if drummed:
+            from rockcli.report.drum_words import fall_words
+
+            parts[0] = parts[0].replace("topples:", "fails:", 1)
+            parts.append(fall_words(row))
+        elif row.verdict == "slid_off":
             parts[0] = parts[0].replace("topples:", "slides off its plinth:", 1).replace("it falls", "it slides off")
             parts.append("its base reaches the plinth's edge (read as a fall)")
         elif getattr(row, "toppled", "") == "plinth":
@@ -168,6 +182,10 @@ def scene_sentence(row, *, isolated: bool = False, stroke: bool = True) -> str:
             on = "on its plinth" if stacked else ("on the isolated base" if isolated else "on the ground")
             parts.append(f"it slides {slide_cm(slide)} {on} (friction {row.friction}), ending "
                          f"{slide_cm(abs(row.slide_residual_m))} from where it stood")
+        if drummed:
+            from rockcli.report.drum_words import offset_words
+
+            parts += [w for w in (offset_words(row),) if w]
         if math.isfinite(s) and s > 1:
             parts.append(f"a record {_x(s)} times stronger would topple it")
         elif math.isfinite(s):
@@ -236,6 +254,10 @@ def survivor_stroke(rows):
 
 def column_title(block) -> str:
     """``Temple of Apollo at Bassae (bassae): R = 3.03 m, alpha = 10.56 deg, h/b = 5.36``."""
+    from rockcli.report.drum_words import drum_title, is_drums
+
+    if is_drums(block):
+        return drum_title(block)
     preset = COLUMN_PRESETS.get(block.name)
     head = f"{preset[2]} ({block.name})" if preset else block.name
     return (f"{head}: R = {block.R:.2f} m, alpha = {block.alpha_deg:.2f} deg, h/b = {block.h / block.b:.2f}, "

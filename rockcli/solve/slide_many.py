@@ -30,7 +30,8 @@ from rockcli.solve.response import JobError
 
 @dataclass(frozen=True)
 class Sliding:
-    """A body (:class:`rockcli.models.Block`, or a :class:`rockcli.models.Stack`: the body on its plinth) with Coulomb
+    """A body (:class:`rockcli.models.Block`, a :class:`rockcli.models.Stack`: the body on its plinth, or a
+    :class:`rockcli.models.drums.DrumColumn`, read back as a :class:`rockcli.solve.drums.DrumSlideRun`) with Coulomb
     friction ``mu`` at every contact (one coefficient, or one per contact bottom to top: ``(base, joint)``). A job's
     first item in :func:`rockcli.solve.simulate_many`, and a column of an assessment: ``subject`` is the body (or the
     body on its plinth), and the wrapper reads as it does (``name``, ``alpha``, a stack's ``body`` and ``plinth``)."""
@@ -40,12 +41,13 @@ class Sliding:
 
     def __post_init__(self):
         from rockcli.models import Block, Stack
+        from rockcli.models.drums import DrumColumn
         from rockcli.solve.slide import _mus
 
-        if not isinstance(self.subject, (Block, Stack)):
-            raise RockcliInputError(f"Sliding: the body must be a Block or a Stack, got "
+        if not isinstance(self.subject, (Block, Stack, DrumColumn)):
+            raise RockcliInputError(f"Sliding: the body must be a Block, a Stack or a DrumColumn, got "
                                     f"{type(self.subject).__name__}")
-        n = 2 if isinstance(self.subject, Stack) else 1
+        n = self.subject.n if isinstance(self.subject, DrumColumn) else 2 if isinstance(self.subject, Stack) else 1
         object.__setattr__(self, "mu", _mus(self.mu, n))
 
     def __getattr__(self, name):
@@ -237,9 +239,15 @@ def mixed_slides(jobs, many, *, progress=None, **options) -> list:
     slides = run_tasks([lambda job=jobs[i]: one(job) for i in slide_idx], done=finished) if slide_idx else []
     out = [None] * len(jobs)
     rock_jobs, rock_at = [], []
+    from rockcli.models.drums import DrumColumn
+
     for i, s in zip(slide_idx, slides):
         if isinstance(s, JobError):
             out[i] = s
+        elif isinstance(jobs[i][0].subject, DrumColumn):  # no rocking model of a column of drums: its own run
+            from rockcli.solve.drums import DrumSlideRun
+
+            out[i] = DrumSlideRun(s)
         elif s.slides and not s.falls_only:
             out[i] = SlideRun(s)
         else:  # nothing slid (or only in its fall): the rocking model's own run of the same scene (module notes)
