@@ -41,8 +41,9 @@ the support and for a body on its plinth, where the plinth's own fall criterion 
 A held normal constraint keeps its gap at 0 (no flight: a pivot's normal force may pull, counted); a sticking
 contact holds its slip; a sliding one has ``T = -mu sl N`` (Coulomb: the normal column gets ``-mu sl`` times the
 tangent row), and carries no friction where its ``N`` comes out negative (``|T| <= mu max(N, 0)``: solved again
-without it, as the existing reference). At an impact the same rows at the velocity level: ``M (v+ - v-) = J^T
-Lambda``, ``J v+ = 0``. The relative coordinates (``u``, ``s_j``, ``psi_j = theta_j - theta_(j-1)``) are exact
+without it, as the existing reference; and again while another sliding contact with friction is left pulling, where
+the existing reference and the driver stop after one pass). At an impact the same rows at the velocity level:
+``M (v+ - v-) = J^T Lambda``, ``J v+ = 0``. The relative coordinates (``u``, ``s_j``, ``psi_j = theta_j - theta_(j-1)``) are exact
 functions of the positions, so their rates and accelerations are read from the same rows.
 """
 
@@ -221,9 +222,14 @@ class DrumChain:
         corners, NaN for a pivot). ``mu`` overrides the friction (the rest rules' frictionless projection). Raises
         ``numpy.linalg.LinAlgError`` when the pattern's system is singular."""
         mus = self.mu if mu is None else mu
-        a, fr = self._solve(pat, q, X, V, F, level, set(), mus)
-        off = {j for j in range(self.n) if pat[2 * j + 1] != 0.0 and fr[j, 0] < 0.0 and mus[j] != 0.0}
-        if off:
+        off = set()
+        a, fr = self._solve(pat, q, X, V, F, level, off, mus)
+        for _ in range(self.n):
+            new = {j for j in range(self.n) if pat[2 * j + 1] != 0.0 and fr[j, 0] < 0.0 and mus[j] != 0.0
+                   and j not in off}
+            if not new:
+                break
+            off |= new
             a, fr = self._solve(pat, q, X, V, F, level, off, mus)
         self.last_off = off
         return a, fr

@@ -39,6 +39,7 @@ from __future__ import annotations
 
 import itertools
 import math
+import os
 
 import numpy as np
 
@@ -54,6 +55,8 @@ ENUM_MAX = 81
 MAX_FOUND = 64
 #: HiGHS presolve on the small problems of one event
 PRESOLVE = False
+#: a file to write each mixed-integer problem into before it is solved (to reproduce a crash of HiGHS)
+_DUMP = os.environ.get("ROCKCLI_MILP_DUMP")
 
 
 def pattern_solution(ch, pat, q, qd, ag, level="a", V0=None):
@@ -318,6 +321,8 @@ class _Milp:
             ub = np.concatenate([ub, [np.inf] * len(self.cuts)])
         c = np.zeros(self.nvar)
         c[self.iz] = 1.0
+        if _DUMP:  # the problem about to be solved (HiGHS has crashed the process on some: scipy issue 22188)
+            np.savez(_DUMP, c=c, A=A, lb=lb, ub=ub, integ=self.integ, lo=self.lo, hi=self.hi)
         res = milp(c, constraints=LinearConstraint(A, lb, ub), integrality=self.integ,
                    bounds=Bounds(self.lo, self.hi), options={"presolve": PRESOLVE})
         if res.status != 0 or res.x is None:
