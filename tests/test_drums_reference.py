@@ -230,6 +230,23 @@ def test_both_searches_at_the_sliding_threshold_of_a_joint():
     assert tuple(best) == slide and m >= -dp.TOL
 
 
+def test_the_problem_that_crashed_highs_without_presolve_is_solved():
+    """A mixed-integer problem of a 3-drum impact on which HiGHS (in SciPy) crashed the process with presolve off
+    (scipy issue 22188): the reference keeps presolve on, and HiGHS answers it (infeasible), in a child process so
+    that a crash fails this test instead of ending the session."""
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    assert dp.PRESOLVE
+    code = ("import numpy as np; from scipy.optimize import milp, LinearConstraint, Bounds; "
+            f"d = np.load({str(Path(__file__).parent / 'data' / 'milp_crash.npz')!r}); "
+            "r = milp(d['c'], constraints=LinearConstraint(d['A'], d['lb'], d['ub']), integrality=d['integ'], "
+            "bounds=Bounds(d['lo'], d['hi']), options={'presolve': True}); print(r.status)")
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert p.returncode == 0 and p.stdout.strip() == "2"
+
+
 # ---------------------------------------------------------------------------------------------
 # whole runs
 # ---------------------------------------------------------------------------------------------

@@ -53,8 +53,11 @@ BOUND = 1e3
 ENUM_MAX = 81
 #: stop looking for more feasible patterns after this many
 MAX_FOUND = 64
-#: HiGHS presolve on the small problems of one event
-PRESOLVE = False
+#: HiGHS presolve (without it HiGHS 1.x in SciPy has crashed the process on some of these problems: scipy issue
+#: 22188; one is kept in tests/data/milp_crash.npz)
+PRESOLVE = True
+#: where the mixed-integer problem finds nothing and the event allows at most this many patterns, they are tried
+ENUM_CHECK = 729
 #: a file to write each mixed-integer problem into before it is solved (to reproduce a crash of HiGHS)
 _DUMP = os.environ.get("ROCKCLI_MILP_DUMP")
 
@@ -341,7 +344,8 @@ class _Milp:
 def candidates(ch, pat, q, qd, ag, corner_free, slip_free, level="a", V0=None, method="auto", exclude=None):
     """The patterns the event allows that may meet every condition: all of them (enumeration), or those the
     mixed-integer problem finds feasible (``method``: ``"enum"``, ``"milp"`` or ``"auto"``: the enumeration when the
-    event allows at most ``ENUM_MAX``). ``exclude``: a pattern left out. Returns ``(patterns, how)``."""
+    event allows at most ``ENUM_MAX``, and where the problem finds none, every pattern if at most ``ENUM_CHECK``).
+    ``exclude``: a pattern left out. Returns ``(patterns, how)``."""
     if method == "enum" or (method == "auto" and _count(corner_free, slip_free) <= ENUM_MAX):
         out = [list(c) for c in itertools.product(*_options(pat, corner_free, slip_free))]
         return [c for c in out if exclude is None or c != list(exclude)], "enum"
@@ -352,6 +356,9 @@ def candidates(ch, pat, q, qd, ag, corner_free, slip_free, level="a", V0=None, m
     for _ in range(MAX_FOUND):
         p = mp.find()
         if p is None:
+            if method == "auto" and not found and _count(corner_free, slip_free) <= ENUM_CHECK:  # a second opinion
+                out = [list(c) for c in itertools.product(*_options(pat, corner_free, slip_free))]
+                return [c for c in out if exclude is None or c != list(exclude)], "milp-none-enum"
             return found, "milp"
         found.append(p)
         mp.cut(p)
