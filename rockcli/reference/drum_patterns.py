@@ -379,9 +379,11 @@ def best_of(ch, cands, q, qd, ag, zero_psi, zero_s, level="a", V0=None):
     return best
 
 
-def choose(ch, pat, q, qd, ag, zero_psi, zero_s, method="auto", stats=None):
+def choose(ch, pat, q, qd, ag, zero_psi, zero_s, method="auto", stats=None, force=False):
     """The pattern that continues the motion (no impact), by the rule of the module notes: ``(pattern, margin,
-    pulls)``; the margin below ``-TOL`` when none met every condition (then ``pat`` is kept)."""
+    pulls)``; the margin below ``-TOL`` when none met every condition (then ``pat`` is kept, or with ``force``, where
+    keeping it has stalled the run at one instant, the other candidate of the largest margin, counted by the
+    caller)."""
     n = ch.n
     zero_psi, zero_s = list(zero_psi), list(zero_s)
     if n >= 3:
@@ -399,6 +401,19 @@ def choose(ch, pat, q, qd, ag, zero_psi, zero_s, method="auto", stats=None):
             stats[how] = stats.get(how, 0) + 1
         best, m, pulls, _ = best_of(ch, cands, q, qd, ag, zero_psi, zs)
         if best is not None and m >= -TOL:
+            return best, m, pulls
+    if force:
+        zs = stages[-1]
+        if _count(zero_psi, zs) <= 3 ** 7:
+            cands, _ = candidates(ch, pat, q, qd, ag, zero_psi, zs, "a", None, "enum", exclude=pat)
+        else:
+            mp = _Milp(ch, pat, q, qd, ag, zero_psi, zs, "a", None)
+            mp.hi[mp.iz] = BOUND
+            mp.cut(pat)
+            p = mp.find()
+            cands = [] if p is None else [p]
+        best, m, pulls, _ = best_of(ch, cands, q, qd, ag, zero_psi, zs)
+        if best is not None:
             return best, m, pulls
     sol = pattern_solution(ch, pat, q, qd, ag)
     m, pulls = margin(ch, pat, sol[3], sol[4], zero_psi, stages[-1], False, sol[5])

@@ -39,14 +39,18 @@ from rockcli.reference.equations import ground_function
 from rockcli.reference.friction import FrictionRefResult, _all_stuck, _Run
 from rockcli.reference.ivp import Work
 
+#: events at one instant in a row before the best other candidate is forced (as the driver's MAX_STALL)
+MAX_STALL = 64
+
 
 @dataclass
 class DrumRefResult(FrictionRefResult):
     """:class:`rockcli.reference.friction.FrictionRefResult` and: ``n_kind_switches`` (a sliding pivot past the edge
-    of the top below), ``how`` (how many pattern choices were made by enumeration and by the mixed-integer problem),
+    of the top below), ``n_stall`` (choices forced after ``MAX_STALL`` events at one instant), ``how`` (how many pattern choices were made by enumeration and by the mixed-integer problem),
     ``residual_offsets`` (each drum's offset from the axis of the footprint at the end [m])."""
 
     n_kind_switches: int = 0
+    n_stall: int = 0
     how: dict = field(default_factory=dict)
     residual_offsets: list = field(default_factory=list)
     trace: list = field(default_factory=list)
@@ -147,10 +151,20 @@ class _DrumRun(_Run):
         return dp.pattern_solution(ch or self.ch, pat, q, qd, ag)
 
     def _choose(self, q, qd, ag, zero_psi, zero_s):
-        best, m, _ = dp.choose(self.ch, self.pat, q, qd, ag, zero_psi, zero_s, self.patterns, self.how)
+        # an event that returns at once to the same instant, again and again (no pattern meets the conditions and
+        # the current one fails at once: the run would stall): after MAX_STALL, the best other candidate is forced
+        # (the driver's MAX_STALL), counted as inconsistent
+        self._stall = self._stall + 1 if abs(self.t - self._t_last) <= 1e-12 * max(1.0, self.t) else 0
+        self._t_last = self.t
+        force = self._stall > MAX_STALL
+        if force:
+            self.n_stall += 1
+        best, m, _ = dp.choose(self.ch, self.pat, q, qd, ag, zero_psi, zero_s, self.patterns, self.how, force)
         if m < -self.tol:
             self.n_incons += 1
         return best
+
+    _stall, _t_last, n_stall = 0, -math.inf, 0
 
     def _band(self, q):
         """The band of ``ag`` (on bearings: of the base's acceleration) in which the chain stays at rest."""
@@ -408,5 +422,6 @@ class _DrumRun(_Run):
         for s in d["s_end"]:
             x += s
             offsets.append(x)
-        return DrumRefResult(**d, n_kind_switches=self.n_kind, how=dict(self.how), residual_offsets=offsets,
+        return DrumRefResult(**d, n_kind_switches=self.n_kind, n_stall=self.n_stall, how=dict(self.how),
+                             residual_offsets=offsets,
                              trace=self.trace or [])
