@@ -30,37 +30,10 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "tests"))
 
 
 def scene(seed: int, n: int, linear: float = 0.0):
-    """``(column, excitation, mu per contact, foundation)`` of one seed."""
-    from synthetic import random_record
+    """``(column, excitation, mu per contact, foundation)`` of one seed (tests/synthetic.py)."""
+    from synthetic import random_drum_scene
 
-    from rockcli.io.units import G
-    from rockcli.models import LinearIsolation
-    from rockcli.models.drums import DrumColumn
-    from rockcli.pulses import OneSine, RickerAntisymmetric, RickerSymmetric
-
-    rng = np.random.default_rng([seed, n])
-    heights = rng.uniform(0.3, 1.5, n)
-    if rng.random() < 1 / 3:  # a tapering shaft
-        widths = np.sort(rng.uniform(0.3, 1.0, n))[::-1]
-    else:
-        widths = rng.uniform(0.3, 1.0, n)
-    # every drum within the slenderness the block model takes (Block.from_dimensions)
-    col = DrumColumn(tuple((float(h), float(w)) for h, w in zip(heights, widths)))
-    mu = tuple(float(x) for x in rng.uniform(0.3, 1.0, n))
-    # the shaking from just above the column's first static threshold (the joint that opens or slides first) to
-    # three times it, at most 1 g: every scene moves
-    first = min(min(m, t) for m, t in zip(mu, col.static_thresholds()))
-    amp = min(1.0, first * float(rng.uniform(1.0, 3.0)))
-    if rng.random() < 0.5:
-        exc = random_record(rng, pga_g=amp, n_range=(150, 300))
-    else:
-        kinds = (RickerSymmetric, OneSine, RickerAntisymmetric)
-        exc = kinds[int(rng.integers(0, 3))](amp * G, rng.uniform(0.25, 1.5))
-    iso = None
-    if rng.random() < linear:
-        iso = LinearIsolation(T_b=float(rng.uniform(1.5, 3.5)), xi=float(rng.uniform(0.05, 0.2)),
-                              gamma=float(rng.uniform(0.1, 0.6)))
-    return col, exc, mu, iso
+    return random_drum_scene(seed, n, linear)
 
 
 def run_isolated(args):

@@ -6,6 +6,8 @@ thresholds, and a handful of 3-5 drum scenes against the driver (benchmarks/benc
 from __future__ import annotations
 
 import math
+import os
+import sys
 
 import numpy as np
 import pytest
@@ -18,6 +20,8 @@ from rockcli.records import Record
 from rockcli.reference import drum_patterns as dp
 from rockcli.reference.drum_mechanics import DrumChain
 from rockcli.reference.friction_drums import chain_of, reference_drums
+
+sys.path.insert(0, os.path.dirname(__file__))  # tests/synthetic.py, as the suite's other tests import it
 
 
 def _random_chain(rng, n, base=False):
@@ -274,14 +278,14 @@ def test_one_drum_and_a_body_on_its_plinth_are_the_existing_reference(k):
     assert b.s_end == pytest.approx(a.s_end, abs=1e-10)
 
 
-def test_energy_never_rises_across_impacts_and_switches_of_kind():
-    """Overhanging drums that rock and slide (pivots passing the edge of the top below): every impact, every switch
-    of kind and every rest projection takes energy out, to rounding."""
+def test_energy_never_rises_across_impacts():
+    """Three drums, the base rocking (10 impacts, each with the joints above closed: impulses at every contact) and the
+    top one sliding on a capital wider than the drum under it: every impact and rest projection takes energy out, to
+    rounding."""
     col = DrumColumn(((0.6, 0.5), (0.5, 0.45), (0.45, 0.7)))
     q = reference_drums(col, RickerSymmetric(0.5 * G, 0.5), (0.8, 0.35, 0.3), record_energy=True)
-    assert q.energy_rises and q.n_slips[2] > 0
-    scale = G * sum(h * w for h, w in col.drums)
-    assert max(q.energy_rises) <= 1e-12 * scale
+    assert sum(q.n_impacts) >= 10 and q.n_slips[2] > 0 and len(q.energy_rises) >= sum(q.n_impacts)
+    assert max(q.energy_rises) <= 1e-12 * G * sum(h * w for h, w in col.drums)
 
 
 @pytest.mark.parametrize("drums,mu", [
@@ -307,3 +311,60 @@ def test_static_thresholds_are_where_the_reference_first_moves(drums, mu):
     assert firsts[j] == pytest.approx(lim[j] * G / slope, rel=1e-9)
     opens = math.isfinite(q.t_uplift[j]) and q.t_uplift[j] == firsts[j]
     assert opens == (th[j] < mu[j])
+
+
+@pytest.mark.parametrize("seed,n", [(3000001, 3), (3000006, 3), (3000009, 3), (3000000, 4)])
+def test_the_driver_agrees_with_the_reference_on_columns(seed, n):
+    """Random columns of 3 and 4 drums (tests/synthetic.py ``random_drum_scene``; benchmarks/bench_drums_reference.py
+    runs many more): the same verdict and, where the column stands, the same slip and impact counts, peaks to 1e-8 of
+    the slenderness and residual offsets to 1e-9 m (both at rtol 1e-10; found 1e-11 and 1e-15 m); where it falls, the
+    same joint."""
+    from synthetic import random_drum_scene
+
+    from rockcli.solve.drums import DrumRun
+    from rockcli.solve.slide import simulate_friction
+
+    col, exc, mu, iso = random_drum_scene(seed, n)
+    r = simulate_friction(col, exc, mu, iso, rtol=1e-10)
+    q = reference_drums(col, exc, mu, iso, record_energy=True)
+    assert r.verdict == q.verdict
+    assert max(q.energy_rises, default=0.0) <= 1e-12 * G * sum(h * w for h, w in col.drums)
+    if q.verdict == "overturned":
+        assert r.toppled == col.joint_names()[q.toppled]
+        return
+    for j, p in enumerate(r.interfaces):
+        assert (p.n_slips, p.n_impacts) == (q.n_slips[j], q.n_impacts[j])
+        assert p.psi_max == pytest.approx(q.psi_max[j], abs=1e-8 * p.alpha)
+    assert DrumRun(col, r, None).residual_offsets_m == pytest.approx(q.residual_offsets, abs=1e-9)
+
+
+@pytest.mark.xfail(strict=True, reason="driver defect found by the reference (reported, not fixed here): a face "
+                   "entered sliding forward at a slip rate of -2e-16 (after an impact and a pattern chosen at angle "
+                   "0) keeps sliding backwards with friction pushing it: the slip-stop event never fires (the rate "
+                   "is below 0 from the start) and the contact law never re-examines a slide at rate 0")
+def test_the_drivers_friction_opposes_every_slip():
+    """Along the driver's history every sliding contact that presses (``N > 0``, by the reference's mechanics at the
+    driver's state) moves the way its friction opposes (``sl s' >= 0``): else friction does positive work. The
+    scene: three drums under a Ricker pulse, where the reference stands and the driver has the top drum slide 0.5 m
+    backwards, off its drum, at 3 m/s (t = 2.2-2.46 s), its friction pushing it."""
+    from rockcli.solve.slide import simulate_friction
+
+    col = DrumColumn(((1.0, 0.6), (0.8, 0.5), (0.7, 0.5)))
+    exc = RickerSymmetric(0.4 * G, 0.6)
+    r = simulate_friction(col, exc, 0.6, rtol=1e-10, history=True)
+    ch = chain_of(col, 0.6)
+    n = 3
+    worst = 0.0
+    for row in r.history:
+        pat, y = [float(x) for x in row[3:3 + 2 * n]], row[3 + 2 * n:]
+        wrong = [j for j in range(n) if pat[2 * j + 1] * y[3 + 4 * j] < -1e-9]
+        if not wrong:
+            continue
+        q, qd = np.zeros(1 + 2 * n), np.zeros(1 + 2 * n)
+        for j in range(n):
+            q[1 + 2 * j], qd[1 + 2 * j], q[2 + 2 * j], qd[2 + 2 * j] = y[2 + 4 * j:6 + 4 * j]
+        fr = dp.pattern_solution(ch, pat, q, qd, exc.acceleration(row[0]))[3]
+        for j in wrong:
+            if fr[j, 0] > 0.0:
+                worst = min(worst, pat[2 * j + 1] * qd[1 + 2 * j])
+    assert worst >= -1e-9
