@@ -132,7 +132,12 @@ def main():
     ap.add_argument("--only", type=int, default=None)
     ap.add_argument("--out", default=None)
     ap.add_argument("--child", default=None, help=argparse.SUPPRESS)
+    ap.add_argument("--summary", default=None, help="print the summary of a JSON file written by --out")
     a = ap.parse_args()
+    if a.summary:
+        with open(a.summary) as f:
+            summary(json.load(f))
+        return
     if a.child:
         seed, n, linear, deadline = a.child.split(",")
         print(json.dumps(run_one((int(seed), int(n), float(linear), float(deadline))), default=str))
@@ -148,6 +153,10 @@ def main():
         rows.append(r)
         print(f"  seed {r['seed']} n={r['n']}: driver {r['verdict']} ({r['cpu_kernel']:.1f} s), reference "
               f"{r['ref_verdict']} ({r['cpu_ref']:.1f} s)", file=sys.stderr, flush=True)
+        if a.out:  # after every scene: a run stopped half-way keeps what it did
+            os.makedirs(os.path.dirname(a.out) or ".", exist_ok=True)
+            with open(a.out, "w") as f:
+                json.dump(rows, f, indent=1, default=str)
 
     if a.jobs > 1:
         with ProcessPoolExecutor(a.jobs) as ex:
@@ -158,10 +167,6 @@ def main():
             done(run_isolated(j))
     rows.sort(key=lambda r: (r["n"], r["seed"]))
     summary(rows)
-    if a.out:
-        os.makedirs(os.path.dirname(a.out) or ".", exist_ok=True)
-        with open(a.out, "w") as f:
-            json.dump(rows, f, indent=1, default=str)
 
 
 if __name__ == "__main__":
