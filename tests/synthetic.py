@@ -36,3 +36,37 @@ def synthetic_record(seed=0, duration=12.0, dt=0.01, pga=0.45 * G):
     acc *= (t / 2.0) ** 2 * np.exp(-t / 2.0 + 2.0) / 4.0
     acc *= pga / np.max(np.abs(acc))
     return Record(acc, dt, f"synthetic-{seed}")
+
+
+def random_drum_scene(seed: int, n: int, linear: float = 0.0):
+    """A random column of ``n`` drums and its shaking (benchmarks/bench_drums_reference.py and
+    tests/test_drums_reference.py): ``(column, excitation, mu per contact, foundation)``. Heights 0.3-1.5 m, widths 0.3-1.0 m (a third tapering
+    upwards, the others free, so that some drums overhang), friction 0.3-1.0 per contact, a pulse or a short random
+    record of 1-3 times the column's first static threshold (at most 1 g); a fraction ``linear`` on linear bearings."""
+    from rockcli.io.units import G
+    from rockcli.models import LinearIsolation
+    from rockcli.models.drums import DrumColumn
+    from rockcli.pulses import OneSine, RickerAntisymmetric, RickerSymmetric
+
+    rng = np.random.default_rng([seed, n])
+    heights = rng.uniform(0.3, 1.5, n)
+    if rng.random() < 1 / 3:  # a tapering shaft
+        widths = np.sort(rng.uniform(0.3, 1.0, n))[::-1]
+    else:
+        widths = rng.uniform(0.3, 1.0, n)
+    col = DrumColumn(tuple((float(h), float(w)) for h, w in zip(heights, widths)))
+    mu = tuple(float(x) for x in rng.uniform(0.3, 1.0, n))
+    # the shaking from just above the column's first static threshold (the joint that opens or slides first) to
+    # three times it, at most 1 g: every scene moves
+    first = min(min(m, t) for m, t in zip(mu, col.static_thresholds()))
+    amp = min(1.0, first * float(rng.uniform(1.0, 3.0)))
+    if rng.random() < 0.5:
+        exc = random_record(rng, pga_g=amp, n_range=(150, 300))
+    else:
+        kinds = (RickerSymmetric, OneSine, RickerAntisymmetric)
+        exc = kinds[int(rng.integers(0, 3))](amp * G, rng.uniform(0.25, 1.5))
+    iso = None
+    if rng.random() < linear:
+        iso = LinearIsolation(T_b=float(rng.uniform(1.5, 3.5)), xi=float(rng.uniform(0.05, 0.2)),
+                              gamma=float(rng.uniform(0.1, 0.6)))
+    return col, exc, mu, iso

@@ -35,6 +35,12 @@ What is where, in reading order (every name is importable from ``rockcli.referen
   the contact constraints (:func:`reference_stack`, :func:`reference_plinth`; docs/physics-plinth.md); its run
   (:mod:`~rockcli.reference.stack_run`), the pattern after an impact (:mod:`~rockcli.reference.stack_impact`) and
   the hysteretic bearings (:mod:`~rockcli.reference.stack_hysteretic`).
+* :mod:`~rockcli.reference.friction` and :mod:`~rockcli.reference.friction_mechanics`: a block or a body on its
+  plinth with Coulomb friction at every contact (:func:`~rockcli.reference.friction.reference_friction`).
+* :mod:`~rockcli.reference.friction_drums`: a column of drums with friction at every joint
+  (:func:`~rockcli.reference.friction_drums.reference_drums`, docs/physics-drums.md); its mechanics in maximal
+  coordinates (:mod:`~rockcli.reference.drum_mechanics`: faces at the ends of the overlap, pivots of kind A and B)
+  and the pattern after an event by enumeration or a mixed-integer problem (:mod:`~rockcli.reference.drum_patterns`).
 
 The test suite's ``tests/naive.py`` and ``tests/naive_sliding.py`` re-export this package.
 """
