@@ -135,7 +135,8 @@ def test_the_table_the_csv_the_json_the_words_and_the_report_say_the_same(suite,
     rows = list(csv.DictReader(csv_path.open()))
     assert [r["column"] for r in rows] == [r["column"] for r in doc["rows"]]
     assert {r["column"] for r in rows} == {"shaft", "shaft monolith"}  # each column of drums beside its monolith
-    for k in ("drum_column", "drums", "falls_at", "first_move", "joint_open_max_over_alpha", "residual_offsets_m",
+    for k in ("drum_column", "drums", "falls_at", "first_move", "first_joint_open", "joint_open_max_over_alpha",
+              "residual_offsets_m",
               "residual_offset_max_m", "drums_vs_monolith", "monolith_verdict", "n_inconsistent", "reliable"):
         assert k in rows[0] and k in doc["rows"][0], k
     cols = {c["name"]: c for c in doc["columns"]}
@@ -204,6 +205,10 @@ def test_the_row_is_simulate_drums_of_the_same_scene(suite):
             assert (r.falls_at or None) == run.falls_at and r.n_inconsistent == run.stack.n_inconsistent
             fm = run.first_move
             assert r.first_move == ("" if fm is None else f"{fm[0]} {fm[2]}")
+            opened = [p for p in run.stack.interfaces[1:] if math.isfinite(p.t_uplift)]
+            assert r.first_joint_open == (min(opened, key=lambda p: p.t_uplift).name if opened else "")
+            assert (r.first_joint_open_t_s == min(p.t_uplift for p in opened)) if opened else \
+                math.isnan(r.first_joint_open_t_s)
             if not r.overturned:
                 assert [float(v) for v in r.residual_offsets_m.split()] == pytest.approx(run.residual_offsets_m,
                                                                                           rel=1e-5, abs=1e-9)
