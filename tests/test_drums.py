@@ -241,3 +241,34 @@ def test_drums_that_cannot_open_or_slide_are_the_monolith():
     assert run.stack.base.psi_max == pytest.approx(run.monolith.base.psi_max, abs=1e-6 * run.monolith.base.alpha)
     assert run.stack.base.n_impacts == run.monolith.base.n_impacts
     assert run.compared == "alike" and run.first_move[0] == "base"
+
+
+def test_no_joint_turns_through_the_drum_below():
+    """Every pivot's angle stays on its own side of the surface and below pi/2 (a topple ends the run there): on
+    random columns of 3-6 drums under strong pulses, every history row has ``c psi >= 0`` for each joint that pivots
+    on corner ``c`` and ``|psi| <= pi/2``. A joint of a 6-drum column once entered its pivot a rounding error
+    (4e-31 rad) on the wrong side; the impact and topple events watch the angle on its own side, so it turned on
+    through the drum below to 3.6 rad (kernels.chain_step.state_events now takes it as a wrong side)."""
+    from rockcli.kernels import chain_out as co
+    from rockcli.pulses import OneSine, RickerSymmetric
+    from rockcli.solve.slide import simulate_friction
+
+    rng = np.random.default_rng(46)
+    scenes = [(DrumColumn.uniform(10.33, 1.52, 6), RickerSymmetric(0.5 * G, 1.0), 0.7)]  # the one that turned through
+    for k in range(12):
+        n = int(rng.integers(3, 7))
+        col = DrumColumn.uniform(float(rng.uniform(4.0, 10.0)), float(rng.uniform(0.8, 1.6)), n)
+        kind = (RickerSymmetric, OneSine)[k % 2]
+        scenes.append((col, kind(float(rng.uniform(0.3, 0.8)) * G, float(rng.uniform(0.5, 1.5))),
+                       float(rng.uniform(0.5, 0.9))))
+    worst_side, worst_angle = 0.0, 0.0
+    for col, pulse, mu in scenes:
+        n = col.n
+        r = simulate_friction(col, pulse, mu, history=True, max_steps=20000 if n == 6 and mu == 0.7 else 4000)
+        H = r.history
+        pats = H[:, co.HC_PAT:co.HC_PAT + 2 * n:2]
+        psi = H[:, co.HC_PAT + 2 * n + 4:co.HC_PAT + 2 * n + 2 + 4 * n:4]
+        worst_side = min(worst_side, float((pats * psi).min()))
+        worst_angle = max(worst_angle, float(np.abs(psi).max()))
+    assert worst_side >= -1e-12
+    assert worst_angle <= 0.5 * math.pi + 1e-12

@@ -336,6 +336,29 @@ def test_the_driver_agrees_with_the_reference(n, base, seed, scenes):
                 assert p.slide_residual_m == pytest.approx(q.s_end[j], rel=1e-5, abs=1e-8)
 
 
+def test_a_contact_left_outside_its_cone_by_an_impact_slides_at_once(find_record):
+    """The statue (1.79 m x 0.5 m) on its 1.0 m x 0.6 m plinth under Kobe with mu = 0.5: impacts leave the plinth's
+    contact with the floor, and later the statue's with the plinth, needing more than mu N at once; each slides from
+    that instant (kernels.chain_impact.cone_after_impact), as in the reference, whose events see it. Before that
+    check the statue stuck on and survived; now both codes have it slide 4.2 cm on its plinth and topple, with the
+    same peaks, slips and counts."""
+    from rockcli.reference.friction import reference_friction
+    from rockcli.records import read_record
+
+    rec = read_record(find_record("RSN1119_KOBE_TAZ000.AT2"))
+    body = Stack(Block.from_dimensions(1.79, 0.5), Plinth(1.0, 0.6))
+    r = simulate_friction(body, rec, 0.5, rtol=1e-10)
+    q = reference_friction(body, rec, 0.5, rtol=1e-10, record_energy=True)
+    assert r.verdict == q.verdict == "overturned" and r.n_inconsistent == q.n_inconsistent == 0
+    assert max(q.energy_rises, default=0.0) <= 1e-9
+    assert r.t_fail == pytest.approx(q.t_fail, abs=1e-8)
+    for j, p in enumerate(r.interfaces):
+        assert p.n_slips == q.n_slips[j] > 0 and p.n_impacts == q.n_impacts[j]
+        assert p.slide_max_m == pytest.approx(q.s_max[j], rel=1e-7)
+        assert p.slide_residual_m == pytest.approx(q.s_end[j], rel=1e-7)
+    assert r.interfaces[0].psi_max == pytest.approx(q.psi_max[0], rel=1e-7)
+
+
 # ---------------------------------------------------------------------------------------------
 # A coefficient of restitution with friction: the rocking model's energetic rule where it fits the cone
 # ---------------------------------------------------------------------------------------------

@@ -402,6 +402,8 @@ def main(argv=None):
     ap.add_argument("--dt", type=float, default=DT, help="the DEM's time step [s]")
     ap.add_argument("--out", default=str(HERE / "results.json"))
     ap.add_argument("--histories", default="", help="a folder for both codes' time histories (npz per scene)")
+    ap.add_argument("--rockcli-only", action="store_true",
+                    help="rerun rockcli's side only; YADE's from the stored --out file (no YADE needed)")
     args = ap.parse_args(argv)
     OPT.update(ks_over_kn=args.ks_over_kn, dt=args.dt)
     # compile (or load) rockcli's kernels before anything is timed
@@ -415,6 +417,9 @@ def main(argv=None):
             check(wd)
             return 0
         rows = []
+        stored = {}
+        if args.rockcli_only:
+            stored = {r["scene"]: r["yade"] for r in json.loads(Path(args.out).read_text())}
         print(HEADER)
         for name, bspec, mu, spec in SCENES:
             if args.only and args.only not in name:
@@ -423,14 +428,14 @@ def main(argv=None):
             exc = excitation(spec)
             _, _, t_exc = ground_samples(exc)
             rk = run_rockcli(body, mu, exc)
-            dem = run_yade(body, mu, exc, t_exc + TAIL, wd)
+            dem = dict(stored[name], hist=None) if args.rockcli_only else run_yade(body, mu, exc, t_exc + TAIL, wd)
             H = rk.pop("history")
             n = 2 if isinstance(body, Stack) else 1
             cut = None
             if dem["stopped"] is not None or rk["t_fail"] is not None:
                 cut, t_cut = rk_until_topple_rad(H, n)
                 rk["until_topple_rad"] = dict(cut, t=t_cut)
-            if args.histories:
+            if args.histories and not args.rockcli_only:
                 Path(args.histories).mkdir(parents=True, exist_ok=True)
                 fn = Path(args.histories) / (name.replace(" ", "_").replace(",", "").replace("/", "_") + ".npz")
                 np.savez_compressed(fn, dem_t=dem["hist"]["t"], dem_psi=dem["hist"]["psi"], dem_s=dem["hist"]["s"],

@@ -197,7 +197,8 @@ def _rows(body, foundation, excitation: str, res) -> list:
         rock = ("does not lift" if not math.isfinite(p.t_uplift) else
                 f"lifts at {_t(p.t_uplift)}, peak {p.psi_max_over_alpha:.4f} alpha, {p.n_impacts} impacts")
         slide = ("does not slide" if not p.n_slips else
-                 f"slides from {_t(p.t_slide)} ({p.n_slips} slips): peak {p.slide_max_m:.4f} m, residual "
+                 f"slides from {_t(p.t_slide)} ({p.n_slips} slip{'' if p.n_slips == 1 else 's'}): peak "
+                 f"{p.slide_max_m:.4f} m, residual "
                  f"{p.slide_residual_m:+.4f} m" + (f", {max(p.edge_m - p.slide_max_m, 0):.4f} m from the edge at its "
                                                    f"farthest" if math.isfinite(p.edge_m) else ""))
         rows.append((f"{p.name}: rocking", f"{who} {rock}"))

@@ -14,15 +14,10 @@ stops sliding. The run ends when a block topples (a pivot's angle reaches ``pi/2
 bearings: once the free base's energy cannot open a face or start a slip, the bound in :func:`_base_settled`), or
 at the horizon.
 
-Rest rules after an impact (the rocking model's, for any chain): with every angle at 0, the chain is set on its
-faces (a plastic impact into them, each contact sticking or sliding as the contact law says) when nothing could
-lift it from rest under the current ``ag`` (each face's restoring moment at rest positive) and the kinetic energy
-of its rocking (the rates of the slips and of the base left out) is below ``rest_tol`` times the smallest
-``alpha_j M_j``; else the impacting interface is set on its face when both accelerations that would turn it back
-are positive and the rotation it could still reach against the smaller is below ``rest_tol`` times its
-slenderness. For one block on the ground both are the rocking driver's rule.
+The impacts, the rest rules after them and the bookkeeping of a change of pattern are in
+:mod:`rockcli.kernels.chain_impact`.
 
-Outputs ``xo``: the run's fields ``X_*``, then per interface ``j`` the fields ``J_*`` at ``N_XG + NX_J j``.
+Outputs ``xo``: the fields of :mod:`rockcli.kernels.chain_out` (imported here too).
 """
 
 from __future__ import annotations
@@ -31,19 +26,23 @@ import math
 
 import numpy as np
 
-from rockcli.kernels.chain import (BASE_RIGID, CP_BASE, CP_CB, CP_E, CP_G, CP_KB, CP_MB, CP_N, CP_P2MAX, CP_REST,
-                                   CP_TOL, F_AREST, F_B, F_BLOW, F_M, F_MU, col_psi, col_s, energy, fld, free_coordinates,
-                                   workspace)
+from rockcli.kernels.chain import (BASE_RIGID, CP_BASE, CP_CB, CP_KB, CP_MB, CP_N, CP_P2MAX, CP_TOL, F_AREST, F_B, F_M,
+                                   F_MU, col_psi, col_s, fld, free_coordinates, workspace)
+from rockcli.kernels.chain_impact import after_impact, cone_after_impact, switch
 from rockcli.kernels.chain_kind import kind_switch
-from rockcli.kernels.contact_lcp import choose, impact_any, lcp_space
+from rockcli.kernels.chain_out import (HC_AG, HC_KIND, HC_PAT, HC_T, HK_END, HK_EVENT, HK_IMPACT, HK_IMPACT_AFTER,
+                                       HK_STATE, J_PSI_END, J_PSI_MAX, J_S_END, J_S_MAX, J_TILT, J_T_EXCEED,
+                                       J_T_PSI_MAX, J_T_SLIDE, J_T_S_MAX, J_T_UPLIFT, NX_J, N_XG, STATUS_SLID_OFF,
+                                       X_NRHS, X_N_INCONS, X_N_JUMP, X_N_STALL, X_REJ, X_SETTLED, X_SLIDOFF, X_STATUS,
+                                       X_STEPS, X_TOPPLED, X_T_END, X_T_FAIL, X_T_FIRST, X_T_SETTLED, X_T_U_MAX,
+                                       X_U_END, X_U_MAX)
+from rockcli.kernels.contact_lcp import choose, lcp_space
 from rockcli.kernels.chain_rest import quiet_until, rest_interval
-from rockcli.kernels.contact_restitution import restitution_impact
 from rockcli.kernels.linear_base import coefficients
-from rockcli.kernels.chain_step import (EVC_FACE_OPENS, EVC_IMPACT, EVC_KIND, EVC_NONE, EVC_SLIDE_OFF, EVC_SLIP_STARTS,
-                                        EVC_SLIP_STOP, EVC_TOPPLE, EVC_WRONG_SIDE, _rhs, dp5, force_events, peaks, restep,
+from rockcli.kernels.chain_step import (EVC_FACE_OPENS, EVC_IMPACT, EVC_KIND, EVC_NONE, EVC_SLIDE_OFF, EVC_SLIP_STOP,
+                                        EVC_TOPPLE, EVC_WRONG_SIDE, _rhs, dp5, force_events, peaks, restep,
                                         state_events)
-from rockcli.kernels.contact import (face_corners, project, rest_moments, restoring_rate,
-                                     solve_pattern)
+from rockcli.kernels.contact import face_corners, solve_pattern
 from rockcli.kernels.ground import _pulse_segment, band_exit, ground_at
 from rockcli.kernels.jit import kernel
 from rockcli.kernels.layout import (E_AP, E_TP, EXC_RECORD, N_RS, N_W, RS_FRESH, RS_H, RS_J, RS_SEG_END, RS_T,
@@ -51,28 +50,8 @@ from rockcli.kernels.layout import (E_AP, E_TP, EXC_RECORD, N_RS, N_W, RS_FRESH,
                                     W_EV, W_FEV, W_Y, W_YNEW)
 from rockcli.kernels.steps import _advance_segment, _grown, _seg, _set_seg, _shrink
 
-STATUS_SLID_OFF = 2
-
-# the run's outputs
-X_STATUS, X_TOPPLED, X_SLIDOFF, X_T_END, X_T_FAIL, X_STEPS, X_REJ, X_NRHS = 0, 1, 2, 3, 4, 5, 6, 7
-X_N_JUMP, X_N_INCONS, X_N_SLIP_IMPACTS, X_SETTLED, X_T_SETTLED = 8, 9, 10, 11, 12
-X_U_MAX, X_T_U_MAX, X_N_SWITCH, X_U_END, X_T_FIRST, X_N_STALL = 13, 14, 15, 16, 17, 18
-X_N_SLIP_IN = 19  # slips that start while every block is inside its slenderness (not during a fall)
-X_N_PLASTIC = 20  # impacts where a given restitution could not be carried (its impulses left the cone): plastic
-N_XG = 24
-# per interface
-J_PSI_MAX, J_T_PSI_MAX, J_T_EXCEED, J_S_MAX, J_T_S_MAX, J_TILT = 0, 1, 2, 3, 4, 5
-J_T_UPLIFT, J_N_IMP, J_N_IMP_ALL, J_N_RESTS, J_T_SLIDE, J_N_SLIPS, J_S_END, J_PSI_END = 6, 7, 8, 9, 10, 11, 12, 13
-NX_J = 14
-
-# history rows: t, ag, kind, the pattern (2 n), the state (2 + 4 n)
-HC_T, HC_AG, HC_KIND, HC_PAT = 0, 1, 2, 3
-HK_STATE, HK_EVENT, HK_IMPACT, HK_IMPACT_AFTER, HK_END = 0.0, 1.0, 2.0, 3.0, 4.0
 MAX_STALL = 64  # events in a row at one instant before the contact law's choice is forced on
 
-
-def n_out(n: int) -> int:
-    return N_XG + NX_J * n
 
 
 @kernel
@@ -153,122 +132,6 @@ def _base_settled(cp, y, ws, frc, scratch):
     amax = (k * math.sqrt(2.0 * E / k) + c * math.sqrt(2.0 * E / M)) / M
     lo, hi = rest_band(cp, y, ws, frc, scratch)
     return -amax > lo and amax < hi
-
-
-@kernel
-def _switch(xo, pat, new, n, t, cp, y):
-    """Enter the pattern ``new`` at the state ``y``: the bookkeeping of uplifts and slips (a slip that starts while
-    every block leans less than its slenderness, ``|psi_j| <= alpha_j``, counted apart: not during a fall)."""
-    inside = True
-    for j in range(n):
-        if abs(y[col_psi(j)]) > fld(cp, j, F_AREST):
-            inside = False
-    changed = False
-    for j in range(n):
-        o = N_XG + NX_J * j
-        if pat[2 * j] == 0.0 and new[2 * j] != 0.0:
-            if math.isnan(xo[o + J_T_UPLIFT]):
-                xo[o + J_T_UPLIFT] = t
-            if math.isnan(xo[X_T_FIRST]):
-                xo[X_T_FIRST] = t
-        if pat[2 * j + 1] == 0.0 and new[2 * j + 1] != 0.0:
-            if math.isnan(xo[o + J_T_SLIDE]):
-                xo[o + J_T_SLIDE] = t
-            xo[o + J_N_SLIPS] += 1.0
-            if inside:
-                xo[X_N_SLIP_IN] += 1.0
-            if math.isnan(xo[X_T_FIRST]):
-                xo[X_T_FIRST] = t
-        if pat[2 * j] != new[2 * j] or pat[2 * j + 1] != new[2 * j + 1]:
-            changed = True
-        pat[2 * j] = new[2 * j]
-        pat[2 * j + 1] = new[2 * j + 1]
-    if changed:
-        xo[X_N_SWITCH] += 1.0
-
-
-@kernel
-def _rocking_energy(cp, pat, y, ws, ytmp):
-    """The kinetic energy of the chain's rocking: its rates with those of the slips and of the base set to 0."""
-    n = int(cp[CP_N])
-    for i in range(y.shape[0]):
-        ytmp[i] = y[i]
-    ytmp[1] = 0.0
-    for j in range(n):
-        ytmp[col_s(j) + 1] = 0.0
-    T, _ = energy(cp, pat, ytmp, ws)
-    return T
-
-
-@kernel
-def _after_impact(cp, pat, y, j, t, t_exc_end, ag, xo, ws, frc, best, v0, w0, ynew, zero_psi, free_corner, ytmp, sp):
-    """The impact of interface ``j`` (its angle at 0 in ``y``): the pattern and rates after it (Moreau with Coulomb),
-    then the rest rules (module notes). Writes the state after into ``y`` and the pattern into ``pat``."""
-    n = int(cp[CP_N])
-    tol = cp[CP_TOL]
-    o = N_XG + NX_J * j
-    xo[o + J_N_IMP_ALL] += 1.0
-    if t <= t_exc_end:
-        xo[o + J_N_IMP] += 1.0
-    for i in range(n):
-        zero_psi[i] = i == j or pat[2 * i] == 0.0
-        free_corner[i] = zero_psi[i]
-    pat_to = pat.copy()
-    restituted = False
-    if cp[CP_E] >= 0.0:  # a coefficient of restitution: the energetic rule where its impulses fit the cone
-        restituted = restitution_impact(cp, pat, zero_psi, y, ws, frc, j, cp[CP_E], v0, w0, best, ynew, ytmp,
-                                        y.copy())
-        if restituted:
-            m, pulls, slipped = 0.0, 0, False
-        else:
-            xo[X_N_PLASTIC] += 1.0
-    if not restituted:
-        m, pulls, slipped = impact_any(cp, pat, pat_to, y, ws, frc, zero_psi, free_corner, best, v0, w0, ynew, sp)
-    if m < -tol:
-        xo[X_N_INCONS] += 1.0
-    if pulls > 0:
-        xo[X_N_JUMP] += 1.0
-    if slipped:
-        xo[X_N_SLIP_IMPACTS] += 1.0
-    for i in range(y.shape[0]):
-        y[i] = ynew[i]
-    _switch(xo, pat, best, n, t, cp, y)
-    # rest rules
-    all_zero = True
-    for i in range(n):
-        if y[col_psi(i)] != 0.0:
-            all_zero = False
-    rested = False
-    if all_zero:
-        scratch = pat.copy()
-        rest_moments(cp, scratch, y, ag, ws, frc)
-        lim = math.inf
-        for i in range(n):
-            if not frc[i, 0] > 0.0:
-                lim = -1.0
-                break
-            lim = min(lim, fld(cp, i, F_AREST) * frc[i, 0])
-        if lim > 0.0 and _rocking_energy(cp, pat, y, ws, ytmp) < cp[CP_REST] * lim:
-            for i in range(n):
-                pat_to[2 * i] = 0.0
-                pat_to[2 * i + 1] = pat[2 * i + 1]
-            rested = True
-    if not rested and pat[2 * j] != 0.0:
-        rest = restoring_rate(cp, pat, y, ag, ws, frc, j)
-        rate = y[col_psi(j) + 1]
-        if rest > 0.0 and rate * rate < 2.0 * rest * cp[CP_REST] * fld(cp, j, F_AREST):
-            for i in range(2 * n):
-                pat_to[i] = pat[i]
-            pat_to[2 * j] = 0.0
-            rested = True
-    if rested:
-        for i in range(n):
-            if pat_to[2 * i] == 0.0 and pat[2 * i] != 0.0:
-                xo[N_XG + NX_J * i + J_N_RESTS] += 1.0
-        project(cp, pat, pat_to, y, ws, v0, w0, ynew)
-        for i in range(y.shape[0]):
-            y[i] = ynew[i]
-        _switch(xo, pat, pat_to, n, t, cp, y)
 
 
 @kernel
@@ -416,7 +279,7 @@ def simulate_chain(cp, pat0, y0, ekind, epar, acc, dt, t_begin, t_exc_end, tail,
                 zero_psi[j] = True
                 zero_s[j] = True
             choose(cp, pat, W[W_Y], ag, ws, frc, zero_psi, zero_s, best, sp)
-            _switch(xo, pat, best, n, tu, cp, W[W_Y])
+            switch(xo, pat, best, n, tu, cp, W[W_Y])
             band_ok = False
             rs[RS_FRESH] = 1.0
             rs[RS_H] = 0.0
@@ -448,7 +311,7 @@ def simulate_chain(cp, pat0, y0, ekind, epar, acc, dt, t_begin, t_exc_end, tail,
                     zero_psi[j] = True
                     zero_s[j] = True
                 choose(cp, pat, W[W_Y], ground_at(t_ev, seg, epar), ws, frc, zero_psi, zero_s, best, sp)
-                _switch(xo, pat, best, n, t_ev, cp, W[W_Y])
+                switch(xo, pat, best, n, t_ev, cp, W[W_Y])
                 rs[RS_H] = 0.0
                 band_ok = False
                 if want_history:
@@ -537,8 +400,9 @@ def simulate_chain(cp, pat0, y0, ekind, epar, acc, dt, t_begin, t_exc_end, tail,
             rs[RS_T] = t_ev
             if want_history:
                 H, nh = _hist(H, nh, t_ev, ground_at(t_ev, seg, epar), HK_IMPACT, pat, W, W_Y)
-            _after_impact(cp, pat, y, who, t_ev, t_exc_end, ground_at(t_ev, seg, epar), xo, ws, frc, best, v0, w0,
-                          ynew, zero_psi, free_corner, ytmp, sp)
+            after_impact(cp, pat, y, who, t_ev, t_exc_end, ground_at(t_ev, seg, epar), xo, ws, frc, best, v0, w0,
+                         ynew, zero_psi, free_corner, ytmp, sp)
+            cone_after_impact(cp, pat, y, t_ev, ground_at(t_ev, seg, epar), xo, ws, frc, best, zero_psi, zero_s, sp)
             kind = HK_IMPACT_AFTER
         elif code == EVC_TOPPLE:
             y[col_psi(who)] = pat[2 * who] * 0.5 * math.pi
@@ -562,7 +426,7 @@ def simulate_chain(cp, pat0, y0, ekind, epar, acc, dt, t_begin, t_exc_end, tail,
                 zero_s[who] = True
                 y[col_s(who) + 1] = 0.0
                 choose(cp, pat, y, ground_at(t_ev, seg, epar), ws, frc, zero_psi, zero_s, best, sp)
-                _switch(xo, pat, best, n, t_ev, cp, y)
+                switch(xo, pat, best, n, t_ev, cp, y)
             rs[RS_T] = t_ev
             kind = HK_EVENT
         elif code == EVC_SLIDE_OFF:
@@ -584,6 +448,8 @@ def simulate_chain(cp, pat0, y0, ekind, epar, acc, dt, t_begin, t_exc_end, tail,
                 y[col_s(who) + 1] = 0.0
                 zero_s[who] = True
             elif code == EVC_FACE_OPENS or code == EVC_WRONG_SIDE:
+                if code == EVC_WRONG_SIDE and pat[2 * who] * y[col_psi(who)] < 0.0:
+                    y[col_psi(who)] = 0.0  # a rounding error on the wrong side of the surface: on it
                 zero_psi[who] = True
                 zero_s[who] = pat[2 * who + 1] == 0.0
             else:  # a stuck contact reaches the cone
@@ -605,7 +471,7 @@ def simulate_chain(cp, pat0, y0, ekind, epar, acc, dt, t_begin, t_exc_end, tail,
                 m, pulls = choose(cp, pat, y, ground_at(t_ev, seg, epar), ws, frc, zero_psi, zero_s, best, sp)
             if m < -cp[CP_TOL]:
                 xo[X_N_INCONS] += 1.0
-            _switch(xo, pat, best, n, t_ev, cp, y)
+            switch(xo, pat, best, n, t_ev, cp, y)
             kind = HK_EVENT
         if want_history:
             H, nh = _hist(H, nh, rs[RS_T], ground_at(rs[RS_T], seg, epar), kind, pat, W, W_Y)

@@ -186,9 +186,12 @@ def state_events(cp, pat, W, hs, sig_lim):
             sg = _first_down(q, 0.0, 0.0, best)
             if sg >= 0.0 and (sg < best or code == EVC_NONE):
                 best, code, who = sg, EVC_IMPACT, j
-            elif sg < 0.0 and q[0] == 0.0 and _poly(q, best) < 0.0:
+            elif sg < 0.0 and q[0] <= 0.0 and _poly(q, best) < 0.0:
                 # a pivot entered at angle 0 that turns the wrong way (into the surface: the pattern could not
-                # hold, e.g. at a tie of thresholds): the pattern is chosen again at the start of the step
+                # hold, e.g. at a tie of thresholds): the pattern is chosen again at the start of the step. Also
+                # one whose angle starts a rounding error on the wrong side (a joint of a column of drums entered
+                # its pivot at -1e-31): without this it would turn on through the surface, unseen by the impact
+                # and topple events, which watch the angle on its own side
                 return EVC_WRONG_SIDE, j, 0.0
             sg = _first_down(quartic(W, hs, ci, -c, halfpi), 0.0, 0.0, best)
             if sg >= 0.0 and (sg < best or code == EVC_NONE):

@@ -17,19 +17,19 @@ def history_columns(res, body) -> tuple[list, list]:
     """``(names, columns)`` of the history of ``res`` (a :class:`rockcli.solve.slide.SlideResponse` with history) of
     ``body``: time, ground acceleration, and per contact (``base``, ``joint``) its rotation over its slenderness,
     its slip [m] and slip rate [m/s], and its pattern (face or pivot, stuck or sliding)."""
-    from rockcli.kernels import chain_run as cr
+    from rockcli.kernels import chain_out as co
 
     H = res.history
     n = len(res.interfaces)
     names = ["t_s", "ag_mps2", "ag_g"]
-    cols = [H[:, cr.HC_T], H[:, cr.HC_AG], H[:, cr.HC_AG] / G]
-    y0 = cr.HC_PAT + 2 * n
+    cols = [H[:, co.HC_T], H[:, co.HC_AG], H[:, co.HC_AG] / G]
+    y0 = co.HC_PAT + 2 * n
     for j, p in enumerate(res.interfaces):
         k = p.name
         names += [f"{k}_psi_rad", f"{k}_psi_over_alpha", f"{k}_slide_m", f"{k}_slide_rate_mps", f"{k}_corner",
                   f"{k}_slipping"]
         cols += [H[:, y0 + 4 + 4 * j], H[:, y0 + 4 + 4 * j] / p.alpha, H[:, y0 + 2 + 4 * j], H[:, y0 + 3 + 4 * j],
-                 H[:, cr.HC_PAT + 2 * j], H[:, cr.HC_PAT + 2 * j + 1]]
+                 H[:, co.HC_PAT + 2 * j], H[:, co.HC_PAT + 2 * j + 1]]
     if math.isfinite(res.u_max):
         names += ["u_m"]
         cols += [H[:, y0]]
@@ -53,7 +53,7 @@ def plot_slide_response(res, body, path: str | os.PathLike, *, excitation=None, 
     bearings the base's displacement. A red line the instant it fails (topples, or slides off: then the plinth's edge
     is drawn on the slip panel). The title names the body, the friction, the motion and the verdict in words."""
     from rockcli.io.files import check_output, save_figure
-    from rockcli.kernels import chain_run as cr
+    from rockcli.kernels import chain_out as co
     from rockcli.report.figures import new_figure, plain, pyplot
     from rockcli.report.html_figures import FIGURE_WIDTH_IN, _rc
     from rockcli.report.response import TOPPLE_COLOUR
@@ -64,9 +64,9 @@ def plot_slide_response(res, body, path: str | os.PathLike, *, excitation=None, 
     check_output(path, image=True)
     plt = pyplot()
     H = res.history
-    t = H[:, cr.HC_T]
+    t = H[:, co.HC_T]
     n = len(res.interfaces)
-    y0 = cr.HC_PAT + 2 * n
+    y0 = co.HC_PAT + 2 * n
     iso = math.isfinite(res.u_max)
     stack = res.joint is not None
     order = list(range(n - 1, -1, -1))  # the body's contact first
@@ -77,7 +77,7 @@ def plot_slide_response(res, body, path: str | os.PathLike, *, excitation=None, 
         for i, k in enumerate(keys):
             axes[k] = fig.add_subplot(len(keys), 1, i + 1, **({"sharex": axes["ground"]} if i else {}))
         ax = axes["ground"]
-        tg, ag = _ground(excitation, t[-1]) if excitation is not None else (t, H[:, cr.HC_AG])
+        tg, ag = _ground(excitation, t[-1]) if excitation is not None else (t, H[:, co.HC_AG])
         ax.plot(tg, ag / G, lw=0.8, color="0.3")
         ax.set_ylabel("ground acc. [g]")
         for j in order:
@@ -91,7 +91,7 @@ def plot_slide_response(res, body, path: str | os.PathLike, *, excitation=None, 
             b = axes[f"slide{j}"]
             s_cm = 100.0 * H[:, y0 + 2 + 4 * j]
             b.plot(t, s_cm, lw=0.9, color="C2")
-            slipping = H[:, cr.HC_PAT + 2 * j + 1] != 0.0
+            slipping = H[:, co.HC_PAT + 2 * j + 1] != 0.0
             if slipping.any():
                 lo, hi = b.get_ylim()
                 b.fill_between(t, lo, hi, where=slipping, color="C2", alpha=0.12, step="post", lw=0)

@@ -263,6 +263,7 @@ def simulate_friction(body, excitation, mu, foundation=None, *, rtol: float | No
     on the ground, and for a body on its plinth on bearings (the rule the plinth uses there); a single block on
     bearings reads ``E`` another way (:mod:`rockcli.models.impact`) and is refused. Returns a :class:`SlideResponse`.
     """
+    from rockcli.kernels import chain_out as co
     from rockcli.kernels import chain_run as cr
     from rockcli.solve.excitation import _excitation_arrays, attached_vertical
 
@@ -287,7 +288,7 @@ def simulate_friction(body, excitation, mu, foundation=None, *, rtol: float | No
                                     "(docs/simulate.md), which the friction model does not")
     cp = chain_parameters(body, mu, foundation, rtol=rtol, rest_tol=float(rest_tol), restitution=restitution)
     ekind, epar, acc, jtab, dt, t_begin, t_exc_end = _excitation_arrays(excitation)
-    xo = np.zeros(cr.n_out(n))
+    xo = np.zeros(co.n_out(n))
     H = cr.simulate_chain(cp, np.zeros(2 * n), np.zeros(2 + 4 * n), ekind, np.asarray(epar, float), acc, dt,
                           float(t_begin), float(t_exc_end), float(tail), float(horizon), int(max_steps), bool(history),
                           xo)
@@ -296,25 +297,26 @@ def simulate_friction(body, excitation, mu, foundation=None, *, rtol: float | No
 
 def _response(cp, xo, H, names) -> SlideResponse:
     from rockcli.kernels import chain as ch
+    from rockcli.kernels import chain_out as co
     from rockcli.kernels import chain_run as cr
 
     n = int(cp[ch.CP_N])
     peaks = []
     for j in range(n):
-        o = cr.N_XG + cr.NX_J * j
+        o = co.N_XG + co.NX_J * j
         f = cp[ch.CP_BLK + ch.NF_BLK * j:]
         peaks.append(InterfacePeak(
-            name=names[j], alpha=float(f[ch.F_AREST]), psi_max=float(xo[o + cr.J_PSI_MAX]),
-            t_psi_max=float(xo[o + cr.J_T_PSI_MAX]), t_exceed=float(xo[o + cr.J_T_EXCEED]),
-            t_uplift=float(xo[o + cr.J_T_UPLIFT]), n_impacts=int(xo[o + cr.J_N_IMP]),
-            slide_max_m=float(xo[o + cr.J_S_MAX]), slide_residual_m=float(xo[o + cr.J_S_END]),
-            t_slide=float(xo[o + cr.J_T_SLIDE]), n_slips=int(xo[o + cr.J_N_SLIPS]), edge_m=float(f[ch.F_EDGE]),
-            tilt_max=float(xo[o + cr.J_TILT])))
-    status = int(xo[cr.X_STATUS])
-    toppled_j = int(xo[cr.X_TOPPLED])
+            name=names[j], alpha=float(f[ch.F_AREST]), psi_max=float(xo[o + co.J_PSI_MAX]),
+            t_psi_max=float(xo[o + co.J_T_PSI_MAX]), t_exceed=float(xo[o + co.J_T_EXCEED]),
+            t_uplift=float(xo[o + co.J_T_UPLIFT]), n_impacts=int(xo[o + co.J_N_IMP]),
+            slide_max_m=float(xo[o + co.J_S_MAX]), slide_residual_m=float(xo[o + co.J_S_END]),
+            t_slide=float(xo[o + co.J_T_SLIDE]), n_slips=int(xo[o + co.J_N_SLIPS]), edge_m=float(f[ch.F_EDGE]),
+            tilt_max=float(xo[o + co.J_TILT])))
+    status = int(xo[co.X_STATUS])
+    toppled_j = int(xo[co.X_TOPPLED])
     if status == cr.STATUS_OVERTURNED:
         verdict = "overturned"
-    elif status == cr.STATUS_SLID_OFF:
+    elif status == co.STATUS_SLID_OFF:
         verdict = "slid off"
     elif status < 0:
         verdict = "undecided"
@@ -330,9 +332,9 @@ def _response(cp, xo, H, names) -> SlideResponse:
     mus = tuple(float(cp[ch.CP_BLK + ch.NF_BLK * j + ch.F_MU]) for j in range(n))
     return SlideResponse(
         verdict=verdict, status=status, mu=mus, base=peaks[0], joint=peaks[1] if n > 1 else None, toppled=toppled,
-        slid_off=status == cr.STATUS_SLID_OFF, t_fail=float(xo[cr.X_T_FAIL]),
-        u_max=float(xo[cr.X_U_MAX]) if cp[ch.CP_BASE] != ch.BASE_RIGID else math.nan,
-        n_jumps=int(xo[cr.X_N_JUMP]), n_inconsistent=int(xo[cr.X_N_INCONS]),
-        n_slip_impacts=int(xo[cr.X_N_SLIP_IMPACTS]), n_slips_inside=int(xo[cr.X_N_SLIP_IN]),
-        n_plastic=int(xo[cr.X_N_PLASTIC]), settled=bool(xo[cr.X_SETTLED]), t_end=float(xo[cr.X_T_END]),
-        steps=int(xo[cr.X_STEPS]), nrhs=int(xo[cr.X_NRHS]), history=H, all_peaks=tuple(peaks))
+        slid_off=status == co.STATUS_SLID_OFF, t_fail=float(xo[co.X_T_FAIL]),
+        u_max=float(xo[co.X_U_MAX]) if cp[ch.CP_BASE] != ch.BASE_RIGID else math.nan,
+        n_jumps=int(xo[co.X_N_JUMP]), n_inconsistent=int(xo[co.X_N_INCONS]),
+        n_slip_impacts=int(xo[co.X_N_SLIP_IMPACTS]), n_slips_inside=int(xo[co.X_N_SLIP_IN]),
+        n_plastic=int(xo[co.X_N_PLASTIC]), settled=bool(xo[co.X_SETTLED]), t_end=float(xo[co.X_T_END]),
+        steps=int(xo[co.X_STEPS]), nrhs=int(xo[co.X_NRHS]), history=H, all_peaks=tuple(peaks))
