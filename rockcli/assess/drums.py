@@ -99,6 +99,10 @@ def drum_fields(row, r, role) -> None:
         fm = r.first_move
         offsets = r.residual_offsets_m
         joints = st.interfaces[1:]
+        opened = [p for p in joints if math.isfinite(p.t_uplift)]
+        if opened:  # the first joint between drums to open (the base, the whole column, usually moves first)
+            first = min(opened, key=lambda p: p.t_uplift)
+            row.first_joint_open, row.first_joint_open_t_s = first.name, first.t_uplift
         if joints:
             top = max(joints, key=lambda p: p.psi_max_over_alpha)
             row.joint_open_max_over_alpha, row.joint_open_max_at = top.psi_max_over_alpha, top.name

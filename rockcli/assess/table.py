@@ -94,7 +94,8 @@ class AssessmentRow:
     #: a column of drums (``assess column nemea-drums --friction MU``, :mod:`rockcli.assess.drums`) and the monolith
     #: run beside it: the drum column's name (on both rows) and its drums (1 on the monolith's row); where it fails
     #: (``base``: the whole column falls; ``joint k``: the drums above joint k fall, or a drum slid off there); the
-    #: first contact to move and how (``joint 3 opens``) and when; the largest opening of a joint between drums
+    #: first contact to move and how (``joint 3 opens``) and when, and the first joint between drums to open and when;
+    #: the largest opening of a joint between drums
     #: over its slenderness and the largest slip of one [m], and where; each contact's peak opening over its
     #: slenderness and each drum's residual offset from the footprint's axis [m], bottom to top, space-separated,
     #: and the largest offset; on the drums' row the drums against the monolith (``safer``, ``worse``, ``alike``:
@@ -106,6 +107,8 @@ class AssessmentRow:
     falls_at: str = ""
     first_move: str = ""
     first_move_t_s: float = math.nan
+    first_joint_open: str = ""
+    first_joint_open_t_s: float = math.nan
     joint_open_max_over_alpha: float = math.nan
     joint_open_max_at: str = ""
     joint_slide_max_m: float = math.nan

@@ -98,6 +98,8 @@ def drum_comparison(assessment, block) -> str:
             word = r.drums_vs_monolith or "-"
             colour = {"safer": "w-survives", "worse": "w-topples", "undecided": "w-undecided"}.get(word, "")
             first = f"{r.first_move} at {r.first_move_t_s:.2f} s" if r.first_move else "nothing moves"
+            if r.first_joint_open and not r.first_move.startswith(r.first_joint_open + " "):
+                first += f"; the first joint to open: {r.first_joint_open} at {r.first_joint_open_t_s:.2f} s"
             opening = (f"{num(100 * r.joint_open_max_over_alpha, '.0f', '%')} ({esc(r.joint_open_max_at)})"
                        if math.isfinite(r.joint_open_max_over_alpha) and not r.overturned else "-")
             offset = (num(100 * r.residual_offset_max_m, "+.1f", "cm") if math.isfinite(r.residual_offset_max_m)

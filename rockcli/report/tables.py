@@ -222,7 +222,8 @@ PLINTH_COLUMNS = ("plinth", "toppled", "plinth_theta_max_over_alpha_asm", "frict
 #: contact (on the floor, or on its plinth) and the plinth's slid (0 where nothing slid: the rocking answer).
 FRICTION_COLUMNS = ("friction", "slide_max_m", "slide_residual_m", "plinth_slide_max_m", "plinth_slide_residual_m")
 #: Columns of an assessment with columns of drums (empty on the rows of other bodies; docs/physics-drums.md).
-DRUM_COLUMNS = ("drum_column", "drums", "falls_at", "first_move", "first_move_t_s", "joint_open_max_over_alpha",
+DRUM_COLUMNS = ("drum_column", "drums", "falls_at", "first_move", "first_move_t_s", "first_joint_open",
+                "first_joint_open_t_s", "joint_open_max_over_alpha",
                 "joint_open_max_at", "joint_slide_max_m", "joint_slide_max_at", "peak_openings_over_alpha",
                 "residual_offsets_m", "residual_offset_max_m", "drums_vs_monolith", "monolith_verdict",
                 "monolith_overturn_scale", "n_inconsistent", "n_jumps", "reliable")

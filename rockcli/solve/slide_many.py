@@ -228,6 +228,9 @@ def mixed_slides(jobs, many, *, progress=None, **options) -> list:
             return run_slide(sliding, foundation, motion, scale, **dict(keep))
         except RockcliInputError as exc:
             return JobError(str(exc))
+        except ArithmeticError as exc:  # a fault of the compiled driver in one scene: that scene's error, not the batch's
+            return JobError(f"the friction driver failed on this scene ({type(exc).__name__}: {exc}; x{scale:g} the "
+                            f"motion): a fault of the driver, not of the input")
 
     count = [0]
 
