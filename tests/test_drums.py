@@ -162,6 +162,10 @@ def test_face_corner_forces_at_the_ends_of_the_overlap():
         el = max(-b, -bl - s)
         assert pr + pl == pytest.approx(N, rel=1e-12, abs=1e-12)
         assert er * pr + el * pl == pytest.approx(-Mc, rel=1e-10, abs=1e-10)
+        # at the edge (no overlap left: the slip where the run ends as slid off) the contact is a point: no division
+        # by its zero width, the normal force shared
+        for edge in (bl + b, -(bl + b)):
+            assert face_corners(cp, j, edge, N, Mc) == (0.5 * N, 0.5 * N)
 
 
 def test_static_thresholds_of_each_joint():

@@ -313,7 +313,7 @@ def test_static_thresholds_are_where_the_reference_first_moves(drums, mu):
     assert opens == (th[j] < mu[j])
 
 
-@pytest.mark.parametrize("seed,n", [(3000001, 3), (3000006, 3), (3000009, 3), (3000000, 4)])
+@pytest.mark.parametrize("seed,n", [(3000004, 2), (3000001, 3), (3000006, 3), (3000009, 3), (3000000, 4)])
 def test_the_driver_agrees_with_the_reference_on_columns(seed, n):
     """Random columns of 3 and 4 drums (tests/synthetic.py ``random_drum_scene``; benchmarks/bench_drums_reference.py
     runs many more): the same verdict and, where the column stands, the same slip and impact counts, peaks to 1e-8 of
@@ -338,15 +338,13 @@ def test_the_driver_agrees_with_the_reference_on_columns(seed, n):
     assert DrumRun(col, r, None).residual_offsets_m == pytest.approx(q.residual_offsets, abs=1e-9)
 
 
-@pytest.mark.xfail(strict=True, reason="driver defect found by the reference (reported, not fixed here): a face "
-                   "entered sliding forward at a slip rate of -2e-16 (after an impact and a pattern chosen at angle "
-                   "0) keeps sliding backwards with friction pushing it: the slip-stop event never fires (the rate "
-                   "is below 0 from the start) and the contact law never re-examines a slide at rate 0")
 def test_the_drivers_friction_opposes_every_slip():
     """Along the driver's history every sliding contact that presses (``N > 0``, by the reference's mechanics at the
     driver's state) moves the way its friction opposes (``sl s' >= 0``): else friction does positive work. The
-    scene: three drums under a Ricker pulse, where the reference stands and the driver has the top drum slide 0.5 m
-    backwards, off its drum, at 3 m/s (t = 2.2-2.46 s), its friction pushing it."""
+    scene: three drums under a Ricker pulse, where the reference stands and the driver had the top drum slide 0.5 m
+    backwards, off its drum, at 3 m/s (t = 2.2-2.46 s), its friction pushing it: a slide entered at a slip rate of
+    -2e-16 (after an impact) went on backwards, unseen by the slip-stop event; now such a slip stops at the start of
+    the step and the contact law chooses again (kernels.chain_step.state_events), and the column stands."""
     from rockcli.solve.slide import simulate_friction
 
     col = DrumColumn(((1.0, 0.6), (0.8, 0.5), (0.7, 0.5)))
@@ -368,3 +366,4 @@ def test_the_drivers_friction_opposes_every_slip():
             if fr[j, 0] > 0.0:
                 worst = min(worst, pat[2 * j + 1] * qd[1 + 2 * j])
     assert worst >= -1e-9
+    assert r.verdict == "survives"

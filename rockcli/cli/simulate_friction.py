@@ -120,8 +120,7 @@ def run_friction(body, foundation, excitation, label: str, mu, *, rtol, tail, ho
     res = simulate_friction(body, excitation, mu, iso, rtol=rtol, tail=tail, horizon=horizon, history=want,
                             restitution=restitution)
     if res.status < 0:
-        raise click.ClickException(f"the integrator stopped at its safety cap of {res.steps:,} steps: no result is "
-                                   f"given (please report the command line)")
+        raise click.ClickException(f"{res.why_undecided}: no result is given (please report the command line)")
     if not res.slides:
         return res
     stacked = res.joint is not None

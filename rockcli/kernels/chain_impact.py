@@ -19,7 +19,7 @@ from rockcli.kernels.chain import CP_E, CP_N, CP_REST, CP_TOL, F_AREST, F_MU, co
 from rockcli.kernels.chain_out import (J_N_IMP, J_N_IMP_ALL, J_N_RESTS, J_N_SLIPS, J_T_SLIDE, J_T_UPLIFT, N_XG, NX_J,
                                        X_N_INCONS, X_N_JUMP, X_N_PLASTIC, X_N_SLIP_IMPACTS, X_N_SLIP_IN, X_N_SWITCH,
                                        X_T_FIRST)
-from rockcli.kernels.contact import project, rest_moments, restoring_rate, solve_pattern
+from rockcli.kernels.contact import face_corners, project, rest_moments, restoring_rate, solve_pattern
 from rockcli.kernels.contact_lcp import choose, impact_any
 from rockcli.kernels.contact_restitution import restitution_impact
 from rockcli.kernels.jit import kernel
@@ -80,8 +80,9 @@ def after_impact(cp, pat, y, j, t, t_exc_end, ag, xo, ws, frc, best, v0, w0, yne
     xo[o + J_N_IMP_ALL] += 1.0
     if t <= t_exc_end:
         xo[o + J_N_IMP] += 1.0
-    for i in range(n):
-        zero_psi[i] = i == j or pat[2 * i] == 0.0
+    for i in range(n):  # every contact at its surface takes part: the impacting one, the faces, and a pivot at angle
+        # 0 (an impact at several joints at once: one at a time, two joints at angle 0 would take turns for ever)
+        zero_psi[i] = i == j or pat[2 * i] == 0.0 or y[col_psi(i)] == 0.0
         free_corner[i] = zero_psi[i]
     pat_to = pat.copy()
     restituted = False
@@ -151,8 +152,9 @@ def cone_after_impact(cp, pat, y, t, ag, xo, ws, frc, best, zero_psi, zero_s, sp
     rate 0 free to turn or close, as after a force event. The impact law chooses from velocities; a contact it leaves sticking may already
     be outside its cone, and the step's force events take a condition that fails at the step's start as an event only
     once it has held (a tangency), so without this check such a contact would stick on for as long as its force stays
-    outside: the reference (rockcli.reference.friction) lets it slide at once. Returns True when the pattern
-    changed."""
+    outside: the reference (rockcli.reference.friction) lets it slide at once. Likewise a face left shut whose
+    force at a corner would be negative (beyond the same slack) may open now (a column of drums: an impact at one
+    joint can leave another's face pulling). Returns True when the pattern changed."""
     n = int(cp[CP_N])
     tol = cp[CP_TOL]
     if solve_pattern(cp, pat, y, ag, ws, frc) < 0:
@@ -162,13 +164,20 @@ def cone_after_impact(cp, pat, y, t, ag, xo, ws, frc, best, zero_psi, zero_s, sp
         fs = max(fs, abs(frc[i, 0]), abs(frc[i, 1]))
     out = False
     for i in range(n):
+        zero_psi[i] = False
         if pat[2 * i + 1] == 0.0 and frc[i, 0] > 0.0 and fld(cp, i, F_MU) * frc[i, 0] - abs(frc[i, 1]) < -tol * fs:
             out = True
+        if pat[2 * i] == 0.0:
+            pr, pl = face_corners(cp, i, y[col_s(i)], frc[i, 0], frc[i, 2])
+            if min(pr, pl) < -tol * fs:  # a face that would pull at a corner: it may open now
+                zero_psi[i] = True
+                out = True
     if not out:
         return False
     for i in range(n):  # every sticking contact may start to slide (the others' demand changes with it)
         zero_s[i] = pat[2 * i + 1] == 0.0
-        zero_psi[i] = pat[2 * i] != 0.0 and y[col_psi(i)] == 0.0 and y[col_psi(i) + 1] == 0.0
+        if pat[2 * i] != 0.0 and y[col_psi(i)] == 0.0 and y[col_psi(i) + 1] == 0.0:
+            zero_psi[i] = True
     m, pulls = choose(cp, pat, y, ag, ws, frc, zero_psi, zero_s, best, sp)
     if m < -tol:
         xo[X_N_INCONS] += 1.0

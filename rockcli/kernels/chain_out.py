@@ -1,4 +1,9 @@
 STATUS_SLID_OFF = 2
+#: the run stopped where its steps made no progress (the step size collapsed at a point the contact law cannot pass:
+#: pivots that pull, which the model without flight cannot follow): undecided, as at the step cap
+STATUS_STALLED = -2
+#: accepted steps in a row that leave the time unchanged before a run is stopped as stalled
+MAX_NO_PROGRESS = 1000
 
 # the run's outputs
 X_STATUS, X_TOPPLED, X_SLIDOFF, X_T_END, X_T_FAIL, X_STEPS, X_REJ, X_NRHS = 0, 1, 2, 3, 4, 5, 6, 7

@@ -32,7 +32,8 @@ from rockcli.kernels.chain_impact import after_impact, cone_after_impact, switch
 from rockcli.kernels.chain_kind import kind_switch
 from rockcli.kernels.chain_out import (HC_AG, HC_KIND, HC_PAT, HC_T, HK_END, HK_EVENT, HK_IMPACT, HK_IMPACT_AFTER,
                                        HK_STATE, J_PSI_END, J_PSI_MAX, J_S_END, J_S_MAX, J_TILT, J_T_EXCEED,
-                                       J_T_PSI_MAX, J_T_SLIDE, J_T_S_MAX, J_T_UPLIFT, NX_J, N_XG, STATUS_SLID_OFF,
+                                       J_T_PSI_MAX, J_T_SLIDE, J_T_S_MAX, J_T_UPLIFT, MAX_NO_PROGRESS, NX_J, N_XG,
+                                       STATUS_SLID_OFF, STATUS_STALLED,
                                        X_NRHS, X_N_INCONS, X_N_JUMP, X_N_STALL, X_REJ, X_SETTLED, X_SLIDOFF, X_STATUS,
                                        X_STEPS, X_TOPPLED, X_T_END, X_T_FAIL, X_T_FIRST, X_T_SETTLED, X_T_U_MAX,
                                        X_U_END, X_U_MAX)
@@ -218,6 +219,7 @@ def simulate_chain(cp, pat0, y0, ekind, epar, acc, dt, t_begin, t_exc_end, tail,
     settled = False
     status = STATUS_DONE
     stall = 0
+    no_progress = 0
     t_last_event = -math.inf
     x_u = X_U_MAX if not rigid else -1
     band_ok = False  # the rest band on the bearings, computed once each time the chain comes to rest
@@ -366,6 +368,10 @@ def simulate_chain(cp, pat0, y0, ekind, epar, acc, dt, t_begin, t_exc_end, tail,
             code, who, sig = fcode, fwho, fsig
         peaks(cp, pat, W, hs, t, sig, xo, N_XG + J_PSI_MAX, N_XG + J_S_MAX, N_XG + J_TILT, x_u, NX_J, alpha_rest)
         if code == EVC_NONE:
+            no_progress = no_progress + 1 if t_new == t else 0
+            if no_progress > MAX_NO_PROGRESS:  # the step size has collapsed: stop, undecided, not at the step cap
+                status = STATUS_STALLED
+                break
             rs[RS_T] = t_new
             for i in range(ny):
                 W[W_Y, i] = W[W_YNEW, i]
@@ -388,6 +394,14 @@ def simulate_chain(cp, pat0, y0, ekind, epar, acc, dt, t_begin, t_exc_end, tail,
         rs[RS_FRESH] = 1.0
         rs[RS_H] = 0.0
         y = W[W_Y]
+        if code == EVC_WRONG_SIDE:
+            vs = 1e-300
+            for j in range(n):
+                vs = max(vs, abs(y[col_psi(j) + 1]))
+            if pat[2 * who] * y[col_psi(who) + 1] < -cp[CP_TOL] * vs:
+                code = EVC_IMPACT  # a pivot at its surface turning into it beyond rounding: an impact there (with
+                # every other contact at its surface: after_impact), not a choice at the force level, which takes
+                # its rate as 0; a rate at rounding level is a choice (the impact law would leave it as it is)
         if code == EVC_IMPACT:
             ci = col_psi(who)
             if sig > 0.0 and W[W_FEV, ci] != 0.0:  # onto the root by one Taylor term
@@ -469,6 +483,15 @@ def simulate_chain(cp, pat0, y0, ekind, epar, acc, dt, t_begin, t_exc_end, tail,
                 m = -math.inf
             else:
                 m, pulls = choose(cp, pat, y, ground_at(t_ev, seg, epar), ws, frc, zero_psi, zero_s, best, sp)
+                if code == EVC_SLIP_STOP and m < -cp[CP_TOL] and best[2 * who + 1] != 0.0:
+                    # no pattern meets the conditions where the slip stopped (a Painleve-like case, or one that needs
+                    # flight): the contact sticks, as the least of the failures (friction never pushes a slip on;
+                    # a slide at rate 0 whose rate turns the wrong way would stop again at once, for ever)
+                    sl_was = pat[2 * who + 1]
+                    pat[2 * who + 1] = 0.0
+                    zero_s[who] = False
+                    m, pulls = choose(cp, pat, y, ground_at(t_ev, seg, epar), ws, frc, zero_psi, zero_s, best, sp)
+                    pat[2 * who + 1] = sl_was
             if m < -cp[CP_TOL]:
                 xo[X_N_INCONS] += 1.0
             switch(xo, pat, best, n, t_ev, cp, y)

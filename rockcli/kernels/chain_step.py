@@ -198,9 +198,16 @@ def state_events(cp, pat, W, hs, sig_lim):
                 best, code, who = sg, EVC_TOPPLE, j
         if sl != 0.0:
             cs = col_s(j)
-            sg = _first_down(quartic(W, hs, cs + 1, sl, 0.0), 0.0, 0.0, best)
+            q = quartic(W, hs, cs + 1, sl, 0.0)
+            sg = _first_down(q, 0.0, 0.0, best)
             if sg >= 0.0 and (sg < best or code == EVC_NONE):
                 best, code, who = sg, EVC_SLIP_STOP, j
+            elif sg < 0.0 and q[0] <= 0.0 and _poly(q, best) < 0.0:
+                # the slip's analogue of the pivot's wrong side: a slide entered at a rate a rounding error the wrong
+                # way (-2e-16 after an impact) would go on backwards with its friction pushing it, unseen by the
+                # slip-stop event, which watches the rate on its own side: the slip stops at the start of the step
+                # and the contact law chooses again
+                return EVC_SLIP_STOP, j, 0.0
             blow = fld(cp, j, F_BLOW)
             if c != 0.0 and math.isfinite(blow):
                 sw = c * (blow - fld(cp, j, F_B))  # kernels.chain.kinematics: kind A below, kind B past it

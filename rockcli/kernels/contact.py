@@ -52,6 +52,8 @@ def face_corners(cp, j, s, N, Mc):
     if e_r == b and e_l == -b:
         return 0.5 * N - 0.5 * Mc / b, 0.5 * N + 0.5 * Mc / b
     w = e_r - e_l
+    if w <= 1e-12 * b:  # no overlap left (the slip at the edge, where the run ends as slid off): a point contact
+        return 0.5 * N, 0.5 * N
     return (-Mc - N * e_l) / w, (N * e_r + Mc) / w
 
 

@@ -177,8 +177,7 @@ class DrumSlideRun(SlideRun):
         st = self.slide
         if st.status >= 0:
             return st.verdict
-        return (f"undecided: the run stopped at the solver's step cap ({st.steps} steps) at t = {st.t_end:.2f} s, "
-                f"with {st.n_inconsistent} events without a consistent contact pattern")
+        return f"undecided: {st.why_undecided}, with {st.n_inconsistent} events without a consistent contact pattern"
 
     @property
     def falls_at(self) -> str | None:

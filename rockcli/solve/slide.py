@@ -114,6 +114,18 @@ class SlideResponse:
         return any(math.isfinite(p.t_uplift) for p in self.interfaces)
 
     @property
+    def why_undecided(self) -> str:
+        """Why an undecided run stopped, in words ("" when it was decided)."""
+        from rockcli.kernels.chain_out import STATUS_STALLED
+
+        if self.status >= 0:
+            return ""
+        if self.status == STATUS_STALLED:
+            return (f"the run stopped at t = {self.t_end:.2f} s where its steps made no progress (the contact law "
+                    f"found no way on: pivots that pull, which the model without flight cannot follow)")
+        return f"the run stopped at the solver's step cap ({self.steps:,} steps) at t = {self.t_end:.2f} s"
+
+    @property
     def slides(self) -> bool:
         """A contact slid, between impacts or during one."""
         return any(p.n_slips > 0 for p in self.interfaces) or self.n_slip_impacts > 0
