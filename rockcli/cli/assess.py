@@ -274,7 +274,7 @@ def column(names, R, alpha, height, width, name, records, units, dt, excitation,
       rockcli assess column statue:R=1.2,alpha=14 --records kobe-1995-takarazuka-000 --isolation none
       rockcli assess column nemea --records kobe-1995-takarazuka-000 --isolation linear:Tb=3 --plot-dir figs
       rockcli assess column bassae-drums --friction 0.7 --records kobe-1995-takarazuka-000 --excitation pulse \\
-          --isolation none --no-margin --report drums.html
+          --isolation linear:Tb=3 --no-margin --report drums.html
       rockcli assess column statue:R=0.93,alpha=15.5 --records ../shared/records/RSN1119_KOBE_TAZ000.AT2 \\
           --isolation none --isolation linear:Tb=2.5 --report statue.html
 

@@ -80,9 +80,8 @@ def after_impact(cp, pat, y, j, t, t_exc_end, ag, xo, ws, frc, best, v0, w0, yne
     xo[o + J_N_IMP_ALL] += 1.0
     if t <= t_exc_end:
         xo[o + J_N_IMP] += 1.0
-    for i in range(n):  # every contact at its surface takes part: the impacting one, the faces, and a pivot at angle
-        # 0 (an impact at several joints at once: one at a time, two joints at angle 0 would take turns for ever)
-        zero_psi[i] = i == j or pat[2 * i] == 0.0 or y[col_psi(i)] == 0.0
+    for i in range(n):
+        zero_psi[i] = i == j or pat[2 * i] == 0.0
         free_corner[i] = zero_psi[i]
     pat_to = pat.copy()
     restituted = False

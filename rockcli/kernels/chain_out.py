@@ -1,8 +1,10 @@
 STATUS_SLID_OFF = 2
 #: the run stopped where its steps made no progress (the step size collapsed at a point the contact law cannot pass:
-#: pivots that pull, which the model without flight cannot follow): undecided, as at the step cap
+#: pivots that pull, which the model without flight cannot follow), or where events at one instant never end (64,000
+#: in a row): undecided, as at the step cap
 STATUS_STALLED = -2
-#: accepted steps in a row that leave the time unchanged before a run is stopped as stalled
+#: accepted steps in a row that leave the time unchanged before a run is stopped as stalled (events at one instant:
+#: this times the driver's MAX_STALL)
 MAX_NO_PROGRESS = 1000
 
 # the run's outputs

@@ -391,6 +391,9 @@ def simulate_chain(cp, pat0, y0, ekind, epar, acc, dt, t_begin, t_exc_end, tail,
         else:
             stall = 0
         t_last_event = t_ev
+        if stall > MAX_NO_PROGRESS * MAX_STALL:  # events at one instant for ever: stop, undecided
+            status = STATUS_STALLED
+            break
         rs[RS_FRESH] = 1.0
         rs[RS_H] = 0.0
         y = W[W_Y]
@@ -399,9 +402,9 @@ def simulate_chain(cp, pat0, y0, ekind, epar, acc, dt, t_begin, t_exc_end, tail,
             for j in range(n):
                 vs = max(vs, abs(y[col_psi(j) + 1]))
             if pat[2 * who] * y[col_psi(who) + 1] < -cp[CP_TOL] * vs:
-                code = EVC_IMPACT  # a pivot at its surface turning into it beyond rounding: an impact there (with
-                # every other contact at its surface: after_impact), not a choice at the force level, which takes
-                # its rate as 0; a rate at rounding level is a choice (the impact law would leave it as it is)
+                code = EVC_IMPACT  # a pivot at its surface turning into it beyond rounding: an impact there, not a
+                # choice at the force level, which takes its rate as 0; a rate at rounding level is a choice (the
+                # impact law would leave it as it is)
         if code == EVC_IMPACT:
             ci = col_psi(who)
             if sig > 0.0 and W[W_FEV, ci] != 0.0:  # onto the root by one Taylor term

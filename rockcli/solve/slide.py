@@ -121,8 +121,9 @@ class SlideResponse:
         if self.status >= 0:
             return ""
         if self.status == STATUS_STALLED:
-            return (f"the run stopped at t = {self.t_end:.2f} s where its steps made no progress (the contact law "
-                    f"found no way on: pivots that pull, which the model without flight cannot follow)")
+            return (f"the run stopped at t = {self.t_end:.2f} s where it made no progress (its steps, or its events at "
+                    f"one instant, went on without time passing: the contact law found no way on, as where pivots "
+                    f"pull, which the model without flight cannot follow)")
         return f"the run stopped at the solver's step cap ({self.steps:,} steps) at t = {self.t_end:.2f} s"
 
     @property
