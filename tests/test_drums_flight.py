@@ -77,7 +77,6 @@ def test_energy_never_rises_across_a_landing():
         r = reference_drums(col, exc, mu, iso, flight=True, record_energy=True)
         landings += r.n_landings
         assert max(r.energy_rises, default=0.0) <= 1e-12 * G * sum(h * w for h, w in col.drums)
-        assert r.n_jumps == 0
     assert landings >= 3
 
 

@@ -10,9 +10,10 @@ j]``. What flight changes in the contact law (:func:`choose`, :func:`impact`):
   a pivot that pulls is no longer a hinge counted as a jump but a violated condition.
 * **Lift-off.** A pivot whose normal force reaches 0 decreasing is an event (``lift``): its candidates are the
   patterns with that interface flying (a flying interface's condition: its gap's acceleration ``>= 0`` at zero gap;
-  a face's, both corners'), else those where it stays shut. Where the chosen pattern still pulls somewhere, the pulling
-  interfaces get the flying option too and the search is repeated (at most every interface). Impacts the same, at the
-  velocity level (the gap's rate after ``>= 0``).
+  a face's, both corners'), else those where it stays shut; a face that opens has the flying option beside its
+  pivots. Where no candidate meets every condition, the interfaces that the best one pulls get the flying option and
+  the search is repeated, and then every shut interface (at most ``MAX_FLY``). Impacts the same, at the velocity
+  level (the gap's rate after ``>= 0``).
 * **Landing.** During flight the gap of each end of the drum's base over the top below is watched (:func:`end_gaps`:
   the drum's corner over the top where it lies over it, else the lower drum's corner under the drum's base, the overlap
   geometry of the pivots of kind A and B); the first to close is an impact by Moreau's plastic law with Coulomb's
@@ -191,8 +192,10 @@ def _search(ch, prev, q, qd, ag, stages, level, V0, method, stats, fly, exclude,
                         return got
             if fly_only and len(S) == len(fly) and best_all[1] >= -dp.TOL:
                 return best_all
-        new = set(best_all[2]) - fly if best_all[0] is not None else set()
-        new = {j for j in new if not flying(prev[2 * j])}
+        shut = {j for j in range(n) if not flying(prev[2 * j])}
+        new = (set(best_all[2]) & shut) - fly if best_all[0] is not None else set()
+        if not new:  # nothing pulls, yet nothing meets the conditions: every shut interface may fly
+            new = shut - fly
         if not new or len(fly) >= MAX_FLY:
             return best_all
         fly |= set(sorted(new)[:MAX_FLY - len(fly)])
