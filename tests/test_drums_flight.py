@@ -29,13 +29,14 @@ def _scene(seed, n, strong=True):
     return random_drum_scene(seed, n, **(STRONG if strong else {}))
 
 
-@pytest.mark.parametrize("seed,n,strong", [(4, 2, True), (6, 2, True), (5, 2, True), (1, 2, False)])
-def test_without_pulls_flight_changes_nothing(seed, n, strong):
-    """Scenes where no pivot pulls (flight=False counts no jump and flight=True lifts nothing off): the same verdict,
-    counts and peaks (to 1e-12: the runs take the same events; found 4e-14)."""
-    col, exc, mu, iso = _scene(seed, n, strong)
-    a = reference_drums(col, exc, mu, iso)
-    b = reference_drums(col, exc, mu, iso, flight=True)
+@pytest.mark.parametrize("seed,n,kw", [(4, 2, {}), (6, 2, {}), (5, 2, {}), (203, 4, {"horizon": 0.0}),
+                                        (201, 4, {"horizon": 0.0, "max_phases": 60})])
+def test_without_pulls_flight_changes_nothing(seed, n, kw):
+    """Strong scenes where no pivot pulls (flight=False counts no jump and flight=True lifts nothing off): the same
+    verdict, counts and peaks (to 1e-12: the runs take the same events; found 4e-14)."""
+    col, exc, mu, iso = _scene(seed, n)
+    a = reference_drums(col, exc, mu, iso, **kw)
+    b = reference_drums(col, exc, mu, iso, flight=True, **kw)
     assert a.n_jumps == 0 and b.n_flights == 0 and b.n_jumps == 0
     assert a.verdict == b.verdict and (a.toppled, a.slid_off) == (b.toppled, b.slid_off)
     assert (a.n_slips, a.n_impacts, a.n_inconsistent) == (b.n_slips, b.n_impacts, b.n_inconsistent)
@@ -72,9 +73,9 @@ def test_energy_never_rises_across_a_landing():
     """Random strong scenes of 2 and 3 drums with flights and landings: every landing (as every impact, switch and
     projection) takes kinetic energy out, to rounding."""
     landings = 0
-    for seed, n in ((0, 2), (1, 2), (3, 2), (101, 3), (100, 3)):
+    for seed, n in ((0, 2), (1, 2), (100, 3), (200, 3), (210, 3)):
         col, exc, mu, iso = _scene(seed, n)
-        r = reference_drums(col, exc, mu, iso, flight=True, record_energy=True)
+        r = reference_drums(col, exc, mu, iso, flight=True, record_energy=True, horizon=0.0)
         landings += r.n_landings
         assert max(r.energy_rises, default=0.0) <= 1e-12 * G * sum(h * w for h, w in col.drums)
     assert landings >= 3
@@ -150,15 +151,20 @@ def test_a_tilted_landing_on_a_corner_conserves_the_angular_momentum_about_it(n)
 
 
 def test_strong_shaking_leaves_no_pivot_pulling():
-    """Random strong scenes of 3 and 4 drums (3-6 times the first static threshold, at most 1.5 g): without flight
-    pivots pull (counted as jumps); with flight none does (``n_jumps == 0``: no pattern chosen with a pulling pivot,
-    at an event or an impact), and drums lift off and land."""
+    """Random strong scenes of 3 and 4 drums (seeds 200-219, 3-6 times the first static threshold, at most 1.5 g;
+    the first 20 phases of each, and not seed 209, whose run with flight takes 20 s: a search with every interface
+    flying; benchmarks/bench_drums_reference.py --flight runs them whole): without flight pivots pull (counted as
+    jumps: 16 in these scenes); with flight none does (``n_jumps == 0``: no pattern chosen with a pulling pivot, at an
+    event or an impact), drums lift off and land, and energy never rises."""
     jumps, flights, landings, scenes = 0, 0, 0, 0
     lines = []
-    for seed, n in SURVEY:
+    for seed in range(200, 220):
+        if seed == 209:
+            continue
+        n = 3 + seed % 2
         col, exc, mu, iso = _scene(seed, n)
-        a = reference_drums(col, exc, mu, iso)
-        b = reference_drums(col, exc, mu, iso, flight=True, record_energy=True)
+        a = reference_drums(col, exc, mu, iso, horizon=0.0, max_phases=20)
+        b = reference_drums(col, exc, mu, iso, flight=True, record_energy=True, horizon=0.0, max_phases=20)
         lines.append(f"seed {seed} n={n}: no flight {a.verdict}, {a.n_jumps} jumps; flight {b.verdict}, "
                      f"{b.n_flights} lift-offs, {b.n_landings} landings, {b.n_jumps} pulls")
         jumps += a.n_jumps
@@ -168,7 +174,6 @@ def test_strong_shaking_leaves_no_pivot_pulling():
         assert b.n_jumps == 0, lines[-1]
         assert max(b.energy_rises, default=0.0) <= 1e-12 * G * sum(h * w for h, w in col.drums)
     print("\n".join(lines))
-    assert jumps > 0 and flights > 0
-
-
-SURVEY = []
+    print(f"{scenes} scenes: without flight {jumps} jumps; with flight {flights} lift-offs, {landings} landings, "
+          "no pull")
+    assert jumps >= 10 and flights >= 10 and landings >= 5 and scenes == 19
