@@ -114,7 +114,8 @@ def run_one(args):
         return out
     t2 = time.process_time()
     names = col.joint_names()
-    out.update(ref_verdict=q.verdict, cpu_ref=t2 - t1, ref_jumps=q.n_jumps, energy_rise=max(q.energy_rises, default=0.0),
+    out.update(ref_verdict=q.verdict, cpu_ref=t2 - t1, ref_jumps=q.n_jumps,
+               energy_rise=max(q.energy_rises, default=0.0),
                ref_incons=q.n_inconsistent, ref_offsets=q.residual_offsets, how=q.how,
                ref_toppled=None if q.toppled < 0 else names[q.toppled], kind_switches=q.n_kind_switches,
                interfaces=[])
