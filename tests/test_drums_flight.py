@@ -153,7 +153,7 @@ def test_strong_shaking_leaves_no_pivot_pulling():
     """Random strong scenes of 3 and 4 drums (seeds 200-219, 3-6 times the first static threshold, at most 1.5 g;
     the first 20 phases of each, and not seed 209, whose run with flight takes 20 s: its impacts' mixed-integer
     searches reach their cap of 64 patterns; benchmarks/bench_drums_reference.py --flight runs such scenes whole): without flight pivots pull (counted as
-    jumps: 16 in these scenes); with flight none does (``n_jumps == 0``: no pattern chosen with a pulling pivot, at an
+    jumps: 14 in these scenes); with flight none does (``n_jumps == 0``: no pattern chosen with a pulling pivot, at an
     event or an impact), drums lift off and land, and energy never rises."""
     jumps, flights, landings, scenes = 0, 0, 0, 0
     lines = []
