@@ -2,7 +2,7 @@
 stacks: verdicts, slip and impact counts, peaks, residual offsets, CPU.
 
     python benchmarks/bench_drums_reference.py --scenes 50 --n 2,3,4 --seed 1 [--jobs 2] [--deadline 600]
-        [--linear 0.2] [--only SEED --n N] [--out out/drums_reference.json]
+        [--linear 0.2] [--only SEED --n N] [--out out/drums_reference.json] [--flight [--scale 3,6 --cap 1.5]]
 
 Each scene: ``n`` drums (heights 0.3-1.5 m, widths 0.3-1.0 m; a third of the columns tapering upwards, the others
 with widths drawn freely, so that some drums overhang the one below), friction 0.3-1.0 drawn per contact, a random
@@ -12,6 +12,12 @@ deadline per scene (``--deadline``): a scene past it is reported as a timeout, n
 scenes, the verdicts that agree, the scenes whose slip and impact counts agree, the largest differences of the
 peaks over the slenderness and of the residual offsets (m) where both survive, the CPU per scene of each, and every
 disagreeing seed (rerun one alone with ``--only SEED --n N``).
+
+``--flight``: the reference is also run with flight (``reference_drums(..., flight=True)``, each within the same
+deadline), and printed per scene and per ``n``: the verdicts of the driver (which has no flight), of the reference
+without flight and with it, how many scenes change verdict with flight, the pulls (jumps) counted without flight and
+left with it, the lift-offs and landings, and the CPU of each. ``--scale LO,HI`` and ``--cap G`` draw stronger
+shaking (tests/synthetic.py ``random_drum_scene``: LO-HI times the first static threshold, at most G).
 """
 
 from __future__ import annotations
@@ -33,7 +39,12 @@ def scene(seed: int, n: int, linear: float = 0.0):
     """``(column, excitation, mu per contact, foundation)`` of one seed (tests/synthetic.py)."""
     from synthetic import random_drum_scene
 
-    return random_drum_scene(seed, n, linear)
+    kw = {}
+    if os.environ.get("BENCH_DRUMS_SCALE"):
+        kw["scale"] = tuple(float(x) for x in os.environ["BENCH_DRUMS_SCALE"].split(","))
+    if os.environ.get("BENCH_DRUMS_CAP"):
+        kw["cap"] = float(os.environ["BENCH_DRUMS_CAP"])
+    return random_drum_scene(seed, n, linear, **kw)
 
 
 def run_isolated(args):
@@ -42,10 +53,11 @@ def run_isolated(args):
     (out/milp-crash-SEED-N.npz)."""
     import subprocess
 
-    seed, n, linear, deadline = args
+    seed, n, linear, deadline, flight = args
     dump = os.path.join("out", f"milp-crash-{seed}-{n}.npz")
     env = dict(os.environ, ROCKCLI_MILP_DUMP=dump)
-    p = subprocess.run([sys.executable, "-X", "faulthandler", __file__, "--child", f"{seed},{n},{linear},{deadline}"],
+    p = subprocess.run([sys.executable, "-X", "faulthandler", __file__, "--child",
+                        f"{seed},{n},{linear},{deadline},{int(flight)}"],
                        capture_output=True, text=True, env=env)
     if p.returncode == 0:
         if os.path.exists(dump):
@@ -57,8 +69,27 @@ def run_isolated(args):
             "error": f"the process ended with code {p.returncode}: {p.stderr.strip().splitlines()[-1:]}"}
 
 
+def run_flight(col, exc, mu, iso, deadline):
+    """The reference with flight: its verdict, counts and CPU (a timeout or failure reported as the verdict)."""
+    from rockcli.reference.friction_drums import reference_drums
+    from rockcli.reference.result import ReferenceTimeout
+
+    t0 = time.process_time()
+    try:
+        q = reference_drums(col, exc, mu, iso, rtol=1e-10, record_energy=True, deadline_s=deadline, flight=True)
+    except ReferenceTimeout:
+        return {"fl_verdict": "timeout", "cpu_fl": time.process_time() - t0}
+    except Exception as exc_:  # a failure is reported, not hidden
+        return {"fl_verdict": "error", "fl_error": f"{type(exc_).__name__}: {exc_}", "cpu_fl": time.process_time() - t0}
+    names = col.joint_names()
+    return {"fl_verdict": q.verdict, "cpu_fl": time.process_time() - t0, "fl_jumps": q.n_jumps,
+            "fl_incons": q.n_inconsistent, "fl_flights": q.n_flights, "fl_landings": q.n_landings,
+            "fl_time": q.flight_time, "fl_energy_rise": max(q.energy_rises, default=0.0),
+            "fl_toppled": None if q.toppled < 0 else names[q.toppled]}
+
+
 def run_one(args):
-    seed, n, linear, deadline = args
+    seed, n, linear, deadline, flight = args
     from rockcli.reference.friction_drums import reference_drums
     from rockcli.reference.result import ReferenceTimeout
     from rockcli.solve.drums import DrumRun
@@ -66,6 +97,8 @@ def run_one(args):
 
     col, exc, mu, iso = scene(seed, n, linear)
     out = {"seed": seed, "n": n, "iso": iso is not None}
+    if flight:
+        out.update(run_flight(col, exc, mu, iso, deadline))
     t0 = time.process_time()
     r = simulate_friction(col, exc, mu, iso, rtol=1e-10)
     t1 = time.process_time()
@@ -81,7 +114,8 @@ def run_one(args):
         return out
     t2 = time.process_time()
     names = col.joint_names()
-    out.update(ref_verdict=q.verdict, cpu_ref=t2 - t1, energy_rise=max(q.energy_rises, default=0.0),
+    out.update(ref_verdict=q.verdict, cpu_ref=t2 - t1, ref_jumps=q.n_jumps,
+               energy_rise=max(q.energy_rises, default=0.0),
                ref_incons=q.n_inconsistent, ref_offsets=q.residual_offsets, how=q.how,
                ref_toppled=None if q.toppled < 0 else names[q.toppled], kind_switches=q.n_kind_switches,
                interfaces=[])
@@ -93,7 +127,33 @@ def run_one(args):
     return out
 
 
+def flight_summary(rows):
+    """Per scene and per ``n``: the verdicts of the driver, the reference without and with flight (--flight)."""
+    for n in sorted({r["n"] for r in rows}):
+        rs = [r for r in rows if r["n"] == n and "fl_verdict" in r]
+        if not rs:
+            continue
+        for r in rs:
+            print(f"    seed {r['seed']} n={n}: driver {r['verdict']}, reference {r['ref_verdict']} "
+                  f"({r.get('ref_jumps', '?')} jumps), with flight {r['fl_verdict']} ({r.get('fl_flights', '?')} "
+                  f"lift-offs, {r.get('fl_landings', '?')} landings, {r.get('fl_jumps', '?')} pulls); CPU "
+                  f"{r['cpu_kernel']:.2f} / {r['cpu_ref']:.1f} / {r['cpu_fl']:.1f} s")
+        done = [r for r in rs if r["ref_verdict"] not in ("timeout", "error", "?")
+                and r["fl_verdict"] not in ("timeout", "error")]
+        change = [r for r in done if r["ref_verdict"] != r["fl_verdict"]]
+        drv = [r for r in rs if r["fl_verdict"] not in ("timeout", "error") and r["verdict"] != r["fl_verdict"]]
+        flew = [r for r in done if r.get("fl_flights", 0)]
+        jumped = [r for r in done if r.get("ref_jumps", 0)]
+        print(f"n={n} flight: {len(rs)} scenes, both references done {len(done)}; drums flew in {len(flew)}, "
+              f"pivots pulled without flight in {len(jumped)}; the verdict changes with flight in {len(change)}/"
+              f"{len(done)}, the driver's differs from the reference with flight in {len(drv)}; pulls left with "
+              f"flight {sum(r.get('fl_jumps', 0) for r in done)}; energy rise <= "
+              f"{max((r.get('fl_energy_rise', 0.0) for r in done), default=0.0):.1e}; CPU per scene with flight "
+              f"{sum(r['cpu_fl'] for r in rs) / max(1, len(rs)):.1f} s")
+
+
 def summary(rows):
+    flight_summary(rows)
     for n in sorted({r["n"] for r in rows}):
         rs = [r for r in rows if r["n"] == n]
         done = [r for r in rs if r["ref_verdict"] not in ("timeout", "error")]
@@ -133,26 +193,34 @@ def main():
     ap.add_argument("--out", default=None)
     ap.add_argument("--child", default=None, help=argparse.SUPPRESS)
     ap.add_argument("--summary", default=None, help="print the summary of a JSON file written by --out")
+    ap.add_argument("--flight", action="store_true", help="also run the reference with flight, compare the verdicts")
+    ap.add_argument("--scale", default=None, help="LO,HI: the shaking LO-HI times the first static threshold")
+    ap.add_argument("--cap", default=None, help="the shaking at most this [g]")
     a = ap.parse_args()
+    if a.scale:
+        os.environ["BENCH_DRUMS_SCALE"] = a.scale
+    if a.cap:
+        os.environ["BENCH_DRUMS_CAP"] = a.cap
     if a.summary:
         with open(a.summary) as f:
             summary(json.load(f))
         return
     if a.child:
-        seed, n, linear, deadline = a.child.split(",")
-        print(json.dumps(run_one((int(seed), int(n), float(linear), float(deadline))), default=str))
+        seed, n, linear, deadline, flight = a.child.split(",")
+        print(json.dumps(run_one((int(seed), int(n), float(linear), float(deadline), flight == "1")), default=str))
         return
     ns = [int(x) for x in a.n.split(",")]
     if a.only is not None:
-        jobs = [(a.only, n, a.linear, a.deadline) for n in ns]
+        jobs = [(a.only, n, a.linear, a.deadline, a.flight) for n in ns]
     else:
-        jobs = [(a.seed * 1_000_000 + i, n, a.linear, a.deadline) for n in ns for i in range(a.scenes)]
+        jobs = [(a.seed * 1_000_000 + i, n, a.linear, a.deadline, a.flight) for n in ns for i in range(a.scenes)]
     rows = []
 
     def done(r):
         rows.append(r)
+        fl = f", with flight {r['fl_verdict']} ({r['cpu_fl']:.1f} s)" if "fl_verdict" in r else ""
         print(f"  seed {r['seed']} n={r['n']}: driver {r['verdict']} ({r['cpu_kernel']:.1f} s), reference "
-              f"{r['ref_verdict']} ({r['cpu_ref']:.1f} s)", file=sys.stderr, flush=True)
+              f"{r['ref_verdict']} ({r['cpu_ref']:.1f} s){fl}", file=sys.stderr, flush=True)
         if a.out:  # after every scene: a run stopped half-way keeps what it did
             os.makedirs(os.path.dirname(a.out) or ".", exist_ok=True)
             with open(a.out, "w") as f:

@@ -38,11 +38,12 @@ def synthetic_record(seed=0, duration=12.0, dt=0.01, pga=0.45 * G):
     return Record(acc, dt, f"synthetic-{seed}")
 
 
-def random_drum_scene(seed: int, n: int, linear: float = 0.0):
+def random_drum_scene(seed: int, n: int, linear: float = 0.0, scale=(1.0, 3.0), cap: float = 1.0):
     """A random column of ``n`` drums and its shaking (benchmarks/bench_drums_reference.py and
     tests/test_drums_reference.py): ``(column, excitation, mu per contact, foundation)``. Heights 0.3-1.5 m, widths 0.3-1.0 m (a third tapering
     upwards, the others free, so that some drums overhang), friction 0.3-1.0 per contact, a pulse or a short random
-    record of 1-3 times the column's first static threshold (at most 1 g); a fraction ``linear`` on linear bearings."""
+    record of 1-3 times (``scale``) the column's first static threshold (at most ``cap`` [g]); a fraction ``linear`` on
+    linear bearings (the defaults draw the same scenes as ever)."""
     from rockcli.io.units import G
     from rockcli.models import LinearIsolation
     from rockcli.models.drums import DrumColumn
@@ -59,7 +60,7 @@ def random_drum_scene(seed: int, n: int, linear: float = 0.0):
     # the shaking from just above the column's first static threshold (the joint that opens or slides first) to
     # three times it, at most 1 g: every scene moves
     first = min(min(m, t) for m, t in zip(mu, col.static_thresholds()))
-    amp = min(1.0, first * float(rng.uniform(1.0, 3.0)))
+    amp = min(cap, first * float(rng.uniform(*scale)))
     if rng.random() < 0.5:
         exc = random_record(rng, pga_g=amp, n_range=(150, 300))
     else:

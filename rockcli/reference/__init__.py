@@ -40,7 +40,9 @@ What is where, in reading order (every name is importable from ``rockcli.referen
 * :mod:`~rockcli.reference.friction_drums`: a column of drums with friction at every joint
   (:func:`~rockcli.reference.friction_drums.reference_drums`, docs/physics-drums.md); its mechanics in maximal
   coordinates (:mod:`~rockcli.reference.drum_mechanics`: faces at the ends of the overlap, pivots of kind A and B)
-  and the pattern after an event by enumeration or a mixed-integer problem (:mod:`~rockcli.reference.drum_patterns`).
+  and the pattern after an event by enumeration or a mixed-integer problem (:mod:`~rockcli.reference.drum_patterns`);
+  with ``flight=True`` the drums may lift off, fly and land (:mod:`~rockcli.reference.drum_flight`: the contact law
+  with flight, the gaps of a flying joint; :mod:`~rockcli.reference.drum_flight_run`: its run).
 
 The test suite's ``tests/naive.py`` and ``tests/naive_sliding.py`` re-export this package.
 """

@@ -38,6 +38,13 @@ the support and for a body on its plinth, where the plinth's own fall criterion 
   base: the slip runs along the upper's base, and the friction acts along ``t_U``). At ``c s + b = b_L`` both kinds
   are the same point: positions are continuous across the switch.
 
+**Flight** (``flight=True`` of the reference, :mod:`rockcli.reference.drum_flight`): interface ``j`` flying is coded in
+a pattern as ``2 c`` (the chart of a pivot of kind A on corner ``c``) or ``3 c`` (of kind B), its slip entry 0; its
+chart is that pivot's with the gap not held: ``q`` then carries one more coordinate per interface after the others,
+the lift ``z_j = q[1 + 2 n + j]`` (the value of the chart's ``n`` row: kind A, the corner's height above the line of
+the top below; kind B, the lower corner's depth below the drum's base line), and nothing acts at the interface.
+Patterns without flying interfaces and ``q`` of length ``1 + 2 n`` are computed exactly as before.
+
 A held normal constraint keeps its gap at 0 (no flight: a pivot's normal force may pull, counted); a sticking
 contact holds its slip; a sliding one has ``T = -mu sl N`` (Coulomb: the normal column gets ``-mu sl`` times the
 tangent row), and carries no friction where its ``N`` comes out negative (``|T| <= mu max(N, 0)``: solved again
@@ -97,6 +104,12 @@ class DrumChain:
         """True where interface ``j``'s pivot on corner ``c`` at slip ``s`` is of kind B (the corner overhangs)."""
         return c != 0.0 and c * s + self.b[j] > self.blow[j]
 
+    def chart(self, j, c, s):
+        """``(corner, kind B, flying)`` of interface ``j`` coded ``c`` at slip ``s`` (module notes on flight)."""
+        if abs(c) >= 2.0:
+            return math.copysign(1.0, c), abs(c) == 3.0, True
+        return c, self.kind_b(j, c, s), False
+
     def ends(self, j, s):
         """``(e_R, e_L)``: the ends of the overlap from the centre of drum ``j``'s base."""
         b, bl = self.b[j], self.blow[j]
@@ -114,12 +127,12 @@ class DrumChain:
             Tx, vTx = q[0], qd[0]
         thL = omL = 0.0
         for j in range(n):
-            c = pat[2 * j]
+            c, kb, fly = self.chart(j, pat[2 * j], q[1 + 2 * j])
             s, ps = q[1 + 2 * j], q[2 + 2 * j]
             sd, psd = qd[1 + 2 * j], qd[2 + 2 * j]
             tx, ty = _rot(thL, 1.0, 0.0)
             th, om = thL + ps, omL + psd
-            if self.kind_b(j, c, s):
+            if kb:
                 e = c * self.blow[j] - s
                 d = c * self.blow[j]
                 Px, Py = Tx + d * tx, Ty + d * ty
@@ -127,10 +140,20 @@ class DrumChain:
                 rx, ry = _rot(th, -e, self.h[j])
                 ux, uy = _rot(th, 1.0, 0.0)
                 vGx, vGy = vPx + om * ry + sd * ux, vPy - om * rx + sd * uy  # e' = -s'
+                if fly:  # the base line lifted by z along the drum's own normal
+                    z, zd = q[1 + 2 * n + j], qd[1 + 2 * n + j]
+                    nx, ny = _rot(th, 0.0, 1.0)
+                    rx, ry = _rot(th, -e, self.h[j] + z)
+                    vGx, vGy = vPx + om * ry + sd * ux + zd * nx, vPy - om * rx + sd * uy + zd * ny
             else:
                 d = s + c * self.b[j]
                 Px, Py = Tx + d * tx, Ty + d * ty
                 vPx, vPy = vTx + omL * d * ty + sd * tx, vTy - omL * d * tx + sd * ty
+                if fly:  # the corner lifted by z along the normal of the top below
+                    z, zd = q[1 + 2 * n + j], qd[1 + 2 * n + j]
+                    nx, ny = _rot(thL, 0.0, 1.0)
+                    Px, Py = Px + z * nx, Py + z * ny
+                    vPx, vPy = vPx + omL * z * ny + zd * nx, vPy - omL * z * nx + zd * ny
                 rx, ry = _rot(th, -c * self.b[j], self.h[j])
                 vGx, vGy = vPx + om * ry, vPy - om * rx
             Gx, Gy = Px + rx, Py + ry
@@ -187,12 +210,13 @@ class DrumChain:
         top = (0.0, self.h[lo]) if lo >= 0 else (0.0, 0.0)
         h = self.h[j]
         out = {}
+        c, kb, _ = self.chart(j, c, s)
         if c == 0.0:
             e_r, e_l = self.ends(j, s)
             out["nR"] = self._pol(X, V, j, (e_r, -h), lo, top, (0.0, 1.0))
             out["nL"] = self._pol(X, V, j, (e_l, -h), lo, top, (0.0, 1.0))
             out["t"] = self._pol(X, V, j, (0.0, -h), lo, top, (1.0, 0.0))
-        elif not self.kind_b(j, c, s):
+        elif not kb:
             cb = c * self.b[j]
             out["n"] = self._pol(X, V, j, (cb, -h), lo, top, (0.0, 1.0))
             v, r, bb = self._pol(X, V, j, (cb, -h), lo, top, (1.0, 0.0))
@@ -238,6 +262,8 @@ class DrumChain:
         held, cols, names = [], [], []
         for j in range(self.n):
             c, sl = pat[2 * j], pat[2 * j + 1]
+            if abs(c) >= 2.0:  # flying: nothing acts
+                continue
             rw = self.rows(j, c, q[1 + 2 * j], X, V)
             tr = rw["t"][1]
             mu = 0.0 if j in off else mus[j]
@@ -282,13 +308,17 @@ class DrumChain:
     def rates(self, pat, q, X, V, A, level="a"):
         """The relative coordinates' accelerations ``(u'', s_j'', psi_j'')`` from the maximal ``A`` (``level="a"``),
         or their rates from the maximal velocities ``A`` (``"v"``), in the chart of ``pat``."""
-        out = np.zeros(1 + 2 * self.n)
+        out = np.zeros(len(q))
         if self.nb:
             out[0] = A[-1]
         for j in range(self.n):
             out[2 + 2 * j] = A[3 * j + 2] - (A[3 * (j - 1) + 2] if j > 0 else 0.0)
-            _, r, bias = self.rows(j, pat[2 * j], q[1 + 2 * j], X, V)["t"]
+            rw = self.rows(j, pat[2 * j], q[1 + 2 * j], X, V)
+            _, r, bias = rw["t"]
             out[1 + 2 * j] = float(r @ A) + (bias if level == "a" else 0.0)
+            if abs(pat[2 * j]) >= 2.0:  # a flying interface's lift
+                _, r, bias = rw["n"]
+                out[1 + 2 * self.n + j] = float(r @ A) + (bias if level == "a" else 0.0)
         return out
 
     def kinetic(self, V):

@@ -78,10 +78,11 @@ def pattern_solution(ch, pat, q, qd, ag, level="a", V0=None):
 def free_of(ch, pat):
     out = [0] if ch.nb else []
     for j in range(ch.n):
-        if pat[2 * j + 1] != 0.0:
+        if pat[2 * j + 1] != 0.0 or abs(pat[2 * j]) >= 2.0:
             out.append(1 + 2 * j)
         if pat[2 * j] != 0.0:
             out.append(2 + 2 * j)
+    out += [1 + 2 * ch.n + j for j in range(ch.n) if abs(pat[2 * j]) >= 2.0]  # flying: the lift
     return out
 
 
@@ -149,6 +150,9 @@ class _Milp:
         # unknowns and the measured rows
         cols, meas, kinds = [], [], []  # kinds: per interface the indices of its unknowns and its measured rows
         for j in range(n):
+            if abs(pat[2 * j]) >= 2.0 and not corner_free[j]:  # flying (the reference's flight): no unknowns
+                kinds.append((None, [], []))
+                continue
             closed = corner_free[j] or pat[2 * j] == 0.0
             rw = ch.rows(j, 0.0 if closed else pat[2 * j], q[1 + 2 * j], X, V)
             names = ("nR", "nL", "t") if closed else ("n", "t")
@@ -180,6 +184,9 @@ class _Milp:
         for j in range(n):
             b = {}
             closed = self.kinds[j][0]
+            if closed is None:  # flying
+                self.bins.append(b)
+                continue
             if corner_free[j]:
                 b["zR"], b["zL"] = nvar, nvar + 1
                 nvar += 2
@@ -214,6 +221,8 @@ class _Milp:
         integ = np.zeros(nvar)
         for j in range(n):
             closed, ks, ms = self.kinds[j]
+            if closed is None:  # flying
+                continue
             bj = self.bins[j]
             mu = ch.mu[j]
             BT = BX * (1.0 + 3.0 * mu)

@@ -47,13 +47,19 @@ MAX_STALL = 64
 class DrumRefResult(FrictionRefResult):
     """:class:`rockcli.reference.friction.FrictionRefResult` and: ``n_kind_switches`` (a sliding pivot past the edge
     of the top below), ``n_stall`` (choices forced after ``MAX_STALL`` events at one instant), ``how`` (how many pattern choices were made by enumeration and by the mixed-integer problem),
-    ``residual_offsets`` (each drum's offset from the axis of the footprint at the end [m])."""
+    ``residual_offsets`` (each drum's offset from the axis of the footprint at the end [m]); with ``flight=True``:
+    ``n_flights`` (lift-offs), ``n_landings``, ``flight_time`` (per interface [s]), ``flight_path`` (with ``trace``:
+    the flying phases sampled, ``(t, X, V, flying interfaces)``)."""
 
     n_kind_switches: int = 0
     n_stall: int = 0
     how: dict = field(default_factory=dict)
     residual_offsets: list = field(default_factory=list)
     trace: list = field(default_factory=list)
+    n_flights: int = 0
+    n_landings: int = 0
+    flight_time: list = field(default_factory=list)
+    flight_path: list = field(default_factory=list)
 
 
 def chain_of(body, mu, foundation=None) -> DrumChain:
@@ -81,17 +87,25 @@ def chain_of(body, mu, foundation=None) -> DrumChain:
 
 def reference_drums(body, excitation, mu, foundation=None, *, rtol=1e-10, horizon=600.0, rest_tol=1e-8,
                     method="DOP853", align=True, deadline_s=None, tol=1e-9, max_phases=200000,
-                    record_energy=False, patterns="auto", trace=False) -> DrumRefResult:
+                    record_energy=False, patterns="auto", trace=False, flight=False) -> DrumRefResult:
     """Run ``body`` (a :class:`rockcli.models.drums.DrumColumn`; a Block or a Stack run as one or two drums with
     their own criteria) under ``excitation`` with friction ``mu`` (one, or per contact bottom to top) on
     ``foundation`` (None, Rigid, or LinearIsolation with gamma > 0). ``patterns``: how the pattern after an event is
     found (``"enum"``, ``"milp"``, ``"auto"``: :func:`rockcli.reference.drum_patterns.candidates`);
     ``record_energy``: keep every impact's, switch's and rest projection's change of kinetic energy; ``trace``: keep
-    ``(t, event, interface, pattern after)`` of every event (to find where two runs part)."""
+    ``(t, event, interface, pattern after)`` of every event (to find where two runs part). ``flight``: interfaces may
+    lift off, fly and land (:mod:`rockcli.reference.drum_flight`); without it a pivot that pulls is kept as a hinge
+    and counted (``n_jumps``), exactly as before."""
     t_wall = time.perf_counter()
-    run = _DrumRun(chain_of(body, mu, foundation), excitation, rtol, horizon, rest_tol, method, align, deadline_s,
-                   tol, record_energy, patterns)
+    if flight:
+        from rockcli.reference.drum_flight_run import FlightRun as cls
+    else:
+        cls = _DrumRun
+    run = cls(chain_of(body, mu, foundation), excitation, rtol, horizon, rest_tol, method, align, deadline_s,
+              tol, record_energy, patterns)
     run.trace = [] if trace else None
+    if flight and trace:
+        run.flight_path = []
     for _ in range(max_phases):
         if not run.phase():
             break
@@ -424,4 +438,7 @@ class _DrumRun(_Run):
             offsets.append(x)
         return DrumRefResult(**d, n_kind_switches=self.n_kind, n_stall=self.n_stall, how=dict(self.how),
                              residual_offsets=offsets,
-                             trace=self.trace or [])
+                             trace=self.trace or [], n_flights=getattr(self, "n_flights", 0),
+                             n_landings=getattr(self, "n_landings", 0),
+                             flight_time=list(getattr(self, "flight_time", [0.0] * self.n)),
+                             flight_path=getattr(self, "flight_path", None) or [])
