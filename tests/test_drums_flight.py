@@ -15,7 +15,6 @@ import pytest
 from rockcli.io.units import G
 from rockcli.models.drums import DrumColumn
 from rockcli.pulses import RickerSymmetric
-from rockcli.reference import drum_flight as df
 from rockcli.reference.friction_drums import chain_of, reference_drums
 
 sys.path.insert(0, os.path.dirname(__file__))  # tests/synthetic.py
@@ -135,6 +134,7 @@ def test_a_tilted_landing_on_a_corner_conserves_the_angular_momentum_about_it(n)
             # the state is the one of turning about the other corner: the centre's velocity is om x (G - C_other)
             ox, oy = gx - side * b * c - hh * s_, gy + side * b * s_ - hh * c
             assert vx == pytest.approx(om_cw * (gy - oy), rel=1e-6)
+            assert vy == pytest.approx(-om_cw * (gx - ox), rel=1e-6, abs=1e-12)
         run._landing(top, side)
         assert run.pat[2 * top] == side and run.pat[2 * top + 1] == 0.0 and run.n_landings == 1
         assert all(p == 0.0 for p in run.pat[:2 * top])

@@ -15,7 +15,7 @@ import pytest
 from rockcli.io.units import G
 from rockcli.models import Block, Plinth, Stack
 from rockcli.models.drums import DrumColumn
-from rockcli.pulses import OneSine, RickerAntisymmetric, RickerSymmetric
+from rockcli.pulses import OneSine, RickerSymmetric
 from rockcli.records import Record
 from rockcli.reference import drum_patterns as dp
 from rockcli.reference.drum_mechanics import DrumChain
